@@ -1,0 +1,32 @@
+# Two entry points, each creating its own virtual environment first:
+#   make figures   build every available figure and table with config/config.yaml
+#   make test      lint and run the whole test suite
+PYTHON ?= python3
+VENV ?= .venv
+BIN := $(VENV)/bin
+CORES ?= all
+CONFIG ?= config/config.yaml
+
+.PHONY: install figures test lint clean-results
+
+install: $(VENV)/.installed
+
+$(VENV)/.installed: environment-pip.txt pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -r environment-pip.txt
+	$(BIN)/python -m pip install --quiet --no-deps -e .
+	touch $@
+
+figures: install
+	$(BIN)/snakemake --cores $(CORES) --configfile $(CONFIG) all
+
+lint: install
+	$(BIN)/ruff check src workflow tests
+	$(BIN)/ruff format --check src workflow tests
+
+test: lint
+	$(BIN)/python -m pytest
+
+clean-results:
+	rm -rf results logs .snakemake

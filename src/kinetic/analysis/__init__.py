@@ -1,0 +1,1 @@
+"""Estimators with error bars, cumulants, histograms, Legendre transforms and fits."""

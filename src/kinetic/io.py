@@ -1,0 +1,198 @@
+"""Datasets, netCDF files and tables: the only module that knows file formats.
+
+Conventions every dataset of the project follows (checked by ``check_conventions``):
+
+- every data variable and coordinate has the attributes ``units`` and ``long_name``;
+- every dimension has a coordinate;
+- the global attributes hold the run's ``parameters`` (one attribute each, plus the
+  whole set as JSON in ``parameters_json``), its ``seed``, the ``config`` (JSON), the
+  package ``kinetic_version`` and the ``git_revision`` of the source tree;
+- netCDF attributes hold only strings, numbers and numeric arrays: booleans become
+  ints, ``None`` becomes an empty string, anything else nested becomes JSON.
+
+Files are written to a temporary name and renamed, so a file under its final name is
+always complete: an interrupted job leaves no truncated result behind.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import os
+import subprocess
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+from kinetic import __version__
+
+__all__ = [
+    "check_conventions",
+    "git_revision",
+    "make_dataset",
+    "read_dataset",
+    "read_table",
+    "stamp",
+    "write_dataset",
+    "write_table",
+]
+
+Variable = tuple[tuple[str, ...] | str, Any, str, str]
+"""``(dims, values, units, long_name)`` of one data variable or coordinate."""
+
+
+def make_dataset(
+    data_vars: Mapping[str, Variable],
+    coords: Mapping[str, Variable] | None = None,
+    attrs: Mapping[str, Any] | None = None,
+) -> xr.Dataset:
+    """Build a dataset whose every variable carries ``units`` and ``long_name``.
+
+    Each entry is ``name: (dims, values, units, long_name)``; ``dims`` may be a single
+    dimension name or ``()`` for a scalar.
+    """
+
+    def to_variable(spec: Variable) -> xr.Variable:
+        dims, values, units, long_name = spec
+        dims = (dims,) if isinstance(dims, str) else tuple(dims)
+        return xr.Variable(dims, np.asarray(values), {"units": units, "long_name": long_name})
+
+    dataset = xr.Dataset(
+        {name: to_variable(spec) for name, spec in data_vars.items()},
+        coords={name: to_variable(spec) for name, spec in (coords or {}).items()},
+        attrs=dict(attrs or {}),
+    )
+    check_conventions(dataset)
+    return dataset
+
+
+def check_conventions(dataset: xr.Dataset) -> None:
+    """Raise ``ValueError`` naming every variable or dimension that breaks the conventions."""
+    problems = []
+    for name, variable in dataset.variables.items():
+        missing = [key for key in ("units", "long_name") if key not in variable.attrs]
+        if missing:
+            problems.append(f"variable {name!r} lacks {', '.join(missing)}")
+    problems += [f"dimension {dim!r} has no coordinate" for dim in dataset.dims
+                 if dim not in dataset.coords]
+    if problems:
+        raise ValueError("dataset breaks the conventions of kinetic.io: " + "; ".join(problems))
+
+
+@functools.cache
+def git_revision() -> str:
+    """The git revision of the source tree (``KINETIC_GIT_REVISION`` overrides), or 'unknown'.
+
+    A ``-dirty`` suffix marks uncommitted changes.
+    """
+    if revision := os.environ.get("KINETIC_GIT_REVISION"):
+        return revision
+    here = Path(__file__).resolve().parent
+    try:
+        revision = subprocess.run(
+            ["git", "describe", "--always", "--dirty", "--abbrev=12"],
+            cwd=here, capture_output=True, text=True, check=True, timeout=10,
+        ).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    return revision or "unknown"
+
+
+def _attribute_value(value: Any) -> Any:
+    """Encode one attribute value into what netCDF accepts."""
+    if value is None:
+        return ""
+    if isinstance(value, bool | np.bool_):
+        return int(value)
+    if isinstance(value, str | int | float | np.integer | np.floating):
+        return value
+    if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
+        return value
+    if isinstance(value, list | tuple) and value and all(
+        isinstance(item, int | float) and not isinstance(item, bool) for item in value
+    ):
+        return np.asarray(value)
+    return json.dumps(value, sort_keys=True, default=str)
+
+
+def stamp(
+    dataset: xr.Dataset,
+    *,
+    parameters: Mapping[str, Any],
+    seed: int | None,
+    config: Mapping[str, Any] | None = None,
+) -> xr.Dataset:
+    """Return ``dataset`` with the provenance attributes set (see the module docstring)."""
+    attrs = dict(dataset.attrs)
+    for key, value in parameters.items():
+        attrs[key] = _attribute_value(value)
+    attrs["parameters_json"] = json.dumps(dict(parameters), sort_keys=True, default=str)
+    attrs["seed"] = -1 if seed is None else int(seed)
+    attrs["config"] = json.dumps(dict(config or {}), sort_keys=True, default=str)
+    attrs["kinetic_version"] = __version__
+    attrs["git_revision"] = git_revision()
+    return dataset.assign_attrs(attrs)
+
+
+def write_dataset(dataset: xr.Dataset, path: str | os.PathLike) -> Path:
+    """Write ``dataset`` to netCDF atomically (temporary file, then rename)."""
+    check_conventions(dataset)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    encoded = dataset.assign_attrs({k: _attribute_value(v) for k, v in dataset.attrs.items()})
+    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        encoded.to_netcdf(temporary, engine="netcdf4")
+        os.replace(temporary, path)
+    finally:
+        temporary.unlink(missing_ok=True)
+    return path
+
+
+def read_dataset(path: str | os.PathLike) -> xr.Dataset:
+    """Read a netCDF file written by ``write_dataset`` fully into memory and close it."""
+    with xr.open_dataset(path, engine="netcdf4") as dataset:
+        return dataset.load()
+
+
+def parameters_of(dataset: xr.Dataset) -> dict[str, Any]:
+    """The run parameters stored by ``stamp``."""
+    return json.loads(dataset.attrs["parameters_json"])
+
+
+def _markdown(frame: pd.DataFrame, float_format: str) -> str:
+    def cell(value: Any) -> str:
+        if value is None or (isinstance(value, float) and np.isnan(value)):
+            return ""
+        if isinstance(value, float | np.floating):
+            return format(value, float_format)
+        return str(value)
+
+    header = "| " + " | ".join(frame.columns) + " |"
+    rule = "| " + " | ".join("---" for _ in frame.columns) + " |"
+    rows = ["| " + " | ".join(cell(v) for v in row) + " |" for row in frame.itertuples(False)]
+    return "\n".join([header, rule, *rows]) + "\n"
+
+
+def write_table(
+    frame: pd.DataFrame,
+    csv_path: str | os.PathLike,
+    markdown_path: str | os.PathLike | None = None,
+    *,
+    float_format: str = ".6g",
+) -> None:
+    """Write a table as CSV (empty cells for missing values) and optionally a Markdown twin."""
+    csv_path = Path(csv_path)
+    csv_path.parent.mkdir(parents=True, exist_ok=True)
+    frame.to_csv(csv_path, index=False, float_format="%.10g", na_rep="")
+    if markdown_path is not None:
+        Path(markdown_path).write_text(_markdown(frame, float_format))
+
+
+def read_table(path: str | os.PathLike) -> pd.DataFrame:
+    """Read a CSV written by ``write_table``."""
+    return pd.read_csv(path)
