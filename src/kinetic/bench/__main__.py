@@ -1,0 +1,32 @@
+"""``python -m kinetic.bench <engine> [--quick] [--out results/benchmarks]``."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import logging
+import pkgutil
+
+import kinetic.bench as bench
+
+
+def available_engines() -> list[str]:
+    return sorted(m.name for m in pkgutil.iter_modules(bench.__path__) if not m.name.startswith("_"))
+
+
+def main(argv: list[str] | None = None) -> None:
+    engines = available_engines()
+    parser = argparse.ArgumentParser(prog="python -m kinetic.bench", description=__doc__)
+    parser.add_argument("engine", choices=engines, help="engine to time")
+    parser.add_argument("--quick", action="store_true", help="fewer sizes and repeats")
+    parser.add_argument("--out", default="results/benchmarks", help="output directory")
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.INFO, format="%(message)s")
+    module = importlib.import_module(f"kinetic.bench.{args.engine}")
+    report = module.run(quick=args.quick)
+    path = bench.write_report(args.engine, report, args.out)
+    print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    main()
