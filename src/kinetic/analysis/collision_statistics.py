@@ -1,0 +1,195 @@
+"""Collision statistics from the observer datasets of ``kinetic.edmd.simulate``.
+
+Unit conversion happens here and nowhere else: time in units of the *measured* mean free
+time τ = 1/ω with ω = 2 C / (N T) (C pair collisions in a production time T, each counting
+for two particles), lengths in units of the mean free path l = ⟨|v|⟩ τ with the Maxwellian
+mean speed of the measured temperature (visco2008 Eq. 15: l = ⟨v⟩/ω; the mean of the
+free paths equals it exactly in theory).
+
+Error bars come from independent realizations (standard error of the mean over the
+``realization`` axis), except the tails of π(n), where the pooled counting error
+1/√count is used (bins empty in most realizations).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from kinetic.analysis.statistics import mean_and_sem
+
+__all__ = [
+    "collision_frequency",
+    "count_large_deviation",
+    "cumulant_table",
+    "error_against_cpu_time",
+    "flight_time_pdf",
+    "free_path_pdf",
+    "histogram_cumulants",
+    "mean_free_path",
+    "mean_free_time",
+    "scaled_cumulants",
+]
+
+
+def histogram_cumulants(histogram, axis: int = -1) -> np.ndarray:
+    """Cumulants p = 1, 2, 3 of integer counts n = 0, 1, ... given their histogram along
+    ``axis``. Returns an array whose first axis is p (mean, variance, third central
+    moment; plain 1/n normalisation), NaN where the histogram is empty."""
+    histogram = np.moveaxis(np.asarray(histogram, dtype=float), axis, -1)
+    n = np.arange(histogram.shape[-1], dtype=float)
+    total = histogram.sum(axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = (histogram * n).sum(axis=-1) / total
+        centred = n - mean[..., None]
+        second = (histogram * centred**2).sum(axis=-1) / total
+        third = (histogram * centred**3).sum(axis=-1) / total
+    return np.stack([mean, second, third])
+
+
+def collision_frequency(dataset, checkpoint: int = -1) -> np.ndarray:
+    """ω per realization (collisions per particle per unit time) up to a checkpoint."""
+    n = dataset.attrs["n_particles"]
+    collisions = dataset["collisions"].values[:, checkpoint]
+    duration = dataset["production_time"].values[:, checkpoint]
+    return 2.0 * collisions / (n * duration)
+
+
+def mean_free_time(dataset) -> float:
+    """Measured mean free time of all realizations pooled (full production)."""
+    n = dataset.attrs["n_particles"]
+    return float(
+        n
+        * dataset["production_time"].values[:, -1].sum()
+        / (2.0 * dataset["collisions"].values[:, -1].sum())
+    )
+
+
+def mean_free_path(dataset) -> float:
+    """l = ⟨|v|⟩ τ with the Maxwellian mean speed of the measured temperature."""
+    dimension = dataset.attrs["dimension"]
+    temperature = float(dataset["temperature"].values[:, -1].mean())
+    if dimension == 2:
+        speed = math.sqrt(math.pi * temperature / 2.0)
+    else:
+        speed = math.sqrt(8.0 * temperature / math.pi)
+    return speed * mean_free_time(dataset)
+
+
+def scaled_cumulants(dataset, checkpoint: int = -1) -> np.ndarray:
+    """⟨N^p⟩_c / t per realization: array (realization, window, order p = 1..3).
+
+    t = (window length in simulation time) × ω of that realization's production up to the
+    checkpoint, i.e. time in units of the measured mean free time, so ⟨N⟩/t ≈ 1 up to the
+    windows cut off at the end of the run.
+    """
+    histogram = dataset["window_histogram"].values[:, checkpoint]  # (r, w, count)
+    cumulants = histogram_cumulants(histogram)  # (p, r, w)
+    omega = collision_frequency(dataset, checkpoint)  # (r,)
+    t = dataset["window_time"].values * omega[:, None]  # (r, w)
+    return np.moveaxis(cumulants / t[None], 0, -1)
+
+
+def cumulant_table(dataset, checkpoint: int = -1) -> dict:
+    """Mean and standard error over realizations of ⟨N^p⟩_c / t: arrays (window, order)."""
+    values = scaled_cumulants(dataset, checkpoint)
+    mean, sem = mean_and_sem(values, axis=0)
+    return {
+        "window": dataset["window"].values,
+        "order": np.arange(1, 4),
+        "scaled_cumulant": mean,
+        "scaled_cumulant_sem": sem,
+    }
+
+
+def _pdf(histograms, totals, bin_width):
+    """Per-realization densities -> pooled density and SEM over realizations."""
+    histograms = np.asarray(histograms, dtype=float)
+    totals = np.asarray(totals, dtype=float)
+    per_realization = histograms / (totals[:, None] * bin_width)
+    pooled = histograms.sum(axis=0) / (totals.sum() * bin_width)
+    _, sem = mean_and_sem(per_realization, axis=0)
+    return pooled, sem
+
+
+def flight_time_pdf(dataset) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """P_FFT(t) with t in measured mean free times: (bin centres, density, SEM)."""
+    tau = mean_free_time(dataset)
+    width = dataset.attrs["flight_time_bin_width"] / tau
+    centres = dataset["flight_time"].values / tau
+    density, sem = _pdf(
+        dataset["flight_time_histogram"].values, dataset["flight_count"].values, width
+    )
+    return centres, density, sem
+
+
+def free_path_pdf(dataset) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """P_FPL(x) with x in mean free paths l: (bin centres, density, SEM)."""
+    length = mean_free_path(dataset)
+    width = dataset.attrs["free_path_bin_width"] / length
+    centres = dataset["free_path"].values / length
+    density, sem = _pdf(
+        dataset["free_path_histogram"].values, dataset["flight_count"].values, width
+    )
+    return centres, density, sem
+
+
+def count_large_deviation(dataset, window: float, checkpoint: int = -1):
+    """Finite-time estimate of π(n) from the pooled count histogram at window length t:
+
+        π_t(n) = (1/t) ln[P(N = n t) / max_k P(N = k)],   n = N / t,
+
+    with t in measured mean free times (pooled ω). Returns (n, π_t, error) for counts
+    observed at least once; error = 1/(t √count) (pooled counting error).
+    """
+    index = int(np.argmin(np.abs(dataset["window"].values - window)))
+    histogram = dataset["window_histogram"].values[:, checkpoint, index].sum(axis=0)
+    n_particles = dataset.attrs["n_particles"]
+    omega = (
+        2.0
+        * dataset["collisions"].values[:, checkpoint].sum()
+        / (n_particles * dataset["production_time"].values[:, checkpoint].sum())
+    )
+    t = float(dataset["window_time"].values[:, index].mean() * omega)
+    counts = np.arange(histogram.size)
+    seen = histogram > 0
+    probability = histogram[seen] / histogram.sum()
+    ldf = np.log(probability / probability.max()) / t
+    error = 1.0 / (t * np.sqrt(histogram[seen]))
+    return counts[seen] / t, ldf, error
+
+
+def error_against_cpu_time(dataset, window: float = 10.0) -> dict:
+    """Standard error of ⟨N²⟩_c/t and ⟨N³⟩_c/t at one window length against CPU time.
+
+    One row per checkpoint (production length per realization): the cumulative histograms
+    at that checkpoint give each realization's estimate, the spread over realizations the
+    standard error; the CPU time is the sum over realizations (equilibration included).
+    """
+    index = int(np.argmin(np.abs(dataset["window"].values - window)))
+    rows = {
+        key: []
+        for key in (
+            "production_length",
+            "realizations",
+            "collisions",
+            "cpu_time",
+            "k2",
+            "k2_sem",
+            "k3",
+            "k3_sem",
+        )
+    }
+    for c, length in enumerate(dataset["checkpoint"].values):
+        values = scaled_cumulants(dataset, c)[:, index, :]
+        mean, sem = mean_and_sem(values, axis=0)
+        rows["production_length"].append(float(length))
+        rows["realizations"].append(int(values.shape[0]))
+        rows["collisions"].append(int(dataset["collisions"].values[:, c].sum()))
+        rows["cpu_time"].append(float(dataset["cpu_time"].values[:, c].sum()))
+        rows["k2"].append(float(mean[1]))
+        rows["k2_sem"].append(float(sem[1]))
+        rows["k3"].append(float(mean[2]))
+        rows["k3_sem"].append(float(sem[2]))
+    return {key: np.asarray(value) for key, value in rows.items()}

@@ -1,0 +1,46 @@
+"""Event-driven molecular dynamics of hard disks (d = 2) and spheres (d = 3).
+
+- ``HardSphereSystem``: the state and its event loop (periodic or hard-wall box,
+  restitution, velocity-rescaling thermostat, inelastic-collapse report);
+- ``Observers``: collision counts in windows, free flights, samples, wall hits, records;
+- ``simulate``: the equilibrium protocol of visco2008 (independent realizations ->
+  ``xarray.Dataset``);
+- ``warmup``: compile (or load from numba's cache) every kernel with production types.
+"""
+
+from kinetic.edmd.observers import Observers
+from kinetic.edmd.simulate import simulate
+from kinetic.edmd.system import HardSphereSystem, InelasticCollapseError
+
+__all__ = ["HardSphereSystem", "InelasticCollapseError", "Observers", "simulate", "warmup"]
+
+
+def warmup() -> None:
+    """Compile every kernel with the argument types production uses (numba cache=True:
+    later processes load the machine code instead of compiling)."""
+    for dimension, walls in ((2, False), (2, True), (3, False)):
+        n = 8 if dimension == 2 else 27
+        system = HardSphereSystem(
+            n_particles=n,
+            box=[8.0] * dimension,
+            dimension=dimension,
+            walls=walls,
+            seed=0,
+            restitution=0.9,
+            rescale_every=5,
+        )
+        observers = Observers.create(
+            n,
+            window_lengths=[1.0],
+            count_bins=8,
+            flight_bins=4,
+            path_bins=4,
+            sample_times=[0.5, 1.0],
+            record_capacity=4,
+        )
+        observers.start(system)
+        system.run(collisions=20, observers=observers)
+        system.sort_particles(observers)
+        system.run(until=system.time + 1.0)
+        system.min_distance()
+        system.kinetic_temperature()

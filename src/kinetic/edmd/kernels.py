@@ -1,0 +1,1110 @@
+"""Numba kernels of the event-driven molecular dynamics of hard disks and spheres.
+
+Arrays only: no Python objects, no I/O, no allocation inside the event loop. The Python
+front (``kinetic.edmd.simulate``) allocates the state with ``kinetic.edmd.state`` and calls
+``advance`` in chunks.
+
+Units: mass m = 1; lengths in the units of the box and diameter (σ = 1 in the project);
+times in the units those and the velocities imply.
+
+State (N particles, every array preallocated, row/index i = particle i)
+-----------------------------------------------------------------------
+``phase``   (N, 8) float64: columns 0..2 the *false position* x0 = x(t) − v t of the
+            current flight (so the position at time t is ``x0 + v t`` without touching the
+            particle between its events), columns 3..5 the velocity; 6..7 unused (the row is
+            one 64-byte cache line). In d = 2 the z columns are 0.
+``cell``    (N, 3) int32: cell coordinates of each particle (z = 0 in d = 2).
+``head``    (n_cells,) int32, ``next_``/``prev`` (N,) int32: doubly linked lists of the
+            particles of each cell (−1 ends a list).
+``collision_time`` (N,) float64, ``partner`` (N,) int32, ``partner_stamp`` (N,) int64:
+            earliest predicted pair collision of i, its partner j and the value of
+            ``stamp[j]`` when it was predicted (lazy invalidation: the prediction is valid iff
+            ``stamp[j]`` has not changed since).
+``stamp``   (N,) int64: number of velocity changes of i (collisions and wall bounces).
+``crossing_time`` (N,) float64, ``crossing_code`` (N,) int32: next time i leaves its cell
+            (or touches a wall) and through which face: code = 2 k + (1 if upwards else 0).
+``tree_time`` (2M,) float64, ``tree_index`` (2M,) int32: complete binary tournament tree
+            over M = 2^ceil(log2 N) leaves; leaf M + i holds min(collision_time[i],
+            crossing_time[i]); every inner node the earliest of its two children (ties go to
+            the lower particle index), so node 1 is the next event of the whole system.
+``last_collision`` (N,) float64: time of i's last pair collision (−inf before the first).
+``streak``  (N,) int32: consecutive pair collisions of i separated by less than the
+            collapse time (inelastic collapse detector).
+
+Parameters
+----------
+``geometry`` float64 [L0, L1, L2, w0, w1, w2, σ, σ², α, contact_time, collapse_time]:
+            box lengths, cell widths (L_k / n_k, each ≥ σ), diameter, restitution, the
+            contact duration of the TC model (pairs in which a particle collided less than
+            that time before collide elastically; 0 disables it) and the collapse time.
+``grid``    int64 [n0, n1, n2, d, wall0, wall1, wall2, collapse_streak, rescale_every]:
+            cells per side (n2 = 1 in d = 2), dimension, hard wall (1) or periodic (0) per
+            axis, the streak length that declares inelastic collapse, and the number of
+            collisions between two velocity rescalings (0: no thermostat).
+
+Events
+------
+A *crossing* moves i to the next cell (wrapping x0 by the box length on periodic faces)
+and tests i only against the layer of cells that just became adjacent; a *wall* event
+reflects the normal velocity; a *collision* is executed if the partner's stamp is unchanged,
+otherwise i's collisions are predicted anew (an *invalid* event). Round-off overlaps are
+handled deterministically: an approaching pair found at distance < σ collides at once, a
+receding overlapping pair is ignored (it separates). Collisions with velocity rescaling:
+the rescaling by s at time t maps every pending event time t_e to t + (t_e − t)/s, an
+order-preserving map, so no prediction is redone.
+
+Observers fed by each collision (when ``observing`` is 1)
+---------------------------------------------------------
+per-particle counts in consecutive windows of several lengths (histograms of the counts),
+free-flight times and free paths (histograms + sums), wall hits (count, Σ|v⊥|, Σ1/|v⊥|),
+temperature and collision count at requested times.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from kinetic.rng import normal_pair, uniform
+
+# status codes returned by ``advance``
+STATUS_TIME = 0  # reached the requested time
+STATUS_COLLISIONS = 1  # executed the requested number of collisions
+STATUS_COLLAPSE = 2  # inelastic collapse: a particle's collision streak exceeded the limit
+STATUS_STALLED = 3  # the clock did not advance for too many consecutive events
+STATUS_EVENT_LIMIT = 4  # more events than allowed in one call
+STATUS_NO_EVENTS = 5  # every particle is at rest: nothing will ever happen
+
+# indices into ``counters`` (int64)
+COUNT_COLLISIONS = 0
+COUNT_CROSSINGS = 1
+COUNT_WALL_HITS = 2
+COUNT_INVALID = 3
+COUNT_PAIR_TESTS = 4
+COUNT_EVENTS = 5
+COUNT_RESCALES = 6
+COUNT_COLLAPSE_PARTICLE = 7  # particle that triggered the collapse report
+COUNT_COLLAPSE_PARTNER = 8
+COUNT_STALL = 9  # consecutive events at the same time (internal)
+COUNT_INELASTIC = 10  # collisions executed with α < 1
+N_COUNTERS = 11
+
+# indices into ``geometry``
+G_L = 0
+G_W = 3
+G_SIGMA = 6
+G_SIGMA2 = 7
+G_ALPHA = 8
+G_CONTACT = 9
+G_COLLAPSE_TIME = 10
+N_GEOMETRY = 11
+
+# indices into ``grid``
+I_N = 0
+I_DIM = 3
+I_WALL = 4
+I_STREAK = 7
+I_RESCALE = 8
+N_GRID = 9
+
+STALL_LIMIT = 100_000
+
+
+# ----------------------------------------------------------------------------- tree
+
+
+@njit(cache=True, error_model="numpy")
+def tree_build(tree_time, tree_index, keys):
+    """Fill the tournament tree from ``keys`` (N,) float64; padding leaves hold +inf.
+
+    ``tree_time``/``tree_index`` have length 2M; leaf M + i stands for particle i.
+    """
+    m = tree_time.shape[0] // 2
+    for leaf in range(m):
+        tree_index[m + leaf] = leaf
+        tree_time[m + leaf] = keys[leaf] if leaf < keys.shape[0] else np.inf
+    for node in range(m - 1, 0, -1):
+        left = 2 * node
+        right = left + 1
+        if tree_time[right] < tree_time[left]:
+            tree_time[node] = tree_time[right]
+            tree_index[node] = tree_index[right]
+        else:
+            tree_time[node] = tree_time[left]
+            tree_index[node] = tree_index[left]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def tree_update(tree_time, tree_index, i, key):
+    """Set particle i's key and restore the tournament on the path to the root.
+
+    Stops early once an ancestor's winner is another particle that still beats ``key``
+    (nothing above can change then).
+    """
+    m = tree_time.shape[0] // 2
+    node = m + i
+    tree_time[node] = key
+    while node > 1:
+        parent = node >> 1
+        if tree_index[parent] != i and tree_time[parent] <= key:
+            return
+        left = parent << 1
+        right = left + 1
+        if tree_time[right] < tree_time[left]:
+            tree_time[parent] = tree_time[right]
+            tree_index[parent] = tree_index[right]
+        else:
+            tree_time[parent] = tree_time[left]
+            tree_index[parent] = tree_index[left]
+        node = parent
+
+
+# ----------------------------------------------------------------------------- geometry
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def cell_flat(cx, cy, cz, grid):
+    """Flat index of cell (cx, cy, cz): x fastest."""
+    return (cz * grid[1] + cy) * grid[0] + cx
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def cell_insert(i, flat, head, next_, prev):
+    """Push particle i at the front of cell ``flat``'s list."""
+    first = head[flat]
+    next_[i] = first
+    prev[i] = -1
+    if first >= 0:
+        prev[first] = i
+    head[flat] = i
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def cell_remove(i, flat, head, next_, prev):
+    """Unlink particle i from cell ``flat``'s list."""
+    before = prev[i]
+    after = next_[i]
+    if before >= 0:
+        next_[before] = after
+    else:
+        head[flat] = after
+    if after >= 0:
+        prev[after] = before
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def pair_time(xi, yi, zi, ui, vi, wi, phase, j, sx, sy, sz, t, sigma2, dim):
+    """Absolute time of the next contact of i (position (xi, yi, zi) at time t, velocity
+    (ui, vi, wi)) with the image of j shifted by (sx, sy, sz); +inf if they never touch.
+
+    Uses the cancellation-free root (|r|² − σ²)/(−b + √disc); an approaching pair that
+    already overlaps by round-off collides at once (returns t). The rejection test is one
+    branch on (b < 0) & (disc > 0), which is rarely true in a dilute gas (well predicted).
+    """
+    dx = phase[j, 0] + phase[j, 3] * t + sx - xi
+    dy = phase[j, 1] + phase[j, 4] * t + sy - yi
+    du = phase[j, 3] - ui
+    dv = phase[j, 4] - vi
+    b = dx * du + dy * dv
+    r2 = dx * dx + dy * dy
+    g2 = du * du + dv * dv
+    if dim == 3:
+        dz = phase[j, 2] + phase[j, 5] * t + sz - zi
+        dw = phase[j, 5] - wi
+        b += dz * dw
+        r2 += dz * dz
+        g2 += dw * dw
+    c = r2 - sigma2
+    disc = b * b - g2 * c
+    if (b < 0.0) & (disc > 0.0):
+        dt = c / (np.sqrt(disc) - b)
+        if dt < 0.0:
+            dt = 0.0
+        return t + dt
+    return np.inf
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def scan_cell(i, flat, sx, sy, sz, t, phase, head, next_, sigma2, dim, best_t, best_j):
+    """Earliest collision of i with the particles of cell ``flat`` (image shift (sx, sy,
+    sz)), compared with (best_t, best_j). Returns (best_t, best_j, number of pair tests)."""
+    xi = phase[i, 0] + phase[i, 3] * t
+    yi = phase[i, 1] + phase[i, 4] * t
+    zi = phase[i, 2] + phase[i, 5] * t
+    ui = phase[i, 3]
+    vi = phase[i, 4]
+    wi = phase[i, 5]
+    tests = 0
+    j = head[flat]
+    while j >= 0:
+        if j != i:
+            tc = pair_time(xi, yi, zi, ui, vi, wi, phase, j, sx, sy, sz, t, sigma2, dim)
+            tests += 1
+            if tc < best_t:
+                best_t = tc
+                best_j = j
+        j = next_[j]
+    return best_t, best_j, tests
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def scan_neighbours(
+    i, t, fixed_axis, fixed_offset, phase, cell, head, next_, geometry, grid, best_t, best_j
+):
+    """Earliest collision of i with the particles of its neighbour cells.
+
+    All 3^d cells around i's cell when ``fixed_axis`` < 0, otherwise only the layer whose
+    offset along ``fixed_axis`` is ``fixed_offset`` (the cells that became adjacent after a
+    crossing). Periodic axes wrap with the image shift ±L; cells beyond a wall are skipped.
+    Returns (best_t, best_j, number of pair tests).
+    """
+    dim = grid[I_DIM]
+    sigma2 = geometry[G_SIGMA2]
+    tests = 0
+    lo0, hi0 = -1, 1
+    lo1, hi1 = -1, 1
+    lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
+    if fixed_axis == 0:
+        lo0 = fixed_offset
+        hi0 = fixed_offset
+    elif fixed_axis == 1:
+        lo1 = fixed_offset
+        hi1 = fixed_offset
+    elif fixed_axis == 2:
+        lo2 = fixed_offset
+        hi2 = fixed_offset
+    n0 = grid[0]
+    n1 = grid[1]
+    n2 = grid[2]
+    c0 = cell[i, 0]
+    c1 = cell[i, 1]
+    c2 = cell[i, 2]
+    for o2 in range(lo2, hi2 + 1):
+        k2 = c2 + o2
+        s2 = 0.0
+        if k2 < 0:
+            if grid[I_WALL + 2]:
+                continue
+            k2 += n2
+            s2 = -geometry[G_L + 2]
+        elif k2 >= n2:
+            if grid[I_WALL + 2]:
+                continue
+            k2 -= n2
+            s2 = geometry[G_L + 2]
+        for o1 in range(lo1, hi1 + 1):
+            k1 = c1 + o1
+            s1 = 0.0
+            if k1 < 0:
+                if grid[I_WALL + 1]:
+                    continue
+                k1 += n1
+                s1 = -geometry[G_L + 1]
+            elif k1 >= n1:
+                if grid[I_WALL + 1]:
+                    continue
+                k1 -= n1
+                s1 = geometry[G_L + 1]
+            for o0 in range(lo0, hi0 + 1):
+                k0 = c0 + o0
+                s0 = 0.0
+                if k0 < 0:
+                    if grid[I_WALL]:
+                        continue
+                    k0 += n0
+                    s0 = -geometry[G_L]
+                elif k0 >= n0:
+                    if grid[I_WALL]:
+                        continue
+                    k0 -= n0
+                    s0 = geometry[G_L]
+                flat = (k2 * n1 + k1) * n0 + k0
+                best_t, best_j, n = scan_cell(
+                    i, flat, s0, s1, s2, t, phase, head, next_, sigma2, dim, best_t, best_j
+                )
+                tests += n
+    return best_t, best_j, tests
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def next_crossing(i, phase, cell, geometry, grid):
+    """Time and face code (2k + 1 upwards, 2k downwards) at which i leaves its cell or
+    touches a wall. A wall face is the plane at σ/2 from the wall."""
+    dim = grid[I_DIM]
+    best = np.inf
+    code = -1
+    half_sigma = 0.5 * geometry[G_SIGMA]
+    for k in range(dim):
+        velocity = phase[i, 3 + k]
+        if velocity > 0.0:
+            c = cell[i, k]
+            if grid[I_WALL + k] and c == grid[I_N + k] - 1:
+                boundary = geometry[G_L + k] - half_sigma
+            else:
+                boundary = (c + 1) * geometry[G_W + k]
+            tc = (boundary - phase[i, k]) / velocity
+            if tc < best:
+                best = tc
+                code = 2 * k + 1
+        elif velocity < 0.0:
+            c = cell[i, k]
+            boundary = half_sigma if grid[I_WALL + k] and c == 0 else c * geometry[G_W + k]
+            tc = (boundary - phase[i, k]) / velocity
+            if tc < best:
+                best = tc
+                code = 2 * k
+    return best, code
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def predict(
+    i,
+    t,
+    phase,
+    cell,
+    head,
+    next_,
+    geometry,
+    grid,
+    collision_time,
+    partner,
+    partner_stamp,
+    stamp,
+    crossing_time,
+    crossing_code,
+    counters,
+):
+    """Predict i's next collision (all neighbour cells) and next crossing from time t."""
+    best_t, best_j, tests = scan_neighbours(
+        i, t, -1, 0, phase, cell, head, next_, geometry, grid, np.inf, -1
+    )
+    counters[COUNT_PAIR_TESTS] += tests
+    collision_time[i] = best_t
+    partner[i] = best_j
+    partner_stamp[i] = stamp[best_j] if best_j >= 0 else -1
+    tc, code = next_crossing(i, phase, cell, geometry, grid)
+    # never schedule in the past (round-off right after a crossing)
+    crossing_time[i] = tc if tc > t else t
+    crossing_code[i] = code
+
+
+# ----------------------------------------------------------------------------- observers
+
+
+@njit(cache=True, error_model="numpy")
+def temperature(phase, dim):
+    """Kinetic temperature Σ v² / (d N) (m = 1)."""
+    total = 0.0
+    n = phase.shape[0]
+    for i in range(n):
+        for k in range(dim):
+            total += phase[i, 3 + k] * phase[i, 3 + k]
+    return total / (dim * n)
+
+
+@njit(cache=True, error_model="numpy")
+def flush_windows(w, window_count, window_histogram, window_overflow):
+    """Close window length w for every particle: histogram the counts, reset them."""
+    n = window_count.shape[0]
+    top = window_histogram.shape[1]
+    for i in range(n):
+        c = window_count[i, w]
+        if c < top:
+            window_histogram[w, c] += 1
+        else:
+            window_overflow[w] += 1
+        window_count[i, w] = 0
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def observe_flight(
+    i, t, speed, last_collision, flight_histogram, path_histogram, bin_widths, flight_sums
+):
+    """Record the free flight of i that ends at time t (if it began with a collision).
+
+    ``bin_widths`` = [flight-time bin, free-path bin]; ``flight_sums`` = [number of
+    flights, Σ time, Σ time², Σ path, Σ path², flights beyond the time histogram, beyond
+    the path histogram].
+    """
+    start = last_collision[i]
+    if start == -np.inf:
+        return
+    duration = t - start
+    path = speed * duration
+    flight_sums[0] += 1.0
+    flight_sums[1] += duration
+    flight_sums[2] += duration * duration
+    flight_sums[3] += path
+    flight_sums[4] += path * path
+    b = int(duration / bin_widths[0])
+    if b < flight_histogram.shape[0]:
+        flight_histogram[b] += 1
+    else:
+        flight_sums[5] += 1.0
+    b = int(path / bin_widths[1])
+    if b < path_histogram.shape[0]:
+        path_histogram[b] += 1
+    else:
+        flight_sums[6] += 1.0
+
+
+# ----------------------------------------------------------------------------- events
+
+
+@njit(cache=True, error_model="numpy")
+def rescale_velocities(t, target_temperature, phase, collision_time, crossing_time, tree_time, dim):
+    """Thermostat: scale every velocity by s = sqrt(T_target / T) at time t.
+
+    Positions are continuous (x0 ← x0 + v t (1 − s)); every pending event time maps to
+    t + (t_e − t)/s, which keeps the tree's order, so no prediction is redone.
+    """
+    n = phase.shape[0]
+    current = temperature(phase, dim)
+    if current <= 0.0:
+        return
+    s = np.sqrt(target_temperature / current)
+    inverse = 1.0 / s
+    for i in range(n):
+        for k in range(3):
+            phase[i, k] += phase[i, 3 + k] * t * (1.0 - s)
+            phase[i, 3 + k] *= s
+        if collision_time[i] < np.inf:
+            collision_time[i] = t + (collision_time[i] - t) * inverse
+        if crossing_time[i] < np.inf:
+            crossing_time[i] = t + (crossing_time[i] - t) * inverse
+    for node in range(1, tree_time.shape[0]):
+        if tree_time[node] < np.inf:
+            tree_time[node] = t + (tree_time[node] - t) * inverse
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def collide(i, j, t, phase, geometry, grid, last_collision):
+    """Execute the collision of i and j at time t: new velocities, continuous positions.
+
+    Returns (normal relative speed before the collision, restitution used). The normal is
+    taken between the minimum images (contact distance σ < L/2).
+    """
+    dim = grid[I_DIM]
+    alpha = geometry[G_ALPHA]
+    contact = geometry[G_CONTACT]
+    if (alpha < 1.0 and contact > 0.0) and (
+        t - last_collision[i] < contact or t - last_collision[j] < contact
+    ):
+        alpha = 1.0
+    dr0 = 0.0
+    dr1 = 0.0
+    dr2 = 0.0
+    norm2 = 0.0
+    for k in range(dim):
+        d = (phase[j, k] + phase[j, 3 + k] * t) - (phase[i, k] + phase[i, 3 + k] * t)
+        if not grid[I_WALL + k]:
+            length = geometry[G_L + k]
+            d -= length * np.round(d / length)
+        if k == 0:
+            dr0 = d
+        elif k == 1:
+            dr1 = d
+        else:
+            dr2 = d
+        norm2 += d * d
+    inv = 1.0 / np.sqrt(norm2)
+    n0 = dr0 * inv
+    n1 = dr1 * inv
+    n2 = dr2 * inv
+    gn = (phase[j, 3] - phase[i, 3]) * n0 + (phase[j, 4] - phase[i, 4]) * n1
+    if dim == 3:
+        gn += (phase[j, 5] - phase[i, 5]) * n2
+    # gn < 0: approaching. Δv_i = (1+α)/2 gn n, Δv_j = −Δv_i
+    factor = 0.5 * (1.0 + alpha) * gn
+    for k in range(dim):
+        nk = n0 if k == 0 else (n1 if k == 1 else n2)
+        delta = factor * nk
+        phase[i, 3 + k] += delta
+        phase[i, k] -= delta * t
+        phase[j, 3 + k] -= delta
+        phase[j, k] += delta * t
+    return gn, alpha
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def advance(
+    t_stop,
+    max_collisions,
+    max_events,
+    clock,
+    target_temperature,
+    observing,
+    phase,
+    cell,
+    head,
+    next_,
+    prev,
+    collision_time,
+    partner,
+    partner_stamp,
+    stamp,
+    crossing_time,
+    crossing_code,
+    tree_time,
+    tree_index,
+    last_collision,
+    streak,
+    label,
+    geometry,
+    grid,
+    counters,
+    window_length,
+    window_end,
+    window_count,
+    window_histogram,
+    window_overflow,
+    flight_histogram,
+    path_histogram,
+    bin_widths,
+    flight_sums,
+    wall_statistics,
+    sample_times,
+    sample_temperature,
+    sample_collisions,
+    sample_cursor,
+    record_time,
+    record_pair,
+    record_normal_speed,
+):
+    """Run the event loop from ``clock[0]`` until ``t_stop`` or ``max_collisions`` more
+    collisions (or a failure status), then set ``clock[0]`` and return a status code.
+
+    Observers: ``window_*`` (W window lengths, zero-size arrays disable them),
+    ``flight_*``/``path_histogram`` (only when ``observing``), ``wall_statistics`` (2d, 3)
+    [hits, Σ|v⊥|, Σ 1/|v⊥|] per face 2k + upwards, ``sample_*`` temperature and collision
+    count at the increasing times ``sample_times`` (``sample_cursor[0]`` = next one), and
+    ``record_*`` a ring buffer of the last collisions (time, pair of labels ``label[i]``,
+    normal relative speed).
+    """
+    dim = grid[I_DIM]
+    streak_limit = grid[I_STREAK]
+    rescale_every = grid[I_RESCALE]
+    collapse_time = geometry[G_COLLAPSE_TIME]
+    n_windows = window_length.shape[0]
+    n_samples = sample_times.shape[0]
+    n_records = record_time.shape[0]
+    t = clock[0]
+    collisions_done = 0
+    events_done = 0
+    next_window = np.inf
+    for w in range(n_windows):
+        if window_end[w] < next_window:
+            next_window = window_end[w]
+    while True:
+        i = tree_index[1]
+        t_event = tree_time[1]
+        if t_event == np.inf:
+            clock[0] = t_stop
+            return STATUS_NO_EVENTS
+        # scheduled observations that come before the event
+        while next_window < t_event and next_window <= t_stop:
+            next_window = np.inf
+            for w in range(n_windows):
+                if window_end[w] < t_event and window_end[w] <= t_stop:
+                    flush_windows(w, window_count, window_histogram, window_overflow)
+                    window_end[w] += window_length[w]
+                if window_end[w] < next_window:
+                    next_window = window_end[w]
+        while (
+            sample_cursor[0] < n_samples
+            and sample_times[sample_cursor[0]] < t_event
+            and sample_times[sample_cursor[0]] <= t_stop
+        ):
+            sample_temperature[sample_cursor[0]] = temperature(phase, dim)
+            sample_collisions[sample_cursor[0]] = counters[COUNT_COLLISIONS]
+            sample_cursor[0] += 1
+        if t_event > t_stop:
+            clock[0] = t_stop
+            return STATUS_TIME
+        if events_done >= max_events:
+            clock[0] = t
+            return STATUS_EVENT_LIMIT
+        events_done += 1
+        counters[COUNT_EVENTS] += 1
+        if t_event == t:
+            counters[COUNT_STALL] += 1
+            if counters[COUNT_STALL] > STALL_LIMIT:
+                counters[COUNT_COLLAPSE_PARTICLE] = i
+                counters[COUNT_COLLAPSE_PARTNER] = partner[i]
+                clock[0] = t
+                return STATUS_STALLED
+        else:
+            counters[COUNT_STALL] = 0
+        t = t_event
+
+        if crossing_time[i] <= collision_time[i]:
+            # ---------------------------------------------------------- crossing or wall
+            code = crossing_code[i]
+            k = code >> 1
+            upwards = (code & 1) == 1
+            c = cell[i, k]
+            at_wall = False
+            if grid[I_WALL + k] != 0:
+                at_wall = c == grid[I_N + k] - 1 if upwards else c == 0
+            if at_wall:
+                velocity = phase[i, 3 + k]
+                speed = abs(velocity)
+                wall_statistics[code, 0] += 1.0
+                wall_statistics[code, 1] += speed
+                wall_statistics[code, 2] += 1.0 / speed
+                phase[i, k] += 2.0 * velocity * t
+                phase[i, 3 + k] = -velocity
+                stamp[i] += 1
+                counters[COUNT_WALL_HITS] += 1
+                predict(
+                    i,
+                    t,
+                    phase,
+                    cell,
+                    head,
+                    next_,
+                    geometry,
+                    grid,
+                    collision_time,
+                    partner,
+                    partner_stamp,
+                    stamp,
+                    crossing_time,
+                    crossing_code,
+                    counters,
+                )
+            else:
+                old = cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid)
+                cell_remove(i, old, head, next_, prev)
+                if upwards:
+                    c += 1
+                    if c == grid[I_N + k]:
+                        c = 0
+                        phase[i, k] -= geometry[G_L + k]
+                    offset = 1
+                else:
+                    c -= 1
+                    if c < 0:
+                        c = grid[I_N + k] - 1
+                        phase[i, k] += geometry[G_L + k]
+                    offset = -1
+                cell[i, k] = c
+                cell_insert(
+                    i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), head, next_, prev
+                )
+                counters[COUNT_CROSSINGS] += 1
+                tc, new_code = next_crossing(i, phase, cell, geometry, grid)
+                crossing_time[i] = tc if tc > t else t
+                crossing_code[i] = new_code
+                best_t, best_j, tests = scan_neighbours(
+                    i, t, k, offset, phase, cell, head, next_, geometry, grid, np.inf, -1
+                )
+                counters[COUNT_PAIR_TESTS] += tests
+                if best_t < collision_time[i]:
+                    collision_time[i] = best_t
+                    partner[i] = best_j
+                    partner_stamp[i] = stamp[best_j]
+            tree_update(tree_time, tree_index, i, min(collision_time[i], crossing_time[i]))
+            continue
+
+        j = partner[i]
+        if partner_stamp[i] != stamp[j]:
+            # ---------------------------------------------------------- stale prediction
+            counters[COUNT_INVALID] += 1
+            best_t, best_j, tests = scan_neighbours(
+                i, t, -1, 0, phase, cell, head, next_, geometry, grid, np.inf, -1
+            )
+            counters[COUNT_PAIR_TESTS] += tests
+            collision_time[i] = best_t
+            partner[i] = best_j
+            partner_stamp[i] = stamp[best_j] if best_j >= 0 else -1
+            tree_update(tree_time, tree_index, i, min(best_t, crossing_time[i]))
+            continue
+
+        # -------------------------------------------------------------- pair collision
+        speed_i = np.sqrt(phase[i, 3] ** 2 + phase[i, 4] ** 2 + phase[i, 5] ** 2)
+        speed_j = np.sqrt(phase[j, 3] ** 2 + phase[j, 4] ** 2 + phase[j, 5] ** 2)
+        gn, alpha_used = collide(i, j, t, phase, geometry, grid, last_collision)
+        if alpha_used < 1.0:
+            counters[COUNT_INELASTIC] += 1
+        stamp[i] += 1
+        stamp[j] += 1
+        if observing:
+            observe_flight(
+                i,
+                t,
+                speed_i,
+                last_collision,
+                flight_histogram,
+                path_histogram,
+                bin_widths,
+                flight_sums,
+            )
+            observe_flight(
+                j,
+                t,
+                speed_j,
+                last_collision,
+                flight_histogram,
+                path_histogram,
+                bin_widths,
+                flight_sums,
+            )
+            for w in range(n_windows):
+                window_count[i, w] += 1
+                window_count[j, w] += 1
+        # inelastic collapse detector: streaks of collisions closer than collapse_time
+        if streak_limit > 0:
+            if t - last_collision[i] < collapse_time:
+                streak[i] += 1
+            else:
+                streak[i] = 0
+            if t - last_collision[j] < collapse_time:
+                streak[j] += 1
+            else:
+                streak[j] = 0
+        last_collision[i] = t
+        last_collision[j] = t
+        if n_records > 0:
+            slot = counters[COUNT_COLLISIONS] % n_records
+            record_time[slot] = t
+            record_pair[slot, 0] = label[i]
+            record_pair[slot, 1] = label[j]
+            record_normal_speed[slot] = -gn
+        counters[COUNT_COLLISIONS] += 1
+        collisions_done += 1
+        predict(
+            i,
+            t,
+            phase,
+            cell,
+            head,
+            next_,
+            geometry,
+            grid,
+            collision_time,
+            partner,
+            partner_stamp,
+            stamp,
+            crossing_time,
+            crossing_code,
+            counters,
+        )
+        predict(
+            j,
+            t,
+            phase,
+            cell,
+            head,
+            next_,
+            geometry,
+            grid,
+            collision_time,
+            partner,
+            partner_stamp,
+            stamp,
+            crossing_time,
+            crossing_code,
+            counters,
+        )
+        tree_update(tree_time, tree_index, i, min(collision_time[i], crossing_time[i]))
+        tree_update(tree_time, tree_index, j, min(collision_time[j], crossing_time[j]))
+        if streak_limit > 0 and (streak[i] > streak_limit or streak[j] > streak_limit):
+            counters[COUNT_COLLAPSE_PARTICLE] = i
+            counters[COUNT_COLLAPSE_PARTNER] = j
+            clock[0] = t
+            return STATUS_COLLAPSE
+        if rescale_every > 0 and counters[COUNT_COLLISIONS] % rescale_every == 0:
+            rescale_velocities(
+                t, target_temperature, phase, collision_time, crossing_time, tree_time, dim
+            )
+            counters[COUNT_RESCALES] += 1
+        if collisions_done >= max_collisions:
+            clock[0] = t
+            return STATUS_COLLISIONS
+
+
+# ----------------------------------------------------------------------------- set-up
+
+
+@njit(cache=True, error_model="numpy")
+def place_random(phase, cell, head, next_, prev, geometry, grid, state, max_attempts):
+    """Random sequential insertion of N non-overlapping particles at time 0.
+
+    Positions uniform in the box ([σ/2, L − σ/2] along wall axes); each trial is checked
+    against the particles already placed in the neighbour cells. Fills the false positions
+    (= positions at t = 0), the cells and the cell lists. Returns the number of particles
+    placed (< N if one needed more than ``max_attempts`` trials).
+    """
+    n = phase.shape[0]
+    dim = grid[I_DIM]
+    sigma = geometry[G_SIGMA]
+    sigma2 = geometry[G_SIGMA2]
+    for flat in range(head.shape[0]):
+        head[flat] = -1
+    for i in range(n):
+        placed = False
+        for _attempt in range(max_attempts):
+            for k in range(3):
+                if k >= dim:
+                    phase[i, k] = 0.0
+                    cell[i, k] = 0
+                    continue
+                length = geometry[G_L + k]
+                if grid[I_WALL + k]:
+                    x = 0.5 * sigma + (length - sigma) * uniform(state)
+                else:
+                    x = length * uniform(state)
+                phase[i, k] = x
+                c = int(x / geometry[G_W + k])
+                if c >= grid[I_N + k]:
+                    c = grid[I_N + k] - 1
+                cell[i, k] = c
+            for k in range(3, 6):
+                phase[i, k] = 0.0
+            if not overlaps_neighbours(i, phase, cell, head, next_, geometry, grid, sigma2):
+                cell_insert(
+                    i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), head, next_, prev
+                )
+                placed = True
+                break
+        if not placed:
+            return i
+    return n
+
+
+@njit(cache=True, error_model="numpy")
+def overlaps_neighbours(i, phase, cell, head, next_, geometry, grid, sigma2):
+    """True if particle i (at t = 0) overlaps a particle listed in its neighbour cells."""
+    dim = grid[I_DIM]
+    lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
+    for o2 in range(lo2, hi2 + 1):
+        for o1 in range(-1, 2):
+            for o0 in range(-1, 2):
+                ks = (cell[i, 0] + o0, cell[i, 1] + o1, cell[i, 2] + o2)
+                shift0 = 0.0
+                shift1 = 0.0
+                shift2 = 0.0
+                k0 = ks[0]
+                k1 = ks[1]
+                k2 = ks[2]
+                skip = False
+                if k0 < 0 or k0 >= grid[0]:
+                    if grid[I_WALL]:
+                        skip = True
+                    elif k0 < 0:
+                        k0 += grid[0]
+                        shift0 = -geometry[G_L]
+                    else:
+                        k0 -= grid[0]
+                        shift0 = geometry[G_L]
+                if k1 < 0 or k1 >= grid[1]:
+                    if grid[I_WALL + 1]:
+                        skip = True
+                    elif k1 < 0:
+                        k1 += grid[1]
+                        shift1 = -geometry[G_L + 1]
+                    else:
+                        k1 -= grid[1]
+                        shift1 = geometry[G_L + 1]
+                if k2 < 0 or k2 >= grid[2]:
+                    if grid[I_WALL + 2]:
+                        skip = True
+                    elif k2 < 0:
+                        k2 += grid[2]
+                        shift2 = -geometry[G_L + 2]
+                    else:
+                        k2 -= grid[2]
+                        shift2 = geometry[G_L + 2]
+                if skip:
+                    continue
+                j = head[cell_flat(k0, k1, k2, grid)]
+                while j >= 0:
+                    dx = phase[j, 0] + shift0 - phase[i, 0]
+                    dy = phase[j, 1] + shift1 - phase[i, 1]
+                    dz = phase[j, 2] + shift2 - phase[i, 2]
+                    if dx * dx + dy * dy + dz * dz < sigma2:
+                        return True
+                    j = next_[j]
+    return False
+
+
+@njit(cache=True, error_model="numpy")
+def build_cells(phase, cell, head, next_, prev, geometry, grid, t):
+    """Assign every particle (position x0 + v t) to its cell and rebuild the cell lists.
+
+    Returns the index of the first particle outside the box, or −1.
+    """
+    n = phase.shape[0]
+    dim = grid[I_DIM]
+    for flat in range(head.shape[0]):
+        head[flat] = -1
+    for i in range(n):
+        for k in range(3):
+            if k >= dim:
+                cell[i, k] = 0
+                continue
+            x = phase[i, k] + phase[i, 3 + k] * t
+            length = geometry[G_L + k]
+            if x < 0.0 or x > length:
+                return i
+            c = int(x / geometry[G_W + k])
+            if c >= grid[I_N + k]:
+                c = grid[I_N + k] - 1
+            cell[i, k] = c
+        cell_insert(i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), head, next_, prev)
+    return -1
+
+
+@njit(cache=True, error_model="numpy")
+def relink_cells(cell, head, next_, prev, grid):
+    """Rebuild the cell lists from the cell coordinates ``cell`` (kept as they are: a
+    particle sitting on a face by round-off stays in the cell its crossings put it in).
+    Particles are pushed in decreasing index order so each list is in increasing order."""
+    for flat in range(head.shape[0]):
+        head[flat] = -1
+    for i in range(cell.shape[0] - 1, -1, -1):
+        cell_insert(i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), head, next_, prev)
+
+
+@njit(cache=True, error_model="numpy")
+def predict_all(
+    t,
+    phase,
+    cell,
+    head,
+    next_,
+    geometry,
+    grid,
+    collision_time,
+    partner,
+    partner_stamp,
+    stamp,
+    crossing_time,
+    crossing_code,
+    tree_time,
+    tree_index,
+    counters,
+):
+    """Predict every particle's events from time t and rebuild the tree."""
+    n = phase.shape[0]
+    keys = np.empty(n)
+    for i in range(n):
+        predict(
+            i,
+            t,
+            phase,
+            cell,
+            head,
+            next_,
+            geometry,
+            grid,
+            collision_time,
+            partner,
+            partner_stamp,
+            stamp,
+            crossing_time,
+            crossing_code,
+            counters,
+        )
+        keys[i] = min(collision_time[i], crossing_time[i])
+    tree_build(tree_time, tree_index, keys)
+
+
+@njit(cache=True, error_model="numpy")
+def rebase(
+    t,
+    phase,
+    collision_time,
+    crossing_time,
+    tree_time,
+    last_collision,
+    window_end,
+    sample_times,
+    record_time,
+):
+    """Move the time origin to t (every stored time −= t, x0 += v t), to keep round-off
+    small in long runs. Positions and the order of events are unchanged."""
+    n = phase.shape[0]
+    for i in range(n):
+        for k in range(3):
+            phase[i, k] += phase[i, 3 + k] * t
+        collision_time[i] -= t
+        crossing_time[i] -= t
+        last_collision[i] -= t
+    for node in range(tree_time.shape[0]):
+        tree_time[node] -= t
+    for w in range(window_end.shape[0]):
+        window_end[w] -= t
+    for s in range(sample_times.shape[0]):
+        sample_times[s] -= t
+    for s in range(record_time.shape[0]):
+        record_time[s] -= t
+
+
+@njit(cache=True, error_model="numpy")
+def draw_velocities(phase, dim, state):
+    """Independent standard normal velocity components (columns 3 .. 2 + d; others 0)."""
+    n = phase.shape[0]
+    for i in range(n):
+        a, b = normal_pair(state)
+        phase[i, 3] = a
+        phase[i, 4] = b
+        phase[i, 5] = normal_pair(state)[0] if dim == 3 else 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def min_pair_distance(phase, cell, head, next_, geometry, grid, t):
+    """Smallest centre distance at time t between particles in neighbour cells (periodic
+    images included): ≥ σ when nothing overlaps. +inf if no pair is in reach."""
+    n = phase.shape[0]
+    dim = grid[I_DIM]
+    best = np.inf
+    lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
+    for i in range(n):
+        xi0 = phase[i, 0] + phase[i, 3] * t
+        xi1 = phase[i, 1] + phase[i, 4] * t
+        xi2 = phase[i, 2] + phase[i, 5] * t
+        for o2 in range(lo2, hi2 + 1):
+            k2, s2, skip2 = _neighbour(
+                cell[i, 2] + o2, grid[2], grid[I_WALL + 2], geometry[G_L + 2]
+            )
+            if skip2:
+                continue
+            for o1 in range(-1, 2):
+                k1, s1, skip1 = _neighbour(
+                    cell[i, 1] + o1, grid[1], grid[I_WALL + 1], geometry[G_L + 1]
+                )
+                if skip1:
+                    continue
+                for o0 in range(-1, 2):
+                    k0, s0, skip0 = _neighbour(
+                        cell[i, 0] + o0, grid[0], grid[I_WALL], geometry[G_L]
+                    )
+                    if skip0:
+                        continue
+                    j = head[cell_flat(k0, k1, k2, grid)]
+                    while j >= 0:
+                        if j != i:
+                            d0 = phase[j, 0] + phase[j, 3] * t + s0 - xi0
+                            d1 = phase[j, 1] + phase[j, 4] * t + s1 - xi1
+                            d2 = phase[j, 2] + phase[j, 5] * t + s2 - xi2
+                            r2 = d0 * d0 + d1 * d1 + (d2 * d2 if dim == 3 else 0.0)
+                            if r2 < best:
+                                best = r2
+                        j = next_[j]
+    return np.sqrt(best)
+
+
+@njit(cache=True, error_model="numpy")
+def _neighbour(k, n, wall, length):
+    """Wrap cell coordinate k on an axis of n cells: (k mod n, image shift, beyond wall)."""
+    if k < 0:
+        if wall:
+            return 0, 0.0, True
+        return k + n, -length, False
+    if k >= n:
+        if wall:
+            return 0, 0.0, True
+        return k - n, length, False
+    return k, 0.0, False

@@ -1,0 +1,613 @@
+"""A system of hard disks (d = 2) or spheres (d = 3) advanced by event-driven MD.
+
+``HardSphereSystem`` owns the preallocated state arrays of ``kinetic.edmd.kernels`` and
+validates everything before any work; ``run`` advances it in chunks. Units: m = 1, the
+diameter and box in the same length unit, the temperature sets the velocity unit.
+
+    system = HardSphereSystem(n_particles=1000, density=0.01, seed=1)
+    system.run(until=100.0)
+    system.positions(), system.velocities(), system.counters()
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from kinetic import rng
+from kinetic.edmd import kernels as k
+from kinetic.edmd.observers import Observers
+
+__all__ = [
+    "HardSphereSystem",
+    "InelasticCollapseError",
+    "cell_grid",
+    "enskog_collision_frequency",
+    "mean_speed",
+    "packing_fraction",
+]
+
+#: packing fraction above which random sequential insertion is refused (jamming of RSA is
+#: 0.547 in d = 2 and 0.38 in d = 3); pass explicit positions beyond
+RANDOM_INSERTION_LIMIT = {2: 0.45, 3: 0.30}
+#: close packing: no configuration exists beyond
+CLOSE_PACKING = {2: math.pi / (2 * math.sqrt(3)), 3: math.pi / (3 * math.sqrt(2))}
+#: default mean number of particles per cell (tuned with ``python -m kinetic.bench edmd``)
+DEFAULT_CELL_OCCUPANCY = 2.0
+#: systems of at least that many particles are re-sorted in memory by cell every
+#: SORT_EVERY_PER_PARTICLE * N collisions (cache locality; see HardSphereSystem.sort_particles)
+SORT_MIN_PARTICLES = 4096
+SORT_EVERY_PER_PARTICLE = 2
+
+
+class InelasticCollapseError(RuntimeError):
+    """Inelastic collapse: a particle collided more than ``collapse_streak`` times in a row
+    with less than ``collapse_time`` between collisions (or the clock stalled).
+
+    Attributes ``time``, ``collisions``, ``particles`` (the pair of the last collision) and
+    ``system`` (the stopped system, its state valid up to ``time``).
+    """
+
+    def __init__(self, message, *, time, collisions, particles, system):
+        super().__init__(message)
+        self.time = time
+        self.collisions = collisions
+        self.particles = particles
+        self.system = system
+
+
+def packing_fraction(density: float, dimension: int, diameter: float = 1.0) -> float:
+    """Fraction of space covered: ρ π σ²/4 in d = 2, ρ π σ³/6 in d = 3."""
+    if dimension == 2:
+        return density * math.pi * diameter**2 / 4.0
+    return density * math.pi * diameter**3 / 6.0
+
+
+def mean_speed(temperature: float, dimension: int) -> float:
+    """Maxwellian ⟨|v|⟩ (m = 1): √(πT/2) in d = 2, √(8T/π) in d = 3."""
+    if dimension == 2:
+        return math.sqrt(math.pi * temperature / 2.0)
+    return math.sqrt(8.0 * temperature / math.pi)
+
+
+def contact_value(density: float, dimension: int, diameter: float = 1.0) -> float:
+    """Pair correlation at contact χ: Henderson (d = 2) (1 − 7η/16)/(1 − η)², Carnahan–
+    Starling (d = 3) (1 − η/2)/(1 − η)³."""
+    eta = packing_fraction(density, dimension, diameter)
+    if dimension == 2:
+        return (1.0 - 7.0 * eta / 16.0) / (1.0 - eta) ** 2
+    return (1.0 - eta / 2.0) / (1.0 - eta) ** 3
+
+
+def enskog_collision_frequency(
+    density: float, dimension: int, temperature: float = 1.0, diameter: float = 1.0
+) -> float:
+    """Collisions per particle per unit time, ω = χ ρ σ^{d−1} ⟨g⟩ Ω_d/... in closed form:
+    d = 2: 2√π ρσ√T χ; d = 3: 4√π ρσ²√T χ (m = 1)."""
+    chi = contact_value(density, dimension, diameter)
+    if dimension == 2:
+        return 2.0 * math.sqrt(math.pi) * density * diameter * math.sqrt(temperature) * chi
+    return 4.0 * math.sqrt(math.pi) * density * diameter**2 * math.sqrt(temperature) * chi
+
+
+def cell_grid(
+    box: Sequence[float],
+    diameter: float,
+    density: float,
+    dimension: int,
+    occupancy: float,
+    walls: Sequence[bool],
+) -> np.ndarray:
+    """Cells per side: width ≈ (occupancy/ρ)^{1/d} (the mean free path scale at low
+    density, since l ∝ 1/(ρσ^{d−1})), never below σ, at least 3 on periodic axes."""
+    target = (occupancy / density) ** (1.0 / dimension)
+    counts = np.ones(3, dtype=np.int64)
+    for axis in range(dimension):
+        length = box[axis]
+        width = max(target, diameter * (1.0 + 1e-9))
+        n = max(int(length / width), 1)
+        # the cell width L/n must stay ≥ σ (with margin for round-off)
+        while n > 1 and length / n < diameter * (1.0 + 1e-9):
+            n -= 1
+        if not walls[axis] and n < 3 and length / 3 >= diameter * (1.0 + 1e-9):
+            n = 3
+        if not walls[axis] and n < 3:
+            raise ValueError(
+                f"periodic box side {length} holds {n} cell(s) of width ≥ σ = {diameter}; "
+                f"a periodic axis needs at least 3 (side ≥ {3 * diameter * (1 + 1e-9)})"
+            )
+        counts[axis] = n
+    return counts
+
+
+def _finite_positive(name, value):
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise TypeError(f"{name} must be a number, got {value!r}")
+    if not math.isfinite(value) or value <= 0:
+        raise ValueError(f"{name} must be finite and > 0, got {value}")
+    return float(value)
+
+
+class HardSphereSystem:
+    """N hard disks/spheres in a box, periodic or with hard walls, restitution α.
+
+    Parameters (keyword-only)
+    -------------------------
+    n_particles : int ≥ 2
+    dimension : 2 or 3
+    density : number density N/V (ρσ^d); give either ``density`` (square/cubic box) or
+        ``box`` (side lengths, d values).
+    diameter : σ > 0 (default 1).
+    walls : bool or sequence of d bools: hard walls along each axis (default periodic).
+        Centres stay in [σ/2, L − σ/2] along wall axes.
+    restitution : α in (0, 1] (1: elastic).
+    contact_time : TC model of Luding and McNamara: a collision in which either particle
+        collided less than ``contact_time`` before is elastic (0: off). Avoids inelastic
+        collapse at the price of a slight change of the dissipation.
+    collapse_time, collapse_streak : inelastic collapse is reported (InelasticCollapseError)
+        when a particle has more than ``collapse_streak`` consecutive collisions separated by
+        less than ``collapse_time`` (default 1e-7 σ/√T).
+    rescale_every : thermostat: every that many collisions all velocities are rescaled to
+        ``temperature`` (0: off; the stationary representation of the cooling state).
+    temperature : T of the initial velocities (exact: Σv² = d N T, zero total momentum).
+    positions, velocities : optional (N, d) initial state (validated: inside the box, no
+        overlap, finite); otherwise random sequential insertion and Maxwellian velocities.
+    seed : integer seed, or ``stream``: one row of ``kinetic.rng.stream_states``.
+    cell_occupancy : mean particles per cell (> 0) sets the cell width (see ``cell_grid``).
+    """
+
+    def __init__(
+        self,
+        *,
+        n_particles: int,
+        dimension: int = 2,
+        density: float | None = None,
+        box: Sequence[float] | None = None,
+        diameter: float = 1.0,
+        walls: bool | Sequence[bool] = False,
+        restitution: float = 1.0,
+        contact_time: float = 0.0,
+        collapse_time: float | None = None,
+        collapse_streak: int = 64,
+        rescale_every: int = 0,
+        temperature: float = 1.0,
+        positions=None,
+        velocities=None,
+        seed: int | None = None,
+        stream: np.ndarray | None = None,
+        cell_occupancy: float = DEFAULT_CELL_OCCUPANCY,
+    ):
+        # ----------------------------------------------------------- validation
+        if isinstance(n_particles, bool) or not isinstance(n_particles, int | np.integer):
+            raise TypeError(f"n_particles must be an integer, got {n_particles!r}")
+        if n_particles < 2:
+            raise ValueError(f"n_particles must be >= 2, got {n_particles}")
+        if dimension not in (2, 3):
+            raise ValueError(f"dimension must be 2 or 3, got {dimension!r}")
+        diameter = _finite_positive("diameter", diameter)
+        temperature = _finite_positive("temperature", temperature)
+        cell_occupancy = _finite_positive("cell_occupancy", cell_occupancy)
+        restitution = float(restitution)
+        if not (math.isfinite(restitution) and 0.0 < restitution <= 1.0):
+            raise ValueError(f"restitution must be in (0, 1], got {restitution}")
+        if not (math.isfinite(contact_time) and contact_time >= 0.0):
+            raise ValueError(f"contact_time must be finite and >= 0, got {contact_time}")
+        if collapse_time is None:
+            collapse_time = 1e-7 * diameter / math.sqrt(temperature)
+        if not (math.isfinite(collapse_time) and collapse_time >= 0.0):
+            raise ValueError(f"collapse_time must be finite and >= 0, got {collapse_time}")
+        if int(collapse_streak) < 1:
+            raise ValueError(f"collapse_streak must be >= 1, got {collapse_streak}")
+        if int(rescale_every) < 0:
+            raise ValueError(f"rescale_every must be >= 0, got {rescale_every}")
+        if (density is None) == (box is None):
+            raise ValueError("give exactly one of density (cubic box) or box (side lengths)")
+        if density is not None:
+            density = _finite_positive("density", density)
+            side = (n_particles / density) ** (1.0 / dimension)
+            box = [side] * dimension
+        else:
+            box = [_finite_positive("box side", float(x)) for x in np.ravel(box)]
+            if len(box) != dimension:
+                raise ValueError(f"box needs {dimension} side lengths, got {len(box)}")
+            density = n_particles / math.prod(box)
+        if isinstance(walls, bool | np.bool_):
+            walls = [bool(walls)] * dimension
+        walls = [bool(w) for w in walls]
+        if len(walls) != dimension:
+            raise ValueError(f"walls needs {dimension} flags, got {len(walls)}")
+        # accessible volume: centres stay σ/2 away from walls
+        accessible = math.prod(box[a] - (diameter if walls[a] else 0.0) for a in range(dimension))
+        if any(box[a] - (diameter if walls[a] else 0.0) <= 0 for a in range(dimension)):
+            raise ValueError(f"box {box} is narrower than one diameter {diameter} between walls")
+        eta = packing_fraction(n_particles / accessible, dimension, diameter)
+        if eta >= CLOSE_PACKING[dimension]:
+            raise ValueError(
+                f"{n_particles} particles of diameter {diameter} cannot fit in box {box}: "
+                f"packing fraction {eta:.4g} >= close packing {CLOSE_PACKING[dimension]:.4g}"
+            )
+        if positions is None and eta > RANDOM_INSERTION_LIMIT[dimension]:
+            raise ValueError(
+                f"packing fraction {eta:.4g} is above {RANDOM_INSERTION_LIMIT[dimension]} "
+                f"where random insertion is refused in d = {dimension}; pass positions"
+            )
+        if stream is None:
+            if seed is None and (positions is None or velocities is None):
+                raise ValueError("a seed (or stream) is needed for random initial conditions")
+            stream = rng.stream_states(0 if seed is None else seed, 1)[0]
+        stream = np.ascontiguousarray(stream, dtype=np.uint64).copy()
+        if stream.shape != (4,):
+            raise ValueError(f"stream must be one xoshiro state of 4 uint64, got {stream.shape}")
+
+        self.n_particles = int(n_particles)
+        self.dimension = int(dimension)
+        self.box = np.array(box, dtype=float)
+        self.walls = np.array(walls, dtype=bool)
+        self.diameter = diameter
+        self.density = float(density)
+        self.restitution = restitution
+        self.temperature = temperature
+        self.stream = stream
+
+        # ----------------------------------------------------------- state arrays
+        n = self.n_particles
+        counts = cell_grid(box, diameter, self.density, dimension, cell_occupancy, walls)
+        length3 = np.ones(3)
+        length3[:dimension] = box
+        self.grid = np.zeros(k.N_GRID, dtype=np.int64)
+        self.grid[0:3] = counts
+        self.grid[k.I_DIM] = dimension
+        self.grid[k.I_WALL : k.I_WALL + dimension] = walls
+        self.grid[k.I_STREAK] = int(collapse_streak)
+        self.grid[k.I_RESCALE] = int(rescale_every)
+        self.geometry = np.zeros(k.N_GEOMETRY)
+        self.geometry[k.G_L : k.G_L + 3] = length3
+        self.geometry[k.G_W : k.G_W + 3] = length3 / counts
+        self.geometry[k.G_SIGMA] = diameter
+        self.geometry[k.G_SIGMA2] = diameter * diameter
+        self.geometry[k.G_ALPHA] = restitution
+        self.geometry[k.G_CONTACT] = contact_time
+        self.geometry[k.G_COLLAPSE_TIME] = collapse_time
+        self.phase = _aligned_zeros((n, 8))
+        self.cell = np.zeros((n, 3), dtype=np.int32)
+        self.head = np.full(int(np.prod(counts)), -1, dtype=np.int32)
+        self.next_ = np.full(n, -1, dtype=np.int32)
+        self.prev = np.full(n, -1, dtype=np.int32)
+        self.collision_time = np.full(n, np.inf)
+        self.partner = np.full(n, -1, dtype=np.int32)
+        self.partner_stamp = np.full(n, -1, dtype=np.int64)
+        self.stamp = np.zeros(n, dtype=np.int64)
+        self.crossing_time = np.full(n, np.inf)
+        self.crossing_code = np.full(n, -1, dtype=np.int32)
+        leaves = 1 << max(1, (n - 1).bit_length())
+        self.tree_time = np.full(2 * leaves, np.inf)
+        self.tree_index = np.zeros(2 * leaves, dtype=np.int32)
+        self.last_collision = np.full(n, -np.inf)
+        self.streak = np.zeros(n, dtype=np.int32)
+        self.label = np.arange(n, dtype=np.int64)  # original particle number of slot i
+        self.sort_every = SORT_EVERY_PER_PARTICLE * n if n >= SORT_MIN_PARTICLES else 0
+        self._since_sort = 0
+        self.counters_array = np.zeros(k.N_COUNTERS, dtype=np.int64)
+        self.clock = np.zeros(1)
+        self.time_origin = 0.0
+        self._idle_observers = Observers.create(n)
+
+        # ----------------------------------------------------------- initial state
+        if positions is None:
+            placed = k.place_random(
+                self.phase,
+                self.cell,
+                self.head,
+                self.next_,
+                self.prev,
+                self.geometry,
+                self.grid,
+                self.stream,
+                10_000,
+            )
+            if placed < n:
+                raise ValueError(
+                    f"random insertion placed only {placed} of {n} particles (packing "
+                    f"fraction {eta:.3g}); lower the density or pass positions"
+                )
+        else:
+            self._set_positions(positions)
+        if velocities is None:
+            k.draw_velocities(self.phase, dimension, self.stream)
+            v = self.phase[:, 3 : 3 + dimension]
+            if not self.walls.any():
+                v -= v.mean(axis=0)
+            v *= math.sqrt(dimension * n * temperature / np.sum(v * v))
+        else:
+            v = np.asarray(velocities, dtype=float)
+            if v.shape != (n, dimension) or not np.all(np.isfinite(v)):
+                raise ValueError(f"velocities must be a finite ({n}, {dimension}) array")
+            self.phase[:, 3 : 3 + dimension] = v
+        k.predict_all(
+            0.0,
+            self.phase,
+            self.cell,
+            self.head,
+            self.next_,
+            self.geometry,
+            self.grid,
+            self.collision_time,
+            self.partner,
+            self.partner_stamp,
+            self.stamp,
+            self.crossing_time,
+            self.crossing_code,
+            self.tree_time,
+            self.tree_index,
+            self.counters_array,
+        )
+        self.counters_array[k.COUNT_PAIR_TESTS] = 0
+        if self.sort_every > 0:
+            self.sort_particles()
+
+    # --------------------------------------------------------------- set-up helpers
+    def _set_positions(self, positions) -> None:
+        n, d = self.n_particles, self.dimension
+        x = np.asarray(positions, dtype=float)
+        if x.shape != (n, d) or not np.all(np.isfinite(x)):
+            raise ValueError(f"positions must be a finite ({n}, {d}) array, got shape {x.shape}")
+        half = 0.5 * self.diameter
+        for axis in range(d):
+            lo, hi = (half, self.box[axis] - half) if self.walls[axis] else (0.0, self.box[axis])
+            bad = np.flatnonzero(
+                (x[:, axis] < lo) | (x[:, axis] > hi if self.walls[axis] else x[:, axis] >= hi)
+            )
+            if bad.size:
+                raise ValueError(
+                    f"particle {bad[0]} at {x[bad[0]]} is outside the box along axis {axis} "
+                    f"(allowed [{lo}, {hi}]{']' if self.walls[axis] else ')'})"
+                )
+        self.phase[:, :d] = x
+        outside = k.build_cells(
+            self.phase, self.cell, self.head, self.next_, self.prev, self.geometry, self.grid, 0.0
+        )
+        if outside >= 0:
+            raise ValueError(f"particle {outside} lies outside the box")
+        distance = self.min_distance()
+        if distance < self.diameter * (1.0 - 1e-12):
+            raise ValueError(
+                f"initial configuration overlaps: closest centres {distance:.6g} apart, "
+                f"diameter {self.diameter}"
+            )
+
+    # --------------------------------------------------------------- running
+    def run(
+        self,
+        *,
+        until: float | None = None,
+        collisions: int | None = None,
+        observers: Observers | None = None,
+        max_events: int | None = None,
+    ) -> int:
+        """Advance to simulation time ``until`` and/or by ``collisions`` collisions,
+        whichever comes first. Returns the kernel status (``kernels.STATUS_*``).
+
+        Large systems are re-sorted in memory by cell every ``sort_every`` collisions (see
+        ``sort_particles``) between kernel calls. Use a single ``Observers`` object per
+        system: its times are kept on the system's clock.
+
+        Raises ``InelasticCollapseError`` on collapse or a stalled clock and
+        ``RuntimeError`` if the event budget ``max_events`` (per kernel call) is exhausted.
+        """
+        if until is None and collisions is None:
+            raise ValueError("give until (a time) and/or collisions (a count)")
+        if until is not None and not (math.isfinite(until) and until >= self.time):
+            raise ValueError(
+                f"until must be finite and >= the current time {self.time}, got {until}"
+            )
+        if collisions is not None and int(collisions) < 1:
+            raise ValueError(f"collisions must be >= 1, got {collisions}")
+        observers = observers if observers is not None else self._idle_observers
+        if observers.window_count.shape[0] != self.n_particles:
+            raise ValueError("observers were created for a different number of particles")
+        big = np.iinfo(np.int64).max
+        remaining = big if collisions is None else int(collisions)
+        max_events = big if max_events is None else int(max_events)
+        while True:
+            chunk = remaining
+            if self.sort_every > 0:
+                chunk = min(chunk, max(self.sort_every - self._since_sort, 1))
+            t_stop = np.inf if until is None else until - self.time_origin
+            before = self.collisions
+            status = k.advance(
+                t_stop,
+                chunk,
+                max_events,
+                self.clock,
+                self.temperature,
+                int(observers.observing),
+                self.phase,
+                self.cell,
+                self.head,
+                self.next_,
+                self.prev,
+                self.collision_time,
+                self.partner,
+                self.partner_stamp,
+                self.stamp,
+                self.crossing_time,
+                self.crossing_code,
+                self.tree_time,
+                self.tree_index,
+                self.last_collision,
+                self.streak,
+                self.label,
+                self.geometry,
+                self.grid,
+                self.counters_array,
+                *observers.kernel_arguments(),
+            )
+            self._rebase(observers)
+            done = self.collisions - before
+            self._since_sort += done
+            if remaining != big:
+                remaining -= done
+            self._check(status, max_events)
+            if self.sort_every > 0 and self._since_sort >= self.sort_every:
+                self.sort_particles(observers)
+            if status != k.STATUS_COLLISIONS or remaining <= 0:
+                return int(status)
+
+    def _check(self, status: int, max_events: int) -> None:
+        if status in (k.STATUS_COLLAPSE, k.STATUS_STALLED):
+            slots = (
+                int(self.counters_array[k.COUNT_COLLAPSE_PARTICLE]),
+                int(self.counters_array[k.COUNT_COLLAPSE_PARTNER]),
+            )
+            pair = tuple(int(self.label[s]) if s >= 0 else -1 for s in slots)
+            what = (
+                "inelastic collapse"
+                if status == k.STATUS_COLLAPSE
+                else "stalled clock (inelastic collapse or degenerate configuration)"
+            )
+            raise InelasticCollapseError(
+                f"{what} at time {self.time:.10g} after {self.collisions} collisions: "
+                f"particle {pair[0]} (last partner {pair[1]}) collided more than "
+                f"{self.grid[k.I_STREAK]} times in a row less than "
+                f"{self.geometry[k.G_COLLAPSE_TIME]:.3g} apart (restitution "
+                f"{self.restitution}); contact_time > 0 (TC model) avoids it",
+                time=self.time,
+                collisions=self.collisions,
+                particles=pair,
+                system=self,
+            )
+        if status == k.STATUS_EVENT_LIMIT:
+            raise RuntimeError(f"event budget of {max_events} exhausted at time {self.time}")
+
+    def sort_particles(self, observers: Observers | None = None) -> None:
+        """Renumber the memory slots in cell order (x fastest), so that particles close in
+        space are close in memory, then predict every event anew.
+
+        Particle identities are kept in ``label`` (read-outs are in label order); the
+        per-particle arrays of ``observers`` are permuted along.
+        """
+        n = self.n_particles
+        flat = (self.cell[:, 2].astype(np.int64) * self.grid[1] + self.cell[:, 1]) * self.grid[
+            0
+        ] + self.cell[:, 0]
+        order = np.argsort(flat, kind="stable")
+        for array in (self.phase, self.cell, self.last_collision, self.streak, self.label):
+            array[:] = array[order]
+        for obs in {
+            id(self._idle_observers): self._idle_observers,
+            id(observers): observers,
+        }.values():
+            if obs is not None and obs.window_count.shape[0] == n:
+                obs.window_count[:] = obs.window_count[order]
+        self.stamp[:] = 0
+        k.relink_cells(self.cell, self.head, self.next_, self.prev, self.grid)
+        tests = self.counters_array[k.COUNT_PAIR_TESTS]
+        k.predict_all(
+            float(self.clock[0]),
+            self.phase,
+            self.cell,
+            self.head,
+            self.next_,
+            self.geometry,
+            self.grid,
+            self.collision_time,
+            self.partner,
+            self.partner_stamp,
+            self.stamp,
+            self.crossing_time,
+            self.crossing_code,
+            self.tree_time,
+            self.tree_index,
+            self.counters_array,
+        )
+        self.counters_array[k.COUNT_PAIR_TESTS] = tests
+        self._since_sort = 0
+
+    def _rebase(self, observers: Observers) -> None:
+        t = float(self.clock[0])
+        if t == 0.0 or not math.isfinite(t):
+            return
+        k.rebase(
+            t,
+            self.phase,
+            self.collision_time,
+            self.crossing_time,
+            self.tree_time,
+            self.last_collision,
+            observers.window_end,
+            observers.sample_times,
+            observers.record_time,
+        )
+        self.time_origin += t
+        self.clock[0] = 0.0
+
+    # --------------------------------------------------------------- read-out
+    @property
+    def time(self) -> float:
+        """Current simulation time."""
+        return self.time_origin + float(self.clock[0])
+
+    @property
+    def collisions(self) -> int:
+        return int(self.counters_array[k.COUNT_COLLISIONS])
+
+    def counters(self) -> dict[str, int]:
+        """Event counts since creation."""
+        c = self.counters_array
+        return {
+            "collisions": int(c[k.COUNT_COLLISIONS]),
+            "crossings": int(c[k.COUNT_CROSSINGS]),
+            "wall_hits": int(c[k.COUNT_WALL_HITS]),
+            "invalid_events": int(c[k.COUNT_INVALID]),
+            "pair_tests": int(c[k.COUNT_PAIR_TESTS]),
+            "events": int(c[k.COUNT_EVENTS]),
+            "rescalings": int(c[k.COUNT_RESCALES]),
+            "inelastic_collisions": int(c[k.COUNT_INELASTIC]),
+        }
+
+    def positions(self) -> np.ndarray:
+        """(N, d) positions at the current time (inside the box up to round-off)."""
+        d = self.dimension
+        t = float(self.clock[0])
+        out = np.empty((self.n_particles, d))
+        out[self.label] = self.phase[:, :d] + self.phase[:, 3 : 3 + d] * t
+        return out
+
+    def velocities(self) -> np.ndarray:
+        """(N, d) velocities (a copy, in label order)."""
+        out = np.empty((self.n_particles, self.dimension))
+        out[self.label] = self.phase[:, 3 : 3 + self.dimension]
+        return out
+
+    def kinetic_temperature(self) -> float:
+        """Σ v² / (d N)."""
+        return float(k.temperature(self.phase, self.dimension))
+
+    def min_distance(self) -> float:
+        """Smallest centre distance (periodic images included) at the current time."""
+        return float(
+            k.min_pair_distance(
+                self.phase,
+                self.cell,
+                self.head,
+                self.next_,
+                self.geometry,
+                self.grid,
+                float(self.clock[0]),
+            )
+        )
+
+    @property
+    def cells_per_side(self) -> np.ndarray:
+        return self.grid[: self.dimension].copy()
+
+
+def _aligned_zeros(shape, alignment: int = 64) -> np.ndarray:
+    """Zeroed float64 array whose data starts on an ``alignment``-byte boundary (one
+    particle row of 8 float64 is then one cache line)."""
+    count = int(np.prod(shape))
+    raw = np.zeros(count + alignment // 8, dtype=np.float64)
+    offset = (-raw.ctypes.data % alignment) // 8
+    return raw[offset : offset + count].reshape(shape)
