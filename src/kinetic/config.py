@@ -12,11 +12,13 @@ sentence, e.g.::
 from __future__ import annotations
 
 import os
+import tempfile
 from collections.abc import MutableMapping
 from pathlib import Path
 from typing import Any
 
 import jsonschema
+import yaml
 
 __all__ = ["SCHEMA", "ConfigError", "explain", "validate_config"]
 
@@ -71,15 +73,43 @@ def explain(error: jsonschema.ValidationError) -> str:
     return sentence
 
 
+def compose_schema(path: str | os.PathLike) -> dict[str, Any]:
+    """Load a schema and inline every ``$ref`` to a sibling file, recursively.
+
+    Each section's schema lives in its own file. jsonschema validates a referenced file
+    with a fresh validator of that file's dialect, which would skip the default-filling
+    extension of ``snakemake.utils.validate``; inlining keeps one validator throughout.
+    """
+    path = Path(path).resolve()
+
+    def inline(node: Any) -> Any:
+        if isinstance(node, dict):
+            node = {key: inline(value) for key, value in node.items()}
+            reference = node.pop("$ref", None)
+            if isinstance(reference, str) and not reference.startswith("#"):
+                target = compose_schema(path.parent / reference)
+                target.pop("$schema", None)
+                node = {**target, **node}
+            return node
+        if isinstance(node, list):
+            return [inline(item) for item in node]
+        return node
+
+    return inline(yaml.safe_load(path.read_text()))
+
+
 def validate_config(config: MutableMapping[str, Any], schema: str | os.PathLike = SCHEMA) -> None:
     """Validate ``config`` in place (filling defaults) or raise ``ConfigError``."""
     from snakemake.exceptions import WorkflowError
     from snakemake.utils import validate
 
-    try:
-        validate(config, str(Path(schema).resolve()))
-    except WorkflowError as workflow_error:
-        causes = [a for a in workflow_error.args if isinstance(a, jsonschema.ValidationError)]
-        if not causes:
-            raise
-        raise ConfigError(explain(causes[0])) from None
+    with tempfile.TemporaryDirectory() as directory:
+        composed = Path(directory) / "config.schema.yaml"
+        composed.write_text(yaml.safe_dump(compose_schema(schema), sort_keys=False))
+        try:
+            validate(config, str(composed))
+        except WorkflowError as workflow_error:
+            cause = workflow_error.__context__  # snakemake raises while handling it
+            if not isinstance(cause, jsonschema.ValidationError):
+                raise
+            raise ConfigError(explain(cause)) from None

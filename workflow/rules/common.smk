@@ -102,7 +102,7 @@ def engine_sources_of_wildcard(wildcards):
 
 def figure_script(name):
     """Scripts are inputs of their rule, so editing one re-renders only its figure."""
-    return f"workflow/scripts/{name}.py"
+    return str(Path(workflow.basedir) / "workflow" / "scripts" / f"{name}.py")
 
 
 wildcard_constraints:

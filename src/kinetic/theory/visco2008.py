@@ -110,9 +110,15 @@ def collision_rate(speed, d: int):
 
 
 def collision_rate_large_d(speed, d: int):
-    """r(v)/ω at large d, Eq. (12): sqrt(1 + v²/(2 T0 d)) / sqrt(2)."""
+    """r(v)/ω at large d, Eq. (12) corrected: sqrt(1 + v²/(T0 d)) / sqrt(2).
+
+    The document prints v²/(2 T0 d), a typo: its own Appendix C gives
+    r ∝ I1 - I2 ∝ sqrt(1 + 2ṽ²) with ṽ = v/sqrt(2 T0 d), i.e. v²/(T0 d); so does the
+    concentration |v - v2|² ≈ v² + d T0 of the relative speed in high dimension, and Eq. (6)
+    converges to this form (tests/physics/test_visco2008_free_flights.py).
+    """
     v = np.asarray(speed, dtype=float)
-    return np.sqrt(1.0 + v * v / (2.0 * d)) / SQRT2
+    return np.sqrt(1.0 + v * v / d) / SQRT2
 
 
 def _log_speed_density(v, d: int):
@@ -597,10 +603,11 @@ def legendre_transform(
 ):
     """π(n) = min_λ [μ(λ) + λ n] (Eq. 32) for a convex μ, at rates n >= 0.
 
-    The minimiser solves μ'(λ) = -n by bracketing (μ' increases from -∞ to 0⁻). ``slope``
-    is μ' (central differences when omitted). At n = 0 the value is μ(+∞), given by
-    ``mu_at_infinity`` or read off at the upper end of ``bracket``. Rates whose root lies
-    outside ``bracket`` give NaN.
+    The minimiser solves μ'(λ) = -n by bracketing (μ' increases with λ). ``slope`` is μ'
+    (central differences when omitted). If μ' stays below -n on the whole bracket the
+    infimum is reached as λ -> +∞: ``mu_at_infinity`` when given (n = 0 only), else NaN.
+    An approximate μ need not be monotone: the Gaussian closure (43) has μ' > 0 beyond
+    λ ≈ 5 (its approach to -1/√2 from below, Eq. 44), so its π(0) = min μ < -1/√2.
     """
     n = np.asarray(n, dtype=float)
     if np.any(n < 0):
@@ -618,14 +625,14 @@ def legendre_transform(
     out = np.full(n.shape, np.nan)
     lo, hi = bracket
     for index, rate in np.ndenumerate(n):
-        if rate == 0:
-            out[index] = mu_at_infinity if mu_at_infinity is not None else scalar(hi)
-            continue
         f_lo, f_hi = derivative(lo) + rate, derivative(hi) + rate
-        if not (f_lo < 0 < f_hi):
-            continue
-        root = optimize.brentq(lambda x, r=rate: derivative(x) + r, lo, hi, xtol=1e-13, rtol=1e-13)
-        out[index] = scalar(root) + root * rate
+        if f_lo < 0 < f_hi:
+            root = optimize.brentq(
+                lambda x, r=rate: derivative(x) + r, lo, hi, xtol=1e-13, rtol=1e-13
+            )
+            out[index] = scalar(root) + root * rate
+        elif f_hi <= 0 and rate == 0 and mu_at_infinity is not None:
+            out[index] = mu_at_infinity
     return out
 
 
@@ -640,7 +647,7 @@ def _gaussian_mu_slope(lam):
 
 def gaussian_ldf(n):
     """π(n) of the Gaussian closure: numerical Legendre transform of Eq. (43) (Fig. 3)."""
-    return legendre_transform(gaussian_mu, n, slope=_gaussian_mu_slope, mu_at_infinity=-1 / SQRT2)
+    return legendre_transform(gaussian_mu, n, slope=_gaussian_mu_slope)
 
 
 @lru_cache(maxsize=8)
