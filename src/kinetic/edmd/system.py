@@ -409,7 +409,12 @@ class HardSphereSystem:
             raise ValueError("observers were created for a different number of particles")
         big = np.iinfo(np.int64).max
         remaining = big if collisions is None else int(collisions)
-        max_events = big if max_events is None else int(max_events)
+        if max_events is None:
+            # a count-limited run must not spin on crossings in a gas that stopped colliding
+            # (e.g. after strong inelastic cooling); crossings per collision stay < 1e3 even at
+            # ρσ² = 1e-4 (about 60)
+            max_events = big if collisions is None else 1000 * remaining + 100 * self.n_particles
+        max_events = int(max_events)
         while True:
             chunk = remaining
             if self.sort_every > 0:
@@ -479,7 +484,10 @@ class HardSphereSystem:
                 system=self,
             )
         if status == k.STATUS_EVENT_LIMIT:
-            raise RuntimeError(f"event budget of {max_events} exhausted at time {self.time}")
+            raise RuntimeError(
+                f"event budget of {max_events} events exhausted at time {self.time} after "
+                f"{self.collisions} collisions: the particles (almost) stopped colliding"
+            )
 
     def sort_particles(self, observers: Observers | None = None) -> None:
         """Renumber the memory slots in cell order (x fastest), so that particles close in

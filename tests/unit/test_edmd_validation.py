@@ -1,0 +1,106 @@
+"""Bad input fails before any work, with a message naming the value and the allowed range."""
+
+import math
+
+import numpy as np
+import pytest
+
+from kinetic.edmd import HardSphereSystem, simulate
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        ({"restitution": 0.0}, r"restitution must be in \(0, 1\], got 0.0"),
+        ({"restitution": 1.5}, r"restitution must be in \(0, 1\], got 1.5"),
+        ({"restitution": math.nan}, "restitution must be in"),
+        ({"density": math.inf}, "density must be finite and > 0, got inf"),
+        ({"density": -0.1}, "density must be finite and > 0"),
+        ({"density": 1.2}, "cannot fit"),
+        ({"density": 0.7}, "random insertion is refused"),
+        ({"n_particles": 1}, "n_particles must be >= 2, got 1"),
+        ({"dimension": 4}, "dimension must be 2 or 3, got 4"),
+        ({"diameter": math.nan}, "diameter must be finite and > 0"),
+        ({"temperature": 0.0}, "temperature must be finite and > 0"),
+        ({"contact_time": -1.0}, "contact_time must be finite and >= 0"),
+        ({"density": None, "box": [2.5, 100.0]}, "a periodic axis needs at least 3"),
+    ],
+)
+def test_bad_parameters_are_refused(options, message):
+    arguments = {"n_particles": 100, "density": 0.01, "seed": 1, **options}
+    with pytest.raises((ValueError, TypeError), match=message):
+        HardSphereSystem(**arguments)
+
+
+def test_overlapping_initial_configuration_is_refused():
+    positions = np.array([[1.0, 1.0], [1.5, 1.0], [5.0, 5.0]])
+    with pytest.raises(ValueError, match=r"initial configuration overlaps: closest centres 0\.5"):
+        HardSphereSystem(n_particles=3, box=[10.0, 10.0], positions=positions, seed=1)
+
+
+def test_overlap_across_the_periodic_boundary_is_refused():
+    positions = np.array([[0.2, 5.0], [9.9, 5.0], [5.0, 5.0]])
+    with pytest.raises(ValueError, match="overlaps"):
+        HardSphereSystem(n_particles=3, box=[10.0, 10.0], positions=positions, seed=1)
+
+
+def test_particle_outside_the_walls_is_refused():
+    positions = np.array([[0.2, 5.0], [5.0, 5.0]])
+    with pytest.raises(ValueError, match=r"outside the box along axis 0 \(allowed \[0.5, 9.5\]\]"):
+        HardSphereSystem(n_particles=2, box=[10.0, 10.0], walls=True, positions=positions, seed=1)
+
+
+def test_non_finite_velocities_are_refused():
+    velocities = np.zeros((4, 2))
+    velocities[2, 1] = np.nan
+    with pytest.raises(ValueError, match="velocities must be a finite"):
+        HardSphereSystem(n_particles=4, box=[10.0, 10.0], velocities=velocities, seed=1)
+
+
+def test_run_arguments_are_checked():
+    system = HardSphereSystem(n_particles=50, density=0.01, seed=1)
+    with pytest.raises(ValueError, match="give until"):
+        system.run()
+    with pytest.raises(ValueError, match="collisions must be >= 1, got 0"):
+        system.run(collisions=0)
+    system.run(until=5.0)
+    with pytest.raises(ValueError, match="until must be finite and >= the current time"):
+        system.run(until=1.0)
+
+
+def test_a_gas_that_stopped_colliding_exhausts_the_event_budget():
+    # two disks flying apart in parallel never collide: a count-limited run must stop
+    positions = np.array([[2.0, 2.0], [2.0, 8.0]])
+    velocities = np.array([[1.0, 0.0], [1.0, 0.0]])
+    system = HardSphereSystem(
+        n_particles=2, box=[10.0, 10.0], positions=positions, velocities=velocities
+    )
+    with pytest.raises(RuntimeError, match="stopped colliding"):
+        system.run(collisions=1)
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        ({"windows": [10.0, 5.0]}, "windows must be strictly increasing"),
+        ({"windows": [0.0]}, "windows must be finite and > 0"),
+        ({"windows": [100.0]}, "the longest window 100.0 exceeds duration 50"),
+        ({"checkpoints": [10.0, 20.0]}, "the last checkpoint 20.0 must equal duration 50"),
+        ({"realizations": 0}, "realizations must be >= 1, got 0"),
+        ({"equilibration": 0.5}, "equilibration must be >= 1"),
+        ({"density": 1.2}, "cannot fit"),
+        ({"seed": -1}, "seed must be an integer >= 0"),
+    ],
+)
+def test_simulate_refuses_bad_protocols(options, message):
+    arguments = {
+        "n_particles": 100,
+        "density": 0.01,
+        "seed": 1,
+        "realizations": 2,
+        "duration": 50.0,
+        "windows": [1.0, 10.0],
+        **options,
+    }
+    with pytest.raises((ValueError, TypeError), match=message):
+        simulate(**arguments)
