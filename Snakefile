@@ -17,6 +17,8 @@ configfile: "config/config.yaml"
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/visco2008.smk"
+include: "workflow/rules/edmd.smk"
+include: "workflow/rules/visco2008_md.smk"
 include: "workflow/rules/targets.smk"
 
 

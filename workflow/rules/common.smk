@@ -20,6 +20,10 @@ TARGETS = {}
 # netCDF files with MD cumulants for Table I of visco2008 (filled by workflow/rules/edmd.smk).
 VISCO2008_TABLE1_MD = []
 
+# netCDF files of DSMC free-flight-time densities drawn as squares in visco2008 Fig 1
+# (filled by the DSMC rules): coordinate `time` (mean free times), variables `pdf`, `pdf_sem`.
+VISCO2008_FIG01_DSMC = []
+
 
 def provide(target_id, *paths):
     """Register the files of one figure or table under its id, e.g. 'visco2008/fig03'."""

@@ -13,15 +13,20 @@ Error bars come from independent realizations (standard error of the mean over t
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
+import xarray as xr
 
+from kinetic import io
 from kinetic.analysis.statistics import mean_and_sem
 
 __all__ = [
     "collision_frequency",
+    "combine_realizations",
     "count_large_deviation",
+    "cumulant_dataset",
     "cumulant_table",
     "error_against_cpu_time",
     "flight_time_pdf",
@@ -193,3 +198,89 @@ def error_against_cpu_time(dataset, window: float = 10.0) -> dict:
         rows["k3"].append(float(mean[2]))
         rows["k3_sem"].append(float(sem[2]))
     return {key: np.asarray(value) for key, value in rows.items()}
+
+
+def combine_realizations(datasets) -> xr.Dataset:
+    """Join batches of ``kinetic.edmd.simulate`` along ``realization``.
+
+    Checks that they share their parameters (apart from the batch bookkeeping) and that the
+    realization numbers are distinct; the result is sorted by realization number and its
+    parameters say how many realizations it holds.
+    """
+    datasets = list(datasets)
+    if not datasets:
+        raise ValueError("no batch to combine")
+    bookkeeping = {"first_realization", "realizations"}
+
+    def physics(dataset):
+        parameters = io.parameters_of(dataset)
+        return {k: v for k, v in parameters.items() if k not in bookkeeping}
+
+    reference = physics(datasets[0])
+    for dataset in datasets[1:]:
+        if physics(dataset) != reference:
+            raise ValueError("batches with different parameters cannot be combined")
+    combined = xr.concat(
+        datasets,
+        dim="realization",
+        data_vars="minimal",
+        coords="minimal",
+        compat="override",
+        combine_attrs="override",
+    ).sortby("realization")
+    numbers = combined["realization"].values
+    if np.unique(numbers).size != numbers.size:
+        raise ValueError(f"realization numbers repeat across batches: {sorted(numbers)}")
+    parameters = {
+        **reference,
+        "first_realization": int(numbers.min()),
+        "realizations": int(numbers.size),
+    }
+    return io.stamp(
+        combined,
+        parameters=parameters,
+        seed=int(combined.attrs["seed"]),
+        config=json.loads(combined.attrs.get("config", "{}")),
+    )
+
+
+def cumulant_dataset(dataset, windows=None) -> xr.Dataset:
+    """Table I input: ⟨N^p⟩_c/t and its standard error for the requested windows.
+
+    Coordinates ``window`` (t, mean free times) and ``order`` (p = 1, 2, 3); data variables
+    ``scaled_cumulant`` and ``scaled_cumulant_sem``; global attribute ``density`` (ρσ²).
+    """
+    table = cumulant_table(dataset)
+    index = np.arange(table["window"].size)
+    if windows is not None:
+        index = np.array([int(np.argmin(np.abs(table["window"] - w))) for w in windows])
+        if not np.allclose(table["window"][index], windows):
+            raise ValueError(f"windows {list(windows)} not all observed: {table['window']}")
+    parameters = io.parameters_of(dataset)
+    result = io.make_dataset(
+        {
+            "scaled_cumulant": (
+                ("window", "order"),
+                table["scaled_cumulant"][index],
+                "1",
+                "<N^p>_c / t, t in measured mean free times (MD)",
+            ),
+            "scaled_cumulant_sem": (
+                ("window", "order"),
+                table["scaled_cumulant_sem"][index],
+                "1",
+                "standard error over independent realizations",
+            ),
+        },
+        coords={
+            "window": ("window", table["window"][index], "mean free times", "counting window t"),
+            "order": ("order", table["order"], "1", "cumulant order p"),
+        },
+        attrs={"density": float(parameters["density"])},
+    )
+    return io.stamp(
+        result,
+        parameters={**parameters, "density": float(parameters["density"])},
+        seed=int(dataset.attrs["seed"]),
+        config=json.loads(dataset.attrs.get("config", "{}")),
+    )

@@ -1,0 +1,17 @@
+"""Join the batches of one visco2008 MD run; derive its Table I cumulants."""
+
+from kinetic import io
+from kinetic.analysis import collision_statistics
+from kinetic.workflow_support import start
+
+log = start(snakemake)
+data = collision_statistics.combine_realizations(
+    io.read_dataset(path) for path in snakemake.input.batches
+)
+io.write_dataset(data, snakemake.output.data)
+cumulants = collision_statistics.cumulant_dataset(data, snakemake.params.table_windows)
+io.write_dataset(cumulants, snakemake.output.cumulants)
+for window in cumulants["window"].values:
+    values = cumulants["scaled_cumulant"].sel(window=window).values
+    errors = cumulants["scaled_cumulant_sem"].sel(window=window).values
+    log.info("t = %g: <N^p>_c/t = %s +- %s", window, values.round(4), errors.round(4))

@@ -1,0 +1,42 @@
+"""visco2008 Fig. 10: P_FFT(t) from MD against Eq. 9 and the Gaussian-weighted P_FFT^W
+(A1) with its large-time form (A8); semi-logarithmic inset."""
+
+import numpy as np
+
+from kinetic import io, plotting
+from kinetic.analysis import collision_statistics
+from kinetic.workflow_support import start
+
+start(snakemake)
+md = io.read_dataset(snakemake.input.md)
+curves = io.read_dataset(snakemake.input.curves)
+t_md, pdf_md, sem_md = collision_statistics.flight_time_pdf(md)
+t = curves["time"].values
+asymptotic = np.where(t >= 0.5, curves["weighted_asymptotic"].values, np.nan)
+density = md.attrs["density"]
+
+fig, ax = plotting.figure()
+inset = plotting.inset(ax)
+for axis, t_max, every in ((ax, 3.0, 2), (inset, float(t_md.max()), 5)):
+    shown = (t_md <= t_max) & (pdf_md > 0)
+    shown[shown] &= np.arange(shown.sum()) % every == 0
+    plotting.errorbar(
+        axis,
+        t_md[shown],
+        pdf_md[shown],
+        sem_md[shown],
+        marker="o",
+        markersize=3,
+        label=rf"MD, $\rho\sigma^2 = {density:g}$",
+    )
+    axis.plot(t, curves["hard_spheres"], "-", color="k", label="Eq. (9)")
+    axis.plot(t, curves["weighted"], "--", color="C1", label=r"$P^W_{\rm FFT}$ (A1)")
+    axis.plot(t, asymptotic, ":", color="C3", label="(A8)")
+    axis.set_xlim(0, t_max)
+inset.set_yscale("log")
+inset.set_ylim(max(1e-6, 0.3 * float(pdf_md[pdf_md > 0].min())), 2)
+ax.set_ylim(0, 1.15)
+ax.set_xlabel(r"$t$  (mean free times, $\omega = 1$)")
+ax.set_ylabel(r"$P_{\rm FFT}(t)$")
+ax.legend(loc="center right", bbox_to_anchor=(1.0, 0.32), fontsize=6)
+plotting.save(fig, snakemake.output.pdf)
