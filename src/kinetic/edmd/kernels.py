@@ -198,8 +198,7 @@ def pair_time(xi, yi, zi, ui, vi, wi, phase, j, sx, sy, sz, t, sigma2, dim):
     (ui, vi, wi)) with the image of j shifted by (sx, sy, sz); +inf if they never touch.
 
     Uses the cancellation-free root (|r|² − σ²)/(−b + √disc); an approaching pair that
-    already overlaps by round-off collides at once (returns t). The rejection test is one
-    branch on (b < 0) & (disc > 0), which is rarely true in a dilute gas (well predicted).
+    already overlaps by round-off collides at once (returns t).
     """
     dx = phase[j, 0] + phase[j, 3] * t + sx - xi
     dy = phase[j, 1] + phase[j, 4] * t + sy - yi
@@ -216,11 +215,14 @@ def pair_time(xi, yi, zi, ui, vi, wi, phase, j, sx, sy, sz, t, sigma2, dim):
         g2 += dw * dw
     c = r2 - sigma2
     disc = b * b - g2 * c
-    if (b < 0.0) & (disc > 0.0):
-        dt = c / (np.sqrt(disc) - b)
-        if dt < 0.0:
-            dt = 0.0
-        return t + dt
+    # disc > 0 first: true for the few pairs whose impact parameter is below σ (a rarely
+    # taken, well predicted branch); b < 0 (approaching) is a coin flip, tested only then
+    if disc > 0.0:
+        if b < 0.0:
+            dt = c / (np.sqrt(disc) - b)
+            if dt < 0.0:
+                dt = 0.0
+            return t + dt
     return np.inf
 
 
@@ -249,7 +251,8 @@ def scan_cell(i, flat, sx, sy, sz, t, phase, head, next_, sigma2, dim, best_t, b
 
 @njit(cache=True, error_model="numpy", inline="always")
 def scan_neighbours(
-    i, t, fixed_axis, fixed_offset, phase, cell, head, next_, geometry, grid, best_t, best_j
+    i, t, fixed_axis, fixed_offset, phase, cell, head, next_, geometry, grid, best_t, best_j,
+    scratch, images,
 ):
     """Earliest collision of i with the particles of its neighbour cells.
 
@@ -257,10 +260,15 @@ def scan_neighbours(
     offset along ``fixed_axis`` is ``fixed_offset`` (the cells that became adjacent after a
     crossing). Periodic axes wrap with the image shift ±L; cells beyond a wall are skipped.
     Returns (best_t, best_j, number of pair tests).
+
+    Two passes: the candidates are first gathered from the cell lists into ``scratch``
+    ((N,) int64, entry = 32 j + cell ordinal), with i's position relative to each visited
+    cell's image in ``images`` ((27, 3) float64); then one loop tests them all. The tests are
+    independent of each other, so the processor overlaps them instead of waiting on the
+    linked-list chain and the end-of-list branch of each cell.
     """
     dim = grid[I_DIM]
     sigma2 = geometry[G_SIGMA2]
-    tests = 0
     lo0, hi0 = -1, 1
     lo1, hi1 = -1, 1
     lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
@@ -279,6 +287,11 @@ def scan_neighbours(
     c0 = cell[i, 0]
     c1 = cell[i, 1]
     c2 = cell[i, 2]
+    xi = phase[i, 0] + phase[i, 3] * t
+    yi = phase[i, 1] + phase[i, 4] * t
+    zi = phase[i, 2] + phase[i, 5] * t
+    count = 0
+    ordinal = 0
     for o2 in range(lo2, hi2 + 1):
         k2 = c2 + o2
         s2 = 0.0
@@ -318,11 +331,33 @@ def scan_neighbours(
                         continue
                     k0 -= n0
                     s0 = geometry[G_L]
-                flat = (k2 * n1 + k1) * n0 + k0
-                best_t, best_j, n = scan_cell(
-                    i, flat, s0, s1, s2, t, phase, head, next_, sigma2, dim, best_t, best_j
-                )
-                tests += n
+                j = head[(k2 * n1 + k1) * n0 + k0]
+                if j < 0:
+                    continue
+                images[ordinal, 0] = xi - s0
+                images[ordinal, 1] = yi - s1
+                images[ordinal, 2] = zi - s2
+                while j >= 0:
+                    scratch[count] = (j << 5) | ordinal
+                    count += 1
+                    j = next_[j]
+                ordinal += 1
+    ui = phase[i, 3]
+    vi = phase[i, 4]
+    wi = phase[i, 5]
+    tests = 0
+    for q in range(count):
+        code = scratch[q]
+        j = code >> 5
+        if j == i:
+            continue
+        o = code & 31
+        tc = pair_time(images[o, 0], images[o, 1], images[o, 2], ui, vi, wi, phase, j,
+                       0.0, 0.0, 0.0, t, sigma2, dim)
+        tests += 1
+        if tc < best_t:
+            best_t = tc
+            best_j = j
     return best_t, best_j, tests
 
 
@@ -373,10 +408,13 @@ def predict(
     crossing_time,
     crossing_code,
     counters,
+    scratch,
+    images,
 ):
     """Predict i's next collision (all neighbour cells) and next crossing from time t."""
     best_t, best_j, tests = scan_neighbours(
-        i, t, -1, 0, phase, cell, head, next_, geometry, grid, np.inf, -1
+        i, t, -1, 0, phase, cell, head, next_, geometry, grid, np.inf, -1,
+        scratch, images
     )
     counters[COUNT_PAIR_TESTS] += tests
     collision_time[i] = best_t
@@ -550,6 +588,8 @@ def advance(
     last_collision,
     streak,
     label,
+    scratch,
+    images,
     geometry,
     grid,
     counters,
@@ -672,6 +712,8 @@ def advance(
                     crossing_time,
                     crossing_code,
                     counters,
+                    scratch,
+                    images,
                 )
             else:
                 old = cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid)
@@ -697,7 +739,8 @@ def advance(
                 crossing_time[i] = tc if tc > t else t
                 crossing_code[i] = new_code
                 best_t, best_j, tests = scan_neighbours(
-                    i, t, k, offset, phase, cell, head, next_, geometry, grid, np.inf, -1
+                    i, t, k, offset, phase, cell, head, next_, geometry, grid, np.inf, -1,
+                    scratch, images
                 )
                 counters[COUNT_PAIR_TESTS] += tests
                 if best_t < collision_time[i]:
@@ -712,7 +755,8 @@ def advance(
             # ---------------------------------------------------------- stale prediction
             counters[COUNT_INVALID] += 1
             best_t, best_j, tests = scan_neighbours(
-                i, t, -1, 0, phase, cell, head, next_, geometry, grid, np.inf, -1
+                i, t, -1, 0, phase, cell, head, next_, geometry, grid, np.inf, -1,
+                scratch, images
             )
             counters[COUNT_PAIR_TESTS] += tests
             collision_time[i] = best_t
@@ -789,6 +833,8 @@ def advance(
             crossing_time,
             crossing_code,
             counters,
+            scratch,
+            images,
         )
         predict(
             j,
@@ -806,6 +852,8 @@ def advance(
             crossing_time,
             crossing_code,
             counters,
+            scratch,
+            images,
         )
         tree_update(tree_time, tree_index, i, min(collision_time[i], crossing_time[i]))
         tree_update(tree_time, tree_index, j, min(collision_time[j], crossing_time[j]))
@@ -985,6 +1033,8 @@ def predict_all(
     tree_time,
     tree_index,
     counters,
+    scratch,
+    images,
 ):
     """Predict every particle's events from time t and rebuild the tree."""
     n = phase.shape[0]
@@ -1006,6 +1056,8 @@ def predict_all(
             crossing_time,
             crossing_code,
             counters,
+            scratch,
+            images,
         )
         keys[i] = min(collision_time[i], crossing_time[i])
     tree_build(tree_time, tree_index, keys)

@@ -287,6 +287,8 @@ class HardSphereSystem:
         self.last_collision = np.full(n, -np.inf)
         self.streak = np.zeros(n, dtype=np.int32)
         self.label = np.arange(n, dtype=np.int64)  # original particle number of slot i
+        self.scratch = np.zeros(n, dtype=np.int64)  # candidate partners of one scan
+        self.images = np.zeros((27, 3))  # position of a particle relative to cell images
         self.sort_every = SORT_EVERY_PER_PARTICLE * n if n >= SORT_MIN_PARTICLES else 0
         self._since_sort = 0
         self.counters_array = np.zeros(k.N_COUNTERS, dtype=np.int64)
@@ -325,25 +327,7 @@ class HardSphereSystem:
             if v.shape != (n, dimension) or not np.all(np.isfinite(v)):
                 raise ValueError(f"velocities must be a finite ({n}, {dimension}) array")
             self.phase[:, 3 : 3 + dimension] = v
-        k.predict_all(
-            0.0,
-            self.phase,
-            self.cell,
-            self.head,
-            self.next_,
-            self.geometry,
-            self.grid,
-            self.collision_time,
-            self.partner,
-            self.partner_stamp,
-            self.stamp,
-            self.crossing_time,
-            self.crossing_code,
-            self.tree_time,
-            self.tree_index,
-            self.counters_array,
-        )
-        self.counters_array[k.COUNT_PAIR_TESTS] = 0
+        self._predict_all(0.0)
         if self.sort_every > 0:
             self.sort_particles()
 
@@ -444,6 +428,8 @@ class HardSphereSystem:
                 self.last_collision,
                 self.streak,
                 self.label,
+                self.scratch,
+                self.images,
                 self.geometry,
                 self.grid,
                 self.counters_array,
@@ -489,6 +475,17 @@ class HardSphereSystem:
                 f"{self.collisions} collisions: the particles (almost) stopped colliding"
             )
 
+    def _predict_all(self, t: float) -> None:
+        """Predict every event from kernel time t (pair tests not counted)."""
+        tests = int(self.counters_array[k.COUNT_PAIR_TESTS])
+        k.predict_all(
+            t, self.phase, self.cell, self.head, self.next_, self.geometry, self.grid,
+            self.collision_time, self.partner, self.partner_stamp, self.stamp,
+            self.crossing_time, self.crossing_code, self.tree_time, self.tree_index,
+            self.counters_array, self.scratch, self.images,
+        )
+        self.counters_array[k.COUNT_PAIR_TESTS] = tests
+
     def sort_particles(self, observers: Observers | None = None) -> None:
         """Renumber the memory slots in cell order (x fastest), so that particles close in
         space are close in memory, then predict every event anew.
@@ -511,26 +508,7 @@ class HardSphereSystem:
                 obs.window_count[:] = obs.window_count[order]
         self.stamp[:] = 0
         k.relink_cells(self.cell, self.head, self.next_, self.prev, self.grid)
-        tests = self.counters_array[k.COUNT_PAIR_TESTS]
-        k.predict_all(
-            float(self.clock[0]),
-            self.phase,
-            self.cell,
-            self.head,
-            self.next_,
-            self.geometry,
-            self.grid,
-            self.collision_time,
-            self.partner,
-            self.partner_stamp,
-            self.stamp,
-            self.crossing_time,
-            self.crossing_code,
-            self.tree_time,
-            self.tree_index,
-            self.counters_array,
-        )
-        self.counters_array[k.COUNT_PAIR_TESTS] = tests
+        self._predict_all(float(self.clock[0]))
         self._since_sort = 0
 
     def _rebase(self, observers: Observers) -> None:
