@@ -14,7 +14,7 @@ State (N particles, every array preallocated, row/index i = particle i)
             particle between its events), columns 3..5 the velocity; 6..7 unused (the row is
             one 64-byte cache line). In d = 2 the z columns are 0.
 ``cell``    (N, 3) int32: cell coordinates of each particle (z = 0 in d = 2).
-``head``    (n_cells,) int32, ``next_``/``prev`` (N,) int32: doubly linked lists of the
+``members``    (n_cells,) int32, ``occupancy``/``slot`` (N,) int32: doubly linked lists of the
             particles of each cell (−1 ends a list).
 ``collision_time`` (N,) float64, ``partner`` (N,) int32, ``partner_stamp`` (N,) int64:
             earliest predicted pair collision of i, its partner j and the value of
@@ -74,6 +74,7 @@ STATUS_COLLAPSE = 2  # inelastic collapse: a particle's collision streak exceede
 STATUS_STALLED = 3  # the clock did not advance for too many consecutive events
 STATUS_EVENT_LIMIT = 4  # more events than allowed in one call
 STATUS_NO_EVENTS = 5  # every particle is at rest: nothing will ever happen
+STATUS_CELL_FULL = 6  # a crossing found its destination cell row full (grow and resume)
 
 # indices into ``counters`` (int64)
 COUNT_COLLISIONS = 0
@@ -108,6 +109,8 @@ I_RESCALE = 8
 N_GRID = 9
 
 STALL_LIMIT = 100_000
+#: entries copied unconditionally from each cell row by the neighbour scan (≤ row capacity)
+GATHER_HEAD = 4
 
 
 # ----------------------------------------------------------------------------- tree
@@ -169,27 +172,30 @@ def cell_flat(cx, cy, cz, grid):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def cell_insert(i, flat, head, next_, prev):
-    """Push particle i at the front of cell ``flat``'s list."""
-    first = head[flat]
-    next_[i] = first
-    prev[i] = -1
-    if first >= 0:
-        prev[first] = i
-    head[flat] = i
+def cell_insert(i, flat, members, occupancy, slot):
+    """Append particle i to cell ``flat``; False (nothing changed) if the cell is full.
+
+    ``members`` (n_cells, C) int32 lists the particles of each cell in its first
+    ``occupancy[flat]`` entries; ``slot[i]`` is i's position there.
+    """
+    count = occupancy[flat]
+    if count >= members.shape[1]:
+        return False
+    members[flat, count] = i
+    slot[i] = count
+    occupancy[flat] = count + 1
+    return True
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def cell_remove(i, flat, head, next_, prev):
-    """Unlink particle i from cell ``flat``'s list."""
-    before = prev[i]
-    after = next_[i]
-    if before >= 0:
-        next_[before] = after
-    else:
-        head[flat] = after
-    if after >= 0:
-        prev[after] = before
+def cell_remove(i, flat, members, occupancy, slot):
+    """Remove particle i from cell ``flat`` (the cell's last member takes its slot)."""
+    last = occupancy[flat] - 1
+    position = slot[i]
+    moved = members[flat, last]
+    members[flat, position] = moved
+    slot[moved] = position
+    occupancy[flat] = last
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -215,43 +221,20 @@ def pair_time(xi, yi, zi, ui, vi, wi, phase, j, sx, sy, sz, t, sigma2, dim):
         g2 += dw * dw
     c = r2 - sigma2
     disc = b * b - g2 * c
-    # disc > 0 first: true for the few pairs whose impact parameter is below σ (a rarely
-    # taken, well predicted branch); b < 0 (approaching) is a coin flip, tested only then
-    if disc > 0.0:
-        if b < 0.0:
-            dt = c / (np.sqrt(disc) - b)
-            if dt < 0.0:
-                dt = 0.0
-            return t + dt
+    # one branch on min(disc, −b) > 0, i.e. disc > 0 (impact parameter below σ) and b < 0
+    # (approaching): rarely true, so well predicted; a separate test of b < 0, a coin flip,
+    # would cost a branch misprediction every other pair
+    if min(disc, -b) > 0.0:
+        dt = c / (np.sqrt(disc) - b)
+        if dt < 0.0:
+            dt = 0.0
+        return t + dt
     return np.inf
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def scan_cell(i, flat, sx, sy, sz, t, phase, head, next_, sigma2, dim, best_t, best_j):
-    """Earliest collision of i with the particles of cell ``flat`` (image shift (sx, sy,
-    sz)), compared with (best_t, best_j). Returns (best_t, best_j, number of pair tests)."""
-    xi = phase[i, 0] + phase[i, 3] * t
-    yi = phase[i, 1] + phase[i, 4] * t
-    zi = phase[i, 2] + phase[i, 5] * t
-    ui = phase[i, 3]
-    vi = phase[i, 4]
-    wi = phase[i, 5]
-    tests = 0
-    j = head[flat]
-    while j >= 0:
-        if j != i:
-            tc = pair_time(xi, yi, zi, ui, vi, wi, phase, j, sx, sy, sz, t, sigma2, dim)
-            tests += 1
-            if tc < best_t:
-                best_t = tc
-                best_j = j
-        j = next_[j]
-    return best_t, best_j, tests
-
-
-@njit(cache=True, error_model="numpy", inline="always")
 def scan_neighbours(
-    i, t, fixed_axis, fixed_offset, phase, cell, head, next_, geometry, grid, best_t, best_j,
+    i, t, fixed_axis, fixed_offset, phase, cell, members, occupancy, geometry, grid, best_t, best_j,
     scratch, images,
 ):
     """Earliest collision of i with the particles of its neighbour cells.
@@ -261,11 +244,11 @@ def scan_neighbours(
     crossing). Periodic axes wrap with the image shift ±L; cells beyond a wall are skipped.
     Returns (best_t, best_j, number of pair tests).
 
-    Two passes: the candidates are first gathered from the cell lists into ``scratch``
-    ((N,) int64, entry = 32 j + cell ordinal), with i's position relative to each visited
-    cell's image in ``images`` ((27, 3) float64); then one loop tests them all. The tests are
-    independent of each other, so the processor overlaps them instead of waiting on the
-    linked-list chain and the end-of-list branch of each cell.
+    Two passes: the candidates are first gathered from the cell rows into ``scratch``
+    ((N + C,) int64, entry = 32 j + cell ordinal), with i's position relative to each visited
+    cell's image in ``images`` ((27, 3) float64); then one loop tests them all. Gathering
+    copies whole rows of C entries (no per-cell data-dependent branch) and the tests are
+    independent of each other, so the processor overlaps them.
     """
     dim = grid[I_DIM]
     sigma2 = geometry[G_SIGMA2]
@@ -284,6 +267,7 @@ def scan_neighbours(
     n0 = grid[0]
     n1 = grid[1]
     n2 = grid[2]
+    capacity = members.shape[1]
     c0 = cell[i, 0]
     c1 = cell[i, 1]
     c2 = cell[i, 2]
@@ -331,16 +315,20 @@ def scan_neighbours(
                         continue
                     k0 -= n0
                     s0 = geometry[G_L]
-                j = head[(k2 * n1 + k1) * n0 + k0]
-                if j < 0:
-                    continue
+                flat = (k2 * n1 + k1) * n0 + k0
+                occupied = occupancy[flat]
                 images[ordinal, 0] = xi - s0
                 images[ordinal, 1] = yi - s1
                 images[ordinal, 2] = zi - s2
-                while j >= 0:
-                    scratch[count] = (j << 5) | ordinal
-                    count += 1
-                    j = next_[j]
+                # copy a fixed head of the row (no data-dependent branch: most cells hold
+                # at most GATHER_HEAD particles), then the rare rest; entries past the
+                # occupied ones are junk that ``count`` never reaches
+                for q in range(GATHER_HEAD):
+                    scratch[count + q] = (members[flat, q] << 5) | ordinal
+                if occupied > GATHER_HEAD:
+                    for q in range(GATHER_HEAD, occupied):
+                        scratch[count + q] = (members[flat, q] << 5) | ordinal
+                count += occupied
                 ordinal += 1
     ui = phase[i, 3]
     vi = phase[i, 4]
@@ -364,30 +352,31 @@ def scan_neighbours(
 @njit(cache=True, error_model="numpy", inline="always")
 def next_crossing(i, phase, cell, geometry, grid):
     """Time and face code (2k + 1 upwards, 2k downwards) at which i leaves its cell or
-    touches a wall. A wall face is the plane at σ/2 from the wall."""
+    touches a wall. A wall face is the plane at σ/2 from the wall. Written with selects
+    rather than branches: the direction of motion is a coin flip for the branch predictor."""
     dim = grid[I_DIM]
     best = np.inf
     code = -1
     half_sigma = 0.5 * geometry[G_SIGMA]
     for k in range(dim):
         velocity = phase[i, 3 + k]
-        if velocity > 0.0:
-            c = cell[i, k]
-            if grid[I_WALL + k] and c == grid[I_N + k] - 1:
-                boundary = geometry[G_L + k] - half_sigma
-            else:
-                boundary = (c + 1) * geometry[G_W + k]
-            tc = (boundary - phase[i, k]) / velocity
-            if tc < best:
-                best = tc
-                code = 2 * k + 1
-        elif velocity < 0.0:
-            c = cell[i, k]
-            boundary = half_sigma if grid[I_WALL + k] and c == 0 else c * geometry[G_W + k]
-            tc = (boundary - phase[i, k]) / velocity
-            if tc < best:
-                best = tc
-                code = 2 * k
+        c = cell[i, k]
+        width = geometry[G_W + k]
+        upper = (c + 1) * width
+        lower = c * width
+        if grid[I_WALL + k]:
+            if c == grid[I_N + k] - 1:
+                upper = geometry[G_L + k] - half_sigma
+            if c == 0:
+                lower = half_sigma
+        upwards = velocity > 0.0
+        boundary = upper if upwards else lower
+        tc = (boundary - phase[i, k]) / velocity
+        tc = tc if velocity != 0.0 else np.inf
+        face = 2 * k + (1 if upwards else 0)
+        earlier = tc < best
+        code = face if earlier else code
+        best = tc if earlier else best
     return best, code
 
 
@@ -397,8 +386,8 @@ def predict(
     t,
     phase,
     cell,
-    head,
-    next_,
+    members,
+    occupancy,
     geometry,
     grid,
     collision_time,
@@ -413,7 +402,7 @@ def predict(
 ):
     """Predict i's next collision (all neighbour cells) and next crossing from time t."""
     best_t, best_j, tests = scan_neighbours(
-        i, t, -1, 0, phase, cell, head, next_, geometry, grid, np.inf, -1,
+        i, t, -1, 0, phase, cell, members, occupancy, geometry, grid, np.inf, -1,
         scratch, images
     )
     counters[COUNT_PAIR_TESTS] += tests
@@ -574,9 +563,9 @@ def advance(
     observing,
     phase,
     cell,
-    head,
-    next_,
-    prev,
+    members,
+    occupancy,
+    slot,
     collision_time,
     partner,
     partner_stamp,
@@ -675,6 +664,7 @@ def advance(
                 return STATUS_STALLED
         else:
             counters[COUNT_STALL] = 0
+        t_previous = t
         t = t_event
 
         if crossing_time[i] <= collision_time[i]:
@@ -701,8 +691,8 @@ def advance(
                     t,
                     phase,
                     cell,
-                    head,
-                    next_,
+                    members,
+                    occupancy,
                     geometry,
                     grid,
                     collision_time,
@@ -716,30 +706,35 @@ def advance(
                     images,
                 )
             else:
+                # arithmetic rather than a branch on the direction (a coin flip)
+                offset = 1 if upwards else -1
+                c += offset
+                wrap = 0.0
+                if c == grid[I_N + k]:
+                    c = 0
+                    wrap = -geometry[G_L + k]
+                elif c < 0:
+                    c = grid[I_N + k] - 1
+                    wrap = geometry[G_L + k]
                 old = cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid)
-                cell_remove(i, old, head, next_, prev)
-                if upwards:
-                    c += 1
-                    if c == grid[I_N + k]:
-                        c = 0
-                        phase[i, k] -= geometry[G_L + k]
-                    offset = 1
-                else:
-                    c -= 1
-                    if c < 0:
-                        c = grid[I_N + k] - 1
-                        phase[i, k] += geometry[G_L + k]
-                    offset = -1
+                new = old + (c - cell[i, k]) * (1 if k == 0 else (grid[0] if k == 1
+                                                                   else grid[0] * grid[1]))
+                if occupancy[new] >= members.shape[1]:
+                    # the destination row is full: stop before changing anything; the
+                    # caller grows the rows and resumes with this very event
+                    counters[COUNT_EVENTS] -= 1
+                    clock[0] = t_previous
+                    return STATUS_CELL_FULL
+                cell_remove(i, old, members, occupancy, slot)
+                phase[i, k] += wrap
                 cell[i, k] = c
-                cell_insert(
-                    i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), head, next_, prev
-                )
+                cell_insert(i, new, members, occupancy, slot)
                 counters[COUNT_CROSSINGS] += 1
                 tc, new_code = next_crossing(i, phase, cell, geometry, grid)
                 crossing_time[i] = tc if tc > t else t
                 crossing_code[i] = new_code
                 best_t, best_j, tests = scan_neighbours(
-                    i, t, k, offset, phase, cell, head, next_, geometry, grid, np.inf, -1,
+                    i, t, k, offset, phase, cell, members, occupancy, geometry, grid, np.inf, -1,
                     scratch, images
                 )
                 counters[COUNT_PAIR_TESTS] += tests
@@ -755,7 +750,7 @@ def advance(
             # ---------------------------------------------------------- stale prediction
             counters[COUNT_INVALID] += 1
             best_t, best_j, tests = scan_neighbours(
-                i, t, -1, 0, phase, cell, head, next_, geometry, grid, np.inf, -1,
+                i, t, -1, 0, phase, cell, members, occupancy, geometry, grid, np.inf, -1,
                 scratch, images
             )
             counters[COUNT_PAIR_TESTS] += tests
@@ -810,11 +805,11 @@ def advance(
         last_collision[i] = t
         last_collision[j] = t
         if n_records > 0:
-            slot = counters[COUNT_COLLISIONS] % n_records
-            record_time[slot] = t
-            record_pair[slot, 0] = label[i]
-            record_pair[slot, 1] = label[j]
-            record_normal_speed[slot] = -gn
+            record_slot = counters[COUNT_COLLISIONS] % n_records
+            record_time[record_slot] = t
+            record_pair[record_slot, 0] = label[i]
+            record_pair[record_slot, 1] = label[j]
+            record_normal_speed[record_slot] = -gn
         counters[COUNT_COLLISIONS] += 1
         collisions_done += 1
         predict(
@@ -822,8 +817,8 @@ def advance(
             t,
             phase,
             cell,
-            head,
-            next_,
+            members,
+            occupancy,
             geometry,
             grid,
             collision_time,
@@ -841,8 +836,8 @@ def advance(
             t,
             phase,
             cell,
-            head,
-            next_,
+            members,
+            occupancy,
             geometry,
             grid,
             collision_time,
@@ -876,20 +871,20 @@ def advance(
 
 
 @njit(cache=True, error_model="numpy")
-def place_random(phase, cell, head, next_, prev, geometry, grid, state, max_attempts):
+def place_random(phase, cell, members, occupancy, slot, geometry, grid, state, max_attempts):
     """Random sequential insertion of N non-overlapping particles at time 0.
 
     Positions uniform in the box ([σ/2, L − σ/2] along wall axes); each trial is checked
     against the particles already placed in the neighbour cells. Fills the false positions
-    (= positions at t = 0), the cells and the cell lists. Returns the number of particles
-    placed (< N if one needed more than ``max_attempts`` trials).
+    (= positions at t = 0), the cells and the cell rows. Returns the number of particles
+    placed (< N if one needed more than ``max_attempts`` trials), −1 if a cell row is full.
     """
     n = phase.shape[0]
     dim = grid[I_DIM]
     sigma = geometry[G_SIGMA]
     sigma2 = geometry[G_SIGMA2]
-    for flat in range(head.shape[0]):
-        head[flat] = -1
+    for flat in range(occupancy.shape[0]):
+        occupancy[flat] = 0
     for i in range(n):
         placed = False
         for _attempt in range(max_attempts):
@@ -910,10 +905,10 @@ def place_random(phase, cell, head, next_, prev, geometry, grid, state, max_atte
                 cell[i, k] = c
             for k in range(3, 6):
                 phase[i, k] = 0.0
-            if not overlaps_neighbours(i, phase, cell, head, next_, geometry, grid, sigma2):
-                cell_insert(
-                    i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), head, next_, prev
-                )
+            if not overlaps_neighbours(i, phase, cell, members, occupancy, geometry, grid, sigma2):
+                flat = cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid)
+                if not cell_insert(i, flat, members, occupancy, slot):
+                    return -1  # a cell is full: the caller grows the capacity and retries
                 placed = True
                 break
         if not placed:
@@ -922,7 +917,7 @@ def place_random(phase, cell, head, next_, prev, geometry, grid, state, max_atte
 
 
 @njit(cache=True, error_model="numpy")
-def overlaps_neighbours(i, phase, cell, head, next_, geometry, grid, sigma2):
+def overlaps_neighbours(i, phase, cell, members, occupancy, geometry, grid, sigma2):
     """True if particle i (at t = 0) overlaps a particle listed in its neighbour cells."""
     dim = grid[I_DIM]
     lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
@@ -966,27 +961,28 @@ def overlaps_neighbours(i, phase, cell, head, next_, geometry, grid, sigma2):
                         shift2 = geometry[G_L + 2]
                 if skip:
                     continue
-                j = head[cell_flat(k0, k1, k2, grid)]
-                while j >= 0:
+                flat = cell_flat(k0, k1, k2, grid)
+                for q in range(occupancy[flat]):
+                    j = members[flat, q]
                     dx = phase[j, 0] + shift0 - phase[i, 0]
                     dy = phase[j, 1] + shift1 - phase[i, 1]
                     dz = phase[j, 2] + shift2 - phase[i, 2]
                     if dx * dx + dy * dy + dz * dz < sigma2:
                         return True
-                    j = next_[j]
     return False
 
 
 @njit(cache=True, error_model="numpy")
-def build_cells(phase, cell, head, next_, prev, geometry, grid, t):
+def build_cells(phase, cell, members, occupancy, slot, geometry, grid, t):
     """Assign every particle (position x0 + v t) to its cell and rebuild the cell lists.
 
-    Returns the index of the first particle outside the box, or −1.
+    Returns the index of the first particle outside the box, −1 if all are inside, −2 if a
+    cell row is full (the caller grows the capacity and retries).
     """
     n = phase.shape[0]
     dim = grid[I_DIM]
-    for flat in range(head.shape[0]):
-        head[flat] = -1
+    for flat in range(occupancy.shape[0]):
+        occupancy[flat] = 0
     for i in range(n):
         for k in range(3):
             if k >= dim:
@@ -1000,19 +996,24 @@ def build_cells(phase, cell, head, next_, prev, geometry, grid, t):
             if c >= grid[I_N + k]:
                 c = grid[I_N + k] - 1
             cell[i, k] = c
-        cell_insert(i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), head, next_, prev)
+        if not cell_insert(i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), members,
+                           occupancy, slot):
+            return -2
     return -1
 
 
 @njit(cache=True, error_model="numpy")
-def relink_cells(cell, head, next_, prev, grid):
-    """Rebuild the cell lists from the cell coordinates ``cell`` (kept as they are: a
+def relink_cells(cell, members, occupancy, slot, grid):
+    """Rebuild the cell rows from the cell coordinates ``cell`` (kept as they are: a
     particle sitting on a face by round-off stays in the cell its crossings put it in).
-    Particles are pushed in decreasing index order so each list is in increasing order."""
-    for flat in range(head.shape[0]):
-        head[flat] = -1
-    for i in range(cell.shape[0] - 1, -1, -1):
-        cell_insert(i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), head, next_, prev)
+    Returns False if a row is full (the caller grows the capacity and retries)."""
+    for flat in range(occupancy.shape[0]):
+        occupancy[flat] = 0
+    for i in range(cell.shape[0]):
+        if not cell_insert(i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), members,
+                           occupancy, slot):
+            return False
+    return True
 
 
 @njit(cache=True, error_model="numpy")
@@ -1020,8 +1021,8 @@ def predict_all(
     t,
     phase,
     cell,
-    head,
-    next_,
+    members,
+    occupancy,
     geometry,
     grid,
     collision_time,
@@ -1045,8 +1046,8 @@ def predict_all(
             t,
             phase,
             cell,
-            head,
-            next_,
+            members,
+            occupancy,
             geometry,
             grid,
             collision_time,
@@ -1106,7 +1107,7 @@ def draw_velocities(phase, dim, state):
 
 
 @njit(cache=True, error_model="numpy")
-def min_pair_distance(phase, cell, head, next_, geometry, grid, t):
+def min_pair_distance(phase, cell, members, occupancy, geometry, grid, t):
     """Smallest centre distance at time t between particles in neighbour cells (periodic
     images included): ≥ σ when nothing overlaps. +inf if no pair is in reach."""
     n = phase.shape[0]
@@ -1135,8 +1136,9 @@ def min_pair_distance(phase, cell, head, next_, geometry, grid, t):
                     )
                     if skip0:
                         continue
-                    j = head[cell_flat(k0, k1, k2, grid)]
-                    while j >= 0:
+                    flat = cell_flat(k0, k1, k2, grid)
+                    for q in range(occupancy[flat]):
+                        j = members[flat, q]
                         if j != i:
                             d0 = phase[j, 0] + phase[j, 3] * t + s0 - xi0
                             d1 = phase[j, 1] + phase[j, 4] * t + s1 - xi1
@@ -1144,7 +1146,6 @@ def min_pair_distance(phase, cell, head, next_, geometry, grid, t):
                             r2 = d0 * d0 + d1 * d1 + (d2 * d2 if dim == 3 else 0.0)
                             if r2 < best:
                                 best = r2
-                        j = next_[j]
     return np.sqrt(best)
 
 

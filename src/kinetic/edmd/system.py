@@ -272,9 +272,13 @@ class HardSphereSystem:
         self.geometry[k.G_COLLAPSE_TIME] = collapse_time
         self.phase = _aligned_zeros((n, 8))
         self.cell = np.zeros((n, 3), dtype=np.int32)
-        self.head = np.full(int(np.prod(counts)), -1, dtype=np.int32)
-        self.next_ = np.full(n, -1, dtype=np.int32)
-        self.prev = np.full(n, -1, dtype=np.int32)
+        self.n_cells = int(np.prod(counts))
+        self.occupancy = np.zeros(self.n_cells, dtype=np.int32)
+        self.slot = np.zeros(n, dtype=np.int32)
+        capacity = 8
+        while capacity < cell_occupancy + 6.0 * math.sqrt(cell_occupancy) + 6.0:
+            capacity *= 2
+        self._allocate_rows(capacity)
         self.collision_time = np.full(n, np.inf)
         self.partner = np.full(n, -1, dtype=np.int32)
         self.partner_stamp = np.full(n, -1, dtype=np.int64)
@@ -287,7 +291,6 @@ class HardSphereSystem:
         self.last_collision = np.full(n, -np.inf)
         self.streak = np.zeros(n, dtype=np.int32)
         self.label = np.arange(n, dtype=np.int64)  # original particle number of slot i
-        self.scratch = np.zeros(n, dtype=np.int64)  # candidate partners of one scan
         self.images = np.zeros((27, 3))  # position of a particle relative to cell images
         self.sort_every = SORT_EVERY_PER_PARTICLE * n if n >= SORT_MIN_PARTICLES else 0
         self._since_sort = 0
@@ -298,17 +301,24 @@ class HardSphereSystem:
 
         # ----------------------------------------------------------- initial state
         if positions is None:
-            placed = k.place_random(
-                self.phase,
-                self.cell,
-                self.head,
-                self.next_,
-                self.prev,
-                self.geometry,
-                self.grid,
-                self.stream,
-                10_000,
-            )
+            initial_stream = self.stream.copy()
+            while True:
+                placed = k.place_random(
+                    self.phase,
+                    self.cell,
+                    self.members,
+                    self.occupancy,
+                    self.slot,
+                    self.geometry,
+                    self.grid,
+                    self.stream,
+                    10_000,
+                )
+                if placed >= 0:
+                    break
+                # a cell row overflowed: grow the rows and redo the same placement
+                self.stream[:] = initial_stream
+                self._allocate_rows(2 * self.members.shape[1])
             if placed < n:
                 raise ValueError(
                     f"random insertion placed only {placed} of {n} particles (packing "
@@ -349,9 +359,14 @@ class HardSphereSystem:
                     f"(allowed [{lo}, {hi}]{']' if self.walls[axis] else ')'})"
                 )
         self.phase[:, :d] = x
-        outside = k.build_cells(
-            self.phase, self.cell, self.head, self.next_, self.prev, self.geometry, self.grid, 0.0
-        )
+        while True:
+            outside = k.build_cells(
+                self.phase, self.cell, self.members, self.occupancy, self.slot, self.geometry,
+                self.grid, 0.0,
+            )
+            if outside != -2:
+                break
+            self._allocate_rows(2 * self.members.shape[1])
         if outside >= 0:
             raise ValueError(f"particle {outside} lies outside the box")
         distance = self.min_distance()
@@ -414,9 +429,9 @@ class HardSphereSystem:
                 int(observers.observing),
                 self.phase,
                 self.cell,
-                self.head,
-                self.next_,
-                self.prev,
+                self.members,
+                self.occupancy,
+                self.slot,
                 self.collision_time,
                 self.partner,
                 self.partner_stamp,
@@ -436,6 +451,10 @@ class HardSphereSystem:
                 *observers.kernel_arguments(),
             )
             self._rebase(observers)
+            if status == k.STATUS_CELL_FULL:
+                self._allocate_rows(2 * self.members.shape[1])
+                self._relink()
+                status = k.STATUS_COLLISIONS  # nothing wrong: continue
             done = self.collisions - before
             self._since_sort += done
             if remaining != big:
@@ -475,11 +494,21 @@ class HardSphereSystem:
                 f"{self.collisions} collisions: the particles (almost) stopped colliding"
             )
 
+    def _allocate_rows(self, capacity: int) -> None:
+        """(Re)allocate the cell rows with ``capacity`` slots each (and the scan scratch)."""
+        self.members = np.zeros((self.n_cells, int(capacity)), dtype=np.int32)
+        self.scratch = np.zeros(self.n_particles + int(capacity), dtype=np.int64)
+
+    def _relink(self) -> None:
+        """Refill the cell rows from the cell coordinates, growing them if needed."""
+        while not k.relink_cells(self.cell, self.members, self.occupancy, self.slot, self.grid):
+            self._allocate_rows(2 * self.members.shape[1])
+
     def _predict_all(self, t: float) -> None:
         """Predict every event from kernel time t (pair tests not counted)."""
         tests = int(self.counters_array[k.COUNT_PAIR_TESTS])
         k.predict_all(
-            t, self.phase, self.cell, self.head, self.next_, self.geometry, self.grid,
+            t, self.phase, self.cell, self.members, self.occupancy, self.geometry, self.grid,
             self.collision_time, self.partner, self.partner_stamp, self.stamp,
             self.crossing_time, self.crossing_code, self.tree_time, self.tree_index,
             self.counters_array, self.scratch, self.images,
@@ -507,7 +536,7 @@ class HardSphereSystem:
             if obs is not None and obs.window_count.shape[0] == n:
                 obs.window_count[:] = obs.window_count[order]
         self.stamp[:] = 0
-        k.relink_cells(self.cell, self.head, self.next_, self.prev, self.grid)
+        self._relink()
         self._predict_all(float(self.clock[0]))
         self._since_sort = 0
 
@@ -577,8 +606,8 @@ class HardSphereSystem:
             k.min_pair_distance(
                 self.phase,
                 self.cell,
-                self.head,
-                self.next_,
+                self.members,
+                self.occupancy,
                 self.geometry,
                 self.grid,
                 float(self.clock[0]),
