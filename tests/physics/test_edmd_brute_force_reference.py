@@ -65,25 +65,28 @@ def brute_force_next_collision(x, v, box, walls, sigma):
 
 
 @pytest.mark.parametrize(
-    ("dimension", "walls", "n_particles", "box", "collisions"),
+    ("dimension", "walls", "n_particles", "box", "collisions", "occupancy", "capacity"),
     [
-        (2, False, 24, [12.0, 9.0], 2000),
-        (2, True, 20, [10.0, 11.0], 1500),
-        (3, False, 20, [6.0, 5.0, 7.0], 1000),
+        (2, False, 24, [12.0, 9.0], 2000, 0.5, None),
+        (2, True, 20, [10.0, 11.0], 1500, 0.5, None),
+        (3, False, 20, [6.0, 5.0, 7.0], 1000, 0.5, None),
+        (2, False, 40, [12.0, 12.0], 1500, 2.5, 4),
     ],
-    ids=["2d-periodic", "2d-walls", "3d-periodic"],
+    ids=["2d-periodic", "2d-walls", "3d-periodic", "2d-rows-grow"],
 )
 def test_same_collision_sequence_as_all_pairs_search(
-    dimension, walls, n_particles, box, collisions
+    dimension, walls, n_particles, box, collisions, occupancy, capacity
 ):
-    # arrange: a small box with several cells per side, so cell lists matter
+    # arrange: a small box with several cells per side, so cell lists matter; in the last
+    # case rows of 4 slots overflow and are grown while running
     system = HardSphereSystem(
         n_particles=n_particles,
         box=box,
         dimension=dimension,
         walls=walls,
         seed=11,
-        cell_occupancy=0.5,
+        cell_occupancy=occupancy,
+        cell_capacity=capacity,
     )
     assert np.all(system.cells_per_side >= 3)
     observers = Observers.create(n_particles, record_capacity=1)
@@ -98,3 +101,5 @@ def test_same_collision_sequence_as_all_pairs_search(
         pair = tuple(sorted(int(p) for p in record["pair"][-1]))
         assert pair == (i, j)
         assert record["time"][-1] - now == pytest.approx(expected_time, rel=1e-9, abs=1e-9)
+    if capacity is not None:
+        assert system.members.shape[1] > capacity

@@ -36,9 +36,11 @@ def test_momentum_conserved_exactly_in_a_periodic_box(restitution):
         contact_time=1e-3,
     )
     momentum = system.velocities().sum(axis=0)
-    # act
-    system.run(collisions=20_000)
+    # act: 20 collisions per particle (at α = 0.5 the relative motion then has almost
+    # stopped, while the centre of mass keeps streaming)
+    system.run(collisions=4_000)
     # assert: each collision adds ±Δv to two particles; only round-off remains
     assert np.allclose(system.velocities().sum(axis=0), momentum, rtol=0, atol=1e-10)
     if restitution < 1:
-        assert system.kinetic_temperature() < 0.5
+        thermal = system.velocities() - system.velocities().mean(axis=0)
+        assert np.mean(thermal**2) < 0.05

@@ -7,26 +7,29 @@ front (``kinetic.edmd.simulate``) allocates the state with ``kinetic.edmd.state`
 Units: mass m = 1; lengths in the units of the box and diameter (σ = 1 in the project);
 times in the units those and the velocities imply.
 
-State (N particles, every array preallocated, row/index i = particle i)
------------------------------------------------------------------------
+State (N particles, every array preallocated, row/index i = memory slot of a particle)
+--------------------------------------------------------------------------------------
+Everything an event of particle i touches lives in two 64-byte rows (two cache lines), so
+that a large system pays two cache misses per event rather than one per array.
+
 ``phase``   (N, 8) float64: columns 0..2 the *false position* x0 = x(t) − v t of the
-            current flight (so the position at time t is ``x0 + v t`` without touching the
-            particle between its events), columns 3..5 the velocity; 6..7 unused (the row is
-            one 64-byte cache line). In d = 2 the z columns are 0.
-``cell``    (N, 3) int32: cell coordinates of each particle (z = 0 in d = 2).
-``members``    (n_cells,) int32, ``occupancy``/``slot`` (N,) int32: doubly linked lists of the
-            particles of each cell (−1 ends a list).
-``collision_time`` (N,) float64, ``partner`` (N,) int32, ``partner_stamp`` (N,) int64:
-            earliest predicted pair collision of i, its partner j and the value of
-            ``stamp[j]`` when it was predicted (lazy invalidation: the prediction is valid iff
-            ``stamp[j]`` has not changed since).
-``stamp``   (N,) int64: number of velocity changes of i (collisions and wall bounces).
-``crossing_time`` (N,) float64, ``crossing_code`` (N,) int32: next time i leaves its cell
-            (or touches a wall) and through which face: code = 2 k + (1 if upwards else 0).
+            current flight (the position at time t is ``x0 + v t`` without touching the
+            particle between its events), 3..5 the velocity (z = 0 in d = 2), 6 the time of
+            i's earliest predicted pair collision, 7 the time i next leaves its cell (or
+            touches a wall).
+``ints``    (N, 8) int64: 0 the predicted partner j (−1: none), 1 the value of j's stamp
+            when the prediction was made (lazy invalidation: the prediction is valid iff
+            j's stamp has not changed since), 2 the face of the next crossing
+            (2 k + 1 upwards along axis k, 2 k downwards), 3 the stamp of i (number of its
+            velocity changes: collisions and wall bounces), 4 i's position in its cell row,
+            5..7 its cell coordinates (z = 0 in d = 2).
+``members`` (n_cells, C) int32, ``occupancy`` (n_cells,) int32: the particles of each
+            cell are ``members[c, :occupancy[c]]``; rows have a fixed capacity C, grown by
+            the front when a crossing finds its destination full (``STATUS_CELL_FULL``).
 ``tree_time`` (2M,) float64, ``tree_index`` (2M,) int32: complete binary tournament tree
-            over M = 2^ceil(log2 N) leaves; leaf M + i holds min(collision_time[i],
-            crossing_time[i]); every inner node the earliest of its two children (ties go to
-            the lower particle index), so node 1 is the next event of the whole system.
+            over M = 2^ceil(log2 N) leaves; leaf M + i holds min(phase[i, 6], phase[i, 7]);
+            every inner node the earliest of its two children (ties go to the left), so
+            node 1 is the next event of the whole system.
 ``last_collision`` (N,) float64: time of i's last pair collision (−inf before the first).
 ``streak``  (N,) int32: consecutive pair collisions of i separated by less than the
             collapse time (inelastic collapse detector).
@@ -172,29 +175,29 @@ def cell_flat(cx, cy, cz, grid):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def cell_insert(i, flat, members, occupancy, slot):
+def cell_insert(i, flat, members, occupancy, ints):
     """Append particle i to cell ``flat``; False (nothing changed) if the cell is full.
 
     ``members`` (n_cells, C) int32 lists the particles of each cell in its first
-    ``occupancy[flat]`` entries; ``slot[i]`` is i's position there.
+    ``occupancy[flat]`` entries; ``ints[i, 4]`` is i's position there.
     """
     count = occupancy[flat]
     if count >= members.shape[1]:
         return False
     members[flat, count] = i
-    slot[i] = count
+    ints[i, 4] = count
     occupancy[flat] = count + 1
     return True
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def cell_remove(i, flat, members, occupancy, slot):
-    """Remove particle i from cell ``flat`` (the cell's last member takes its slot)."""
+def cell_remove(i, flat, members, occupancy, ints):
+    """Remove particle i from cell ``flat`` (the cell's last member takes its place)."""
     last = occupancy[flat] - 1
-    position = slot[i]
+    position = ints[i, 4]
     moved = members[flat, last]
     members[flat, position] = moved
-    slot[moved] = position
+    ints[moved, 4] = position
     occupancy[flat] = last
 
 
@@ -234,8 +237,20 @@ def pair_time(xi, yi, zi, ui, vi, wi, phase, j, sx, sy, sz, t, sigma2, dim):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def scan_neighbours(
-    i, t, fixed_axis, fixed_offset, phase, cell, members, occupancy, geometry, grid, best_t, best_j,
-    scratch, images,
+    i,
+    t,
+    fixed_axis,
+    fixed_offset,
+    phase,
+    ints,
+    members,
+    occupancy,
+    geometry,
+    grid,
+    best_t,
+    best_j,
+    scratch,
+    images,
 ):
     """Earliest collision of i with the particles of its neighbour cells.
 
@@ -267,10 +282,9 @@ def scan_neighbours(
     n0 = grid[0]
     n1 = grid[1]
     n2 = grid[2]
-    capacity = members.shape[1]
-    c0 = cell[i, 0]
-    c1 = cell[i, 1]
-    c2 = cell[i, 2]
+    c0 = ints[i, 5 + 0]
+    c1 = ints[i, 5 + 1]
+    c2 = ints[i, 5 + 2]
     xi = phase[i, 0] + phase[i, 3] * t
     yi = phase[i, 1] + phase[i, 4] * t
     zi = phase[i, 2] + phase[i, 5] * t
@@ -340,8 +354,22 @@ def scan_neighbours(
         if j == i:
             continue
         o = code & 31
-        tc = pair_time(images[o, 0], images[o, 1], images[o, 2], ui, vi, wi, phase, j,
-                       0.0, 0.0, 0.0, t, sigma2, dim)
+        tc = pair_time(
+            images[o, 0],
+            images[o, 1],
+            images[o, 2],
+            ui,
+            vi,
+            wi,
+            phase,
+            j,
+            0.0,
+            0.0,
+            0.0,
+            t,
+            sigma2,
+            dim,
+        )
         tests += 1
         if tc < best_t:
             best_t = tc
@@ -350,7 +378,7 @@ def scan_neighbours(
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def next_crossing(i, phase, cell, geometry, grid):
+def next_crossing(i, phase, ints, geometry, grid):
     """Time and face code (2k + 1 upwards, 2k downwards) at which i leaves its cell or
     touches a wall. A wall face is the plane at σ/2 from the wall. Written with selects
     rather than branches: the direction of motion is a coin flip for the branch predictor."""
@@ -360,7 +388,7 @@ def next_crossing(i, phase, cell, geometry, grid):
     half_sigma = 0.5 * geometry[G_SIGMA]
     for k in range(dim):
         velocity = phase[i, 3 + k]
-        c = cell[i, k]
+        c = ints[i, 5 + k]
         width = geometry[G_W + k]
         upper = (c + 1) * width
         lower = c * width
@@ -385,34 +413,27 @@ def predict(
     i,
     t,
     phase,
-    cell,
+    ints,
     members,
     occupancy,
     geometry,
     grid,
-    collision_time,
-    partner,
-    partner_stamp,
-    stamp,
-    crossing_time,
-    crossing_code,
     counters,
     scratch,
     images,
 ):
     """Predict i's next collision (all neighbour cells) and next crossing from time t."""
     best_t, best_j, tests = scan_neighbours(
-        i, t, -1, 0, phase, cell, members, occupancy, geometry, grid, np.inf, -1,
-        scratch, images
+        i, t, -1, 0, phase, ints, members, occupancy, geometry, grid, np.inf, -1, scratch, images
     )
     counters[COUNT_PAIR_TESTS] += tests
-    collision_time[i] = best_t
-    partner[i] = best_j
-    partner_stamp[i] = stamp[best_j] if best_j >= 0 else -1
-    tc, code = next_crossing(i, phase, cell, geometry, grid)
+    phase[i, 6] = best_t
+    ints[i, 0] = best_j
+    ints[i, 1] = ints[best_j, 3] if best_j >= 0 else -1
+    tc, code = next_crossing(i, phase, ints, geometry, grid)
     # never schedule in the past (round-off right after a crossing)
-    crossing_time[i] = tc if tc > t else t
-    crossing_code[i] = code
+    phase[i, 7] = tc if tc > t else t
+    ints[i, 2] = code
 
 
 # ----------------------------------------------------------------------------- observers
@@ -479,7 +500,7 @@ def observe_flight(
 
 
 @njit(cache=True, error_model="numpy")
-def rescale_velocities(t, target_temperature, phase, collision_time, crossing_time, tree_time, dim):
+def rescale_velocities(t, target_temperature, phase, tree_time, dim):
     """Thermostat: scale every velocity by s = sqrt(T_target / T) at time t.
 
     Positions are continuous (x0 ← x0 + v t (1 − s)); every pending event time maps to
@@ -495,10 +516,10 @@ def rescale_velocities(t, target_temperature, phase, collision_time, crossing_ti
         for k in range(3):
             phase[i, k] += phase[i, 3 + k] * t * (1.0 - s)
             phase[i, 3 + k] *= s
-        if collision_time[i] < np.inf:
-            collision_time[i] = t + (collision_time[i] - t) * inverse
-        if crossing_time[i] < np.inf:
-            crossing_time[i] = t + (crossing_time[i] - t) * inverse
+        if phase[i, 6] < np.inf:
+            phase[i, 6] = t + (phase[i, 6] - t) * inverse
+        if phase[i, 7] < np.inf:
+            phase[i, 7] = t + (phase[i, 7] - t) * inverse
     for node in range(1, tree_time.shape[0]):
         if tree_time[node] < np.inf:
             tree_time[node] = t + (tree_time[node] - t) * inverse
@@ -562,16 +583,9 @@ def advance(
     target_temperature,
     observing,
     phase,
-    cell,
+    ints,
     members,
     occupancy,
-    slot,
-    collision_time,
-    partner,
-    partner_stamp,
-    stamp,
-    crossing_time,
-    crossing_code,
     tree_time,
     tree_index,
     last_collision,
@@ -659,7 +673,7 @@ def advance(
             counters[COUNT_STALL] += 1
             if counters[COUNT_STALL] > STALL_LIMIT:
                 counters[COUNT_COLLAPSE_PARTICLE] = i
-                counters[COUNT_COLLAPSE_PARTNER] = partner[i]
+                counters[COUNT_COLLAPSE_PARTNER] = ints[i, 0]
                 clock[0] = t
                 return STATUS_STALLED
         else:
@@ -667,12 +681,12 @@ def advance(
         t_previous = t
         t = t_event
 
-        if crossing_time[i] <= collision_time[i]:
+        if phase[i, 7] <= phase[i, 6]:
             # ---------------------------------------------------------- crossing or wall
-            code = crossing_code[i]
+            code = ints[i, 2]
             k = code >> 1
             upwards = (code & 1) == 1
-            c = cell[i, k]
+            c = ints[i, 5 + k]
             at_wall = False
             if grid[I_WALL + k] != 0:
                 at_wall = c == grid[I_N + k] - 1 if upwards else c == 0
@@ -684,23 +698,17 @@ def advance(
                 wall_statistics[code, 2] += 1.0 / speed
                 phase[i, k] += 2.0 * velocity * t
                 phase[i, 3 + k] = -velocity
-                stamp[i] += 1
+                ints[i, 3] += 1
                 counters[COUNT_WALL_HITS] += 1
                 predict(
                     i,
                     t,
                     phase,
-                    cell,
+                    ints,
                     members,
                     occupancy,
                     geometry,
                     grid,
-                    collision_time,
-                    partner,
-                    partner_stamp,
-                    stamp,
-                    crossing_time,
-                    crossing_code,
                     counters,
                     scratch,
                     images,
@@ -716,48 +724,73 @@ def advance(
                 elif c < 0:
                     c = grid[I_N + k] - 1
                     wrap = geometry[G_L + k]
-                old = cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid)
-                new = old + (c - cell[i, k]) * (1 if k == 0 else (grid[0] if k == 1
-                                                                   else grid[0] * grid[1]))
+                old = cell_flat(ints[i, 5], ints[i, 6], ints[i, 7], grid)
+                new = old + (c - ints[i, 5 + k]) * (
+                    1 if k == 0 else (grid[0] if k == 1 else grid[0] * grid[1])
+                )
                 if occupancy[new] >= members.shape[1]:
                     # the destination row is full: stop before changing anything; the
                     # caller grows the rows and resumes with this very event
                     counters[COUNT_EVENTS] -= 1
                     clock[0] = t_previous
                     return STATUS_CELL_FULL
-                cell_remove(i, old, members, occupancy, slot)
+                cell_remove(i, old, members, occupancy, ints)
                 phase[i, k] += wrap
-                cell[i, k] = c
-                cell_insert(i, new, members, occupancy, slot)
+                ints[i, 5 + k] = c
+                cell_insert(i, new, members, occupancy, ints)
                 counters[COUNT_CROSSINGS] += 1
-                tc, new_code = next_crossing(i, phase, cell, geometry, grid)
-                crossing_time[i] = tc if tc > t else t
-                crossing_code[i] = new_code
+                tc, new_code = next_crossing(i, phase, ints, geometry, grid)
+                phase[i, 7] = tc if tc > t else t
+                ints[i, 2] = new_code
                 best_t, best_j, tests = scan_neighbours(
-                    i, t, k, offset, phase, cell, members, occupancy, geometry, grid, np.inf, -1,
-                    scratch, images
+                    i,
+                    t,
+                    k,
+                    offset,
+                    phase,
+                    ints,
+                    members,
+                    occupancy,
+                    geometry,
+                    grid,
+                    np.inf,
+                    -1,
+                    scratch,
+                    images,
                 )
                 counters[COUNT_PAIR_TESTS] += tests
-                if best_t < collision_time[i]:
-                    collision_time[i] = best_t
-                    partner[i] = best_j
-                    partner_stamp[i] = stamp[best_j]
-            tree_update(tree_time, tree_index, i, min(collision_time[i], crossing_time[i]))
+                if best_t < phase[i, 6]:
+                    phase[i, 6] = best_t
+                    ints[i, 0] = best_j
+                    ints[i, 1] = ints[best_j, 3]
+            tree_update(tree_time, tree_index, i, min(phase[i, 6], phase[i, 7]))
             continue
 
-        j = partner[i]
-        if partner_stamp[i] != stamp[j]:
+        j = ints[i, 0]
+        if ints[i, 1] != ints[j, 3]:
             # ---------------------------------------------------------- stale prediction
             counters[COUNT_INVALID] += 1
             best_t, best_j, tests = scan_neighbours(
-                i, t, -1, 0, phase, cell, members, occupancy, geometry, grid, np.inf, -1,
-                scratch, images
+                i,
+                t,
+                -1,
+                0,
+                phase,
+                ints,
+                members,
+                occupancy,
+                geometry,
+                grid,
+                np.inf,
+                -1,
+                scratch,
+                images,
             )
             counters[COUNT_PAIR_TESTS] += tests
-            collision_time[i] = best_t
-            partner[i] = best_j
-            partner_stamp[i] = stamp[best_j] if best_j >= 0 else -1
-            tree_update(tree_time, tree_index, i, min(best_t, crossing_time[i]))
+            phase[i, 6] = best_t
+            ints[i, 0] = best_j
+            ints[i, 1] = ints[best_j, 3] if best_j >= 0 else -1
+            tree_update(tree_time, tree_index, i, min(best_t, phase[i, 7]))
             continue
 
         # -------------------------------------------------------------- pair collision
@@ -766,8 +799,8 @@ def advance(
         gn, alpha_used = collide(i, j, t, phase, geometry, grid, last_collision)
         if alpha_used < 1.0:
             counters[COUNT_INELASTIC] += 1
-        stamp[i] += 1
-        stamp[j] += 1
+        ints[i, 3] += 1
+        ints[j, 3] += 1
         if observing:
             observe_flight(
                 i,
@@ -816,17 +849,11 @@ def advance(
             i,
             t,
             phase,
-            cell,
+            ints,
             members,
             occupancy,
             geometry,
             grid,
-            collision_time,
-            partner,
-            partner_stamp,
-            stamp,
-            crossing_time,
-            crossing_code,
             counters,
             scratch,
             images,
@@ -835,32 +862,24 @@ def advance(
             j,
             t,
             phase,
-            cell,
+            ints,
             members,
             occupancy,
             geometry,
             grid,
-            collision_time,
-            partner,
-            partner_stamp,
-            stamp,
-            crossing_time,
-            crossing_code,
             counters,
             scratch,
             images,
         )
-        tree_update(tree_time, tree_index, i, min(collision_time[i], crossing_time[i]))
-        tree_update(tree_time, tree_index, j, min(collision_time[j], crossing_time[j]))
+        tree_update(tree_time, tree_index, i, min(phase[i, 6], phase[i, 7]))
+        tree_update(tree_time, tree_index, j, min(phase[j, 6], phase[j, 7]))
         if streak_limit > 0 and (streak[i] > streak_limit or streak[j] > streak_limit):
             counters[COUNT_COLLAPSE_PARTICLE] = i
             counters[COUNT_COLLAPSE_PARTNER] = j
             clock[0] = t
             return STATUS_COLLAPSE
         if rescale_every > 0 and counters[COUNT_COLLISIONS] % rescale_every == 0:
-            rescale_velocities(
-                t, target_temperature, phase, collision_time, crossing_time, tree_time, dim
-            )
+            rescale_velocities(t, target_temperature, phase, tree_time, dim)
             counters[COUNT_RESCALES] += 1
         if collisions_done >= max_collisions:
             clock[0] = t
@@ -871,7 +890,7 @@ def advance(
 
 
 @njit(cache=True, error_model="numpy")
-def place_random(phase, cell, members, occupancy, slot, geometry, grid, state, max_attempts):
+def place_random(phase, ints, members, occupancy, geometry, grid, state, max_attempts):
     """Random sequential insertion of N non-overlapping particles at time 0.
 
     Positions uniform in the box ([σ/2, L − σ/2] along wall axes); each trial is checked
@@ -891,7 +910,7 @@ def place_random(phase, cell, members, occupancy, slot, geometry, grid, state, m
             for k in range(3):
                 if k >= dim:
                     phase[i, k] = 0.0
-                    cell[i, k] = 0
+                    ints[i, 5 + k] = 0
                     continue
                 length = geometry[G_L + k]
                 if grid[I_WALL + k]:
@@ -902,12 +921,12 @@ def place_random(phase, cell, members, occupancy, slot, geometry, grid, state, m
                 c = int(x / geometry[G_W + k])
                 if c >= grid[I_N + k]:
                     c = grid[I_N + k] - 1
-                cell[i, k] = c
+                ints[i, 5 + k] = c
             for k in range(3, 6):
                 phase[i, k] = 0.0
-            if not overlaps_neighbours(i, phase, cell, members, occupancy, geometry, grid, sigma2):
-                flat = cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid)
-                if not cell_insert(i, flat, members, occupancy, slot):
+            if not overlaps_neighbours(i, phase, ints, members, occupancy, geometry, grid, sigma2):
+                flat = cell_flat(ints[i, 5], ints[i, 6], ints[i, 7], grid)
+                if not cell_insert(i, flat, members, occupancy, ints):
                     return -1  # a cell is full: the caller grows the capacity and retries
                 placed = True
                 break
@@ -917,14 +936,14 @@ def place_random(phase, cell, members, occupancy, slot, geometry, grid, state, m
 
 
 @njit(cache=True, error_model="numpy")
-def overlaps_neighbours(i, phase, cell, members, occupancy, geometry, grid, sigma2):
+def overlaps_neighbours(i, phase, ints, members, occupancy, geometry, grid, sigma2):
     """True if particle i (at t = 0) overlaps a particle listed in its neighbour cells."""
     dim = grid[I_DIM]
     lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
     for o2 in range(lo2, hi2 + 1):
         for o1 in range(-1, 2):
             for o0 in range(-1, 2):
-                ks = (cell[i, 0] + o0, cell[i, 1] + o1, cell[i, 2] + o2)
+                ks = (ints[i, 5 + 0] + o0, ints[i, 5 + 1] + o1, ints[i, 5 + 2] + o2)
                 shift0 = 0.0
                 shift1 = 0.0
                 shift2 = 0.0
@@ -973,7 +992,7 @@ def overlaps_neighbours(i, phase, cell, members, occupancy, geometry, grid, sigm
 
 
 @njit(cache=True, error_model="numpy")
-def build_cells(phase, cell, members, occupancy, slot, geometry, grid, t):
+def build_cells(phase, ints, members, occupancy, geometry, grid, t):
     """Assign every particle (position x0 + v t) to its cell and rebuild the cell lists.
 
     Returns the index of the first particle outside the box, −1 if all are inside, −2 if a
@@ -986,7 +1005,7 @@ def build_cells(phase, cell, members, occupancy, slot, geometry, grid, t):
     for i in range(n):
         for k in range(3):
             if k >= dim:
-                cell[i, k] = 0
+                ints[i, 5 + k] = 0
                 continue
             x = phase[i, k] + phase[i, 3 + k] * t
             length = geometry[G_L + k]
@@ -995,23 +1014,25 @@ def build_cells(phase, cell, members, occupancy, slot, geometry, grid, t):
             c = int(x / geometry[G_W + k])
             if c >= grid[I_N + k]:
                 c = grid[I_N + k] - 1
-            cell[i, k] = c
-        if not cell_insert(i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), members,
-                           occupancy, slot):
+            ints[i, 5 + k] = c
+        if not cell_insert(
+            i, cell_flat(ints[i, 5], ints[i, 6], ints[i, 7], grid), members, occupancy, ints
+        ):
             return -2
     return -1
 
 
 @njit(cache=True, error_model="numpy")
-def relink_cells(cell, members, occupancy, slot, grid):
+def relink_cells(ints, members, occupancy, grid):
     """Rebuild the cell rows from the cell coordinates ``cell`` (kept as they are: a
     particle sitting on a face by round-off stays in the cell its crossings put it in).
     Returns False if a row is full (the caller grows the capacity and retries)."""
     for flat in range(occupancy.shape[0]):
         occupancy[flat] = 0
-    for i in range(cell.shape[0]):
-        if not cell_insert(i, cell_flat(cell[i, 0], cell[i, 1], cell[i, 2], grid), members,
-                           occupancy, slot):
+    for i in range(ints.shape[0]):
+        if not cell_insert(
+            i, cell_flat(ints[i, 5], ints[i, 6], ints[i, 7], grid), members, occupancy, ints
+        ):
             return False
     return True
 
@@ -1020,17 +1041,11 @@ def relink_cells(cell, members, occupancy, slot, grid):
 def predict_all(
     t,
     phase,
-    cell,
+    ints,
     members,
     occupancy,
     geometry,
     grid,
-    collision_time,
-    partner,
-    partner_stamp,
-    stamp,
-    crossing_time,
-    crossing_code,
     tree_time,
     tree_index,
     counters,
@@ -1045,22 +1060,16 @@ def predict_all(
             i,
             t,
             phase,
-            cell,
+            ints,
             members,
             occupancy,
             geometry,
             grid,
-            collision_time,
-            partner,
-            partner_stamp,
-            stamp,
-            crossing_time,
-            crossing_code,
             counters,
             scratch,
             images,
         )
-        keys[i] = min(collision_time[i], crossing_time[i])
+        keys[i] = min(phase[i, 6], phase[i, 7])
     tree_build(tree_time, tree_index, keys)
 
 
@@ -1068,8 +1077,6 @@ def predict_all(
 def rebase(
     t,
     phase,
-    collision_time,
-    crossing_time,
     tree_time,
     last_collision,
     window_end,
@@ -1082,8 +1089,8 @@ def rebase(
     for i in range(n):
         for k in range(3):
             phase[i, k] += phase[i, 3 + k] * t
-        collision_time[i] -= t
-        crossing_time[i] -= t
+        phase[i, 6] -= t
+        phase[i, 7] -= t
         last_collision[i] -= t
     for node in range(tree_time.shape[0]):
         tree_time[node] -= t
@@ -1107,7 +1114,7 @@ def draw_velocities(phase, dim, state):
 
 
 @njit(cache=True, error_model="numpy")
-def min_pair_distance(phase, cell, members, occupancy, geometry, grid, t):
+def min_pair_distance(phase, ints, members, occupancy, geometry, grid, t):
     """Smallest centre distance at time t between particles in neighbour cells (periodic
     images included): ≥ σ when nothing overlaps. +inf if no pair is in reach."""
     n = phase.shape[0]
@@ -1120,19 +1127,19 @@ def min_pair_distance(phase, cell, members, occupancy, geometry, grid, t):
         xi2 = phase[i, 2] + phase[i, 5] * t
         for o2 in range(lo2, hi2 + 1):
             k2, s2, skip2 = _neighbour(
-                cell[i, 2] + o2, grid[2], grid[I_WALL + 2], geometry[G_L + 2]
+                ints[i, 5 + 2] + o2, grid[2], grid[I_WALL + 2], geometry[G_L + 2]
             )
             if skip2:
                 continue
             for o1 in range(-1, 2):
                 k1, s1, skip1 = _neighbour(
-                    cell[i, 1] + o1, grid[1], grid[I_WALL + 1], geometry[G_L + 1]
+                    ints[i, 5 + 1] + o1, grid[1], grid[I_WALL + 1], geometry[G_L + 1]
                 )
                 if skip1:
                     continue
                 for o0 in range(-1, 2):
                     k0, s0, skip0 = _neighbour(
-                        cell[i, 0] + o0, grid[0], grid[I_WALL], geometry[G_L]
+                        ints[i, 5 + 0] + o0, grid[0], grid[I_WALL], geometry[G_L]
                     )
                     if skip0:
                         continue

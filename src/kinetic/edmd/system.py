@@ -36,9 +36,12 @@ RANDOM_INSERTION_LIMIT = {2: 0.45, 3: 0.30}
 CLOSE_PACKING = {2: math.pi / (2 * math.sqrt(3)), 3: math.pi / (3 * math.sqrt(2))}
 #: default mean number of particles per cell (tuned with ``python -m kinetic.bench edmd``)
 DEFAULT_CELL_OCCUPANCY = 2.0
-#: systems of at least that many particles are re-sorted in memory by cell every
-#: SORT_EVERY_PER_PARTICLE * N collisions (cache locality; see HardSphereSystem.sort_particles)
-SORT_MIN_PARTICLES = 4096
+#: systems of at least that many particles can be re-sorted in memory by cell every
+#: SORT_EVERY_PER_PARTICLE * N collisions (see HardSphereSystem.sort_particles). Off by
+#: default: measured on the benchmark machine it did not pay (N = 1e4 fits the 2 MB L2;
+#: at N = 1e5 the cost is dominated by the event tree and the re-prediction after sorting
+#: ate the gain).
+SORT_MIN_PARTICLES = 2**62
 SORT_EVERY_PER_PARTICLE = 2
 
 
@@ -156,6 +159,8 @@ class HardSphereSystem:
         overlap, finite); otherwise random sequential insertion and Maxwellian velocities.
     seed : integer seed, or ``stream``: one row of ``kinetic.rng.stream_states``.
     cell_occupancy : mean particles per cell (> 0) sets the cell width (see ``cell_grid``).
+    cell_capacity : initial slots per cell row (default from the occupancy); rows double
+        whenever one overflows, so this only matters for speed (and tests).
     """
 
     def __init__(
@@ -178,6 +183,7 @@ class HardSphereSystem:
         seed: int | None = None,
         stream: np.ndarray | None = None,
         cell_occupancy: float = DEFAULT_CELL_OCCUPANCY,
+        cell_capacity: int | None = None,
     ):
         # ----------------------------------------------------------- validation
         if isinstance(n_particles, bool) or not isinstance(n_particles, int | np.integer):
@@ -200,6 +206,10 @@ class HardSphereSystem:
             raise ValueError(f"collapse_time must be finite and >= 0, got {collapse_time}")
         if int(collapse_streak) < 1:
             raise ValueError(f"collapse_streak must be >= 1, got {collapse_streak}")
+        if cell_capacity is not None and not (k.GATHER_HEAD <= int(cell_capacity) <= 2**20):
+            raise ValueError(
+                f"cell_capacity must be in [{k.GATHER_HEAD}, 2**20], got {cell_capacity}"
+            )
         if int(rescale_every) < 0:
             raise ValueError(f"rescale_every must be >= 0, got {rescale_every}")
         if (density is None) == (box is None):
@@ -271,20 +281,15 @@ class HardSphereSystem:
         self.geometry[k.G_CONTACT] = contact_time
         self.geometry[k.G_COLLAPSE_TIME] = collapse_time
         self.phase = _aligned_zeros((n, 8))
-        self.cell = np.zeros((n, 3), dtype=np.int32)
+        # event data of each particle: see the layout in kinetic.edmd.kernels
+        self.ints = _aligned_zeros((n, 8), np.int64)
         self.n_cells = int(np.prod(counts))
         self.occupancy = np.zeros(self.n_cells, dtype=np.int32)
-        self.slot = np.zeros(n, dtype=np.int32)
-        capacity = 8
-        while capacity < cell_occupancy + 6.0 * math.sqrt(cell_occupancy) + 6.0:
-            capacity *= 2
-        self._allocate_rows(capacity)
-        self.collision_time = np.full(n, np.inf)
-        self.partner = np.full(n, -1, dtype=np.int32)
-        self.partner_stamp = np.full(n, -1, dtype=np.int64)
-        self.stamp = np.zeros(n, dtype=np.int64)
-        self.crossing_time = np.full(n, np.inf)
-        self.crossing_code = np.full(n, -1, dtype=np.int32)
+        if cell_capacity is None:
+            cell_capacity = 8
+            while cell_capacity < cell_occupancy + 6.0 * math.sqrt(cell_occupancy) + 6.0:
+                cell_capacity *= 2
+        self._allocate_rows(cell_capacity)
         leaves = 1 << max(1, (n - 1).bit_length())
         self.tree_time = np.full(2 * leaves, np.inf)
         self.tree_index = np.zeros(2 * leaves, dtype=np.int32)
@@ -305,10 +310,9 @@ class HardSphereSystem:
             while True:
                 placed = k.place_random(
                     self.phase,
-                    self.cell,
+                    self.ints,
                     self.members,
                     self.occupancy,
-                    self.slot,
                     self.geometry,
                     self.grid,
                     self.stream,
@@ -361,8 +365,13 @@ class HardSphereSystem:
         self.phase[:, :d] = x
         while True:
             outside = k.build_cells(
-                self.phase, self.cell, self.members, self.occupancy, self.slot, self.geometry,
-                self.grid, 0.0,
+                self.phase,
+                self.ints,
+                self.members,
+                self.occupancy,
+                self.geometry,
+                self.grid,
+                0.0,
             )
             if outside != -2:
                 break
@@ -428,16 +437,9 @@ class HardSphereSystem:
                 self.temperature,
                 int(observers.observing),
                 self.phase,
-                self.cell,
+                self.ints,
                 self.members,
                 self.occupancy,
-                self.slot,
-                self.collision_time,
-                self.partner,
-                self.partner_stamp,
-                self.stamp,
-                self.crossing_time,
-                self.crossing_code,
                 self.tree_time,
                 self.tree_index,
                 self.last_collision,
@@ -501,17 +503,25 @@ class HardSphereSystem:
 
     def _relink(self) -> None:
         """Refill the cell rows from the cell coordinates, growing them if needed."""
-        while not k.relink_cells(self.cell, self.members, self.occupancy, self.slot, self.grid):
+        while not k.relink_cells(self.ints, self.members, self.occupancy, self.grid):
             self._allocate_rows(2 * self.members.shape[1])
 
     def _predict_all(self, t: float) -> None:
         """Predict every event from kernel time t (pair tests not counted)."""
         tests = int(self.counters_array[k.COUNT_PAIR_TESTS])
         k.predict_all(
-            t, self.phase, self.cell, self.members, self.occupancy, self.geometry, self.grid,
-            self.collision_time, self.partner, self.partner_stamp, self.stamp,
-            self.crossing_time, self.crossing_code, self.tree_time, self.tree_index,
-            self.counters_array, self.scratch, self.images,
+            t,
+            self.phase,
+            self.ints,
+            self.members,
+            self.occupancy,
+            self.geometry,
+            self.grid,
+            self.tree_time,
+            self.tree_index,
+            self.counters_array,
+            self.scratch,
+            self.images,
         )
         self.counters_array[k.COUNT_PAIR_TESTS] = tests
 
@@ -523,11 +533,10 @@ class HardSphereSystem:
         per-particle arrays of ``observers`` are permuted along.
         """
         n = self.n_particles
-        flat = (self.cell[:, 2].astype(np.int64) * self.grid[1] + self.cell[:, 1]) * self.grid[
-            0
-        ] + self.cell[:, 0]
+        cell = self.ints[:, 5:8]
+        flat = (cell[:, 2] * self.grid[1] + cell[:, 1]) * self.grid[0] + cell[:, 0]
         order = np.argsort(flat, kind="stable")
-        for array in (self.phase, self.cell, self.last_collision, self.streak, self.label):
+        for array in (self.phase, self.ints, self.last_collision, self.streak, self.label):
             array[:] = array[order]
         for obs in {
             id(self._idle_observers): self._idle_observers,
@@ -535,7 +544,7 @@ class HardSphereSystem:
         }.values():
             if obs is not None and obs.window_count.shape[0] == n:
                 obs.window_count[:] = obs.window_count[order]
-        self.stamp[:] = 0
+        self.ints[:, 3] = 0  # stamps: every prediction is made anew below
         self._relink()
         self._predict_all(float(self.clock[0]))
         self._since_sort = 0
@@ -547,8 +556,6 @@ class HardSphereSystem:
         k.rebase(
             t,
             self.phase,
-            self.collision_time,
-            self.crossing_time,
             self.tree_time,
             self.last_collision,
             observers.window_end,
@@ -605,7 +612,7 @@ class HardSphereSystem:
         return float(
             k.min_pair_distance(
                 self.phase,
-                self.cell,
+                self.ints,
                 self.members,
                 self.occupancy,
                 self.geometry,
@@ -619,10 +626,10 @@ class HardSphereSystem:
         return self.grid[: self.dimension].copy()
 
 
-def _aligned_zeros(shape, alignment: int = 64) -> np.ndarray:
-    """Zeroed float64 array whose data starts on an ``alignment``-byte boundary (one
-    particle row of 8 float64 is then one cache line)."""
+def _aligned_zeros(shape, dtype=np.float64, alignment: int = 64) -> np.ndarray:
+    """Zeroed 8-byte-item array whose data starts on an ``alignment``-byte boundary (one
+    particle row of 8 items is then one cache line)."""
     count = int(np.prod(shape))
-    raw = np.zeros(count + alignment // 8, dtype=np.float64)
+    raw = np.zeros(count + alignment // 8, dtype=dtype)
     offset = (-raw.ctypes.data % alignment) // 8
     return raw[offset : offset + count].reshape(shape)
