@@ -681,6 +681,15 @@ def advance(
         t_previous = t
         t = t_event
 
+        # After the event, the predictions of up to two particles are redone by the one
+        # (inlined) copy of the neighbour scan below: ``axis`` < 0 scans all neighbour
+        # cells and replaces the prediction, ``axis`` = k scans the layer of cells that
+        # became adjacent along k and keeps the earlier prediction.
+        second = -1
+        axis = -1
+        offset = 0
+        new_crossing = True
+        collided = False
         if phase[i, 7] <= phase[i, 6]:
             # ---------------------------------------------------------- crossing or wall
             code = ints[i, 2]
@@ -700,19 +709,6 @@ def advance(
                 phase[i, 3 + k] = -velocity
                 ints[i, 3] += 1
                 counters[COUNT_WALL_HITS] += 1
-                predict(
-                    i,
-                    t,
-                    phase,
-                    ints,
-                    members,
-                    occupancy,
-                    geometry,
-                    grid,
-                    counters,
-                    scratch,
-                    images,
-                )
             else:
                 # arithmetic rather than a branch on the direction (a coin flip)
                 offset = 1 if upwards else -1
@@ -739,42 +735,72 @@ def advance(
                 ints[i, 5 + k] = c
                 cell_insert(i, new, members, occupancy, ints)
                 counters[COUNT_CROSSINGS] += 1
-                tc, new_code = next_crossing(i, phase, ints, geometry, grid)
-                phase[i, 7] = tc if tc > t else t
-                ints[i, 2] = new_code
-                best_t, best_j, tests = scan_neighbours(
-                    i,
-                    t,
-                    k,
-                    offset,
-                    phase,
-                    ints,
-                    members,
-                    occupancy,
-                    geometry,
-                    grid,
-                    np.inf,
-                    -1,
-                    scratch,
-                    images,
-                )
-                counters[COUNT_PAIR_TESTS] += tests
-                if best_t < phase[i, 6]:
-                    phase[i, 6] = best_t
-                    ints[i, 0] = best_j
-                    ints[i, 1] = ints[best_j, 3]
-            tree_update(tree_time, tree_index, i, min(phase[i, 6], phase[i, 7]))
-            continue
+                axis = k
+        else:
+            j = ints[i, 0]
+            if ints[i, 1] != ints[j, 3]:
+                # ------------------------------------------------------ stale prediction
+                counters[COUNT_INVALID] += 1
+                new_crossing = False
+            else:
+                # ---------------------------------------------------------- pair collision
+                collided = True
+                second = j
+                speed_i = np.sqrt(phase[i, 3] ** 2 + phase[i, 4] ** 2 + phase[i, 5] ** 2)
+                speed_j = np.sqrt(phase[j, 3] ** 2 + phase[j, 4] ** 2 + phase[j, 5] ** 2)
+                gn, alpha_used = collide(i, j, t, phase, geometry, grid, last_collision)
+                if alpha_used < 1.0:
+                    counters[COUNT_INELASTIC] += 1
+                ints[i, 3] += 1
+                ints[j, 3] += 1
+                if observing:
+                    observe_flight(
+                        i,
+                        t,
+                        speed_i,
+                        last_collision,
+                        flight_histogram,
+                        path_histogram,
+                        bin_widths,
+                        flight_sums,
+                    )
+                    observe_flight(
+                        j,
+                        t,
+                        speed_j,
+                        last_collision,
+                        flight_histogram,
+                        path_histogram,
+                        bin_widths,
+                        flight_sums,
+                    )
+                    for w in range(n_windows):
+                        window_count[i, w] += 1
+                        window_count[j, w] += 1
+                # inelastic collapse detector: streaks of collisions closer than
+                # collapse_time
+                if streak_limit > 0:
+                    streak[i] = streak[i] + 1 if t - last_collision[i] < collapse_time else 0
+                    streak[j] = streak[j] + 1 if t - last_collision[j] < collapse_time else 0
+                last_collision[i] = t
+                last_collision[j] = t
+                if n_records > 0:
+                    record_slot = counters[COUNT_COLLISIONS] % n_records
+                    record_time[record_slot] = t
+                    record_pair[record_slot, 0] = label[i]
+                    record_pair[record_slot, 1] = label[j]
+                    record_normal_speed[record_slot] = -gn
+                counters[COUNT_COLLISIONS] += 1
+                collisions_done += 1
 
-        j = ints[i, 0]
-        if ints[i, 1] != ints[j, 3]:
-            # ---------------------------------------------------------- stale prediction
-            counters[COUNT_INVALID] += 1
+        # -------------------------------------------------------------- re-predictions
+        for q in range(2 if second >= 0 else 1):
+            p = i if q == 0 else second
             best_t, best_j, tests = scan_neighbours(
-                i,
+                p,
                 t,
-                -1,
-                0,
+                axis,
+                offset,
                 phase,
                 ints,
                 members,
@@ -787,103 +813,29 @@ def advance(
                 images,
             )
             counters[COUNT_PAIR_TESTS] += tests
-            phase[i, 6] = best_t
-            ints[i, 0] = best_j
-            ints[i, 1] = ints[best_j, 3] if best_j >= 0 else -1
-            tree_update(tree_time, tree_index, i, min(best_t, phase[i, 7]))
-            continue
+            if axis < 0 or best_t < phase[p, 6]:
+                phase[p, 6] = best_t
+                ints[p, 0] = best_j
+                ints[p, 1] = ints[best_j, 3] if best_j >= 0 else -1
+            if new_crossing:
+                tc, new_code = next_crossing(p, phase, ints, geometry, grid)
+                # never schedule in the past (round-off right after a crossing)
+                phase[p, 7] = tc if tc > t else t
+                ints[p, 2] = new_code
+            tree_update(tree_time, tree_index, p, min(phase[p, 6], phase[p, 7]))
 
-        # -------------------------------------------------------------- pair collision
-        speed_i = np.sqrt(phase[i, 3] ** 2 + phase[i, 4] ** 2 + phase[i, 5] ** 2)
-        speed_j = np.sqrt(phase[j, 3] ** 2 + phase[j, 4] ** 2 + phase[j, 5] ** 2)
-        gn, alpha_used = collide(i, j, t, phase, geometry, grid, last_collision)
-        if alpha_used < 1.0:
-            counters[COUNT_INELASTIC] += 1
-        ints[i, 3] += 1
-        ints[j, 3] += 1
-        if observing:
-            observe_flight(
-                i,
-                t,
-                speed_i,
-                last_collision,
-                flight_histogram,
-                path_histogram,
-                bin_widths,
-                flight_sums,
-            )
-            observe_flight(
-                j,
-                t,
-                speed_j,
-                last_collision,
-                flight_histogram,
-                path_histogram,
-                bin_widths,
-                flight_sums,
-            )
-            for w in range(n_windows):
-                window_count[i, w] += 1
-                window_count[j, w] += 1
-        # inelastic collapse detector: streaks of collisions closer than collapse_time
-        if streak_limit > 0:
-            if t - last_collision[i] < collapse_time:
-                streak[i] += 1
-            else:
-                streak[i] = 0
-            if t - last_collision[j] < collapse_time:
-                streak[j] += 1
-            else:
-                streak[j] = 0
-        last_collision[i] = t
-        last_collision[j] = t
-        if n_records > 0:
-            record_slot = counters[COUNT_COLLISIONS] % n_records
-            record_time[record_slot] = t
-            record_pair[record_slot, 0] = label[i]
-            record_pair[record_slot, 1] = label[j]
-            record_normal_speed[record_slot] = -gn
-        counters[COUNT_COLLISIONS] += 1
-        collisions_done += 1
-        predict(
-            i,
-            t,
-            phase,
-            ints,
-            members,
-            occupancy,
-            geometry,
-            grid,
-            counters,
-            scratch,
-            images,
-        )
-        predict(
-            j,
-            t,
-            phase,
-            ints,
-            members,
-            occupancy,
-            geometry,
-            grid,
-            counters,
-            scratch,
-            images,
-        )
-        tree_update(tree_time, tree_index, i, min(phase[i, 6], phase[i, 7]))
-        tree_update(tree_time, tree_index, j, min(phase[j, 6], phase[j, 7]))
-        if streak_limit > 0 and (streak[i] > streak_limit or streak[j] > streak_limit):
-            counters[COUNT_COLLAPSE_PARTICLE] = i
-            counters[COUNT_COLLAPSE_PARTNER] = j
-            clock[0] = t
-            return STATUS_COLLAPSE
-        if rescale_every > 0 and counters[COUNT_COLLISIONS] % rescale_every == 0:
-            rescale_velocities(t, target_temperature, phase, tree_time, dim)
-            counters[COUNT_RESCALES] += 1
-        if collisions_done >= max_collisions:
-            clock[0] = t
-            return STATUS_COLLISIONS
+        if collided:
+            if streak_limit > 0 and (streak[i] > streak_limit or streak[j] > streak_limit):
+                counters[COUNT_COLLAPSE_PARTICLE] = i
+                counters[COUNT_COLLAPSE_PARTNER] = j
+                clock[0] = t
+                return STATUS_COLLAPSE
+            if rescale_every > 0 and counters[COUNT_COLLISIONS] % rescale_every == 0:
+                rescale_velocities(t, target_temperature, phase, tree_time, dim)
+                counters[COUNT_RESCALES] += 1
+            if collisions_done >= max_collisions:
+                clock[0] = t
+                return STATUS_COLLISIONS
 
 
 # ----------------------------------------------------------------------------- set-up

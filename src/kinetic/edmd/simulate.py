@@ -76,7 +76,7 @@ def simulate(
     flight_time_bins: int = 200,
     free_path_max: float = 20.0,
     free_path_bins: int = 200,
-    cell_occupancy: float = DEFAULT_CELL_OCCUPANCY,
+    cell_occupancy: float | None = None,
     label: str | None = None,
     config: dict | None = None,
 ):
@@ -100,7 +100,7 @@ def simulate(
     flight_time_max, flight_time_bins : range (Enskog mean free times) and number of bins
         of the free-flight-time histogram; free_path_max, free_path_bins likewise in Enskog
         mean free paths l = ⟨v⟩/ω.
-    cell_occupancy : mean particles per cell (speed only).
+    cell_occupancy : mean particles per cell (speed only; default by dimension).
     label : prefix of the progress lines; config : stored as provenance.
 
     Returns an ``xarray.Dataset`` (dims realization, checkpoint, window, count, flight_time,
@@ -396,7 +396,7 @@ def simulate(
         "flight_time_bin_width": flight_width,
         "free_path_bin_width": path_width,
         "enskog_collision_frequency": omega_enskog,
-        "cell_occupancy": float(cell_occupancy),
+        "cell_occupancy": float(cell_occupancy or DEFAULT_CELL_OCCUPANCY[dimension]),
     }
     dataset = io.make_dataset(data_vars, coords)
     return io.stamp(dataset, parameters=parameters, seed=int(seed), config=config)

@@ -34,8 +34,10 @@ __all__ = [
 RANDOM_INSERTION_LIMIT = {2: 0.45, 3: 0.30}
 #: close packing: no configuration exists beyond
 CLOSE_PACKING = {2: math.pi / (2 * math.sqrt(3)), 3: math.pi / (3 * math.sqrt(2))}
-#: default mean number of particles per cell (tuned with ``python -m kinetic.bench edmd``)
-DEFAULT_CELL_OCCUPANCY = 2.0
+#: default mean number of particles per cell by dimension (tuned with
+#: ``python -m kinetic.bench edmd``: fewer cells cost crossings, more particles per cell cost
+#: pair tests; 27 neighbour cells in d = 3 against 9 in d = 2)
+DEFAULT_CELL_OCCUPANCY = {2: 2.0, 3: 0.7}
 #: systems of at least that many particles can be re-sorted in memory by cell every
 #: SORT_EVERY_PER_PARTICLE * N collisions (see HardSphereSystem.sort_particles). Off by
 #: default: measured on the benchmark machine it did not pay (N = 1e4 fits the 2 MB L2;
@@ -158,7 +160,8 @@ class HardSphereSystem:
     positions, velocities : optional (N, d) initial state (validated: inside the box, no
         overlap, finite); otherwise random sequential insertion and Maxwellian velocities.
     seed : integer seed, or ``stream``: one row of ``kinetic.rng.stream_states``.
-    cell_occupancy : mean particles per cell (> 0) sets the cell width (see ``cell_grid``).
+    cell_occupancy : mean particles per cell (> 0) sets the cell width (see ``cell_grid``);
+        default ``DEFAULT_CELL_OCCUPANCY[dimension]``.
     cell_capacity : initial slots per cell row (default from the occupancy); rows double
         whenever one overflows, so this only matters for speed (and tests).
     """
@@ -182,7 +185,7 @@ class HardSphereSystem:
         velocities=None,
         seed: int | None = None,
         stream: np.ndarray | None = None,
-        cell_occupancy: float = DEFAULT_CELL_OCCUPANCY,
+        cell_occupancy: float | None = None,
         cell_capacity: int | None = None,
     ):
         # ----------------------------------------------------------- validation
@@ -194,6 +197,8 @@ class HardSphereSystem:
             raise ValueError(f"dimension must be 2 or 3, got {dimension!r}")
         diameter = _finite_positive("diameter", diameter)
         temperature = _finite_positive("temperature", temperature)
+        if cell_occupancy is None and dimension in DEFAULT_CELL_OCCUPANCY:
+            cell_occupancy = DEFAULT_CELL_OCCUPANCY[dimension]
         cell_occupancy = _finite_positive("cell_occupancy", cell_occupancy)
         restitution = float(restitution)
         if not (math.isfinite(restitution) and 0.0 < restitution <= 1.0):
