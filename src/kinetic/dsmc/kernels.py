@@ -692,6 +692,8 @@ def _record_flight(
     d,
     now,
     last_collision,
+    record_start,
+    record_end,
     inverse_time_width,
     time_counts,
     inverse_path_width,
@@ -699,12 +701,14 @@ def _record_flight(
 ):
     """Histogram particle i's free flight ending at ``now`` (speed before the collision).
 
-    Bins are uniform from 0; the last entry of each counts array is the overflow bin.
-    A particle that has not collided yet (``last_collision < 0``) records nothing: its
-    first interval starts at an arbitrary time, not at a collision.
+    Only flights that start (at a collision) in [record_start, record_end) are recorded:
+    histogramming the flights that *end* in a window would under-count long flights
+    (by a factor 1 - t/window). Bins are uniform from 0; the last entry of each counts
+    array is the overflow bin. A particle that has not collided yet has
+    ``last_collision < 0`` (its first interval does not start at a collision).
     """
     start = last_collision[i]
-    if start >= 0.0:
+    if record_start <= start < record_end:
         flight = now - start
         speed = velocity[0, i] * velocity[0, i] + velocity[1, i] * velocity[1, i]
         if d == 3:
@@ -731,6 +735,8 @@ def _collide_observed_loop(
     bounds,
     tally,
     last_collision,
+    record_start,
+    record_end,
     time_bin_width,
     time_counts,
     path_bin_width,
@@ -791,6 +797,8 @@ def _collide_observed_loop(
             d,
             now,
             last_collision,
+            record_start,
+            record_end,
             inverse_time_width,
             time_counts,
             inverse_path_width,
@@ -802,6 +810,8 @@ def _collide_observed_loop(
             d,
             now,
             last_collision,
+            record_start,
+            record_end,
             inverse_time_width,
             time_counts,
             inverse_path_width,
@@ -836,6 +846,8 @@ def collide_observed(
     bounds,
     tally,
     last_collision,
+    record_start,
+    record_end,
     time_bin_width,
     time_counts,
     path_bin_width,
@@ -847,7 +859,9 @@ def collide_observed(
     ``start_time`` to ``start_time + duration`` (memoryless: consecutive calls make one
     Poisson process). At each collision the free-flight time and the free path (speed
     x time; speeds about the origin, the gas being at rest) of both partners since
-    their previous collision are histogrammed.
+    their previous collision are histogrammed if that flight started in
+    [record_start, record_end) (run until record_end + the longest flight of interest
+    so that every such flight is either complete or known to be longer).
     last_collision: (N,) float64 time of each particle's last collision, < 0 if none.
     time_counts, path_counts: (n_bins + 1,) int64, last entry = overflow.
     Other arguments as in ``collide_range``.
@@ -864,6 +878,8 @@ def collide_observed(
             bounds,
             tally,
             last_collision,
+            record_start,
+            record_end,
             time_bin_width,
             time_counts,
             path_bin_width,
@@ -882,6 +898,8 @@ def collide_observed(
             bounds,
             tally,
             last_collision,
+            record_start,
+            record_end,
             time_bin_width,
             time_counts,
             path_bin_width,
@@ -1119,12 +1137,15 @@ def advance(
     ``time_step``; apply the force step and the thermostat (``force_and_thermostat``);
     every ``sample_stride``-th step (counted by clock[3]) add the snapshot moments to
     ``moment_sums[1:]`` (and 1 to moment_sums[0]) and, if ``histogram``, the snapshot
-    to the histograms. clock: (4,) float64, updated:
+    to the histograms. clock: (5,) float64, updated:
     [0] time (thermostatted gas, = steps x time_step), [1] ln(T/T0) and [2] time of the
     freely cooling gas that the same run represents at zero field (the thermostat only
     rescales, and the dynamics is invariant under v -> v/s, t -> s^p t with
     p = ``rate_exponent``: 1 hard spheres, 0 Maxwell, 2 very hard particles); at nonzero
-    field -d clock[1]/d clock[0] is the thermostat rate (Eq. 3.5's left side), [3] steps.
+    field -d clock[1]/d clock[0] is the thermostat rate (Eq. 3.5's left side), [3] steps,
+    [4] the sum over steps of ζ_k time_step with ζ_k the free cooling rate at the start
+    of step k (at zero field; exact for any step since T(t) follows Haff's law within a
+    step).
     Returns a STATUS_* code (the step that failed is left applied).
     """
     for _ in range(n_steps):
@@ -1147,11 +1168,20 @@ def advance(
         )
         if status != STATUS_OK:
             return status
-        # free-cooling picture: physical step = time_step * (T0/T)^(p/2), T at mid-step
-        clock[2] += time_step * np.exp(-0.5 * rate_exponent * (clock[1] - log_scale))
+        # free-cooling picture: during the step the internal velocities are the physical
+        # ones times sqrt(T0/T_k), T_k the physical temperature at the step's start, so
+        # the step lasts time_step (T0/T_k)^(p/2) of physical time (exactly)
+        clock[2] += time_step * np.exp(-0.5 * rate_exponent * clock[1])
         clock[1] -= 2.0 * log_scale
         clock[0] += time_step
         clock[3] += 1.0
+        # Haff within the step: T^(-p/2) grows linearly, so the cooling rate at the
+        # step's start is (2/p)((T_k/T_k+1)^(p/2) - 1)/time_step (2 ln(scale)/time_step
+        # for p = 0), exact whatever the step
+        if rate_exponent > 0.0:
+            clock[4] += (2.0 / rate_exponent) * np.expm1(rate_exponent * log_scale)
+        else:
+            clock[4] += 2.0 * log_scale
         if int(clock[3]) % sample_stride == 0:
             moment_sums[0] += 1.0
             accumulate_moments(velocity, inverse_v0, moment_sums[1:])

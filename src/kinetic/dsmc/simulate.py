@@ -249,6 +249,19 @@ class HomogeneousSettings:
         """K0 = d T0/2 per particle."""
         return 0.5 * self.dimension
 
+    def parameters_init(self) -> dict[str, Any]:
+        """The constructor's keyword arguments."""
+        return {
+            "n_particles": self.n_particles,
+            "restitution": self.restitution,
+            "time_step": self.time_step,
+            "dimension": self.dimension,
+            "kernel": self.kernel,
+            "reduced_field": self.reduced_field,
+            "force_step": self.force_step,
+            "selection": self.selection,
+        }
+
     def parameters(self) -> dict[str, Any]:
         return {
             "n_particles": self.n_particles,
@@ -319,7 +332,7 @@ class HomogeneousGas:
     internal units T0 = 1, so c = V/√2). rng: (4,) uint64 xoshiro256+ state.
     bounds: (d + 2,) speed bounds; carry: (1,) NTC fraction; tally: (4,) int64
     candidates, collisions, bound raises, stale-bound detections (always 0 here);
-    clock: (4,) internal time, ln(T_free/T0), free-cooling time, steps.
+    clock: (5,) internal time, ln(T_free/T0), free-cooling time, steps, Σ ζ δt.
     """
 
     settings: HomogeneousSettings
@@ -397,7 +410,9 @@ def new_gas(
             )
         if not np.all(np.isfinite(v)):
             bad = np.argwhere(~np.isfinite(v))[0]
-            raise ValueError(f"velocity[{bad[0]}, {bad[1]}] = {v[tuple(bad)]!r} is not finite")
+            raise ValueError(
+                f"velocity[{bad[0]}, {bad[1]}] = {float(v[tuple(bad)])!r} is not finite"
+            )
         v -= v.mean(axis=1, keepdims=True)
         energy = 0.5 * np.sum(v * v) / n
         if not energy > 0.0:
@@ -412,7 +427,7 @@ def new_gas(
         bounds=bounds,
         carry=np.zeros(1),
         tally=np.zeros(4, dtype=np.int64),
-        clock=np.zeros(4),
+        clock=np.zeros(5),
     )
 
 
@@ -494,6 +509,22 @@ def advance_gas(gas: HomogeneousGas, n_steps: int, samples: Samples | None = Non
 _NO_SAMPLES = Samples()
 
 
+def _compile_outside_the_timers(settings: HomogeneousSettings, samples: Samples) -> None:
+    """One step of a tiny gas with the same argument types, so that the CPU time recorded
+    per realization never includes numba compilation (a no-op once cached)."""
+    tiny = HomogeneousSettings(**{**settings.parameters_init(), "n_particles": 4})
+    gas = new_gas(tiny, np.array([1, 2, 3, 4], dtype=np.uint64))
+    probe = Samples(
+        stride=1,
+        cx_max=samples.cx_max,
+        n_cx_bins=samples.n_cx_bins,
+        speed_max=samples.speed_max,
+        n_speed_bins=samples.n_speed_bins,
+        histogram=True,
+    )
+    advance_gas(gas, 1, probe)
+
+
 # ----------------------------------------------------------- homogeneous gas: front
 
 
@@ -550,7 +581,9 @@ def simulate_homogeneous(
     cx_edge, speed, speed_edge:
     ``moments`` (realization, time, moment) window averages of MOMENT_NAMES;
     ``a2`` = 4<c⁴>/(d(d+2)) - 1 and ``heat_flux`` = <c² c_x> = q_x/(n T v0) (realization,
-    time); ``thermostat_rate`` (1/τ; the HCS cooling rate ζ at zero field);
+    time); ``thermostat_rate`` = -d ln T/dt of the energy the thermostat restores (1/τ);
+    ``cooling_rate`` (1/τ): at zero field the HCS cooling rate ζ(T0) of Eq. (2.14),
+    without time-step error (Haff's law holds within each step);
     ``log_temperature_free``, ``time_free`` (window ends; the freely cooling gas);
     ``collisions_per_particle`` (cumulative, window ends); histograms ``cx_counts``,
     ``cx_outside`` (below, above), ``speed_counts``, ``speed_overflow`` and
@@ -593,6 +626,7 @@ def simulate_homogeneous(
     moments = np.full((*shape, len(MOMENT_NAMES)), np.nan)
     snapshots = np.zeros(shape, dtype=np.int64)
     log_temperature = np.zeros(shape)
+    cooling_sum = np.zeros(shape)
     time_free = np.zeros(shape)
     collisions_per_particle = np.zeros(shape)
     cx_counts = np.zeros((n_realizations, n_cx_bins), dtype=np.int64)
@@ -610,6 +644,7 @@ def simulate_homogeneous(
         f"dsmc d={d} {settings.kernel} alpha={settings.restitution:g} "
         f"eps*={settings.reduced_field:g} N={settings.n_particles}"
     )
+    _compile_outside_the_timers(settings, samples)
     progress = Progress(n_realizations * n_windows, label=label, unit="windows")
     first_histogram_window = math.ceil(histogram_start / sample_interval - 1e-9)
     for r in range(n_realizations):
@@ -628,6 +663,7 @@ def simulate_homogeneous(
             if samples.histogram:
                 histogram_snapshots += count
             log_temperature[r, w] = gas.log_temperature_free
+            cooling_sum[r, w] = gas.clock[4]
             time_free[r, w] = gas.time_free
             collisions_per_particle[r, w] = 2.0 * gas.collisions / settings.n_particles
             progress.update(1)
@@ -645,6 +681,8 @@ def simulate_homogeneous(
     window_ends = sample_interval * np.arange(1, n_windows + 1)
     previous = np.concatenate([np.zeros((n_realizations, 1)), log_temperature[:, :-1]], axis=1)
     thermostat_rate = (previous - log_temperature) / sample_interval
+    previous = np.concatenate([np.zeros((n_realizations, 1)), cooling_sum[:, :-1]], axis=1)
+    cooling_rate = (cooling_sum - previous) / sample_interval
     c4 = moments[..., MOMENT_NAMES.index("c4")]
     a2 = 4.0 * c4 / (d * (d + 2)) - 1.0
     heat_flux = moments[..., MOMENT_NAMES.index("c2cx")]
@@ -666,7 +704,13 @@ def simulate_homogeneous(
                 rt,
                 thermostat_rate,
                 "1/tau",
-                "thermostat energy-input rate (HCS cooling rate at zero field)",
+                "thermostat energy-input rate -d ln T/dt (Eq. 3.5's left side)",
+            ),
+            "cooling_rate": (
+                rt,
+                cooling_rate,
+                "1/tau",
+                "free cooling rate zeta at T0 (zero field: the HCS cooling rate, Eq. 2.14)",
             ),
             "log_temperature_free": (
                 rt,
@@ -792,16 +836,21 @@ def simulate_free_flights(
     """Free-flight times and free paths of an equilibrium gas (visco2008 Figs 1, 12).
 
     Continuous-time DSMC (exact event times by thinning) of N particles starting from
-    a Maxwellian at T0 = 1. Every collision ends a free flight of both partners; the
-    first interval of each particle (which does not start at a collision) is not
-    recorded. Time in 1/ω (ω: the kernel's equilibrium collision frequency at T0),
-    lengths in the mean free path l = <v>/ω.
+    a Maxwellian at T0 = 1. Every collision ends a free flight of both partners. The
+    flights that start (at a collision) within [0, duration) are recorded, and the run
+    goes on to duration + max_flight_time so that each of them is either complete or
+    known to be longer than the histogram (then counted in the overflow): no bias
+    against long flights. The first interval of each particle does not start at a
+    collision and is not recorded. Time in 1/ω (ω: the kernel's equilibrium collision
+    frequency at T0), lengths in the mean free path l = <v>/ω.
 
     Parameters
     ----------
     n_particles
-        N >= 2. duration
-        Run length per realization in 1/ω (> 0), done in chunks of ``chunk``.
+        N >= 2.
+    duration
+        Recording window per realization in 1/ω (> 0); the run lasts duration +
+        max_flight_time, done in chunks of about ``chunk``.
     dimension, kernel, restitution
         As in ``HomogeneousSettings`` (α < 1: a cooling gas, times still in 1/ω(T0)).
     max_flight_time, n_time_bins, max_free_path, n_path_bins
@@ -813,8 +862,10 @@ def simulate_free_flights(
     -------
     xarray.Dataset: ``time_counts`` (realization, flight_time), ``path_counts``
     (realization, free_path), overflows, ``flights`` (recorded flights),
-    ``time_pdf``/``path_pdf`` (counts / (flights x bin width)), ``collision_frequency``
-    (2 collisions/(N duration), in ω), ``cpu_seconds``, ``candidates``, ``collisions``.
+    ``time_pdf``/``path_pdf`` (counts / (flights x bin width)), ``unresolved_paths``
+    (open flights whose path is unknown; a fraction ~ e^{-max_flight_time/√2} of the
+    flights for hard spheres), ``collision_frequency`` (2 collisions/(N duration) in the
+    window, in ω), ``cpu_seconds``, ``candidates``, ``collisions``.
     """
     _integer("dimension", dimension, 2, 3)
     _choice("kernel", kernel, units.KERNELS)
@@ -835,14 +886,41 @@ def simulate_free_flights(
     kernel_id = _KERNEL_ID[kernel]
     time_width = max_flight_time / n_time_bins
     path_width = max_free_path / n_path_bins
-    n_chunks = max(1, math.ceil(duration / chunk - 1e-9))
+    # record the flights that start in [0, duration); run on until every one of them has
+    # ended or is known to be longer than max_flight_time
+    total_time = duration + max_flight_time
+    n_chunks = max(1, math.ceil(total_time / chunk - 1e-9))
 
     time_counts = np.zeros((n_realizations, n_time_bins + 1), dtype=np.int64)
     path_counts = np.zeros((n_realizations, n_path_bins + 1), dtype=np.int64)
+    unresolved = np.zeros(n_realizations, dtype=np.int64)
+    collisions_in_window = np.zeros(n_realizations, dtype=np.int64)
     tallies = np.zeros((n_realizations, 4), dtype=np.int64)
     cpu_seconds = np.zeros(n_realizations)
     label = label or f"dsmc free flights d={d} {kernel} N={n_particles}"
     progress = Progress(n_realizations * n_chunks, label=label, unit="chunks")
+    tiny = np.zeros((d, 2))
+    tiny[0] = [1.0, -1.0]
+    tiny_bounds = np.empty(d + 2)
+    kernels.speed_bounds(tiny, 0, 2, tiny_bounds)
+    kernels.collide_observed(
+        tiny,
+        streams[0].copy(),
+        kernel_id,
+        restitution,
+        coefficient,
+        0.0,
+        1e-3,
+        tiny_bounds,
+        np.zeros(4, dtype=np.int64),
+        np.full(2, -1.0),
+        0.0,
+        1.0,
+        time_width,
+        np.zeros(n_time_bins + 1, dtype=np.int64),
+        path_width,
+        np.zeros(n_path_bins + 1, dtype=np.int64),
+    )  # compile outside the timers (a no-op once cached)
     for r in range(n_realizations):
         rng = streams[r].copy()
         velocity = np.empty((d, n_particles))
@@ -852,7 +930,31 @@ def simulate_free_flights(
         last_collision = np.full(n_particles, -1.0)
         start = time.process_time()
         for c in range(n_chunks):
-            begin = c * duration / n_chunks
+            begin = c * total_time / n_chunks
+            if begin < duration <= (c + 1) * total_time / n_chunks:
+                # split the chunk at the end of the window to count its collisions
+                kernels.collide_observed(
+                    velocity,
+                    rng,
+                    kernel_id,
+                    restitution,
+                    coefficient,
+                    begin,
+                    duration - begin,
+                    bounds,
+                    tallies[r],
+                    last_collision,
+                    0.0,
+                    duration,
+                    time_width,
+                    time_counts[r],
+                    path_width * free_path_unit,
+                    path_counts[r],
+                )
+                collisions_in_window[r] = tallies[r, kernels.TALLY_ACCEPTED]
+                begin, length = duration, (c + 1) * total_time / n_chunks - duration
+            else:
+                length = total_time / n_chunks
             kernels.collide_observed(
                 velocity,
                 rng,
@@ -860,10 +962,12 @@ def simulate_free_flights(
                 restitution,
                 coefficient,
                 begin,
-                duration / n_chunks,
+                length,
                 bounds,
                 tallies[r],
                 last_collision,
+                0.0,
+                duration,
                 time_width,
                 time_counts[r],
                 path_width * free_path_unit,
@@ -873,6 +977,15 @@ def simulate_free_flights(
         cpu_seconds[r] = time.process_time() - start
         if tallies[r, kernels.TALLY_EXCEEDED]:
             raise RuntimeError("internal error: the collision bound was exceeded")
+        # flights started in the window and still open: longer than max_flight_time
+        open_flights = (last_collision >= 0.0) & (last_collision < duration)
+        time_counts[r, -1] += np.count_nonzero(open_flights)
+        open_paths = np.sqrt(np.sum(velocity[:, open_flights] ** 2, axis=0)) * (
+            total_time - last_collision[open_flights]
+        )
+        longer = open_paths >= max_free_path * free_path_unit
+        path_counts[r, -1] += np.count_nonzero(longer)
+        unresolved[r] = np.count_nonzero(~longer)
 
     flights = time_counts.sum(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -921,11 +1034,18 @@ def simulate_free_flights(
             ),
             "time_edges": ("flight_time_edge", time_edges, "1/omega", "flight-time bin edges"),
             "path_edges": ("free_path_edge", path_edges, "l", "free-path bin edges"),
+            "unresolved_paths": (
+                "realization",
+                unresolved,
+                "1",
+                "flights open at the end whose free path is unknown (shorter than "
+                "max_free_path, longer than max_flight_time)",
+            ),
             "collision_frequency": (
                 "realization",
-                2.0 * tallies[:, kernels.TALLY_ACCEPTED] / (n_particles * duration),
+                2.0 * collisions_in_window / (n_particles * duration),
                 "omega",
-                "measured collisions per particle per unit time",
+                "measured collisions per particle per unit time in the recording window",
             ),
             "collisions": (
                 "realization",
