@@ -28,8 +28,9 @@ at every candidate: after each accepted collision the two new speeds are compare
 created a faster particle, so an acceptance probability above 1 never occurs. Should a
 caller pass a stale bound (velocities changed behind the kernel's back), the first
 candidate that exceeds it is detected, counted in ``tally[TALLY_EXCEEDED]``, the bound is
-recomputed from the velocities and the candidate is re-tested against it; the pairs drawn
-before the detection were under-sampled, so fronts treat a nonzero count as an error.
+recomputed from the velocities and the run goes on at the corrected candidate rate (that
+candidate is dropped); the pairs drawn before the detection were under-sampled, so fronts
+treat a nonzero count as an error.
 
 Two clocks: no-time-counter (NTC: deterministic spacing 1/rate between candidates, the
 fraction of a candidate left at the end of a call carried in ``carry[0]``) and Poisson
@@ -453,10 +454,8 @@ def _collide_range_loop(
             bound = (top1 + top2) * BOUND_SAFETY
             bound_sq = bound * bound
             spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
-            code, h0, h1, h2, s0, s1, s2, s3 = _trial(
-                velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
-            )
-        if code != 1:
+            continue  # the candidate drawn under the stale bound is dropped
+        if code == 0:
             continue
         sa, sb = _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2)
         accepted += 1
@@ -604,10 +603,8 @@ def _collide_members_loop(
             bound = (top1 + top2) * BOUND_SAFETY
             bound_sq = bound * bound
             spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
-            code, h0, h1, h2, s0, s1, s2, s3 = _trial(
-                velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
-            )
-        if code != 1:
+            continue  # the candidate drawn under the stale bound is dropped
+        if code == 0:
             continue
         sa, sb = _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2)
         tally[TALLY_ACCEPTED] += 1
@@ -786,10 +783,8 @@ def _collide_observed_loop(
             bound = (top1 + top2) * BOUND_SAFETY
             bound_sq = bound * bound
             spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
-            code, h0, h1, h2, s0, s1, s2, s3 = _trial(
-                velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
-            )
-        if code != 1:
+            continue  # the candidate drawn under the stale bound is dropped
+        if code == 0:
             continue
         _record_flight(
             velocity,
