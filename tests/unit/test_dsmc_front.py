@@ -153,3 +153,15 @@ def test_state_api_exposes_reduced_velocities_and_timing():
     assert samples.moment_sums[0] == 4
     assert gas.steps == 4 and gas.time == pytest.approx(0.2)
     assert gas.collisions > 0 and gas.cpu_seconds > 0
+
+
+def test_beta1_weights_sum_to_the_marginal_moment():
+    run = simulate_homogeneous(
+        **{**SMALL, "histogram_start": 0.0, "cx_max": 8.0}, reduced_field=0.1
+    )
+    # c_x (3/2 - c_x^2) = c_x L_1^(1/2)(c_x^2): summed over particles and snapshots it is
+    # N x the sum over snapshots of the moment marginal_1
+    total = run.cx_weights.sum("cx") + run.cx_outside_weights.sum("side")
+    per_snapshot = run.moments.sel(moment="marginal_1") * run.snapshots
+    expected = per_snapshot.sum("time") * 200
+    np.testing.assert_allclose(total.values, expected.values, rtol=1e-9, atol=1e-9)

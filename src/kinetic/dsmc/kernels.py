@@ -1065,12 +1065,14 @@ def accumulate_moments(velocity, inverse_v0, sums):
 
 @njit(cache=True, error_model="numpy")
 def accumulate_histograms(
-    velocity, inverse_v0, cx_low, cx_width, cx_counts, speed_width, speed_counts
+    velocity, inverse_v0, cx_low, cx_width, cx_counts, cx_weights, speed_width, speed_counts
 ):
     """Histogram c_x (bins from ``cx_low``) and |c| (bins from 0) of one snapshot.
 
     cx_counts: (n_bins + 2,) int64 with [0] = underflow and [-1] = overflow;
-    speed_counts: (n_bins + 1,) int64 with [-1] = overflow.
+    cx_weights: (n_bins + 2,) float64, same bins, += c_x (3/2 - c_x²) of each particle
+    (the integrand of montanero2007 Eq. 4.6, so that β1 at the bin edges needs no
+    interpolation); speed_counts: (n_bins + 1,) int64 with [-1] = overflow.
     """
     d = velocity.shape[0]
     n = velocity.shape[1]
@@ -1086,11 +1088,13 @@ def accumulate_histograms(
             c2 += c * c
         position = (cx - cx_low) * inverse_cx
         if position < 0.0:
-            cx_counts[0] += 1
+            b = 0
         elif position >= n_cx:
-            cx_counts[n_cx + 1] += 1
+            b = n_cx + 1
         else:
-            cx_counts[1 + int(position)] += 1
+            b = 1 + int(position)
+        cx_counts[b] += 1
+        cx_weights[b] += cx * (1.5 - cx * cx)
         b = int(np.sqrt(c2) * inverse_speed)
         speed_counts[min(b, n_speed)] += 1
 
@@ -1123,6 +1127,7 @@ def advance(
     cx_low,
     cx_width,
     cx_counts,
+    cx_weights,
     speed_width,
     speed_counts,
 ):
@@ -1182,7 +1187,14 @@ def advance(
             accumulate_moments(velocity, inverse_v0, moment_sums[1:])
             if histogram:
                 accumulate_histograms(
-                    velocity, inverse_v0, cx_low, cx_width, cx_counts, speed_width, speed_counts
+                    velocity,
+                    inverse_v0,
+                    cx_low,
+                    cx_width,
+                    cx_counts,
+                    cx_weights,
+                    speed_width,
+                    speed_counts,
                 )
     return STATUS_OK
 

@@ -294,6 +294,7 @@ class Samples:
     histogram: bool = False
     moment_sums: np.ndarray = field(init=False, repr=False)
     cx_counts: np.ndarray = field(init=False, repr=False)
+    cx_weights: np.ndarray = field(init=False, repr=False)
     speed_counts: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -310,6 +311,7 @@ class Samples:
         _integer("n_speed_bins", self.n_speed_bins, 1)
         self.moment_sums = np.zeros(1 + len(MOMENT_NAMES))
         self.cx_counts = np.zeros(self.n_cx_bins + 2, dtype=np.int64)
+        self.cx_weights = np.zeros(self.n_cx_bins + 2)
         self.speed_counts = np.zeros(self.n_speed_bins + 1, dtype=np.int64)
 
     @property
@@ -485,6 +487,7 @@ def advance_gas(gas: HomogeneousGas, n_steps: int, samples: Samples | None = Non
         -samples.cx_max,
         2.0 * samples.cx_max / samples.n_cx_bins,
         samples.cx_counts,
+        samples.cx_weights,
         samples.speed_max / samples.n_speed_bins,
         samples.speed_counts,
     )
@@ -586,7 +589,8 @@ def simulate_homogeneous(
     without time-step error (Haff's law holds within each step);
     ``log_temperature_free``, ``time_free`` (window ends; the freely cooling gas);
     ``collisions_per_particle`` (cumulative, window ends); histograms ``cx_counts``,
-    ``cx_outside`` (below, above), ``speed_counts``, ``speed_overflow`` and
+    ``cx_weights`` (sums of c_x (3/2 - c_x²) per bin, for β1 of Eq. 4.6), ``cx_outside``
+    and ``cx_outside_weights`` (below, above), ``speed_counts``, ``speed_overflow`` and
     ``histogram_observations`` (particles x snapshots); per realization ``collisions``,
     ``candidates``, ``bound_raises``, ``steps``, ``cpu_seconds``.
     """
@@ -630,6 +634,8 @@ def simulate_homogeneous(
     time_free = np.zeros(shape)
     collisions_per_particle = np.zeros(shape)
     cx_counts = np.zeros((n_realizations, n_cx_bins), dtype=np.int64)
+    cx_weights = np.zeros((n_realizations, n_cx_bins))
+    cx_outside_weights = np.zeros((n_realizations, 2))
     cx_outside = np.zeros((n_realizations, 2), dtype=np.int64)
     speed_counts = np.zeros((n_realizations, n_speed_bins), dtype=np.int64)
     speed_overflow = np.zeros(n_realizations, dtype=np.int64)
@@ -650,6 +656,7 @@ def simulate_homogeneous(
     for r in range(n_realizations):
         gas = new_gas(settings, streams[r])
         samples.cx_counts[:] = 0
+        samples.cx_weights[:] = 0.0
         samples.speed_counts[:] = 0
         histogram_snapshots = 0
         for w in range(n_windows):
@@ -669,6 +676,8 @@ def simulate_homogeneous(
             progress.update(1)
         cx_counts[r] = samples.cx_counts[1:-1]
         cx_outside[r] = samples.cx_counts[[0, -1]]
+        cx_weights[r] = samples.cx_weights[1:-1]
+        cx_outside_weights[r] = samples.cx_weights[[0, -1]]
         speed_counts[r] = samples.speed_counts[:-1]
         speed_overflow[r] = samples.speed_counts[-1]
         observations[r] = histogram_snapshots * settings.n_particles
@@ -730,6 +739,18 @@ def simulate_homogeneous(
                 collisions_per_particle,
                 "1",
                 "cumulative collisions per particle at the window end",
+            ),
+            "cx_weights": (
+                ("realization", "cx"),
+                cx_weights,
+                "1",
+                "sum of c_x (3/2 - c_x^2) per c_x bin (the integrand of Eq. 4.6)",
+            ),
+            "cx_outside_weights": (
+                ("realization", "side"),
+                cx_outside_weights,
+                "1",
+                "sum of c_x (3/2 - c_x^2) below / above the histogram range",
             ),
             "cx_counts": (
                 ("realization", "cx"),
