@@ -52,7 +52,7 @@ import numpy as np
 
 from kinetic import io
 from kinetic.dsmc import kernels, units
-from kinetic.progress import Progress
+from kinetic.progress import Progress, logger
 from kinetic.rng import stream_states
 
 __all__ = [
@@ -101,6 +101,9 @@ MAX_COLLISIONS_PER_STEP = 0.5
 
 MAX_REDUCED_FIELD = 1.0
 """Largest ε* accepted (linear response needs ε* << 1; the paper uses 0.025)."""
+
+LINEAR_RESPONSE_FIELD = 0.1
+"""Above this ε* a warning is logged: see tests/physics/test_dsmc_extreme_cases.py."""
 
 MAX_FIELD_STEP = 0.1
 """Largest ε* δt/τ: the relative change of V_x in one force step is ε* (δt/τ) c_x / 2."""
@@ -560,7 +563,9 @@ def simulate_homogeneous(
     ----------
     n_particles, restitution, time_step, dimension, kernel, reduced_field, force_step,
     selection
-        As in ``HomogeneousSettings``.
+        As in ``HomogeneousSettings``. Above ε* = 0.1 a warning is logged: the forced
+        state is then far from linear response, with a power-law tail of c_x towards -x
+        (|c_x|^-5.5 at ε* = 0.2) in which high moments do not exist.
     duration
         Run length, a whole multiple of ``sample_interval``. Start: a Maxwellian at T0.
     sample_interval
@@ -650,6 +655,13 @@ def simulate_homogeneous(
         f"dsmc d={d} {settings.kernel} alpha={settings.restitution:g} "
         f"eps*={settings.reduced_field:g} N={settings.n_particles}"
     )
+    if settings.reduced_field > LINEAR_RESPONSE_FIELD:
+        logger.warning(
+            "reduced_field = %g is beyond linear response: the particles moving against "
+            "the field run away between collisions and the c_x distribution grows a power-"
+            "law tail (|c_x|^-5.5 at 0.2): high moments such as b'_2, b'_3 do not exist",
+            settings.reduced_field,
+        )
     _compile_outside_the_timers(settings, samples)
     progress = Progress(n_realizations * n_windows, label=label, unit="windows")
     first_histogram_window = math.ceil(histogram_start / sample_interval - 1e-9)
