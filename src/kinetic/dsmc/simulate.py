@@ -36,9 +36,18 @@ a ``Samples``), ``realization_streams``. Example::
         gas = new_gas(settings, stream)
         for window in range(300):
             advance_gas(gas, 10)                    # 10 steps of 0.01 τ
-            c = gas.reduced_velocities()            # (N, d) view, c = V/v0, x first
+            c = gas.reduced_velocities()            # (N, d) copy, c = V/v0, x first
             ...                                     # observe c (zero mean, <c²> = d/2)
         cpu, collisions = gas.cpu_seconds, gas.collisions
+
+The montanero2007 observables from ``simulate_homogeneous`` directly (same names as
+kinetic.analysis.montanero2007.MOMENTS): κ'(t) from ``heat_flux`` = <c² c_x> (window
+averages per realization); b'_k by Eq. (3.10) from ``moments.sel(moment="full_k")`` and
+by Eq. (3.12) from ``"marginal_k"``; g(V_x) and its odd part from ``cx_counts`` on
+``cx_edges`` (symmetric, n_cx_bins even so that 0 is an edge, as ``histogram_edges``)
+with ``histogram_observations`` particle observations; β1(c_x²) of Eq. (4.6) from
+``cx_weights`` (sums of c_x (3/2 - c_x²) per bin) and ``cx_outside_weights``; the HCS
+a2 from ``a2`` at zero field; ζ from ``cooling_rate``.
 
 Timing hooks: every dataset holds per realization ``cpu_seconds`` (process time),
 ``collisions``, ``candidates`` and ``steps``; a ``HomogeneousGas`` accumulates
