@@ -12,8 +12,9 @@ production runs):
 - the forcing stage (``kernels.force_and_thermostat``, montanero2007 Eqs. 4.1-4.2):
   particle updates per CPU-second for the Euler and the exact force steps, and the
   moment observer (``kernels.accumulate_moments``);
-- one step of the paper's protocol (N = 2·10⁵, δt = 0.003 τ): the time of a whole step
-  and the share of the collision stage.
+- one step of the paper's protocol (N = 2·10⁵, δt = 0.003 τ, Lie splitting) and of the
+  Strang-split protocol at δt = 0.2 τ (as accurate, see test_dsmc_force_splitting.py):
+  CPU time per step and per τ.
 
 Target (issue 4): at least 5·10⁶ accepted collisions per CPU-second at N = 2·10⁵.
 """
@@ -180,11 +181,17 @@ def _forcing_stage(n: int, repeats: int):
     return result
 
 
-def _paper_step(repeats: int):
-    """One step of montanero2007's protocol: N = 2e5, δt = 0.003 τ, ε* = 0.025."""
+def _protocol_step(repeats: int, time_step: float = 0.003, splitting: str = "lie"):
+    """One step of montanero2007's protocol (N = 2e5, δt = 0.003 τ, ε* = 0.025, Lie
+    splitting) or of the Strang-split protocol at a larger step."""
     n = 200_000
     settings = HomogeneousSettings(
-        n_particles=n, restitution=0.5, time_step=0.003, reduced_field=0.025, force_step="exact"
+        n_particles=n,
+        restitution=0.5,
+        time_step=time_step,
+        reduced_field=0.025,
+        force_step="exact",
+        splitting=splitting,
     )
     gas = new_gas(settings, realization_streams(7, 0, 1)[0])
     steps = 50
@@ -198,6 +205,7 @@ def _paper_step(repeats: int):
     collisions_per_step = 0.5 * n * settings.collision_frequency * settings.time_step
     return {
         "n_particles": n,
+        "splitting": splitting,
         "time_step_tau": settings.time_step,
         "cpu_seconds_per_step": per_step,
         "collisions_per_step": collisions_per_step,
@@ -219,8 +227,9 @@ def run(quick: bool) -> dict[str, Any]:
     for n in sizes:
         logger.info("dsmc bench: forcing stage N=%d", n)
         forcing.append(_forcing_stage(n, repeats))
-    logger.info("dsmc bench: paper step")
-    paper = _paper_step(repeats)
+    logger.info("dsmc bench: protocol steps")
+    paper = _protocol_step(repeats)
+    strang = _protocol_step(repeats, time_step=0.2, splitting="strang")
     large = [c for c in collisions if c["n_particles"] == max(sizes)]
     return {
         "target_accepted_collisions_per_cpu_second": TARGET_COLLISIONS_PER_SECOND,
@@ -230,5 +239,6 @@ def run(quick: bool) -> dict[str, Any]:
         "collision_stage": collisions,
         "forcing_stage": forcing,
         "paper_protocol_step": paper,
+        "strang_protocol_step": strang,
         "quick": quick,
     }
