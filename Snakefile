@@ -19,6 +19,8 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/visco2008.smk"
 include: "workflow/rules/edmd.smk"
 include: "workflow/rules/visco2008_md.smk"
+include: "workflow/rules/dsmc.smk"
+include: "workflow/rules/visco2008_dsmc.smk"
 include: "workflow/rules/targets.smk"
 
 

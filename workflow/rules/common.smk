@@ -20,8 +20,9 @@ TARGETS = {}
 # netCDF files with MD cumulants for Table I of visco2008 (filled by workflow/rules/edmd.smk).
 VISCO2008_TABLE1_MD = []
 
-# netCDF files of DSMC free-flight-time densities drawn as squares in visco2008 Fig 1
-# (filled by the DSMC rules): coordinate `time` (mean free times), variables `pdf`, `pdf_sem`.
+# netCDF files of DSMC free-flight-time densities drawn as squares in visco2008 Fig 1:
+# coordinate `flight_time` (mean free times), variables `time_pdf`, `time_pdf_sem`
+# (the output of kinetic.dsmc.aggregate; registered in workflow/rules/visco2008_md.smk).
 VISCO2008_FIG01_DSMC = []
 
 
@@ -91,11 +92,7 @@ def engine_sources(engine):
 
 
 def numba_warm(engine):
-    """Flag file of wildcard_constraints:
-    engine="[a-z0-9_]+",
-
-
-rule warm_numba: compiled kernels of ``engine`` are in numba's cache."""
+    """Flag file of rule warm_numba: compiled kernels of ``engine`` are in numba's cache."""
     return f"results/.cache/numba-{engine}.done"
 
 

@@ -24,8 +24,12 @@ def visco2008_md_all_data(wildcards):
 
 
 def visco2008_fig01_dsmc(wildcards):
-    """DSMC free-flight-time densities registered by the DSMC rules (maybe none yet)."""
-    return VISCO2008_FIG01_DSMC
+    """DSMC free-flight-time densities drawn as squares in Fig. 1: those registered in
+    VISCO2008_FIG01_DSMC and the hard-disk run of workflow/rules/dsmc.smk if present."""
+    files = list(VISCO2008_FIG01_DSMC)
+    if "free_flight_times" in globals().get("VISCO2008_DSMC_RUNS", []):
+        files.append("results/visco2008/dsmc/free_flight_times.nc")
+    return files
 
 
 def visco2008_md_ldf_windows(wildcards):

@@ -30,12 +30,12 @@ for axis, t_max, every in ((ax, 4.0, 2), (inset, float(t_md.max()), 5)):
         label=rf"MD, $\rho\sigma^2 = {density:g}$",
     )
     for data in dsmc:
-        keep = data["time"].values <= t_max
+        keep = data["flight_time"].values <= t_max
         plotting.errorbar(
             axis,
-            data["time"].values[keep],
-            data["pdf"].values[keep],
-            data["pdf_sem"].values[keep],
+            data["flight_time"].values[keep],
+            data["time_pdf"].values[keep],
+            data["time_pdf_sem"].values[keep],
             marker="s",
             markersize=3,
             label="DSMC",
