@@ -38,8 +38,9 @@ PACKING_FRACTION_3D = 0.01
 
 def _case(dimension: int, n_particles: int, density: float, repeats: int) -> dict[str, Any]:
     """Time one system: equilibrate 2 collisions per particle, then median of repeats."""
-    system = HardSphereSystem(n_particles=n_particles, density=density, dimension=dimension,
-                              seed=2025)
+    system = HardSphereSystem(
+        n_particles=n_particles, density=density, dimension=dimension, seed=2025
+    )
     system.run(collisions=2 * n_particles)
     per_repeat = 300_000 if n_particles <= 10_000 else 400_000
     before = system.counters()
@@ -81,8 +82,9 @@ def _pair_test_loop(phase, candidates, repeats):
     for r in range(repeats):
         xi = 0.5 * phase.shape[0] + 1e-9 * r
         for q in range(candidates.shape[0]):
-            tc = kernels.pair_time(xi, xi, 0.0, 0.1, -0.2, 0.0, phase, candidates[q], 0.0, 0.0,
-                                   0.0, 0.0, 1.0, 2)
+            tc = kernels.pair_time(
+                xi, xi, 0.0, 0.1, -0.2, 0.0, phase, candidates[q], 0.0, 0.0, 0.0, 0.0, 1.0, 2
+            )
             best = min(best, tc)
     return best
 
@@ -91,8 +93,9 @@ def _pair_test_loop(phase, candidates, repeats):
 def _tree_root_updates(tree_time, tree_index, increments, repeats):
     for r in range(repeats):
         i = tree_index[1]
-        kernels.tree_update(tree_time, tree_index, i,
-                            tree_time[1] + increments[r % increments.shape[0]])
+        kernels.tree_update(
+            tree_time, tree_index, i, tree_time[1] + increments[r % increments.shape[0]]
+        )
     return tree_time[1]
 
 
@@ -137,21 +140,23 @@ def _micro(n_particles: int, rng: np.random.Generator) -> dict[str, float]:
     begin = time.process_time()
     _pointer_chase(successor, steps)
     latency = (time.process_time() - begin) / steps * 1e9
-    return {"pair_test_ns": pair_test, "tree_root_update_ns": tree,
-            "random_access_ns": latency}
+    return {"pair_test_ns": pair_test, "tree_root_update_ns": tree, "random_access_ns": latency}
 
 
 def _compile_times() -> dict[str, float]:
     """Wall time of ``kinetic.edmd.warmup()`` in a fresh process with an empty numba cache
     (compilation) and again with that cache filled (loading)."""
-    code = ("import time; t = time.perf_counter(); import kinetic.edmd as e; e.warmup(); "
-            "print(time.perf_counter() - t)")
+    code = (
+        "import time; t = time.perf_counter(); import kinetic.edmd as e; e.warmup(); "
+        "print(time.perf_counter() - t)"
+    )
     result = {}
     with tempfile.TemporaryDirectory() as cache:
         env = {**os.environ, "NUMBA_CACHE_DIR": cache}
         for key in ("cold_compile_seconds", "cached_load_seconds"):
-            output = subprocess.run([sys.executable, "-c", code], env=env, check=True,
-                                    capture_output=True, text=True).stdout
+            output = subprocess.run(
+                [sys.executable, "-c", code], env=env, check=True, capture_output=True, text=True
+            ).stdout
             result[key] = float(output.strip().splitlines()[-1])
     return result
 
@@ -164,10 +169,13 @@ def _bounds(case: dict[str, Any], micro: dict[str, float]) -> dict[str, float]:
     its tree leaf) plus one per pair test, at the dependent-access latency of the working
     set (≈ the L1/L2 hit latency for small N, L3 for N = 1e5).
     """
-    arithmetic = (case["pair_tests_per_collision"] * micro["pair_test_ns"]
-                  + case["events_per_collision"] * micro["tree_root_update_ns"])
-    memory = ((3 * case["events_per_collision"] + case["pair_tests_per_collision"])
-              * micro["random_access_ns"])
+    arithmetic = (
+        case["pair_tests_per_collision"] * micro["pair_test_ns"]
+        + case["events_per_collision"] * micro["tree_root_update_ns"]
+    )
+    memory = (3 * case["events_per_collision"] + case["pair_tests_per_collision"]) * micro[
+        "random_access_ns"
+    ]
     return {
         "arithmetic_bound_ns": arithmetic,
         "memory_latency_bound_ns": memory,
@@ -197,7 +205,8 @@ def run(quick: bool) -> dict[str, Any]:
     def rate(dimension, n, density):
         for case in cases:
             if (case["dimension"], case["n_particles"]) == (dimension, n) and math.isclose(
-                    case["density"], density):
+                case["density"], density
+            ):
                 return case["collisions_per_cpu_second"]
         return float("nan")
 
@@ -212,8 +221,10 @@ def run(quick: bool) -> dict[str, Any]:
     }
     return {
         "description": __doc__.strip().splitlines()[0],
-        "units": {"rates": "collisions per CPU-second (process time, one core)",
-                  "times": "ns per collision unless named otherwise"},
+        "units": {
+            "rates": "collisions per CPU-second (process time, one core)",
+            "times": "ns per collision unless named otherwise",
+        },
         "quick": quick,
         "targets": TARGETS,
         "checks": checks,
