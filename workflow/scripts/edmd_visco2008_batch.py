@@ -6,7 +6,7 @@ from kinetic.workflow_support import start
 
 log = start(snakemake)
 parameters = dict(snakemake.params.simulation)
-dataset = simulate(**parameters, config=snakemake.config["visco2008"]["md"])
+dataset = simulate(**parameters, config=snakemake.config)
 io.write_dataset(dataset, snakemake.output[0])
 rate = dataset["collisions"].values[:, -1].sum() / dataset["cpu_time"].values[:, -1].sum()
 log.info(

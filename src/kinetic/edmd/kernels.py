@@ -1,7 +1,7 @@
 """Numba kernels of the event-driven molecular dynamics of hard disks and spheres.
 
 Arrays only: no Python objects, no I/O, no allocation inside the event loop. The Python
-front (``kinetic.edmd.simulate``) allocates the state with ``kinetic.edmd.state`` and calls
+front (``kinetic.edmd.system.HardSphereSystem``) allocates the state and calls
 ``advance`` in chunks.
 
 Units: mass m = 1; lengths in the units of the box and diameter (σ = 1 in the project);
