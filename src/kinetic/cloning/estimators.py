@@ -9,7 +9,12 @@ dimensions, total measured time t and the block sums of ``kernels.BLOCK_FIELDS``
   moments, i.e. moments of the eigenfunction f̃(v, λ) of visco2008 Eq. (28);
 - T = m2 / d: the variance per component (the mean vanishes by isotropy, so it is not
   subtracted; subtracting the sample mean would add an O(1/n) bias);
-- a2 = d/(d+2) · m4/m2² - 1, from m4 = d(d+2) T² (1 + a2) (Eq. 49).
+- a2 = d/(d+2) · m4/m2² - 1, from m4 = d(d+2) T² (1 + a2) (Eq. 49);
+- μ_rate = (e^{-λ} - 1) ∫Σ r(|v_i|) dt / (n t): integrating Eq. (28) over v gives
+  μ = (e^{-λ} - 1) <r>_f̃, and in the algorithm the compensations are a counting process
+  with intensity |e^{-λ} - 1| Σ r(|v_i|), so both estimators have the same expectation
+  (the same finite-n bias) and μ_rate lacks the counting noise (its error bar is several
+  times smaller at small |λ|). ``mu`` stays the compensation rate of the paper.
 
 Error bars: with several independent runs, the standard error of the per-run values;
 with a single run, block averaging over its measured blocks.
@@ -26,77 +31,62 @@ from kinetic.analysis.statistics import mean_and_sem
 __all__ = [
     "Extrapolation",
     "extrapolate_population",
-    "moments_to_observables",
+    "observables_from_sums",
     "run_observables",
     "summarize_runs",
 ]
 
 
-def moments_to_observables(net, elapsed, integral2, integral4, population, dimension):
-    """μ, T, a2 from summed block quantities (arrays broadcast elementwise).
+def observables_from_sums(sums, population, dimension, lam):
+    """μ, T, a2, μ_rate from block sums ``sums[..., field]`` (fields in
+    ``kernels.BLOCK_FIELDS``), elementwise over the leading axes."""
+    from kinetic.cloning.kernels import BLOCK_FIELDS
 
-    ``net`` = duplications - annihilations, ``elapsed`` = time, ``integral2`` and
-    ``integral4`` = time integrals of Σ|v|² and Σ|v|⁴, all summed over the same blocks.
-    """
-    member_time = population * np.asarray(elapsed, dtype=float)
-    mu = np.asarray(net, dtype=float) / member_time
-    m2 = np.asarray(integral2, dtype=float) / member_time
-    m4 = np.asarray(integral4, dtype=float) / member_time
+    sums = np.asarray(sums, dtype=float)
+
+    def field(name):
+        return sums[..., BLOCK_FIELDS.index(name)]
+
+    member_time = population * field("elapsed_time")
+    mu = field("net_compensations") / member_time
+    m2 = field("integral_v2") / member_time
+    m4 = field("integral_v4") / member_time
     temperature = m2 / dimension
     a2 = dimension / (dimension + 2.0) * m4 / m2**2 - 1.0
-    return mu, temperature, a2
+    mu_rate = np.expm1(-lam) * field("integral_rate") / member_time
+    return mu, temperature, a2, mu_rate
 
 
-def run_observables(blocks, measured, population, dimension):
-    """Per-run μ, T, a2 from ``blocks`` of shape (run, block, field) (fields in
-    ``kernels.BLOCK_FIELDS``) summed over the blocks where ``measured`` is true."""
-    from kinetic.cloning.kernels import BLOCK_FIELDS
-
-    column = {name: k for k, name in enumerate(BLOCK_FIELDS)}
+def run_observables(blocks, measured, population, dimension, lam):
+    """Per-run μ, T, a2, μ_rate from ``blocks`` of shape (run, block, field) summed over
+    the blocks where ``measured`` is true."""
     kept = np.asarray(blocks)[:, np.asarray(measured, dtype=bool), :].sum(axis=1)
-    return moments_to_observables(
-        kept[:, column["net_compensations"]],
-        kept[:, column["elapsed_time"]],
-        kept[:, column["integral_v2"]],
-        kept[:, column["integral_v4"]],
-        population,
-        dimension,
-    )
+    return observables_from_sums(kept, population, dimension, lam)
 
 
-def summarize_runs(blocks, measured, population, dimension, n_error_blocks=10):
-    """Mean and standard error of μ, T, a2 over runs (or over blocks of a single run).
+def summarize_runs(blocks, measured, population, dimension, lam, n_error_blocks=10):
+    """Mean and standard error of μ, T, a2, μ_rate over runs (or blocks of a single run).
 
     Returns a dict with keys ``mu``, ``mu_err``, ``temperature``, ``temperature_err``,
-    ``a2``, ``a2_err`` and ``error_method`` ('runs' or 'blocks').
+    ``a2``, ``a2_err``, ``mu_rate``, ``mu_rate_err`` and ``error_method`` ('runs' or
+    'blocks'; a single run's measured blocks are grouped into ``n_error_blocks``).
     """
-    from kinetic.cloning.kernels import BLOCK_FIELDS
-
     blocks = np.asarray(blocks, dtype=float)
     measured = np.asarray(measured, dtype=bool)
     if blocks.shape[0] >= 2:
-        values = run_observables(blocks, measured, population, dimension)
+        values = run_observables(blocks, measured, population, dimension, lam)
         method = "runs"
     else:
-        # one run: group its measured blocks into n_error_blocks super-blocks
-        column = {name: k for k, name in enumerate(BLOCK_FIELDS)}
         series = blocks[0, measured, :]
         groups = min(n_error_blocks, series.shape[0])
         if groups < 2:
             raise ValueError("need at least 2 runs or 2 measured blocks for an error bar")
         usable = series.shape[0] - series.shape[0] % groups
         grouped = series[:usable].reshape(groups, -1, series.shape[1]).sum(axis=1)
-        values = moments_to_observables(
-            grouped[:, column["net_compensations"]],
-            grouped[:, column["elapsed_time"]],
-            grouped[:, column["integral_v2"]],
-            grouped[:, column["integral_v4"]],
-            population,
-            dimension,
-        )
+        values = observables_from_sums(grouped, population, dimension, lam)
         method = "blocks"
     summary = {"error_method": method}
-    for name, samples in zip(("mu", "temperature", "a2"), values, strict=True):
+    for name, samples in zip(("mu", "temperature", "a2", "mu_rate"), values, strict=True):
         mean, sem = mean_and_sem(samples)
         summary[name] = float(mean)
         summary[f"{name}_err"] = float(sem)

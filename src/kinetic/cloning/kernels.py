@@ -77,6 +77,7 @@ BLOCK_FIELDS = (
     "proposals",  # candidates that reached the collision-acceptance test (hard spheres)
     "integral_v2",  # ∫ Σ_i |v_i|² dt over the block
     "integral_v4",  # ∫ Σ_i |v_i|⁴ dt over the block
+    "integral_rate",  # ∫ Σ_i r(|v_i|) dt over the block (r from the rate table)
     "max_speed",  # largest velocity bound used in the block
 )
 """Columns of the ``blocks`` output array of ``run_blocks``, in order."""
@@ -278,12 +279,28 @@ def draw_population(velocity, speed, state):
         speed[i] = math.sqrt(s2)
 
 
+@njit(inline="always")
+def _tabulated_rate(speed, rate_table, table_step):
+    """r(speed) by linear interpolation in ``rate_table`` (r at speeds k·table_step).
+
+    Beyond the table r grows linearly with the slope of its last interval (r(v) ~ K1 v).
+    """
+    position = speed / table_step
+    k = int(position)
+    last = rate_table.shape[0] - 2
+    if k > last:
+        k = last
+    fraction = position - k
+    return rate_table[k] + fraction * (rate_table[k + 1] - rate_table[k])
+
+
 @njit(cache=True)
-def _population_sums(velocity, speed):
-    """Recompute ``speed`` from ``velocity``; return (Σ|v|², Σ|v|⁴, max |v|)."""
+def _population_sums(velocity, speed, rate_table, table_step):
+    """Recompute ``speed`` from ``velocity``; return (Σ|v|², Σ|v|⁴, Σ r(|v|), max |v|)."""
     d, n = velocity.shape
     sum2 = 0.0
     sum4 = 0.0
+    sum_rate = 0.0
     largest = 0.0
     for i in range(n):
         s2 = 0.0
@@ -292,8 +309,9 @@ def _population_sums(velocity, speed):
         speed[i] = math.sqrt(s2)
         sum2 += s2
         sum4 += s2 * s2
+        sum_rate += _tabulated_rate(speed[i], rate_table, table_step)
         largest = max(largest, speed[i])
-    return sum2, sum4, largest
+    return sum2, sum4, sum_rate, largest
 
 
 @njit(cache=True)
@@ -310,7 +328,19 @@ def _snapshot_histogram(velocity, weight, half_width, histogram):
 
 
 @njit(cache=True)
-def run_blocks(kernel, lam, velocity, speed, state, block_duration, blocks, half_width, histogram):
+def run_blocks(
+    kernel,
+    lam,
+    velocity,
+    speed,
+    state,
+    block_duration,
+    blocks,
+    half_width,
+    histogram,
+    rate_table,
+    table_step,
+):
     """Advance the population through ``blocks.shape[0]`` blocks of ``block_duration``.
 
     Parameters
@@ -335,6 +365,13 @@ def run_blocks(kernel, lam, velocity, speed, state, block_duration, blocks, half
         Accumulates, at the end of each block, the population's velocity components
         weighted by the current candidate time step (this makes the snapshots of the
         uniformised chain time averages); the caller normalises.
+    rate_table : float64[m], m >= 2
+        Collision rate r(k·table_step)/ω of one member, k = 0..m-1, used only for the
+        ``integral_rate`` column: since ∫ L_λ f dv = (e^{-λ} - 1) ∫ r f dv (Eq. 28),
+        μ = (e^{-λ} - 1) <r> over the population is an estimator with the same
+        expectation as the compensation count and without its counting noise.
+    table_step : float
+        Speed spacing of ``rate_table``.
 
     Returns the total weight added to ``histogram`` (sum of the snapshot weights).
     The polar-method variate cache is reset at each call, so results do not depend on
@@ -347,7 +384,7 @@ def run_blocks(kernel, lam, velocity, speed, state, block_duration, blocks, half
     cache = np.zeros(2)
     histogram_weight = 0.0
     for block in range(blocks.shape[0]):
-        sum2, sum4, v_max = _population_sums(velocity, speed)
+        sum2, sum4, sum_rate, v_max = _population_sums(velocity, speed, rate_table, table_step)
         bound = k1 * v_max + _RATE_AT_REST if kernel == HARD_SPHERES else 1.0
         dt = 1.0 / (rate_factor * n * bound)
         block_max = v_max
@@ -359,10 +396,12 @@ def run_blocks(kernel, lam, velocity, speed, state, block_duration, blocks, half
         proposals = 0
         integral2 = 0.0
         integral4 = 0.0
+        integral_rate = 0.0
         while elapsed < block_duration:
             # the state before this candidate held during its waiting time
             integral2 += sum2 * dt
             integral4 += sum4 * dt
+            integral_rate += sum_rate * dt
             elapsed += dt
             candidates += 1
             position = uniform(state) * n
@@ -418,6 +457,9 @@ def run_blocks(kernel, lam, velocity, speed, state, block_duration, blocks, half
                     old2 = -1.0
             if old2 >= 0.0:  # elastic: member i has a new velocity
                 new_speed = math.sqrt(new2)
+                sum_rate += _tabulated_rate(new_speed, rate_table, table_step) - _tabulated_rate(
+                    speed[i], rate_table, table_step
+                )
                 speed[i] = new_speed
                 sum2 += new2 - old2
                 sum4 += new2 * new2 - old2 * old2
@@ -439,6 +481,9 @@ def run_blocks(kernel, lam, velocity, speed, state, block_duration, blocks, half
                 net -= 1
             old2 = speed[target] * speed[target]
             new2 = speed[source] * speed[source]
+            sum_rate += _tabulated_rate(speed[source], rate_table, table_step) - _tabulated_rate(
+                speed[target], rate_table, table_step
+            )
             _copy_member(velocity, speed, source, target)
             sum2 += new2 - old2
             sum4 += new2 * new2 - old2 * old2
@@ -451,7 +496,8 @@ def run_blocks(kernel, lam, velocity, speed, state, block_duration, blocks, half
         row[5] = proposals
         row[6] = integral2
         row[7] = integral4
-        row[8] = block_max
+        row[8] = integral_rate
+        row[9] = block_max
         histogram_weight += dt
         _snapshot_histogram(velocity, dt, half_width, histogram)
     return histogram_weight

@@ -20,6 +20,7 @@ import numpy as np
 from kinetic import io
 from kinetic.cloning import kernels
 from kinetic.cloning.estimators import run_observables, summarize_runs
+from kinetic.cloning.rates import TABLE_STEP, rate_table
 from kinetic.progress import Progress
 from kinetic.rng import stream_states
 
@@ -54,6 +55,10 @@ transient (transient · e^{-λ} · r_min >= 1, with r_min = 1/√2 for hard sphe
 Maxwell molecules). At large λ almost every collision annihilates, the population only
 selects among the velocities it already holds and clones of a few slow members take
 over (diversity collapse); without renewal it still remembers its initial bath sample."""
+
+MIN_DISTINCT_VELOCITIES = 10
+"""Below this many distinct velocities at the end of a run the population is a few clones
+(diversity collapse, large λ): T and a2 are flagged (``diversity_collapse`` attribute)."""
 
 _CHUNK_EVENTS = 3.0e7  # events per kernel call, so progress lines come every few seconds
 
@@ -236,6 +241,7 @@ def simulate(
         p["n_runs"] * total_blocks * block_duration, label=label, unit="collision times"
     )
     code = KERNELS[p["kernel"]]
+    table = rate_table(p["kernel"], d)
     for run in range(p["n_runs"]):
         state = np.ascontiguousarray(states[run])
         velocity = np.empty((d, n))
@@ -260,23 +266,29 @@ def simulate(
                     blocks[run, lo:hi],
                     p["histogram_half_width"],
                     target,
+                    table,
+                    TABLE_STEP,
                 )
                 if hi > n_transient:
                     weight += added
             progress.update((stop - start) * block_duration)
         bin_width = 2.0 * p["histogram_half_width"] / p["histogram_bins"]
         histograms[run] /= weight * d * n * bin_width
-        distinct[run] = np.unique(velocity[0]).size / n
+        distinct[run] = np.unique(velocity[0]).size
 
     measured = np.arange(total_blocks) >= n_transient
-    mu_run, temperature_run, a2_run = run_observables(blocks, measured, n, d)
-    summary = summarize_runs(blocks, measured, n, d)
-    if min(distinct) < 0.1:
+    mu_run, temperature_run, a2_run, mu_rate_run = run_observables(blocks, measured, n, d, p["lam"])
+    summary = summarize_runs(blocks, measured, n, d, p["lam"])
+    collapsed = bool(min(distinct) < MIN_DISTINCT_VELOCITIES)
+    if collapsed:
         logger.warning(
-            "[%s] diversity collapse: only %.3g of the members carry distinct velocities; "
-            "T and a2 describe a few clones (finite-N_c bias), mu stays usable",
+            "[%s] diversity collapse: a run ended with only %d distinct velocities among "
+            "%d members; T and a2 describe a few clones and are not estimates of the "
+            "eigenfunction, mu stays usable (biased low by r(v*) - r(0) of the surviving "
+            "clone, a few 1e-3 at lam = 8)",
             label,
-            min(distinct),
+            int(min(distinct)),
+            n,
         )
     dataset = _to_dataset(
         p,
@@ -289,8 +301,10 @@ def simulate(
         mu_run,
         temperature_run,
         a2_run,
+        mu_rate_run,
         summary,
     )
+    dataset.attrs["diversity_collapse"] = int(collapsed)
     return io.stamp(
         dataset, parameters={**p, "kernel_label": kernel_label(kernel, d)}, seed=p["seed"]
     )
@@ -307,6 +321,7 @@ def _to_dataset(
     mu_run,
     temperature_run,
     a2_run,
+    mu_rate_run,
     summary,
 ):
     field_meta = {
@@ -318,6 +333,7 @@ def _to_dataset(
         "proposals": ("1", "candidates reaching the collision acceptance test"),
         "integral_v2": ("(sqrt(T0/m))^2 / omega", "time integral of sum_i |v_i|^2"),
         "integral_v4": ("(sqrt(T0/m))^4 / omega", "time integral of sum_i |v_i|^4"),
+        "integral_rate": ("1", "time integral of sum_i r(|v_i|) (collisions expected)"),
         "max_speed": ("sqrt(T0/m)", "largest speed bound used in the block"),
     }
     data_vars = {
@@ -332,15 +348,16 @@ def _to_dataset(
             "1/sqrt(T0/m)",
             "time-averaged density of a velocity component of the population",
         ),
-        distinct_fraction=(
+        distinct_velocities=(
             "run",
             distinct,
             "1",
-            "fraction of members with distinct velocities at the end of the run",
+            "number of distinct member velocities at the end of the run (lineages)",
         ),
         mu_run=("run", mu_run, "omega", "mu(lambda) of each run"),
         temperature_run=("run", temperature_run, "T0", "T(lambda) of each run"),
         a2_run=("run", a2_run, "1", "a2(lambda) of each run"),
+        mu_rate_run=("run", mu_rate_run, "omega", "(e^-lambda - 1) <r> of each run"),
         mu=((), summary["mu"], "omega", "mu(lambda): net compensation rate per member"),
         mu_err=((), summary["mu_err"], "omega", "standard error of mu"),
         temperature=(
@@ -352,6 +369,13 @@ def _to_dataset(
         temperature_err=((), summary["temperature_err"], "T0", "standard error of T"),
         a2=((), summary["a2"], "1", "a2(lambda): fourth-cumulant (kurtosis) coefficient"),
         a2_err=((), summary["a2_err"], "1", "standard error of a2"),
+        mu_rate=(
+            (),
+            summary["mu_rate"],
+            "omega",
+            "mu(lambda) as (e^-lambda - 1) <r(v)> over the population (same mean)",
+        ),
+        mu_rate_err=((), summary["mu_rate_err"], "omega", "standard error of mu_rate"),
     )
     edges = np.linspace(
         -p["histogram_half_width"], p["histogram_half_width"], p["histogram_bins"] + 1
