@@ -17,6 +17,8 @@ configfile: "config/config.yaml"
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/visco2008.smk"
+include: "workflow/rules/cloning.smk"
+include: "workflow/rules/visco2008_cloning.smk"
 include: "workflow/rules/targets.smk"
 
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 import logging
 import math
 import numbers
+import time
 
 import numpy as np
 
@@ -236,6 +237,7 @@ def simulate(
     blocks = np.zeros((p["n_runs"], total_blocks, len(kernels.BLOCK_FIELDS)))
     histograms = np.zeros((p["n_runs"], p["histogram_bins"]))
     distinct = np.zeros(p["n_runs"])
+    cpu_seconds = np.zeros(p["n_runs"])
     label = label or f"cloning {kernel_label(kernel, d)} lam={p['lam']:g} N={n}"
     progress = Progress(
         p["n_runs"] * total_blocks * block_duration, label=label, unit="collision times"
@@ -243,6 +245,7 @@ def simulate(
     code = KERNELS[p["kernel"]]
     table = rate_table(p["kernel"], d)
     for run in range(p["n_runs"]):
+        cpu_start = time.process_time()
         state = np.ascontiguousarray(states[run])
         velocity = np.empty((d, n))
         speed = np.empty(n)
@@ -275,6 +278,7 @@ def simulate(
         bin_width = 2.0 * p["histogram_half_width"] / p["histogram_bins"]
         histograms[run] /= weight * d * n * bin_width
         distinct[run] = np.unique(velocity[0]).size
+        cpu_seconds[run] = time.process_time() - cpu_start
 
     measured = np.arange(total_blocks) >= n_transient
     mu_run, temperature_run, a2_run, mu_rate_run = run_observables(blocks, measured, n, d, p["lam"])
@@ -298,6 +302,7 @@ def simulate(
         n_transient,
         histograms,
         distinct,
+        cpu_seconds,
         mu_run,
         temperature_run,
         a2_run,
@@ -318,6 +323,7 @@ def _to_dataset(
     n_transient,
     histograms,
     distinct,
+    cpu_seconds,
     mu_run,
     temperature_run,
     a2_run,
@@ -347,6 +353,12 @@ def _to_dataset(
             histograms,
             "1/sqrt(T0/m)",
             "time-averaged density of a velocity component of the population",
+        ),
+        cpu_seconds=(
+            "run",
+            cpu_seconds,
+            "s",
+            "process time of the run, transient included (machine-dependent, not reproducible)",
         ),
         distinct_velocities=(
             "run",
