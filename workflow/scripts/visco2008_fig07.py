@@ -1,9 +1,10 @@
 """visco2008 Fig. 7: T(λ), the variance per component of the hard-disk eigenfunction,
 cloning Monte Carlo against the Gaussian (Eq. 43b) and Sonine closures and the
-deterministic solution of Eq. (28)."""
+deterministic solution of Eq. (28). Crosses: T of populations that collapsed onto a few
+clones at large λ (not estimates of the eigenfunction; they only show T -> 0)."""
 
 from kinetic import io, plotting
-from kinetic.cloning.figures import draw_series, finite, scan_series
+from kinetic.cloning.figures import collapsed_points, draw_series, finite, scan_series
 from kinetic.workflow_support import start
 
 start(snakemake)
@@ -23,6 +24,16 @@ ax.plot(
     label="Eq. (28), quadrature",
 )
 draw_series(ax, series)
+lam_c, value_c, _ = collapsed_points(snakemake.input.scan, "hard_disks", "T")
+if lam_c.size:
+    ax.plot(
+        lam_c,
+        value_c,
+        "x",
+        color="0.5",
+        ms=3,
+        label=rf"collapsed population, $N_c={series.single_population}$",
+    )
 ax.set_xlim(lam.min(), lam.max())
 ax.set_ylim(0.0, None)
 ax.set_xlabel(r"$\lambda$")

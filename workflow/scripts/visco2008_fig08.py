@@ -22,9 +22,9 @@ ax.plot(
     label="Eq. (28), quadrature",
 )
 ax.axhline(0.0, color="0.8", lw=0.5)
-draw_series(ax, series)
-shown = series.limit_lambda[series.limit_lambda <= 2.5]
-ax.set_xlim(lam.min(), max(2.5, float(shown.max()) if shown.size else 2.5))
+LAMBDA_MAX = 2.6  # beyond, a2 grows past 3 (and the population collapses soon after)
+draw_series(ax, series, lam_max=LAMBDA_MAX)
+ax.set_xlim(lam.min(), LAMBDA_MAX)
 ax.set_ylim(-0.1, 1.2)
 ax.set_xlabel(r"$\lambda$")
 ax.set_ylabel(r"$a_2(\lambda)$")

@@ -22,6 +22,7 @@ import pandas as pd
 from kinetic import io
 from kinetic.cloning.estimators import extrapolate_population, observables_from_sums, summarize_runs
 from kinetic.cloning.kernels import BLOCK_FIELDS
+from kinetic.cloning.simulate import is_collapsed
 
 __all__ = [
     "OBSERVABLES",
@@ -97,7 +98,7 @@ def combine_points(datasets) -> list[dict[str, Any]]:
                 if runs.size > 1
                 else np.full(density.shape[1], np.nan),
                 "distinct_min": int(distinct.min()),
-                "collapsed": bool(any(m.attrs.get("diversity_collapse", 0) for m in members)),
+                "collapsed": is_collapsed(distinct.min(), population),
                 **{k: v for k, v in summary.items() if k != "error_method"},
                 "error_method": summary["error_method"],
             }
@@ -338,17 +339,19 @@ def error_versus_cpu(record, steps: int = 12):
 
 
 def error_table(records, exact: dict[float, float]) -> pd.DataFrame:
-    """Per (λ, N_c): CPU time, statistical errors, finite-N_c bias against ``exact`` μ and
-    against the extrapolation of these points, and the CPU time at which the statistical
-    error of μ_rate (extrapolated as 1/√CPU) falls to the bias."""
+    """Per (λ, N_c): CPU time, statistical errors, finite-N_c bias of μ_rate against
+    ``exact`` μ and against the extrapolation of these points, and the CPU time at which
+    the statistical error of μ_rate (scaled as 1/√CPU) falls to the bias (empty where the
+    bias is not resolved, |bias| < 2 standard errors)."""
     extrapolated = {e["lam"]: e for e in extrapolate_points(records)}
     rows = []
     for record in records:
         cpu = float(record["cpu_seconds"].sum())
         lam = record["lam"]
-        limit = extrapolated[lam]["mu_rate"]
+        limit = extrapolated[lam]["mu_rate"] or {"value": np.nan, "err": np.nan}
         bias = record["mu_rate"] - exact[lam]
-        crossover = cpu * (record["mu_rate_err"] / abs(bias)) ** 2 if bias != 0 else np.inf
+        resolved = abs(bias) > 2 * record["mu_rate_err"]
+        crossover = cpu * (record["mu_rate_err"] / abs(bias)) ** 2 if resolved else np.nan
         rows.append(
             {
                 "lambda": lam,
@@ -360,6 +363,7 @@ def error_table(records, exact: dict[float, float]) -> pd.DataFrame:
                 "mu_rate_err": record["mu_rate_err"],
                 "mu_exact": exact[lam],
                 "bias": bias,
+                "bias_err": record["mu_rate_err"],
                 "bias_vs_extrapolation": record["mu_rate"] - limit["value"],
                 "bias_vs_extrapolation_err": float(np.hypot(record["mu_rate_err"], limit["err"])),
                 "cpu_seconds_stat_err_equals_bias": crossover,

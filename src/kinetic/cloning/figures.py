@@ -13,7 +13,7 @@ import numpy as np
 
 from kinetic import io
 
-__all__ = ["Series", "finite", "scan_series"]
+__all__ = ["Series", "collapsed_points", "draw_series", "finite", "scan_series"]
 
 _POINT_NAMES = {"mu": "mu", "T": "temperature", "a2": "a2", "mu_rate": "mu_rate"}
 
@@ -76,8 +76,9 @@ def finite(x, y):
     return x[keep], y[keep]
 
 
-def draw_series(ax, series: Series, *, scale=None, label="cloning MC", **kwargs):
-    """Error bars of a Series; ``scale(lam, value, error) -> (value, error)`` transforms."""
+def draw_series(ax, series: Series, *, scale=None, label="cloning MC", lam_max=np.inf, **kwargs):
+    """Error bars of a Series up to ``lam_max``; ``scale(lam, value, error) -> (value,
+    error)`` transforms the values first."""
     from kinetic import plotting
 
     parts = [
@@ -97,8 +98,29 @@ def draw_series(ax, series: Series, *, scale=None, label="cloning MC", **kwargs)
         ),
     ]
     for lam, value, error, marker, text in parts:
+        shown = lam <= lam_max
+        lam, value, error = lam[shown], value[shown], error[shown]
         if lam.size == 0:
             continue
         if scale is not None:
             value, error = scale(lam, value, error)
         plotting.errorbar(ax, lam, value, error, marker=marker, label=text, zorder=5, **kwargs)
+
+
+def collapsed_points(path, kernel: str, observable: str):
+    """(λ, value, error) of the largest population's points whose runs collapsed onto a
+    few clones: not estimates of the eigenfunction, shown only as such."""
+    ds = io.read_dataset(path)
+    name = _POINT_NAMES[observable]
+    kernels = ds["point_kernel"].values.astype(str)
+    population = ds["point_population"].values
+    largest = population[kernels == kernel].max()
+    chosen = np.flatnonzero(
+        (kernels == kernel) & (population == largest) & (ds["point_collapse"].values == 1)
+    )
+    order = chosen[np.argsort(ds["point_lambda"].values[chosen])]
+    return (
+        ds["point_lambda"].values[order],
+        ds[f"point_{name}"].values[order],
+        ds[f"point_{name}_err"].values[order],
+    )
