@@ -41,7 +41,7 @@ def warmup() -> None:
                     kernel=kernel,
                     dimension=dimension,
                     lam=lam,
-                    population=4,
+                    population=64,
                     duration=0.2,
                     transient=3.0,
                     n_blocks=2,
