@@ -81,9 +81,10 @@ def test_tiny_scan_writes_the_table_and_resumes(tmp_path):
     assert set(table["kernel"]) == {"hard_disks", "maxwell"}
     assert table["n_c"].isna().sum() == 2  # extrapolations at λ = 0.5 and 1
     assert (table["mu_err"] > 0).all()
-    # a lost batch is the only job rerun
+    # a run stopped before one batch and the aggregate finished resumes with just those
     batch = tmp_path / "results/visco2008/cloning/scan/hard_disks/lam+1.000/N40/batch1.nc"
     batch.unlink()
+    (tmp_path / target).unlink()
     plan = run(tmp_path, target, "--configfile", str(config), "--dry-run")
     assert plan.count("rule cloning_batch:") == 1
-    assert "batch1.nc" in plan
+    assert "batch1.nc" in plan and "rule cloning_aggregate:" in plan

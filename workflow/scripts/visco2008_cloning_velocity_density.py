@@ -37,7 +37,5 @@ ax.set_ylim(1e-5, 3.0)
 ax.set_xlim(-4.5, 4.5)
 ax.set_xlabel(r"$v_x/\sqrt{T_0/m}$")
 ax.set_ylabel(r"$\tilde f(v_x,\lambda)$")
-ax.legend(
-    loc="lower center", fontsize=5, title="dashed: Gaussian of the same T", title_fontsize=5
-)
+ax.legend(loc="lower center", fontsize=5, title="dashed: Gaussian of the same T", title_fontsize=5)
 plotting.save(fig, snakemake.output.pdf)
