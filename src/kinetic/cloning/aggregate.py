@@ -316,13 +316,18 @@ def error_versus_cpu(record, steps: int = 12):
     """Statistical error of μ and μ_rate against total CPU time for one point.
 
     Uses the first k measured blocks of every run (k spread geometrically up to all of
-    them); the CPU time of k blocks is the runs' process time prorated per block, with the
-    transient included. Returns (cpu_seconds, mu_err, mu_rate_err), each of length <= steps.
+    them); the CPU time of k blocks is the runs' process time prorated by simulated time,
+    with the transient included. Returns (cpu_seconds, mu_err, mu_rate_err), each of
+    length <= steps.
     """
     blocks, measured = record["blocks"], record["measured"]
     n_transient = int((~measured).sum())
     n_measured = int(measured.sum())
-    per_block = record["cpu_seconds"].sum() / (n_transient + n_measured)
+    # process time is prorated by simulated time (transient blocks may be longer)
+    elapsed = blocks[:, :, BLOCK_FIELDS.index("elapsed_time")].sum(axis=0)
+    cpu_per_time = record["cpu_seconds"].sum() / elapsed.sum()
+    transient_time = elapsed[:n_transient].sum()
+    measured_time = np.cumsum(elapsed[n_transient:])
     counts = np.unique(np.geomspace(1, n_measured, steps).round().astype(int))
     cpu, mu_err, rate_err = [], [], []
     for k in counts:
@@ -332,7 +337,7 @@ def error_versus_cpu(record, steps: int = 12):
         )
         if mu.size < 2:
             break
-        cpu.append(per_block * (n_transient + k))
+        cpu.append(cpu_per_time * (transient_time + measured_time[k - 1]))
         mu_err.append(mu.std(ddof=1) / np.sqrt(mu.size))
         rate_err.append(mu_rate.std(ddof=1) / np.sqrt(mu_rate.size))
     return np.array(cpu), np.array(mu_err), np.array(rate_err)

@@ -76,6 +76,9 @@ def is_collapsed(distinct_velocities, population):
     return bool(distinct_velocities < threshold)
 
 
+MAX_TRANSIENT_BLOCKS = 50
+"""The discarded transient is split into at most this many blocks."""
+
 _CHUNK_EVENTS = 3.0e7  # events per kernel call, so progress lines come every few seconds
 
 
@@ -242,11 +245,13 @@ def simulate(
     )
     n, d = p["population"], p["dimension"]
     block_duration = p["duration"] / p["n_blocks"]
-    n_transient = math.ceil(p["transient"] / block_duration - 1e-9) if p["transient"] else 0
+    # the transient runs in at most MAX_TRANSIENT_BLOCKS blocks (never shorter than a
+    # measured block), so a long transient at large λ does not inflate the output
+    transient_block = max(block_duration, p["transient"] / MAX_TRANSIENT_BLOCKS)
+    n_transient = math.ceil(p["transient"] / transient_block - 1e-9) if p["transient"] else 0
     total_blocks = n_transient + p["n_blocks"]
+    durations = np.where(np.arange(total_blocks) < n_transient, transient_block, block_duration)
     rate_factor, _, _ = kernels.compensation_parameters(p["lam"])
-    events_per_block = rate_factor * n * block_duration * 1.5
-    chunk = max(1, int(_CHUNK_EVENTS / events_per_block))
 
     states = stream_states(p["seed"], p["first_run"] + p["n_runs"])[p["first_run"] :]
     blocks = np.zeros((p["n_runs"], total_blocks, len(kernels.BLOCK_FIELDS)))
@@ -254,11 +259,19 @@ def simulate(
     distinct = np.zeros(p["n_runs"])
     cpu_seconds = np.zeros(p["n_runs"])
     label = label or f"cloning {kernel_label(kernel, d)} lam={p['lam']:g} N={n}"
-    progress = Progress(
-        p["n_runs"] * total_blocks * block_duration, label=label, unit="collision times"
-    )
+    progress = Progress(p["n_runs"] * durations.sum(), label=label, unit="collision times")
     code = KERNELS[p["kernel"]]
     table = rate_table(p["kernel"], d)
+    segments = []  # (first block, end block, block duration, measured?)
+    for lo, hi, duration, measured_segment in (
+        (0, n_transient, transient_block, False),
+        (n_transient, total_blocks, block_duration, True),
+    ):
+        chunk = max(1, int(_CHUNK_EVENTS / (rate_factor * n * duration * 1.5)))
+        segments += [
+            (start, min(start + chunk, hi), duration, measured_segment)
+            for start in range(lo, hi, chunk)
+        ]
     for run in range(p["n_runs"]):
         cpu_start = time.process_time()
         state = np.ascontiguousarray(states[run])
@@ -267,29 +280,23 @@ def simulate(
         kernels.draw_population(velocity, speed, state)
         scratch = np.zeros(p["histogram_bins"])  # transient snapshots are discarded
         weight = 0.0
-        for start in range(0, total_blocks, chunk):
-            stop = min(start + chunk, total_blocks)
-            # split the chunk at the end of the transient so its snapshots are dropped
-            for lo, hi in ((start, min(stop, n_transient)), (max(start, n_transient), stop)):
-                if hi <= lo:
-                    continue
-                target = scratch if hi <= n_transient else histograms[run]
-                added = kernels.run_blocks(
-                    code,
-                    p["lam"],
-                    velocity,
-                    speed,
-                    state,
-                    block_duration,
-                    blocks[run, lo:hi],
-                    p["histogram_half_width"],
-                    target,
-                    table,
-                    TABLE_STEP,
-                )
-                if hi > n_transient:
-                    weight += added
-            progress.update((stop - start) * block_duration)
+        for lo, hi, duration, measured_segment in segments:
+            added = kernels.run_blocks(
+                code,
+                p["lam"],
+                velocity,
+                speed,
+                state,
+                duration,
+                blocks[run, lo:hi],
+                p["histogram_half_width"],
+                histograms[run] if measured_segment else scratch,
+                table,
+                TABLE_STEP,
+            )
+            if measured_segment:
+                weight += added
+            progress.update((hi - lo) * duration)
         bin_width = 2.0 * p["histogram_half_width"] / p["histogram_bins"]
         histograms[run] /= weight * d * n * bin_width
         distinct[run] = np.unique(velocity[0]).size
@@ -313,7 +320,7 @@ def simulate(
         p,
         blocks,
         measured,
-        block_duration,
+        durations,
         n_transient,
         histograms,
         distinct,
@@ -334,7 +341,7 @@ def _to_dataset(
     p,
     blocks,
     measured,
-    block_duration,
+    durations,
     n_transient,
     histograms,
     distinct,
@@ -416,7 +423,7 @@ def _to_dataset(
         ),
         "block": (
             "block",
-            (np.arange(blocks.shape[1]) - n_transient) * block_duration,
+            np.concatenate([[0.0], np.cumsum(durations)[:-1]]) - durations[:n_transient].sum(),
             "1/omega",
             "nominal start time of the block after the transient",
         ),
@@ -430,7 +437,8 @@ def _to_dataset(
     attrs = {
         "title": "cloning Monte Carlo of visco2008 section IV.A",
         "error_method": summary["error_method"],
-        "block_duration": block_duration,
+        "block_duration": float(durations[-1]),
+        "transient_block_duration": float(durations[0]),
         "units_note": "m = 1, T0 = 1, time in mean free times of the bath (omega = 1)",
     }
     return io.make_dataset(data_vars, coords, attrs)
