@@ -19,6 +19,8 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/visco2008.smk"
 include: "workflow/rules/cloning.smk"
 include: "workflow/rules/visco2008_cloning.smk"
+include: "workflow/rules/dsmc.smk"
+include: "workflow/rules/visco2008_dsmc.smk"
 include: "workflow/rules/targets.smk"
 
 
