@@ -11,6 +11,7 @@ provide(
     "results/visco2008/cloning.md",
     "results/visco2008/cloning.nc",
     *figure_files("visco2008", "cloning_velocity_density"),
+    *figure_files("visco2008", "cloning_extrapolation"),
 )
 provide(
     "visco2008/cloning_error_vs_time",
@@ -129,6 +130,25 @@ rule visco2008_cloning_velocity_density:
         "logs/visco2008/cloning_velocity_density.log",
     script:
         "../scripts/visco2008_cloning_velocity_density.py"
+
+
+rule visco2008_cloning_extrapolation:
+    input:
+        scan="results/visco2008/cloning.nc",
+        reference="results/visco2008/cloning/reference.nc",
+        script=figure_script("visco2008_cloning_extrapolation"),
+    output:
+        pdf="results/visco2008/cloning_extrapolation.pdf",
+        png=report(
+            "results/visco2008/cloning_extrapolation.png",
+            caption="../report/visco2008_cloning_extrapolation.rst",
+            category="visco2008",
+            subcategory="cloning Monte Carlo",
+        ),
+    log:
+        "logs/visco2008/cloning_extrapolation.log",
+    script:
+        "../scripts/visco2008_cloning_extrapolation.py"
 
 
 rule visco2008_cloning_error_vs_time:
