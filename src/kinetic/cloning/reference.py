@@ -38,8 +38,11 @@ spectrum of -r(v): in d = 2 the bound state exists but μ + 1/√2 ~ exp(-C e^{�
 C ≈ 1/2 (r(v) - r(0) ≈ v²/(4√2) makes the Birman-Schwinger integral diverge only
 logarithmically); in d = 3 it disappears above a finite λ. The first-order term of
 visco2008 Eq. (38), +e^{-λ}/√2, treats the δ(v) eigenfunction of L0 as isolated; it is
-not, and the exact μ lies below Eq. (38) by nearly e^{-λ}/√2 (by 0.088 at λ = 2,
-0.0352 at λ = 3), a difference the cloning Monte Carlo resolves.
+not. Eq. (37) projects L1 δ on the constant (the left eigenvector of the full operator
+at λ = 0), whereas first-order perturbation theory needs the left eigenvector of
+L0 = -r(v), which is δ(v) too: the collisions move the particle away from v = 0, and the
+projection vanishes. The exact μ lies below Eq. (38) by nearly e^{-λ}/√2 (by 0.088 at
+λ = 2, 0.035 at λ = 3, 0.013 at λ = 4), differences the cloning Monte Carlo resolves.
 """
 
 from __future__ import annotations
