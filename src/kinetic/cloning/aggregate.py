@@ -1,0 +1,430 @@
+"""Combine batch datasets of the cloning Monte Carlo into tables and datasets.
+
+- ``combine_points``: batches of one (kernel, λ, N_c) point -> one record (all runs);
+- ``extrapolate_points``: per (kernel, λ), the weighted 1/N_c -> 0 fit of μ, μ_rate, T, a2;
+- ``scan_table`` / ``scan_dataset``: results/visco2008/cloning.csv and .nc;
+- ``error_versus_cpu`` / ``error_table`` / ``error_dataset``: statistical error and
+  finite-N_c bias against CPU time (error-against-run-time study).
+
+T and a2 of a point whose population collapsed onto a few clones (large λ, flag
+``diversity_collapse`` of the front) are not estimates of the eigenfunction: they are
+left empty in the table and excluded from the extrapolation; μ is kept.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from kinetic import io
+from kinetic.cloning.estimators import extrapolate_population, observables_from_sums, summarize_runs
+from kinetic.cloning.kernels import BLOCK_FIELDS
+from kinetic.cloning.simulate import is_collapsed
+
+__all__ = [
+    "OBSERVABLES",
+    "TABLE_COLUMNS",
+    "combine_points",
+    "error_dataset",
+    "error_table",
+    "error_versus_cpu",
+    "extrapolate_points",
+    "scan_dataset",
+    "scan_table",
+]
+
+TABLE_COLUMNS = ["kernel", "lambda", "mu", "mu_err", "T", "T_err", "a2", "a2_err", "n_c"]
+"""Columns of results/visco2008/cloning.csv (issue 5 contract)."""
+
+OBSERVABLES = ("mu", "mu_rate", "temperature", "a2")
+_SHAPE_KEYS = ("kernel", "dimension", "lam", "population", "duration", "transient", "n_blocks")
+
+
+def _attribute(dataset, key):
+    return io.parameters_of(dataset)[key]
+
+
+def combine_points(datasets) -> list[dict[str, Any]]:
+    """Group batch datasets by point and pool their runs.
+
+    Batches of one point must share every parameter except ``first_run``/``n_runs`` and
+    must not repeat a run index. Returns records sorted by (kernel, λ, N_c).
+    """
+    groups = defaultdict(list)
+    for dataset in datasets:
+        parameters = io.parameters_of(dataset)
+        key = (parameters["kernel_label"], float(parameters["lam"]), int(parameters["population"]))
+        groups[key].append(dataset)
+    records = []
+    for (label, lam, population), members in sorted(groups.items()):
+        first = io.parameters_of(members[0])
+        for other in members[1:]:
+            parameters = io.parameters_of(other)
+            different = [k for k in _SHAPE_KEYS if parameters[k] != first[k]]
+            if different:
+                raise ValueError(
+                    f"batches of {label} lam={lam} N={population} differ in {different}"
+                )
+        runs = np.concatenate([m["run"].values for m in members])
+        if np.unique(runs).size != runs.size:
+            raise ValueError(f"batches of {label} lam={lam} N={population} repeat run indices")
+        order = np.argsort(runs)
+        blocks = np.concatenate(
+            [np.stack([m[name].values for name in BLOCK_FIELDS], axis=-1) for m in members]
+        )[order]
+        measured = members[0]["measured"].values.astype(bool)
+        dimension = int(first["dimension"])
+        summary = summarize_runs(blocks, measured, population, dimension, lam)
+        density = np.concatenate([m["velocity_density"].values for m in members])[order]
+        distinct = np.concatenate([m["distinct_velocities"].values for m in members])
+        records.append(
+            {
+                "kernel": label,
+                "lam": lam,
+                "population": population,
+                "dimension": dimension,
+                "n_runs": int(runs.size),
+                "duration": float(first["duration"]),
+                "transient": float(first["transient"]),
+                "blocks": blocks,
+                "measured": measured,
+                "cpu_seconds": np.concatenate([m["cpu_seconds"].values for m in members])[order],
+                "velocity": members[0]["velocity"].values,
+                "density": density.mean(axis=0),
+                "density_err": density.std(axis=0, ddof=1) / np.sqrt(runs.size)
+                if runs.size > 1
+                else np.full(density.shape[1], np.nan),
+                "distinct_min": int(distinct.min()),
+                "collapsed": is_collapsed(distinct.min(), population),
+                **{k: v for k, v in summary.items() if k != "error_method"},
+                "error_method": summary["error_method"],
+            }
+        )
+    return records
+
+
+def _fit(sizes, values, errors):
+    sizes, values, errors = map(np.asarray, (sizes, values, errors))
+    usable = np.isfinite(values) & np.isfinite(errors)
+    sizes, values, errors = sizes[usable], values[usable], errors[usable]
+    if np.unique(sizes).size < 2:
+        return None
+    if np.all(errors == 0):  # exact values (μ = 0 at λ = 0)
+        if np.ptp(values) == 0:
+            return {
+                "value": float(values[0]),
+                "err": 0.0,
+                "slope": 0.0,
+                "slope_err": 0.0,
+                "chi2": 0.0,
+                "dof": int(values.size - 2),
+            }
+        return None
+    errors = np.where(errors > 0, errors, errors[errors > 0].min())
+    fit = extrapolate_population(sizes, values, errors)
+    return {
+        "value": fit.intercept,
+        "err": fit.intercept_err,
+        "slope": fit.slope,
+        "slope_err": fit.slope_err,
+        "chi2": fit.chi2,
+        "dof": fit.dof,
+    }
+
+
+def extrapolate_points(records) -> list[dict[str, Any]]:
+    """Per (kernel, λ): weighted linear fits in 1/N_c of μ, μ_rate, T and a2.
+
+    Missing fits are None: fewer than two population sizes, or a diversity collapse at
+    any size (large λ: the bias then comes from the few surviving clones, not a 1/N_c
+    law, and T, a2 are not estimates of the eigenfunction).
+    """
+    by_point = defaultdict(list)
+    for record in records:
+        by_point[(record["kernel"], record["lam"])].append(record)
+    results = []
+    for (label, lam), members in sorted(by_point.items()):
+        collapsed = any(m["collapsed"] for m in members)
+        entry = {
+            "kernel": label,
+            "lam": lam,
+            "populations": [m["population"] for m in members],
+            "collapsed": collapsed,
+        }
+        for name in OBSERVABLES:
+            entry[name] = (
+                None
+                if collapsed
+                else _fit(
+                    [m["population"] for m in members],
+                    [m[name] for m in members],
+                    [m[f"{name}_err"] for m in members],
+                )
+            )
+        results.append(entry)
+    return results
+
+
+def scan_table(records, extrapolations) -> pd.DataFrame:
+    """The rows of cloning.csv: one per (kernel, λ, N_c), then one per (kernel, λ) with
+    n_c empty holding the 1/N_c -> 0 extrapolation (where there is one)."""
+    rows = []
+    for record in records:
+        keep = not record["collapsed"]
+        rows.append(
+            {
+                "kernel": record["kernel"],
+                "lambda": record["lam"],
+                "mu": record["mu"],
+                "mu_err": record["mu_err"],
+                "T": record["temperature"] if keep else np.nan,
+                "T_err": record["temperature_err"] if keep else np.nan,
+                "a2": record["a2"] if keep else np.nan,
+                "a2_err": record["a2_err"] if keep else np.nan,
+                "n_c": record["population"],
+            }
+        )
+    for entry in extrapolations:
+        if all(entry[name] is None for name in OBSERVABLES):
+            continue  # one population size only, or a collapsed population
+
+        def pick(name, field, entry=entry):
+            fit = entry[name]
+            return np.nan if fit is None else fit[field]
+
+        rows.append(
+            {
+                "kernel": entry["kernel"],
+                "lambda": entry["lam"],
+                "mu": pick("mu", "value"),
+                "mu_err": pick("mu", "err"),
+                "T": pick("temperature", "value"),
+                "T_err": pick("temperature", "err"),
+                "a2": pick("a2", "value"),
+                "a2_err": pick("a2", "err"),
+                "n_c": pd.NA,
+            }
+        )
+    frame = pd.DataFrame(rows, columns=TABLE_COLUMNS)
+    frame["n_c"] = frame["n_c"].astype("Int64")
+    return frame
+
+
+def scan_dataset(records, extrapolations):
+    """Dataset of every point (dim ``point``) and every extrapolation (dim ``limit``)."""
+    point = np.arange(len(records))
+    limit = np.arange(len(extrapolations))
+    velocity = records[0]["velocity"]
+
+    def column(name):
+        return np.array([r[name] for r in records])
+
+    data = {
+        "point_kernel": ("point", column("kernel").astype(str), "1", "collision kernel"),
+        "point_lambda": ("point", column("lam"), "1", "counting field lambda"),
+        "point_population": ("point", column("population"), "1", "population size N_c"),
+        "point_runs": ("point", column("n_runs"), "1", "independent runs"),
+        "point_duration": ("point", column("duration"), "1/omega", "measured time per run"),
+        "point_transient": ("point", column("transient"), "1/omega", "discarded time per run"),
+        "point_collapse": (
+            "point",
+            column("collapsed").astype(np.int8),
+            "1",
+            "1 if a run ended as a few clones (T, a2 not estimable)",
+        ),
+        "point_distinct_min": (
+            "point",
+            column("distinct_min"),
+            "1",
+            "fewest distinct velocities at the end of a run",
+        ),
+        "velocity_density": (
+            ("point", "velocity"),
+            np.stack(column("density")),
+            "1/sqrt(T0/m)",
+            "density of a velocity component, mean of runs",
+        ),
+        "velocity_density_err": (
+            ("point", "velocity"),
+            np.stack(column("density_err")),
+            "1/sqrt(T0/m)",
+            "standard error of velocity_density",
+        ),
+    }
+    units = {"mu": "omega", "mu_rate": "omega", "temperature": "T0", "a2": "1"}
+    names = {
+        "mu": "mu(lambda), compensation rate",
+        "mu_rate": "mu(lambda), (e^-lambda - 1)<r>",
+        "temperature": "T(lambda)",
+        "a2": "a2(lambda)",
+    }
+    for name in OBSERVABLES:
+        data[f"point_{name}"] = ("point", column(name), units[name], names[name])
+        data[f"point_{name}_err"] = (
+            "point",
+            column(f"{name}_err"),
+            units[name],
+            f"standard error of {names[name]}",
+        )
+
+        def fitted(field, name=name):
+            return np.array([np.nan if e[name] is None else e[name][field] for e in extrapolations])
+
+        data[f"limit_{name}"] = (
+            "limit",
+            fitted("value"),
+            units[name],
+            f"{names[name]}, extrapolated to 1/N_c = 0",
+        )
+        data[f"limit_{name}_err"] = (
+            "limit",
+            fitted("err"),
+            units[name],
+            "standard error of the extrapolation",
+        )
+        data[f"limit_{name}_slope"] = (
+            "limit",
+            fitted("slope"),
+            units[name],
+            "slope d/d(1/N_c) of the extrapolation",
+        )
+        data[f"limit_{name}_chi2"] = ("limit", fitted("chi2"), "1", "chi-square of the fit")
+    data["limit_kernel"] = (
+        "limit",
+        np.array([e["kernel"] for e in extrapolations]),
+        "1",
+        "collision kernel",
+    )
+    data["limit_lambda"] = (
+        "limit",
+        np.array([e["lam"] for e in extrapolations]),
+        "1",
+        "counting field lambda",
+    )
+    coords = {
+        "point": ("point", point, "1", "index of a (kernel, lambda, N_c) point"),
+        "limit": ("limit", limit, "1", "index of a (kernel, lambda) extrapolation"),
+        "velocity": ("velocity", velocity, "sqrt(T0/m)", "velocity component (bin centre)"),
+    }
+    return io.make_dataset(data, coords, {"title": "cloning Monte Carlo, visco2008 Figs 4-8"})
+
+
+def error_versus_cpu(record, steps: int = 12):
+    """Statistical error of μ and μ_rate against total CPU time for one point.
+
+    Uses the first k measured blocks of every run (k spread geometrically up to all of
+    them); the CPU time of k blocks is the runs' process time prorated by simulated time,
+    with the transient included. Returns (cpu_seconds, mu_err, mu_rate_err), each of
+    length <= steps.
+    """
+    blocks, measured = record["blocks"], record["measured"]
+    n_transient = int((~measured).sum())
+    n_measured = int(measured.sum())
+    # process time is prorated by simulated time (transient blocks may be longer)
+    elapsed = blocks[:, :, BLOCK_FIELDS.index("elapsed_time")].sum(axis=0)
+    cpu_per_time = record["cpu_seconds"].sum() / elapsed.sum()
+    transient_time = elapsed[:n_transient].sum()
+    measured_time = np.cumsum(elapsed[n_transient:])
+    counts = np.unique(np.geomspace(1, n_measured, steps).round().astype(int))
+    cpu, mu_err, rate_err = [], [], []
+    for k in counts:
+        sums = blocks[:, n_transient : n_transient + k, :].sum(axis=1)
+        mu, _, _, mu_rate = observables_from_sums(
+            sums, record["population"], record["dimension"], record["lam"]
+        )
+        if mu.size < 2:
+            break
+        cpu.append(cpu_per_time * (transient_time + measured_time[k - 1]))
+        mu_err.append(mu.std(ddof=1) / np.sqrt(mu.size))
+        rate_err.append(mu_rate.std(ddof=1) / np.sqrt(mu_rate.size))
+    return np.array(cpu), np.array(mu_err), np.array(rate_err)
+
+
+def error_table(records, exact: dict[float, float]) -> pd.DataFrame:
+    """Per (λ, N_c): CPU time, statistical errors, finite-N_c bias of μ_rate against
+    ``exact`` μ and against the extrapolation of these points, and the CPU time at which
+    the statistical error of μ_rate (scaled as 1/√CPU) falls to the bias (empty where the
+    bias is not resolved, |bias| < 2 standard errors)."""
+    extrapolated = {e["lam"]: e for e in extrapolate_points(records)}
+    rows = []
+    for record in records:
+        cpu = float(record["cpu_seconds"].sum())
+        lam = record["lam"]
+        limit = extrapolated[lam]["mu_rate"] or {"value": np.nan, "err": np.nan}
+        bias = record["mu_rate"] - exact[lam]
+        resolved = abs(bias) > 2 * record["mu_rate_err"]
+        crossover = cpu * (record["mu_rate_err"] / abs(bias)) ** 2 if resolved else np.nan
+        rows.append(
+            {
+                "lambda": lam,
+                "n_c": record["population"],
+                "cpu_seconds": cpu,
+                "mu": record["mu"],
+                "mu_err": record["mu_err"],
+                "mu_rate": record["mu_rate"],
+                "mu_rate_err": record["mu_rate_err"],
+                "mu_exact": exact[lam],
+                "bias": bias,
+                "bias_err": record["mu_rate_err"],
+                "bias_vs_extrapolation": record["mu_rate"] - limit["value"],
+                "bias_vs_extrapolation_err": float(np.hypot(record["mu_rate_err"], limit["err"])),
+                "cpu_seconds_stat_err_equals_bias": crossover,
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def error_dataset(records, exact):
+    """Error-against-CPU curves of every point (dims ``point``, ``step``)."""
+    curves = [error_versus_cpu(r) for r in records]
+    steps = max(c[0].size for c in curves)
+
+    def padded(index):
+        out = np.full((len(records), steps), np.nan)
+        for row, curve in enumerate(curves):
+            out[row, : curve[index].size] = curve[index]
+        return out
+
+    data = {
+        "cpu_seconds": (("point", "step"), padded(0), "s", "CPU time spent on the runs"),
+        "mu_err": (("point", "step"), padded(1), "omega", "standard error of mu (compensations)"),
+        "mu_rate_err": (
+            ("point", "step"),
+            padded(2),
+            "omega",
+            "standard error of mu_rate ((e^-lambda - 1)<r>)",
+        ),
+        "point_lambda": ("point", np.array([r["lam"] for r in records]), "1", "lambda"),
+        "point_population": (
+            "point",
+            np.array([r["population"] for r in records]),
+            "1",
+            "population size N_c",
+        ),
+        "mu_rate": (
+            "point",
+            np.array([r["mu_rate"] for r in records]),
+            "omega",
+            "mu(lambda) from all runs, (e^-lambda - 1)<r>",
+        ),
+        "mu_rate_final_err": (
+            "point",
+            np.array([r["mu_rate_err"] for r in records]),
+            "omega",
+            "standard error of mu_rate from all runs",
+        ),
+        "mu_exact": (
+            "point",
+            np.array([exact[r["lam"]] for r in records]),
+            "omega",
+            "mu(lambda), deterministic solution of Eq. 28",
+        ),
+    }
+    coords = {
+        "point": ("point", np.arange(len(records)), "1", "index of a (lambda, N_c) point"),
+        "step": ("step", np.arange(steps), "1", "index along the run length"),
+    }
+    return io.make_dataset(data, coords, {"title": "cloning error against CPU time"})

@@ -1,0 +1,503 @@
+"""Numba kernels of the cloning Monte Carlo (visco2008 §IV.A, Eqs. 51-56).
+
+A population of ``n`` independent tagged particles, each in an equilibrium bath at
+T0 = 1, evolves under the tilted linear Boltzmann operator of visco2008 Eq. (28),
+
+    L_λ f = e^{-λ} Gain[f] - Loss[f],
+
+realised as a branching process: every collision is kept (elastic post-collision
+velocity) with probability e^{-λ}; otherwise the particle is annihilated (λ > 0) or
+duplicated (λ < 0, at the collision rate multiplied by 2e^{-λ} - 1 with keep probability
+e^{-λ}/(2e^{-λ} - 1), i.e. the time rescaling of Eq. 56 read in the original time). The
+population is held at ``n`` by cloning (resp. removing) a uniformly chosen *other* member,
+and μ(λ) is the net rate of duplications minus annihilations per member.
+
+Units: m = 1, T0 = 1 and time in mean free times of the bath (ω = 1, visco2008 Eq. 7).
+
+Collision sampling is exact (no time step). For hard spheres the rate density of a
+collision with apse direction σ̂ (uniform on the unit sphere) and bath normal velocity
+u = v2·σ̂ ~ N(0, 1) is K (v·σ̂ - u)⁺ with K = √π, which gives ω = 1 in every dimension
+(g·σ̂ ~ N(0, 2) so <(g·σ̂)⁺> = 1/√π) and r(0) = 1/√2 (Eq. 36). The post-collision
+velocity is v' = v - (v·σ̂ - u) σ̂: the normal component is replaced by u. Candidates are
+proposed with the majorant K[(v·σ̂)⁺ + (-u)⁺] ≥ K(v·σ̂ - u)⁺, split in two channels:
+
+- channel A, rate K1·|v| (K1 = K β_d/Ω_d: 1/√π in d = 2, √π/4 in d = 3): σ̂ drawn with
+  density ∝ (v̂·σ̂)⁺, u ~ N(0, 1);
+- channel B, rate K/√(2π) = 1/√2: σ̂ uniform, u = -Rayleigh (density ∝ (-u)⁺ φ(u));
+
+and accepted with probability (v·σ̂ - u)⁺ / [(v·σ̂)⁺ + (-u)⁺]. At population level the
+particle is chosen uniformly and channel A/B/rejection is decided against the global
+bound K1·v_max + 1/√2, where v_max ≥ max_i |v_i| is recomputed at every block start and
+raised the moment a collision produces a faster particle. Velocities change only at
+events, so the bound is predictable and the thinning is exact (uniformisation).
+
+Maxwell molecules: constant rate ω = 1 per particle, σ̂ uniform, u ~ N(0, 1), same
+post-collision rule (isotropic scattering); every candidate is a collision.
+
+Time bookkeeping: the uniformised chain has candidates at total rate
+Λ = c_λ · n · bound; each candidate advances time by its conditional mean 1/Λ instead of
+an exponential variate (Rao-Blackwellisation: the population's jump chain and every
+time average are unchanged, one logarithm per candidate is saved and the variance of
+μ drops).
+
+Arrays are struct-of-arrays: ``velocity[k, i]`` is component k (0 <= k < d) of member i,
+shape (d, n), C order; ``speed[i] = |velocity[:, i]|``; ``state`` is one xoshiro256+ row
+(4 uint64) from ``kinetic.rng.stream_states``, advanced in place.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from kinetic.rng import normal_pair, uniform, uniform_open
+
+__all__ = [
+    "BLOCK_FIELDS",
+    "HARD_SPHERES",
+    "MAXWELL",
+    "compensation_parameters",
+    "draw_population",
+    "run_blocks",
+]
+
+HARD_SPHERES = 0
+"""Kernel code of hard spheres (hard disks in d = 2): rate ∝ (g·σ̂)⁺."""
+MAXWELL = 1
+"""Kernel code of Maxwell molecules: constant rate ω = 1."""
+
+BLOCK_FIELDS = (
+    "elapsed_time",  # time the block covered
+    "net_compensations",  # duplications - annihilations (= clones removed - clones made)
+    "elastic_collisions",  # kept collisions
+    "collision_events",  # kept + annihilating/duplicating collisions
+    "candidates",  # proposals of the uniformised chain, rejected ones included
+    "proposals",  # candidates that reached the collision-acceptance test (hard spheres)
+    "integral_v2",  # ∫ Σ_i |v_i|² dt over the block
+    "integral_v4",  # ∫ Σ_i |v_i|⁴ dt over the block
+    "integral_rate",  # ∫ Σ_i r(|v_i|) dt over the block (r from the rate table)
+    "max_speed",  # largest velocity bound used in the block
+)
+"""Columns of the ``blocks`` output array of ``run_blocks``, in order."""
+
+_SQRT_PI = math.sqrt(math.pi)
+_RATE_AT_REST = 1.0 / math.sqrt(2.0)  # r(0)/ω, visco2008 Eq. (36); also channel B's rate
+
+
+@njit(cache=True)
+def compensation_parameters(lam):
+    """Rate factor c_λ and keep probability of a collision for the tilt ``lam``.
+
+    λ >= 0: events at the collision rate (c = 1), kept with probability e^{-λ}, else the
+    particle is annihilated. λ < 0: events at c = 2e^{-λ} - 1 times the collision rate,
+    kept with probability e^{-λ}/c, else the particle is duplicated (Eq. 56).
+    Returns ``(rate_factor, keep_probability, duplicating)``.
+    """
+    if lam >= 0.0:
+        return 1.0, math.exp(-lam), False
+    factor = 2.0 * math.exp(-lam) - 1.0
+    return factor, math.exp(-lam) / factor, True
+
+
+@njit(cache=True)
+def channel_a_rate(d):
+    """K1 = √π β_d/Ω_d: channel-A rate per unit speed (1/√π in d = 2, √π/4 in d = 3)."""
+    if d == 2:
+        return 1.0 / _SQRT_PI
+    return _SQRT_PI / 4.0
+
+
+@njit(inline="always")
+def _disk_point(state):
+    """Uniform point (x, y) in the open unit disk minus the origin, and r2 = x² + y²."""
+    while True:
+        x = 2.0 * uniform(state) - 1.0
+        y = 2.0 * uniform(state) - 1.0
+        r2 = x * x + y * y
+        if 0.0 < r2 < 1.0:
+            return x, y, r2
+
+
+@njit(inline="always")
+def _cached_normal(state, cache):
+    """A standard normal variate; the polar method's second variate waits in ``cache``.
+
+    ``cache`` is a float64[2] array: ``cache[0]`` = 1 when ``cache[1]`` holds a variate.
+    """
+    if cache[0] != 0.0:
+        cache[0] = 0.0
+        return cache[1]
+    z0, z1 = normal_pair(state)
+    cache[0] = 1.0
+    cache[1] = z1
+    return z0
+
+
+@njit(inline="always")
+def _unit_sphere_point(state):
+    """Uniform direction on S² (Marsaglia 1972): returns (x, y, z)."""
+    x, y, r2 = _disk_point(state)
+    root = 2.0 * math.sqrt(1.0 - r2)
+    return x * root, y * root, 1.0 - 2.0 * r2
+
+
+@njit(inline="always")
+def _hard_sphere_proposal_2d(vx, vy, speed, use_channel_a, state, cache):
+    """One hard-disk candidate of member with velocity (vx, vy) and |v| = ``speed``.
+
+    Channel A (``use_channel_a``): σ̂ at angle θ from v̂ with sin θ uniform on (-1, 1)
+    (density ∝ cos θ), u ~ N(0, 1). Channel B: σ̂ uniform and u = -Rayleigh from one
+    disk point. Returns ``(accepted, new_vx, new_vy)``.
+    """
+    if use_channel_a:
+        sin_t = 2.0 * uniform(state) - 1.0
+        cos_t = math.sqrt(1.0 - sin_t * sin_t)
+        nx = vx / speed
+        ny = vy / speed
+        sx = cos_t * nx - sin_t * ny
+        sy = cos_t * ny + sin_t * nx
+        a = speed * cos_t
+        u = _cached_normal(state, cache)
+        majorant = a + max(-u, 0.0)
+    else:
+        x, y, r2 = _disk_point(state)
+        inv = 1.0 / math.sqrt(r2)
+        sx = x * inv
+        sy = y * inv
+        u = -math.sqrt(-2.0 * math.log(r2))
+        a = vx * sx + vy * sy
+        majorant = max(a, 0.0) - u
+    gap = a - u
+    if gap <= 0.0 or uniform(state) * majorant >= gap:
+        return False, vx, vy
+    return True, vx - gap * sx, vy - gap * sy
+
+
+@njit(inline="always")
+def _hard_sphere_proposal_3d(vx, vy, vz, speed, use_channel_a, state, cache):
+    """One hard-sphere candidate in d = 3; see ``_hard_sphere_proposal_2d``.
+
+    Channel A draws σ̂ = (v̂ + w)/|v̂ + w| with w uniform on S², which has density ∝
+    (v̂·σ̂)⁺ (Lambert's law); channel B draws σ̂ uniform and u = -√(-2 ln U).
+    Returns ``(accepted, new_vx, new_vy, new_vz)``.
+    """
+    wx, wy, wz = _unit_sphere_point(state)
+    if use_channel_a:
+        inv_speed = 1.0 / speed
+        px = vx * inv_speed + wx
+        py = vy * inv_speed + wy
+        pz = vz * inv_speed + wz
+        norm2 = px * px + py * py + pz * pz
+        if norm2 <= 0.0:  # w = -v̂ exactly: probability zero, treat as a rejection
+            return False, vx, vy, vz
+        inv = 1.0 / math.sqrt(norm2)
+        sx = px * inv
+        sy = py * inv
+        sz = pz * inv
+        u = _cached_normal(state, cache)
+        a = vx * sx + vy * sy + vz * sz
+        majorant = max(a, 0.0) + max(-u, 0.0)
+    else:
+        sx = wx
+        sy = wy
+        sz = wz
+        u = -math.sqrt(-2.0 * math.log(uniform_open(state)))
+        a = vx * sx + vy * sy + vz * sz
+        majorant = max(a, 0.0) - u
+    gap = a - u
+    if gap <= 0.0 or uniform(state) * majorant >= gap:
+        return False, vx, vy, vz
+    return True, vx - gap * sx, vy - gap * sy, vz - gap * sz
+
+
+@njit(inline="always")
+def _maxwell_collision(velocity, i, state, cache):
+    """Elastic Maxwell-molecule collision of member ``i``, in place.
+
+    σ̂ uniform, bath normal velocity u ~ N(0, 1): the component of v_i along σ̂ becomes u.
+    Returns the new squared speed.
+    """
+    d = velocity.shape[0]
+    u = _cached_normal(state, cache)
+    if d == 2:
+        x, y, r2 = _disk_point(state)
+        inv = 1.0 / math.sqrt(r2)
+        sx = x * inv
+        sy = y * inv
+        vx = velocity[0, i]
+        vy = velocity[1, i]
+        gap = vx * sx + vy * sy - u
+        vx -= gap * sx
+        vy -= gap * sy
+        velocity[0, i] = vx
+        velocity[1, i] = vy
+        return vx * vx + vy * vy
+    sx, sy, sz = _unit_sphere_point(state)
+    vx = velocity[0, i]
+    vy = velocity[1, i]
+    vz = velocity[2, i]
+    gap = vx * sx + vy * sy + vz * sz - u
+    vx -= gap * sx
+    vy -= gap * sy
+    vz -= gap * sz
+    velocity[0, i] = vx
+    velocity[1, i] = vy
+    velocity[2, i] = vz
+    return vx * vx + vy * vy + vz * vz
+
+
+@njit(inline="always")
+def _other_member(i, n, state):
+    """A member index uniform over {0, ..., n-1} minus {i} (n >= 2)."""
+    j = int(uniform(state) * (n - 1))
+    if j >= i:
+        j += 1
+    return j
+
+
+@njit(inline="always")
+def _copy_member(velocity, speed, source, target):
+    """Member ``target`` becomes a clone of member ``source``."""
+    for k in range(velocity.shape[0]):
+        velocity[k, target] = velocity[k, source]
+    speed[target] = speed[source]
+
+
+@njit(cache=True)
+def draw_population(velocity, speed, state):
+    """Fill ``velocity`` (d, n) with bath velocities N(0, T0 = 1) and ``speed`` with |v|."""
+    d, n = velocity.shape
+    cache = np.zeros(2)
+    for i in range(n):
+        s2 = 0.0
+        for k in range(d):
+            value = _cached_normal(state, cache)
+            velocity[k, i] = value
+            s2 += value * value
+        speed[i] = math.sqrt(s2)
+
+
+@njit(inline="always")
+def _tabulated_rate(speed, rate_table, table_step):
+    """r(speed) by linear interpolation in ``rate_table`` (r at speeds k·table_step).
+
+    Beyond the table r grows linearly with the slope of its last interval (r(v) ~ K1 v).
+    """
+    position = speed / table_step
+    k = int(position)
+    last = rate_table.shape[0] - 2
+    if k > last:
+        k = last
+    fraction = position - k
+    return rate_table[k] + fraction * (rate_table[k + 1] - rate_table[k])
+
+
+@njit(cache=True)
+def _population_sums(velocity, speed, rate_table, table_step):
+    """Recompute ``speed`` from ``velocity``; return (Σ|v|², Σ|v|⁴, Σ r(|v|), max |v|)."""
+    d, n = velocity.shape
+    sum2 = 0.0
+    sum4 = 0.0
+    sum_rate = 0.0
+    largest = 0.0
+    for i in range(n):
+        s2 = 0.0
+        for k in range(d):
+            s2 += velocity[k, i] * velocity[k, i]
+        speed[i] = math.sqrt(s2)
+        sum2 += s2
+        sum4 += s2 * s2
+        sum_rate += _tabulated_rate(speed[i], rate_table, table_step)
+        largest = max(largest, speed[i])
+    return sum2, sum4, sum_rate, largest
+
+
+@njit(cache=True)
+def _snapshot_histogram(velocity, weight, half_width, histogram):
+    """Add ``weight`` to the bin of every velocity component in [-half_width, half_width)."""
+    d, n = velocity.shape
+    n_bins = histogram.shape[0]
+    scale = n_bins / (2.0 * half_width)
+    for k in range(d):
+        for i in range(n):
+            position = (velocity[k, i] + half_width) * scale
+            if 0.0 <= position < n_bins:
+                histogram[int(position)] += weight
+
+
+@njit(cache=True)
+def run_blocks(
+    kernel,
+    lam,
+    velocity,
+    speed,
+    state,
+    block_duration,
+    blocks,
+    half_width,
+    histogram,
+    rate_table,
+    table_step,
+):
+    """Advance the population through ``blocks.shape[0]`` blocks of ``block_duration``.
+
+    Parameters
+    ----------
+    kernel : int
+        ``HARD_SPHERES`` or ``MAXWELL``.
+    lam : float
+        Tilt λ conjugate to the number of collisions.
+    velocity : float64[d, n]
+        Members' velocities (d = 2 or 3, n >= 2), advanced in place.
+    speed : float64[n]
+        Work array, overwritten with |velocity[:, i]|.
+    state : uint64[4]
+        xoshiro256+ state of this realisation, advanced in place.
+    block_duration : float
+        Time (units 1/ω) per block; a block ends at the first candidate at or past it.
+    blocks : float64[n_blocks, len(BLOCK_FIELDS)]
+        Output, one row per block (columns in ``BLOCK_FIELDS``).
+    half_width : float
+        Velocity-component histogram range [-half_width, half_width).
+    histogram : float64[n_bins]
+        Accumulates, at the end of each block, the population's velocity components
+        weighted by the current candidate time step (this makes the snapshots of the
+        uniformised chain time averages); the caller normalises.
+    rate_table : float64[m], m >= 2
+        Collision rate r(k·table_step)/ω of one member, k = 0..m-1, used only for the
+        ``integral_rate`` column: since ∫ L_λ f dv = (e^{-λ} - 1) ∫ r f dv (Eq. 28),
+        μ = (e^{-λ} - 1) <r> over the population is an estimator with the same
+        expectation as the compensation count and without its counting noise.
+    table_step : float
+        Speed spacing of ``rate_table``.
+
+    Returns the total weight added to ``histogram`` (sum of the snapshot weights).
+    The polar-method variate cache is reset at each call, so results do not depend on
+    how blocks are split into calls.
+    """
+    d, n = velocity.shape
+    rate_factor, keep, duplicating = compensation_parameters(lam)
+    always_keep = keep >= 1.0
+    k1 = channel_a_rate(d)
+    cache = np.zeros(2)
+    histogram_weight = 0.0
+    for block in range(blocks.shape[0]):
+        sum2, sum4, sum_rate, v_max = _population_sums(velocity, speed, rate_table, table_step)
+        bound = k1 * v_max + _RATE_AT_REST if kernel == HARD_SPHERES else 1.0
+        dt = 1.0 / (rate_factor * n * bound)
+        block_max = v_max
+        elapsed = 0.0
+        net = 0
+        elastic = 0
+        events = 0
+        candidates = 0
+        proposals = 0
+        integral2 = 0.0
+        integral4 = 0.0
+        integral_rate = 0.0
+        while elapsed < block_duration:
+            # the state before this candidate held during its waiting time
+            integral2 += sum2 * dt
+            integral4 += sum4 * dt
+            integral_rate += sum_rate * dt
+            elapsed += dt
+            candidates += 1
+            position = uniform(state) * n
+            i = int(position)
+            if i >= n:  # guard against rounding of uniform * n
+                i = n - 1
+            if kernel == HARD_SPHERES:
+                threshold = (position - i) * bound
+                if threshold < _RATE_AT_REST:
+                    use_a = False
+                elif threshold < _RATE_AT_REST + k1 * speed[i]:
+                    use_a = True
+                else:
+                    continue  # thinned: no event
+                proposals += 1
+                if d == 2:
+                    accepted, nx, ny = _hard_sphere_proposal_2d(
+                        velocity[0, i], velocity[1, i], speed[i], use_a, state, cache
+                    )
+                    nz = 0.0
+                else:
+                    accepted, nx, ny, nz = _hard_sphere_proposal_3d(
+                        velocity[0, i],
+                        velocity[1, i],
+                        velocity[2, i],
+                        speed[i],
+                        use_a,
+                        state,
+                        cache,
+                    )
+                if not accepted:
+                    continue
+                events += 1
+                if always_keep or uniform(state) < keep:
+                    old2 = speed[i] * speed[i]
+                    velocity[0, i] = nx
+                    velocity[1, i] = ny
+                    new2 = nx * nx + ny * ny
+                    if d == 3:
+                        velocity[2, i] = nz
+                        new2 += nz * nz
+                    elastic += 1
+                else:
+                    old2 = -1.0
+            else:
+                proposals += 1
+                events += 1
+                if always_keep or uniform(state) < keep:
+                    old2 = speed[i] * speed[i]
+                    new2 = _maxwell_collision(velocity, i, state, cache)
+                    elastic += 1
+                else:
+                    old2 = -1.0
+            if old2 >= 0.0:  # elastic: member i has a new velocity
+                new_speed = math.sqrt(new2)
+                sum_rate += _tabulated_rate(new_speed, rate_table, table_step) - _tabulated_rate(
+                    speed[i], rate_table, table_step
+                )
+                speed[i] = new_speed
+                sum2 += new2 - old2
+                sum4 += new2 * new2 - old2 * old2
+                if new_speed > v_max and kernel == HARD_SPHERES:
+                    # raise the bound the moment it would be exceeded
+                    v_max = new_speed
+                    bound = k1 * v_max + _RATE_AT_REST
+                    dt = 1.0 / (rate_factor * n * bound)
+                    block_max = max(block_max, v_max)
+                continue
+            j = _other_member(i, n, state)
+            if duplicating:
+                source = i
+                target = j
+                net += 1
+            else:
+                source = j
+                target = i
+                net -= 1
+            old2 = speed[target] * speed[target]
+            new2 = speed[source] * speed[source]
+            sum_rate += _tabulated_rate(speed[source], rate_table, table_step) - _tabulated_rate(
+                speed[target], rate_table, table_step
+            )
+            _copy_member(velocity, speed, source, target)
+            sum2 += new2 - old2
+            sum4 += new2 * new2 - old2 * old2
+        row = blocks[block]
+        row[0] = elapsed
+        row[1] = net
+        row[2] = elastic
+        row[3] = events
+        row[4] = candidates
+        row[5] = proposals
+        row[6] = integral2
+        row[7] = integral4
+        row[8] = integral_rate
+        row[9] = block_max
+        histogram_weight += dt
+        _snapshot_histogram(velocity, dt, half_width, histogram)
+    return histogram_weight

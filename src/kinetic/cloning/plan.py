@@ -1,0 +1,154 @@
+"""Job plan of the cloning simulations: names of points and the parameters of each job.
+
+The workflow splits every (kernel, λ, N_c) point into batches of independent runs. Paths
+name points by tokens built from the config (``lam+1.000``, ``N1000``); the rules map a
+token back to its value by lookup in the config, never by parsing it. Run k of a point
+uses row k of the point's stream states, so results do not depend on the batching.
+
+Config section ``visco2008.cloning`` (schema: workflow/schemas/visco2008.cloning.schema.yaml)::
+
+    kernels: {hard_disks: {lambdas: [...], populations: [...]}, maxwell: {...}}
+    collisions_per_run, runs_per_batch, batches, n_blocks, transient,
+    transient_kept_collisions, histogram_bins, histogram_half_width
+    error_vs_time: {lambdas, populations, collisions_per_run, runs_per_batch, n_blocks}
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from kinetic.cloning.kernels import compensation_parameters
+
+__all__ = [
+    "KERNEL_SETTINGS",
+    "batch_keys",
+    "lambda_token",
+    "point_seed_key",
+    "population_token",
+    "reference_lambdas",
+    "run_parameters",
+    "study_points",
+]
+
+KERNEL_SETTINGS = {
+    "hard_disks": {"kernel": "hard_spheres", "dimension": 2, "slowest_rate": 1 / math.sqrt(2)},
+    "maxwell": {"kernel": "maxwell", "dimension": 2, "slowest_rate": 1.0},
+}
+"""Config kernel names (also the ``kernel`` column of cloning.csv) -> front arguments."""
+
+
+def lambda_token(lam: float) -> str:
+    """Path token of a tilt: ``lam+1.000``, ``lam-0.250``."""
+    return f"lam{float(lam):+.3f}"
+
+
+def population_token(population: int) -> str:
+    """Path token of a population size: ``N1000``."""
+    return f"N{int(population)}"
+
+
+def study_points(section: Mapping[str, Any], study: str) -> list[tuple[str, float, int]]:
+    """(kernel, λ, N_c) of every point of ``study`` ('scan' or 'error_vs_time')."""
+    if study == "scan":
+        return [
+            (kernel, float(lam), int(n))
+            for kernel, grid in section["kernels"].items()
+            for lam in grid["lambdas"]
+            for n in grid["populations"]
+        ]
+    if study == "error_vs_time":
+        grid = section["error_vs_time"]
+        return [
+            ("hard_disks", float(lam), int(n))
+            for lam in grid["lambdas"]
+            for n in grid["populations"]
+        ]
+    raise ValueError(f"unknown cloning study {study!r}; expected 'scan' or 'error_vs_time'")
+
+
+def _study_settings(section: Mapping[str, Any], study: str) -> dict[str, Any]:
+    settings = {key: section[key] for key in ("collisions_per_run", "runs_per_batch", "n_blocks")}
+    settings["batches"] = section["batches"]
+    if study == "error_vs_time":
+        study_section = section["error_vs_time"]
+        settings.update({key: study_section[key] for key in settings if key != "batches"})
+        settings["batches"] = 1
+    return settings
+
+
+def batch_keys(section: Mapping[str, Any], study: str) -> list[tuple[str, str, str, int]]:
+    """(kernel, λ token, N token, batch) of every job of ``study``."""
+    batches = _study_settings(section, study)["batches"]
+    return [
+        (kernel, lambda_token(lam), population_token(n), batch)
+        for kernel, lam, n in study_points(section, study)
+        for batch in range(batches)
+    ]
+
+
+def point_seed_key(study: str, kernel: str, lam_token: str, n_token: str) -> str:
+    """Key from which a point's seed derives (the batch is not part of it)."""
+    return f"visco2008/cloning/{study}/{kernel}/{lam_token}/{n_token}"
+
+
+def run_parameters(
+    section: Mapping[str, Any],
+    study: str,
+    kernel: str,
+    lam_token: str,
+    n_token: str,
+    batch: int,
+    seed: int,
+) -> dict[str, Any]:
+    """Keyword arguments of ``kinetic.cloning.simulate`` for one batch job.
+
+    The measured time is ``collisions_per_run / (N_c c_λ)`` mean free times (c_λ = 1 for
+    λ >= 0, 2e^{-λ} - 1 below: about ``collisions_per_run`` collision events a run), and
+    the transient is the longer of ``transient`` and the time in which a member keeps
+    ``transient_kept_collisions`` collisions at the slowest rate (e^{λ}/r_min per one).
+    """
+    by_token = {
+        (k, lambda_token(lam), population_token(n)): (lam, n)
+        for k, lam, n in study_points(section, study)
+    }
+    try:
+        lam, population = by_token[(kernel, lam_token, n_token)]
+    except KeyError:
+        raise ValueError(
+            f"no cloning point {kernel}/{lam_token}/{n_token} in study {study!r} of the config"
+        ) from None
+    settings = _study_settings(section, study)
+    if not 0 <= int(batch) < settings["batches"]:
+        raise ValueError(f"batch {batch} outside 0..{settings['batches'] - 1}")
+    rate_factor, _, _ = compensation_parameters(lam)
+    duration = settings["collisions_per_run"] / (population * rate_factor)
+    kernel_settings = KERNEL_SETTINGS[kernel]
+    renewal = section["transient_kept_collisions"] * math.exp(lam) / kernel_settings["slowest_rate"]
+    return {
+        "kernel": kernel_settings["kernel"],
+        "dimension": kernel_settings["dimension"],
+        "lam": lam,
+        "population": population,
+        "duration": duration,
+        "transient": max(float(section["transient"]), renewal),
+        "n_blocks": int(settings["n_blocks"]),
+        "n_runs": int(settings["runs_per_batch"]),
+        "first_run": int(batch) * int(settings["runs_per_batch"]),
+        "seed": int(seed),
+        "histogram_bins": int(section["histogram_bins"]),
+        "histogram_half_width": float(section["histogram_half_width"]),
+    }
+
+
+def reference_lambdas(section: Mapping[str, Any]) -> list[float]:
+    """λ grid of the deterministic solution of Eq. 28: ``reference_points`` values over
+    the scan's range, plus every λ of the scan and of the error study (sorted, unique)."""
+    scanned = [lam for _, lam, _ in study_points(section, "scan")]
+    studied = [lam for _, lam, _ in study_points(section, "error_vs_time")]
+    low, high = min(scanned + studied), max(scanned + studied)
+    grid = np.linspace(low, high, int(section["reference_points"]))
+    return sorted({round(float(x), 12) for x in [*grid, *scanned, *studied]})

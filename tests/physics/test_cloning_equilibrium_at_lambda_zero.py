@@ -1,0 +1,57 @@
+"""visco2008 §III.B: at λ = 0 the eigenfunction is the bath Maxwellian, μ(0) = 0,
+T(0) = T0 = 1, a2(0) = 0, for hard disks and hard spheres (this checks the exact
+thinning and the elastic collision rule: any error in either heats, cools or deforms the
+stationary population)."""
+
+import numpy as np
+import pytest
+from scipy import special
+
+from kinetic.cloning import simulate
+
+
+@pytest.fixture(scope="module", params=[2, 3])
+def equilibrium(request):
+    return simulate(
+        kernel="hard_spheres",
+        dimension=request.param,
+        lam=0.0,
+        population=1000,
+        duration=200.0,
+        transient=5.0,
+        n_blocks=5,
+        n_runs=6,
+        seed=77,
+    )
+
+
+def test_no_compensation_at_lambda_zero(equilibrium):
+    assert float(equilibrium.mu) == 0.0
+    assert float(equilibrium.mu_rate) == 0.0
+
+
+def test_temperature_and_kurtosis_of_the_bath(equilibrium):
+    assert abs(float(equilibrium.temperature) - 1.0) < 4 * float(equilibrium.temperature_err)
+    assert abs(float(equilibrium.a2)) < 4 * float(equilibrium.a2_err)
+
+
+def test_velocity_histogram_is_the_maxwellian(equilibrium):
+    # members are independent at λ = 0 and snapshots are 40 collision times apart, so
+    # the pooled counts are multinomial: a chi-square goodness-of-fit test on |v| < 3
+    ds = equilibrium
+    snapshots = int(ds.measured.sum()) * ds.sizes["run"]
+    width = float(ds.velocity[1] - ds.velocity[0])
+    samples = snapshots * int(ds.attrs["dimension"]) * int(ds.attrs["population"])
+    counts = ds.velocity_density.mean("run").values * samples * width
+    v = ds.velocity.values
+    bin_probability = np.diff(erf_cdf(np.append(v - width / 2, v[-1] + width / 2)))
+    inside = np.abs(v) < 3.0
+    expected = samples * bin_probability[inside]
+    chi2 = float((((counts[inside] - expected) ** 2) / expected).sum())
+    dof = int(inside.sum())
+    assert chi2 < dof + 5 * np.sqrt(2 * dof), (chi2, dof)
+
+
+def erf_cdf(x):
+    """Standard normal cumulative distribution."""
+    return 0.5 * (1.0 + special.erf(np.asarray(x) / np.sqrt(2.0)))

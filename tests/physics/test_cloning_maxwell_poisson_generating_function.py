@@ -1,0 +1,61 @@
+"""visco2008 Fig. 4: for Maxwell molecules the number of collisions is Poissonian, so the
+cloning Monte Carlo must give μ(λ) = e^{-λ} - 1 over the whole λ range, and the tilted
+eigenfunction stays the bath Maxwellian (T = 1, a2 = 0) because the rate does not
+depend on the velocity."""
+
+import math
+
+import pytest
+
+from kinetic.cloning import simulate
+
+LAMBDAS = [-1.5, -0.5, 0.5, 1.0, 2.0, 4.0, 8.0]
+
+
+def run(lam):
+    transient = max(5.0, 1.5 * math.exp(lam))  # >= 1 kept collision per member
+    return simulate(
+        kernel="maxwell",
+        dimension=2,
+        lam=lam,
+        population=200,
+        duration=100.0,
+        transient=transient,
+        n_blocks=5,
+        n_runs=6,
+        seed=404,
+    )
+
+
+@pytest.fixture(scope="module")
+def results():
+    return {lam: run(lam) for lam in LAMBDAS}
+
+
+@pytest.mark.parametrize("lam", LAMBDAS)
+def test_mu_is_the_poisson_generating_function(results, lam):
+    ds = results[lam]
+    assert abs(float(ds.mu) - math.expm1(-lam)) < 4 * float(ds.mu_err)
+
+
+@pytest.mark.parametrize("lam", LAMBDAS)
+def test_eigenfunction_stays_maxwellian(results, lam):
+    ds = results[lam]
+    assert abs(float(ds.temperature) - 1.0) < 4 * float(ds.temperature_err)
+    assert abs(float(ds.a2)) < 4 * float(ds.a2_err)
+
+
+def test_three_dimensions_too():
+    ds = simulate(
+        kernel="maxwell",
+        dimension=3,
+        lam=-1.0,
+        population=200,
+        duration=100.0,
+        transient=5.0,
+        n_blocks=5,
+        n_runs=6,
+        seed=405,
+    )
+    assert abs(float(ds.mu) - math.expm1(1.0)) < 4 * float(ds.mu_err)
+    assert abs(float(ds.temperature) - 1.0) < 4 * float(ds.temperature_err)

@@ -1,0 +1,98 @@
+"""Front of the cloning Monte Carlo: validation, reproducibility, dataset conventions."""
+
+import math
+
+import numpy as np
+import pytest
+
+from kinetic.cloning import LAMBDA_MAX, LAMBDA_MIN, extrapolate_population, simulate
+from kinetic.io import check_conventions, parameters_of
+
+SMALL = {
+    "kernel": "hard_spheres",
+    "dimension": 2,
+    "lam": 0.5,
+    "population": 50,
+    "duration": 4.0,
+    "transient": 4.0,
+    "n_blocks": 4,
+    "n_runs": 2,
+    "seed": 3,
+}
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        ({"lam": LAMBDA_MIN - 0.5}, "lam must be in"),
+        ({"lam": LAMBDA_MAX + 1.0}, "lam must be in"),
+        ({"lam": math.nan}, "lam must be finite"),
+        ({"lam": math.inf}, "lam must be finite"),
+        ({"population": 1}, "population must be >= 2"),
+        ({"population": 2.5}, "population must be an integer"),
+        ({"duration": 0.0}, "duration must be > 0"),
+        ({"duration": math.inf}, "duration must be finite"),
+        ({"transient": -1.0}, "transient must be >= 0"),
+        ({"transient": math.nan}, "transient must be finite"),
+        ({"kernel": "vhp"}, "kernel must be one of"),
+        ({"dimension": 4}, "dimension must be >= 2 and <= 3"),
+        ({"seed": -1}, "seed must be >= 0"),
+        ({"n_runs": 1, "n_blocks": 1}, "n_blocks >= 2"),
+        ({"lam": 8.0, "transient": 100.0}, "transient=100 is too short at lam=8"),
+    ],
+)
+def test_bad_input_is_refused_before_work(change, message):
+    # arrange
+    arguments = {**SMALL, **change}
+    # act / assert
+    with pytest.raises((ValueError, TypeError), match=message):
+        simulate(**arguments)
+
+
+def test_lambda_refusal_names_the_range_and_reason():
+    with pytest.raises(ValueError) as error:
+        simulate(**{**SMALL, "lam": -6.0})
+    text = str(error.value)
+    assert str(LAMBDA_MIN) in text and "-6" in text and "Eq. 56" in text
+
+
+def test_same_seed_gives_identical_data_and_batches_do_not_matter():
+    # arrange / act
+    whole = simulate(**{**SMALL, "n_runs": 4})
+    again = simulate(**{**SMALL, "n_runs": 4})
+    first = simulate(**{**SMALL, "n_runs": 2, "first_run": 0})
+    second = simulate(**{**SMALL, "n_runs": 2, "first_run": 2})
+    # assert
+    np.testing.assert_array_equal(whole.net_compensations, again.net_compensations)
+    np.testing.assert_array_equal(whole.integral_v2.values[:2], first.integral_v2.values)
+    np.testing.assert_array_equal(whole.integral_v2.values[2:], second.integral_v2.values)
+    np.testing.assert_array_equal(whole.velocity_density.values[2:], second.velocity_density)
+
+
+def test_dataset_follows_conventions_and_stores_parameters():
+    ds = simulate(**SMALL)
+    check_conventions(ds)
+    parameters = parameters_of(ds)
+    assert parameters["lam"] == 0.5 and parameters["kernel_label"] == "hard_disks"
+    assert ds.attrs["seed"] == 3
+    assert int(ds.measured.sum()) == SMALL["n_blocks"]
+    # the velocity-component density is normalised over its range
+    width = float(ds.velocity[1] - ds.velocity[0])
+    assert np.allclose(ds.velocity_density.sum("velocity") * width, 1.0, atol=1e-3)
+
+
+def test_single_run_uses_block_errors():
+    ds = simulate(**{**SMALL, "n_runs": 1, "n_blocks": 10})
+    assert ds.attrs["error_method"] == "blocks"
+    assert float(ds.mu_err) > 0
+
+
+def test_extrapolation_recovers_a_line_and_refuses_one_size():
+    sizes = np.array([100, 200, 400, 800])
+    values = 2.0 - 3.0 / sizes
+    fit = extrapolate_population(sizes, values, np.full(4, 1e-3))
+    assert fit.intercept == pytest.approx(2.0, abs=1e-12)
+    assert fit.slope == pytest.approx(-3.0, abs=1e-9)
+    assert fit.intercept_err > 0 and fit.dof == 2
+    with pytest.raises(ValueError, match="2 distinct population sizes"):
+        extrapolate_population([100, 100], [1.0, 1.1], [0.1, 0.1])

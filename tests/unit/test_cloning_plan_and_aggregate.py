@@ -1,0 +1,117 @@
+"""Job plan (config -> simulate arguments) and aggregation of the cloning batches."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from kinetic.cloning import aggregate, plan, simulate
+from kinetic.config import validate_config
+
+
+@pytest.fixture(scope="module")
+def section():
+    config = {
+        "seed": 1,
+        "visco2008": {
+            "cloning": {
+                "kernels": {
+                    "hard_disks": {"lambdas": [-1.0, 0.5, 8.0], "populations": [20, 40]},
+                    "maxwell": {"lambdas": [1.0], "populations": [30]},
+                },
+                "collisions_per_run": 2.0e4,
+                "runs_per_batch": 2,
+                "batches": 2,
+                "n_blocks": 4,
+                "transient": 5.0,
+                "transient_kept_collisions": 2,
+            }
+        },
+    }
+    validate_config(config)  # fills the schema defaults
+    return config["visco2008"]["cloning"]
+
+
+def test_plan_lists_every_batch(section):
+    keys = plan.batch_keys(section, "scan")
+    assert len(keys) == (3 * 2 + 1) * 2
+    assert ("hard_disks", "lam-1.000", "N20", 1) in keys
+    assert len(plan.batch_keys(section, "error_vs_time")) == 2 * 7  # schema defaults
+
+
+def test_run_parameters_follow_the_config(section):
+    p = plan.run_parameters(section, "scan", "hard_disks", "lam-1.000", "N40", 1, seed=9)
+    rate_factor = 2 * math.e - 1  # Eq. 56 at λ = -1
+    assert p["duration"] == pytest.approx(2.0e4 / (40 * rate_factor))
+    assert p["first_run"] == 2 and p["n_runs"] == 2 and p["seed"] == 9
+    assert p["transient"] == 5.0
+    large = plan.run_parameters(section, "scan", "hard_disks", "lam+8.000", "N20", 0, seed=9)
+    assert large["transient"] == pytest.approx(2 * math.exp(8.0) * math.sqrt(2))
+    simulate_arguments = set(simulate.__kwdefaults__) | {
+        "lam",
+        "population",
+        "duration",
+        "transient",
+        "seed",
+    }
+    assert set(p) <= simulate_arguments
+
+
+def test_unknown_point_or_batch_is_refused(section):
+    with pytest.raises(ValueError, match="no cloning point"):
+        plan.run_parameters(section, "scan", "hard_disks", "lam+0.700", "N20", 0, seed=1)
+    with pytest.raises(ValueError, match="batch 2 outside"):
+        plan.run_parameters(section, "scan", "hard_disks", "lam+0.500", "N20", 2, seed=1)
+
+
+def test_reference_grid_contains_every_simulated_lambda(section):
+    grid = plan.reference_lambdas(section)
+    for lam in (-1.0, 0.5, 1.0, 8.0, -0.5):
+        assert lam in grid
+    assert grid == sorted(grid)
+
+
+def batch(section, kernel, lam, n, index):
+    parameters = plan.run_parameters(
+        section, "scan", kernel, plan.lambda_token(lam), plan.population_token(n), index, 5
+    )
+    return simulate(**parameters)
+
+
+def test_batches_pool_into_the_single_run_result(section):
+    # arrange: two batches of one point, and the same four runs in one call
+    parts = [batch(section, "hard_disks", 0.5, 20, b) for b in (1, 0)]
+    p = plan.run_parameters(section, "scan", "hard_disks", "lam+0.500", "N20", 0, 5)
+    whole = simulate(**{**p, "n_runs": 4})
+    # act
+    (record,) = aggregate.combine_points(parts)
+    # assert
+    assert record["n_runs"] == 4
+    assert record["mu"] == pytest.approx(float(whole.mu), rel=1e-12)
+    assert record["a2_err"] == pytest.approx(float(whole.a2_err), rel=1e-12)
+    with pytest.raises(ValueError, match="repeat run indices"):
+        aggregate.combine_points([parts[0], parts[0]])
+
+
+def test_table_has_the_contract_columns_and_extrapolation_rows(section):
+    datasets = [
+        batch(section, kernel, lam, n, b)
+        for kernel, grid in section["kernels"].items()
+        for lam in grid["lambdas"]
+        for n in grid["populations"]
+        for b in range(section["batches"])
+    ]
+    records = aggregate.combine_points(datasets)
+    limits = aggregate.extrapolate_points(records)
+    table = aggregate.scan_table(records, limits)
+    assert list(table.columns) == aggregate.TABLE_COLUMNS
+    assert len(table) == 7 + 2  # 7 points, extrapolations at λ = -1 and 0.5 only
+    extrapolated = table[table["n_c"].isna()]
+    assert set(extrapolated["lambda"]) == {-1.0, 0.5}
+    collapsed = table[(table["lambda"] == 8.0)]
+    assert collapsed["mu"].notna().all() and collapsed["T"].isna().all()
+    dataset = aggregate.scan_dataset(records, limits)
+    assert dataset.sizes["point"] == 7 and dataset.sizes["limit"] == 4
+    assert isinstance(table["n_c"].dtype, pd.Int64Dtype)
+    assert np.isfinite(dataset["limit_mu_rate"].values[:2]).all()

@@ -1,0 +1,90 @@
+"""Cloning rules of the workflow: target selection, early config rejection, a tiny real
+run that writes cloning.csv with the columns of issue 5, and resumption."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+REPOSITORY = Path(__file__).resolve().parents[2]
+SNAKEMAKE = [sys.executable, "-m", "snakemake", "--snakefile", str(REPOSITORY / "Snakefile")]
+CI = str(REPOSITORY / "config" / "ci.yaml")
+
+TINY = """seed: 3
+visco2008:
+  cloning:
+    kernels:
+      hard_disks: {lambdas: [0.5, 1.0], populations: [20, 40]}
+      maxwell: {lambdas: [1.0], populations: [20]}
+    collisions_per_run: 5.0e+3
+    runs_per_batch: 2
+    batches: 2
+    n_blocks: 2
+    transient: 5
+"""
+
+
+def run(workdir, *args, check=True):
+    result = subprocess.run(
+        [*SNAKEMAKE, "--directory", str(workdir), *args],
+        capture_output=True,
+        text=True,
+        timeout=900,
+        env={**os.environ, "MPLBACKEND": "Agg"},
+    )
+    if check and result.returncode != 0:
+        raise AssertionError(f"snakemake failed:\n{result.stdout}\n{result.stderr}")
+    return result.stdout + result.stderr
+
+
+@pytest.mark.workflow
+def test_fig05_plans_only_the_scan(tmp_path):
+    plan = run(tmp_path, "results/visco2008/fig05.pdf", "--configfile", CI, "--dry-run")
+    assert "cloning_batch" in plan and "cloning_aggregate" in plan
+    assert "cloning_reference" in plan and "warm_numba" in plan
+    assert "error_vs_time" not in plan
+    for unrelated in ("visco2008_fig04", "visco2008_fig07", "visco2008_fig03"):
+        assert f"rule {unrelated}:" not in plan
+
+
+@pytest.mark.workflow
+def test_bad_cloning_config_is_refused_before_any_job(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(TINY.replace("populations: [20, 40]", "populations: [1, 40]"))
+    result = run(tmp_path, "--configfile", str(bad), "--cores", "1", check=False)
+    assert "visco2008.cloning.kernels.hard_disks.populations.0 = 1" in result
+    assert not (tmp_path / "results").exists()
+
+
+@pytest.mark.workflow
+@pytest.mark.slow
+def test_tiny_scan_writes_the_table_and_resumes(tmp_path):
+    config = tmp_path / "tiny.yaml"
+    config.write_text(TINY)
+    target = "results/visco2008/cloning.csv"
+    run(tmp_path, target, "--configfile", str(config), "--cores", "2")
+    table = pd.read_csv(tmp_path / target)
+    assert list(table.columns) == [
+        "kernel",
+        "lambda",
+        "mu",
+        "mu_err",
+        "T",
+        "T_err",
+        "a2",
+        "a2_err",
+        "n_c",
+    ]
+    assert set(table["kernel"]) == {"hard_disks", "maxwell"}
+    assert table["n_c"].isna().sum() == 2  # extrapolations at λ = 0.5 and 1
+    assert (table["mu_err"] > 0).all()
+    # a run stopped before one batch and the aggregate finished resumes with just those
+    batch = tmp_path / "results/visco2008/cloning/scan/hard_disks/lam+1.000/N40/batch1.nc"
+    batch.unlink()
+    (tmp_path / target).unlink()
+    plan = run(tmp_path, target, "--configfile", str(config), "--dry-run")
+    assert plan.count("rule cloning_batch:") == 1
+    assert "batch1.nc" in plan and "rule cloning_aggregate:" in plan

@@ -1,0 +1,27 @@
+"""Pool the scan's batches (rule cloning_aggregate) -> cloning.csv|md|nc."""
+
+from kinetic import io
+from kinetic.cloning import aggregate
+from kinetic.workflow_support import start
+
+log = start(snakemake)
+records = aggregate.combine_points(io.read_dataset(path) for path in snakemake.input.batches)
+limits = aggregate.extrapolate_points(records)
+io.write_table(aggregate.scan_table(records, limits), snakemake.output.csv, snakemake.output.md)
+dataset = io.stamp(
+    aggregate.scan_dataset(records, limits),
+    parameters={"points": len(records)},
+    seed=snakemake.config["seed"],
+    config=snakemake.config,
+)
+io.write_dataset(dataset, snakemake.output.nc)
+for record in records:
+    if record["collapsed"]:
+        log.info(
+            "%s lam=%g N=%d: diversity collapse (%d distinct velocities), T and a2 left empty",
+            record["kernel"],
+            record["lam"],
+            record["population"],
+            record["distinct_min"],
+        )
+log.info("wrote %d points and %d extrapolations", len(records), len(limits))

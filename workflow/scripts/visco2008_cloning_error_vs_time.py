@@ -1,0 +1,47 @@
+"""Error of the cloning μ(λ) against CPU time: statistical error of both estimators
+for each population size (lines) and the finite-N_c bias against the deterministic
+solution of Eq. (28) (dotted levels)."""
+
+import numpy as np
+from matplotlib.ticker import NullFormatter
+
+from kinetic import io, plotting
+from kinetic.workflow_support import start
+
+start(snakemake)
+ds = io.read_dataset(snakemake.input.curves)
+lams = sorted(set(ds["point_lambda"].values.tolist()), reverse=True)
+
+fig, axes = plotting.figure(1, len(lams), figsize=(3.4 * len(lams), 2.8), sharey=True)
+axes = np.atleast_1d(axes)
+for ax, lam in zip(axes, lams, strict=True):
+    for k in np.flatnonzero(ds["point_lambda"].values == lam):
+        n_c = int(ds["point_population"].values[k])
+        cpu = ds["cpu_seconds"].values[k]
+        (line,) = ax.loglog(cpu, ds["mu_rate_err"].values[k], "o-", ms=2, label=rf"$N_c={n_c}$")
+        ax.loglog(cpu, ds["mu_err"].values[k], "-", lw=0.6, color=line.get_color())
+        bias = abs(float(ds["mu_rate"].values[k] - ds["mu_exact"].values[k]))
+        if bias > 2 * float(ds["mu_rate_final_err"].values[k]):  # resolved biases only
+            ax.axhline(bias, ls=":", lw=0.8, color=line.get_color())
+    ax.set_title(rf"$\lambda={lam:g}$")
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_xlabel("CPU time (s)")
+axes[0].set_ylabel(r"error of $\mu$")
+handles, labels = axes[-1].get_legend_handles_labels()
+fig.legend(
+    handles,
+    labels,
+    loc="upper center",
+    ncol=min(len(labels), 7),
+    fontsize=6,
+    bbox_to_anchor=(0.5, 1.08),
+)
+fig.text(
+    0.5,
+    -0.06,
+    r"points: $(e^{-\lambda}-1)\langle r\rangle$ estimator; thin lines: "
+    r"compensation count; dotted: $|\mu(N_c)-\mu|$ against Eq. (28) where > 2 s.e.",
+    ha="center",
+    fontsize=6,
+)
+plotting.save(fig, snakemake.output.pdf)
