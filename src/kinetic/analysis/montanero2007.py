@@ -1,148 +1,55 @@
-"""Observers and estimators of the montanero2007 heat-flux study (DSMC samples -> numbers).
+"""Estimators of the montanero2007 heat-flux study: DSMC samples -> numbers with error bars.
 
-Two layers:
+Inputs are the window averages and histograms of :func:`kinetic.dsmc.simulate_homogeneous`
+(velocities c = V/v0, time in τ, field ε*).  Every estimate comes with the standard
+error from independent realizations (axis 0 of every per-realization array):
 
-1. jitted *observers* that reduce one velocity snapshot ``velocities[i, j]`` (particle i,
-   Cartesian component j, x = component 0, peculiar velocity V in units of the thermal
-   speed v_0 = sqrt(2T/m) once multiplied by ``inv_v0``) to the per-particle averages the
-   paper measures, and accumulate the histogram of c_x in the steady state;
-2. numpy *estimators* that turn per-realization observations into the paper's numbers
-   with error bars from independent realizations: kappa'/kappa0 (Eq. 3.9 over Eq. 2.47),
-   b'_k by Eq. (3.10) and by Eq. (3.12), the odd part of the marginal g(V_x) (Eq. 3.15),
-   phi(c_x^2) (Eq. 4.3) and beta_1(c_x^2) (Eq. 4.6).
+- kappa'/kappa0 from the heat flux (Eq. 3.9 over Eq. 2.47);
+- b'_k, k = 1..3, by Eq. (3.10) (``full``: <c_x L_k^(3/2)(c^2)>) and by Eq. (3.12)
+  (``marginal``: <c_x L_k^(1/2)(c_x^2)>), and their paired difference;
+- the odd part of the marginal g(V_x) (Eq. 3.15), phi(c_x^2) (Eq. 4.3), the truncated
+  series phi_p (Eq. 4.5) with the measured b'_k, and beta_1(c_x^2)/b'_1 (Eq. 4.6);
+- a2 (Eq. 2.13), the thermostat rate, and the exactness of the thermostat.
 
-Snapshot moments (index of :data:`MOMENTS`, all dimensionless, averages over particles):
-``cx = <c_x>``, ``c2 = <c^2>``, ``cx2 = <c_x^2>``, ``c4 = <c^4>``, ``c2cx = <c^2 c_x>``,
-``full_k = <c_x L_k^(d/2)(c^2)>`` and ``marginal_k = <c_x L_k^(1/2)(c_x^2)>`` for k = 1..3.
+Array-level functions take numpy arrays; ``*_of`` functions take a run's dataset.
 """
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
-from numba import njit
 
 from kinetic.analysis.statistics import mean_and_sem
+from kinetic.io import parameters_of
 from kinetic.theory import montanero2007 as theory
 
 __all__ = [
-    "MOMENTS",
     "N_SONINE",
-    "accumulate_cx_histogram",
     "b_estimates",
     "beta1_estimate",
     "beta1_ratio_estimate",
-    "histogram_edges",
+    "distributions_of",
     "kappa_prime_estimate",
     "odd_marginal_estimate",
     "phi_estimate",
-    "snapshot_moments",
+    "rebin",
     "steady_average",
+    "steady_summary_of",
+    "time_series_of",
 ]
 
 N_SONINE = 3
-MOMENTS = (
-    "cx",
-    "c2",
-    "cx2",
-    "c4",
-    "c2cx",
-    *(f"full_{k}" for k in range(1, N_SONINE + 1)),
-    *(f"marginal_{k}" for k in range(1, N_SONINE + 1)),
-)
-_FULL0 = MOMENTS.index("full_1")
-_MARGINAL0 = MOMENTS.index("marginal_1")
+ROUTES = ("full", "marginal")
 
 
-@njit(cache=True, inline="always")
-def _laguerre_123(p, x):
-    """``(L_1^(p)(x), L_2^(p)(x), L_3^(p)(x))`` by the explicit polynomials."""
-    l1 = 1.0 + p - x
-    l2 = 0.5 * (p + 1.0) * (p + 2.0) - (p + 2.0) * x + 0.5 * x * x
-    l3 = (
-        (p + 1.0) * (p + 2.0) * (p + 3.0) / 6.0
-        - 0.5 * (p + 2.0) * (p + 3.0) * x
-        + 0.5 * (p + 3.0) * x * x
-        - x * x * x / 6.0
-    )
-    return l1, l2, l3
-
-
-@njit(cache=True)
-def snapshot_moments(velocities, inv_v0, out):
-    """Fill ``out[m]`` with the particle average of moment ``MOMENTS[m]`` of one snapshot.
-
-    ``velocities``: (N, d) float64 peculiar velocities (any layout; x is column 0);
-    ``inv_v0``: 1 / v_0 so that c = V * inv_v0; ``out``: (len(MOMENTS),) float64,
-    overwritten.  Sonine orders 1..3 with p = d/2 (Eq. 3.10) and p = 1/2 (Eq. 3.12).
-    """
-    n, d = velocities.shape
-    p_full = 0.5 * d
-    for m in range(out.shape[0]):
-        out[m] = 0.0
-    for i in range(n):
-        cx = velocities[i, 0] * inv_v0
-        c2 = 0.0
-        for j in range(d):
-            cj = velocities[i, j] * inv_v0
-            c2 += cj * cj
-        cx2 = cx * cx
-        out[0] += cx
-        out[1] += c2
-        out[2] += cx2
-        out[3] += c2 * c2
-        out[4] += c2 * cx
-        f1, f2, f3 = _laguerre_123(p_full, c2)
-        out[5] += cx * f1
-        out[6] += cx * f2
-        out[7] += cx * f3
-        g1, g2, g3 = _laguerre_123(0.5, cx2)
-        out[8] += cx * g1
-        out[9] += cx * g2
-        out[10] += cx * g3
-    for m in range(out.shape[0]):
-        out[m] /= n
-
-
-def histogram_edges(c_max: float, n_bins: int) -> np.ndarray:
-    """Symmetric bin edges of c_x on [-c_max, c_max]; ``n_bins`` even so 0 is an edge."""
-    if n_bins < 2 or n_bins % 2:
-        raise ValueError(f"n_bins must be an even integer >= 2, got {n_bins}")
-    if not c_max > 0:
-        raise ValueError(f"c_max must be > 0, got {c_max}")
-    return np.linspace(-c_max, c_max, n_bins + 1)
-
-
-@njit(cache=True)
-def accumulate_cx_histogram(velocities, inv_v0, c_max, counts, weights, outside):
-    """Add one snapshot to the c_x histogram and to the beta_1 weights.
-
-    ``counts[b]`` += number of particles with c_x in bin b of ``histogram_edges(c_max,
-    len(counts))``; ``weights[b]`` += sum over them of ``c_x (3/2 - c_x^2)`` (the
-    integrand of Eq. 4.6, so that beta_1 at the bin edges needs no interpolation);
-    particles with |c_x| >= c_max go to ``outside[0]`` (count) and ``outside[1]`` (weight).
-    """
-    n = velocities.shape[0]
-    n_bins = counts.shape[0]
-    scale = n_bins / (2.0 * c_max)
-    for i in range(n):
-        cx = velocities[i, 0] * inv_v0
-        w = cx * (1.5 - cx * cx)
-        b = int(np.floor((cx + c_max) * scale))
-        if 0 <= b < n_bins:
-            counts[b] += 1.0
-            weights[b] += w
-        else:
-            outside[0] += 1.0
-            outside[1] += w
-
-
-# --------------------------------------------------------------------- estimators
+# ------------------------------------------------------------------- array level
 
 
 def steady_average(series, times, t_start: float):
-    """Time average of each realization over ``times >= t_start``.
+    """Time average of each realization over the windows with ``times >= t_start``.
 
-    ``series``: (..., n_times) samples (last axis is time); returns (...,).
+    ``series``: (..., n_times) (last axis is time); returns (...,).
     """
     times = np.asarray(times, dtype=float)
     mask = times >= t_start
@@ -170,41 +77,52 @@ def b_estimates(moments, eps_star: float, route: str, d: int = 3):
     return mean_and_sem(b, axis=0)
 
 
-def _odd_part(counts):
-    """For symmetric bins, (counts[+] - counts[-]) / 2 on the positive half (..., n/2)."""
-    counts = np.asarray(counts, dtype=float)
-    half = counts.shape[-1] // 2
-    return 0.5 * (counts[..., half:] - counts[..., :half][..., ::-1])
+def rebin(counts, edges, factor: int):
+    """Merge ``factor`` adjacent bins (symmetric about 0: the positive half is merged
+    outward from 0).  ``counts``: (..., n_bins); returns (counts, edges)."""
+    counts = np.asarray(counts)
+    n_bins = counts.shape[-1]
+    half = n_bins // 2
+    if factor < 1 or half % factor:
+        raise ValueError(f"rebin factor {factor} must divide the {half} bins of each half")
+    positive = counts[..., half:].reshape(*counts.shape[:-1], half // factor, factor).sum(-1)
+    negative = counts[..., :half][..., ::-1]
+    negative = negative.reshape(*counts.shape[:-1], half // factor, factor).sum(-1)[..., ::-1]
+    positive_edges = edges[half::factor]
+    new_edges = np.concatenate([-positive_edges[:0:-1], positive_edges])
+    return np.concatenate([negative, positive], axis=-1), new_edges
+
+
+def _odd_part(values):
+    """For symmetric bins, (values[+c] - values[-c]) / 2 on the positive half (..., n/2)."""
+    values = np.asarray(values, dtype=float)
+    half = values.shape[-1] // 2
+    return 0.5 * (values[..., half:] - values[..., :half][..., ::-1])
 
 
 def odd_marginal_estimate(counts, n_samples, edges):
-    """Odd part ``g1(c_x) = [g(c_x) - g(-c_x)] / 2`` of the reduced marginal, Eq. (3.15).
+    """Marginal density g(c_x) and its odd part ``[g(c_x) - g(-c_x)] / 2`` (Eq. 3.15).
 
-    ``counts``: (R, n_bins) histogram of c_x per realization; ``n_samples``: (R,) number of
-    particle observations behind each histogram; ``edges``: (n_bins + 1,) symmetric edges.
-    ``g`` is the probability density of c_x (so ``g(V_x) = n / v_0 * g(c_x)``).
-    Returns ``(centres, g_mean, g_sem, odd_mean, odd_sem)`` with g on every bin and the
-    odd part on the bins with c_x > 0.
+    ``counts``: (R, n_bins) histogram of c_x per realization (symmetric ``edges``,
+    (n_bins + 1,)); ``n_samples``: (R,) particle observations behind each histogram.
+    g is the probability density of c_x (``g(V_x) = n g(c_x) / v0``).  Returns
+    ``(centres, g_mean, g_sem, odd_mean, odd_sem)``, the odd part on the bins c_x > 0.
     """
     counts = np.asarray(counts, dtype=float)
     n_samples = np.asarray(n_samples, dtype=float)[:, None]
-    widths = np.diff(edges)
-    density = counts / (n_samples * widths)
-    odd = _odd_part(density)
+    density = counts / (n_samples * np.diff(edges))
     g_mean, g_sem = mean_and_sem(density, axis=0)
-    odd_mean, odd_sem = mean_and_sem(odd, axis=0)
-    centres = 0.5 * (edges[1:] + edges[:-1])
-    return centres, g_mean, g_sem, odd_mean, odd_sem
+    odd_mean, odd_sem = mean_and_sem(_odd_part(density), axis=0)
+    return 0.5 * (edges[1:] + edges[:-1]), g_mean, g_sem, odd_mean, odd_sem
 
 
 def phi_estimate(counts, n_samples, edges, eps_star: float):
     """phi(c_x^2) of Eq. (4.3) from the odd part of the c_x histogram, per bin c_x > 0.
 
-    On a bin [a, b] Eq. (4.3) integrates to ``P_odd = phi eps* (e^{-a^2} - e^{-b^2}) /
-    (2 sqrt(pi))`` when phi is constant on the bin, so
+    On a bin [a, b], Eq. (4.3) integrates to ``P_odd = phi eps* (e^{-a^2} - e^{-b^2}) /
+    (2 sqrt(pi))`` if phi is constant on the bin, so
     ``phi = 2 sqrt(pi) P_odd / (eps* (e^{-a^2} - e^{-b^2}))`` (no division by c_x -> 0).
-    Returns ``(cx2_centres, mean, sem)``: the bin centres in c_x^2 (squared centre of the
-    bin in c_x) and phi over realizations.
+    Returns ``(cx2, mean, sem)`` at the squared bin centres.
     """
     counts = np.asarray(counts, dtype=float)
     n_samples = np.asarray(n_samples, dtype=float)[:, None]
@@ -212,61 +130,172 @@ def phi_estimate(counts, n_samples, edges, eps_star: float):
     positive = edges[half:]
     odd_probability = _odd_part(counts / n_samples)
     gaussian_mass = np.exp(-(positive[:-1] ** 2)) - np.exp(-(positive[1:] ** 2))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        phi = 2.0 * np.sqrt(np.pi) * odd_probability / (eps_star * gaussian_mass)
+    phi = 2.0 * np.sqrt(np.pi) * odd_probability / (eps_star * gaussian_mass)
     mean, sem = mean_and_sem(phi, axis=0)
     centres = 0.5 * (positive[1:] + positive[:-1])
     return centres**2, mean, sem
 
 
-def _cumulative_folded(weights):
-    """Fold signed-bin sums onto |c_x| and accumulate from 0: (half, (R, half + 1))."""
-    weights = np.asarray(weights, dtype=float)
+def _beta1_per_realization(counts, n_samples, edges, eps_star):
+    """beta_1 at the positive edges, per realization: (R, n_bins/2 + 1).
+
+    beta_1(X) = 4/(3 eps*) <c_x (3/2 - c_x^2) 1[c_x^2 < X]> (Eq. 4.6 rewritten with
+    Eq. 4.3), the weight taken at each bin's centre.
+    """
+    counts = np.asarray(counts, dtype=float)
+    centres = 0.5 * (edges[1:] + edges[:-1])
+    weights = counts * centres * (1.5 - centres**2)
     half = weights.shape[-1] // 2
     folded = weights[..., half:] + weights[..., :half][..., ::-1]
     zero = np.zeros((*folded.shape[:-1], 1))
-    return half, np.concatenate([zero, np.cumsum(folded, axis=-1)], axis=-1)
+    cumulative = np.concatenate([zero, np.cumsum(folded, axis=-1)], axis=-1)
+    return 4.0 / (3.0 * eps_star) * cumulative / np.asarray(n_samples, dtype=float)[:, None]
 
 
-def beta1_estimate(weights, outside_weight, n_samples, edges, eps_star: float):
-    """beta_1(c_x^2) of Eq. (4.6) at the bin edges c_x^2 = e^2, e >= 0, and its limit b'_1.
+def beta1_estimate(counts, n_samples, edges, eps_star: float):
+    """beta_1(c_x^2) of Eq. (4.6) at the bin edges c_x^2 = e^2 (e >= 0): (cx2, mean, sem).
 
-    beta_1(X) = 4/(3 eps*) <c_x (3/2 - c_x^2) 1[c_x^2 < X]> (Eq. 4.6 rewritten with
-    Eq. 4.3, see :func:`kinetic.theory.montanero2007.beta1`).  ``weights``: (R, n_bins)
-    sums of c_x (3/2 - c_x^2) per c_x bin; ``outside_weight``: (R,) the same beyond the
-    histogram; ``n_samples``: (R,).  Returns ``(cx2_edges, mean, sem, b1_mean, b1_sem)``
-    where b1 (all particles, the k = 1 marginal route) normalises Fig. 7's ratio.
+    Bin-centre quadrature of the weight c_x (3/2 - c_x^2): relative error
+    O((bin width)^2).  Tends to b'_1 (marginal route, k = 1) beyond the histogram.
     """
-    n_samples = np.asarray(n_samples, dtype=float)
-    half, cumulative = _cumulative_folded(weights)
-    per_realization = 4.0 / (3.0 * eps_star) * cumulative / n_samples[:, None]
-    total = 4.0 / (3.0 * eps_star) * (cumulative[:, -1] + np.asarray(outside_weight)) / n_samples
+    per_realization = _beta1_per_realization(counts, n_samples, edges, eps_star)
     mean, sem = mean_and_sem(per_realization, axis=0)
-    b1_mean, b1_sem = mean_and_sem(total, axis=0)
-    return edges[half:] ** 2, mean, sem, b1_mean, b1_sem
+    half = np.asarray(counts).shape[-1] // 2
+    return edges[half:] ** 2, mean, sem
 
 
-def beta1_ratio_estimate(weights, outside_weight, n_samples, edges, eps_star: float):
-    """Fig. 7: beta_1(c_x^2) / b'_1 per realization ratio of sums, mean and sem.
+def beta1_ratio_estimate(counts, n_samples, edges, b1, eps_star: float):
+    """Fig. 7: beta_1(c_x^2) / b'_1 as a ratio of realization means, with its error.
 
-    The ratio is formed from the realization-averaged numerator and denominator
-    (a ratio of means, error by first-order propagation with their covariance), which is
-    unbiased to O(1/R) unlike a mean of per-realization ratios when b'_1 is noisy.
-    Returns ``(cx2_edges, ratio, ratio_sem)``.
+    ``b1``: (R,) b'_1 per realization from the same snapshots (marginal route, so that
+    the ratio tends to 1).  Error by first-order propagation with the covariance of
+    numerator and denominator.  Returns ``(cx2, ratio, sem)``.
     """
-    n_samples = np.asarray(n_samples, dtype=float)
-    half, cumulative = _cumulative_folded(weights)
-    numerator = cumulative / n_samples[:, None]
-    denominator = (cumulative[:, -1] + np.asarray(outside_weight)) / n_samples
+    numerator = _beta1_per_realization(counts, n_samples, edges, eps_star)
+    denominator = np.asarray(b1, dtype=float)
     r = numerator.shape[0]
     num_mean = numerator.mean(axis=0)
     den_mean = denominator.mean()
     ratio = num_mean / den_mean
-    # delta method: var(N/D) ~ [var N - 2 ratio cov(N, D) + ratio^2 var D] / (D^2 R)
     dn = numerator - num_mean
     dd = (denominator - den_mean)[:, None]
     var_n = (dn**2).sum(axis=0) / (r - 1)
     var_d = (dd**2).sum(axis=0) / (r - 1)
     cov = (dn * dd).sum(axis=0) / (r - 1)
-    variance = (var_n - 2 * ratio * cov + ratio**2 * var_d) / (den_mean**2 * r)
+    variance = (var_n - 2.0 * ratio * cov + ratio**2 * var_d) / (den_mean**2 * r)
+    half = np.asarray(counts).shape[-1] // 2
     return edges[half:] ** 2, ratio, np.sqrt(np.maximum(variance, 0.0))
+
+
+# ----------------------------------------------------------------- dataset level
+
+
+def _moment(ds, name: str) -> np.ndarray:
+    """(R, T) window averages of one snapshot moment."""
+    return np.asarray(ds["moments"].sel(moment=name).values, dtype=float)
+
+
+def _sonine_moments(ds, route: str) -> np.ndarray:
+    """(R, T, 3) <c_x L_k(.)> of one route."""
+    return np.stack([_moment(ds, f"{route}_{k}") for k in range(1, N_SONINE + 1)], axis=-1)
+
+
+def run_parameters(ds) -> dict[str, Any]:
+    """Parameters of a run's dataset (those stamped by the engine plus the steady start)."""
+    parameters = parameters_of(ds)
+    parameters["steady_from_tau"] = float(ds.attrs["steady_from_tau"])
+    return parameters
+
+
+def time_series_of(ds) -> dict[str, np.ndarray]:
+    """Realization means and errors of the time-dependent quantities (Figs 1 and 2).
+
+    Keys: ``time`` (T,) [τ]; ``kappa_ratio``, ``kappa_ratio_err`` (T,) kappa'(t)/kappa0;
+    ``b_full``, ``b_full_err``, ``b_marginal``, ``b_marginal_err`` (T, 3); ``a2``,
+    ``a2_err`` (T,).
+    """
+    p = run_parameters(ds)
+    eps = p["reduced_field"]
+    out = {"time": np.asarray(ds["time"].values, dtype=float)}
+    a2 = theory.reduced_a2_from_moment(_moment(ds, "c4"))
+    out["a2"], out["a2_err"] = mean_and_sem(a2, axis=0)
+    if eps > 0:
+        out["kappa_ratio"], out["kappa_ratio_err"] = kappa_prime_estimate(_moment(ds, "c2cx"), eps)
+        for route in ROUTES:
+            out[f"b_{route}"], out[f"b_{route}_err"] = b_estimates(
+                _sonine_moments(ds, route), eps, route
+            )
+    return out
+
+
+def steady_summary_of(ds) -> dict[str, Any]:
+    """Steady-state estimates of one run (time averages over t >= steady_from).
+
+    Scalars (with ``_err``): ``kappa_ratio`` (kappa'/kappa0), ``a2``, ``thermostat_rate``
+    [1/τ], ``anisotropy`` (<c_x^2> - 1/2: O(eps*^2), the pressure tensor of Eq. 2.6);
+    arrays (3,): ``b_full``, ``b_marginal`` (+ ``_err``) and ``route_difference``
+    (paired b_full - b_marginal, + ``_err``); thermostat exactness ``max_abs_cx`` and
+    ``max_abs_energy_error`` (max over windows of |<c_x>| and |<c^2> - d/2|); cost
+    ``cpu_seconds`` (total), ``particle_tau`` (N x duration x R), ``collisions``; the
+    run's parameters; per-realization arrays under ``per_realization``.
+    """
+    p = run_parameters(ds)
+    eps, t0 = p["reduced_field"], p["steady_from_tau"]
+    times = ds["time"].values
+    steady = {}
+    out: dict[str, Any] = {"parameters": p, "per_realization": steady}
+    a2 = steady_average(theory.reduced_a2_from_moment(_moment(ds, "c4")), times, t0)
+    steady["a2"] = a2
+    out["a2"], out["a2_err"] = mean_and_sem(a2)
+    rate = steady_average(ds["thermostat_rate"].values, times, t0)
+    out["thermostat_rate"], out["thermostat_rate_err"] = mean_and_sem(rate)
+    anisotropy = steady_average(_moment(ds, "cx2"), times, t0) - 0.5
+    out["anisotropy"], out["anisotropy_err"] = mean_and_sem(anisotropy)
+    out["max_abs_cx"] = float(np.nanmax(np.abs(_moment(ds, "cx"))))
+    out["max_abs_energy_error"] = float(np.nanmax(np.abs(_moment(ds, "c2") - 1.5)))
+    if eps > 0:
+        c2cx = steady_average(_moment(ds, "c2cx"), times, t0)
+        steady["kappa_ratio"] = theory.kappa_prime_ratio_from_heat_flux(c2cx, eps)
+        out["kappa_ratio"], out["kappa_ratio_err"] = mean_and_sem(steady["kappa_ratio"])
+        for route in ROUTES:
+            moments = steady_average(np.moveaxis(_sonine_moments(ds, route), -1, 1), times, t0)
+            steady[f"b_{route}"] = theory.b_coefficients(moments, eps, route)
+            out[f"b_{route}"], out[f"b_{route}_err"] = mean_and_sem(steady[f"b_{route}"])
+        difference = steady["b_full"] - steady["b_marginal"]
+        out["route_difference"], out["route_difference_err"] = mean_and_sem(difference)
+    r = ds.sizes["realization"]
+    out["cpu_seconds"] = float(np.sum(ds["cpu_seconds"].values))
+    out["particle_tau"] = float(p["n_particles"] * p["duration_tau"] * r)
+    out["steady_particle_tau"] = float(p["n_particles"] * (p["duration_tau"] - t0) * r)
+    out["collisions"] = int(np.sum(ds["collisions"].values))
+    out["realizations"] = int(r)
+    return out
+
+
+def distributions_of(ds, summary: dict[str, Any] | None = None, rebin_factor: int = 1):
+    """phi(c_x^2), phi_p (p = 1..3 with the measured b'_k, Eq. 4.5), beta_1/b'_1, g(c_x).
+
+    Keys: ``phi_cx2``, ``phi``, ``phi_err`` (bins c_x > 0); ``phi_p`` (3, n) at
+    ``phi_cx2`` using the full-route b'_k (the paper's choice); ``beta_cx2``,
+    ``beta_ratio``, ``beta_ratio_err``; ``cx``, ``g``, ``g_err``, ``odd``, ``odd_err``.
+    """
+    summary = summary or steady_summary_of(ds)
+    eps = summary["parameters"]["reduced_field"]
+    counts = np.asarray(ds["cx_counts"].values, dtype=float)
+    edges = np.asarray(ds["cx_edges"].values, dtype=float)
+    n_samples = np.asarray(ds["histogram_observations"].values, dtype=float)
+    out: dict[str, Any] = {}
+    beta_cx2, ratio, ratio_err = beta1_ratio_estimate(
+        counts, n_samples, edges, summary["per_realization"]["b_marginal"][:, 0], eps
+    )
+    out.update(beta_cx2=beta_cx2, beta_ratio=ratio, beta_ratio_err=ratio_err)
+    if rebin_factor > 1:
+        counts, edges = rebin(counts, edges, rebin_factor)
+    cx2, phi, phi_err = phi_estimate(counts, n_samples, edges, eps)
+    out.update(phi_cx2=cx2, phi=phi, phi_err=phi_err)
+    out["phi_p"] = np.stack(
+        [theory.phi_sonine(cx2, summary["b_full"][:p]) for p in range(1, N_SONINE + 1)]
+    )
+    cx, g, g_err, odd, odd_err = odd_marginal_estimate(counts, n_samples, edges)
+    out.update(cx=cx, g=g, g_err=g_err, odd=odd, odd_err=odd_err)
+    return out
