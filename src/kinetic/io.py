@@ -77,8 +77,9 @@ def check_conventions(dataset: xr.Dataset) -> None:
         missing = [key for key in ("units", "long_name") if key not in variable.attrs]
         if missing:
             problems.append(f"variable {name!r} lacks {', '.join(missing)}")
-    problems += [f"dimension {dim!r} has no coordinate" for dim in dataset.dims
-                 if dim not in dataset.coords]
+    problems += [
+        f"dimension {dim!r} has no coordinate" for dim in dataset.dims if dim not in dataset.coords
+    ]
     if problems:
         raise ValueError("dataset breaks the conventions of kinetic.io: " + "; ".join(problems))
 
@@ -95,7 +96,11 @@ def git_revision() -> str:
     try:
         revision = subprocess.run(
             ["git", "describe", "--always", "--dirty", "--abbrev=12"],
-            cwd=here, capture_output=True, text=True, check=True, timeout=10,
+            cwd=here,
+            capture_output=True,
+            text=True,
+            check=True,
+            timeout=10,
         ).stdout.strip()
     except (OSError, subprocess.SubprocessError):
         return "unknown"
@@ -112,8 +117,10 @@ def _attribute_value(value: Any) -> Any:
         return value
     if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
         return value
-    if isinstance(value, list | tuple) and value and all(
-        isinstance(item, int | float) and not isinstance(item, bool) for item in value
+    if (
+        isinstance(value, list | tuple)
+        and value
+        and all(isinstance(item, int | float) and not isinstance(item, bool) for item in value)
     ):
         return np.asarray(value)
     return json.dumps(value, sort_keys=True, default=str)

@@ -63,6 +63,11 @@ class Progress:
             eta = elapsed * (1.0 - fraction) / fraction if fraction > 0 else float("inf")
             logger.info(
                 "[%s] %5.1f%% %.3g/%.3g %s  elapsed %s  ETA %s",
-                self.label, 100.0 * fraction, self.done, self.total, self.unit,
-                format_seconds(elapsed), format_seconds(eta) if fraction > 0 else "?",
+                self.label,
+                100.0 * fraction,
+                self.done,
+                self.total,
+                self.unit,
+                format_seconds(elapsed),
+                format_seconds(eta) if fraction > 0 else "?",
             )

@@ -1,4 +1,4 @@
-"""Speed benchmarks: ``python -m kinetic.bench <engine>`` writes ``results/benchmarks/<engine>.json``.
+"""Speed benchmarks: ``python -m kinetic.bench <engine>`` writes results/benchmarks/<engine>.json.
 
 Each engine has a module here with ``run(quick: bool) -> dict``. Shared helpers time a
 callable several times after a warm-up call (so numba compile time is excluded) and

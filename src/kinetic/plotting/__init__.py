@@ -17,7 +17,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.pyplot as plt
 
 __all__ = ["STYLE", "errorbar", "figure", "inset", "save"]
 
@@ -39,8 +39,9 @@ def inset(ax, bounds=(0.55, 0.55, 0.4, 0.4), **kwargs):
 
 def errorbar(ax, x, y, yerr, *, label=None, marker="o", **kwargs):
     """Simulation points: open markers with their standard errors."""
-    return ax.errorbar(x, y, yerr=yerr, fmt=marker, mfc="none", label=label,
-                       elinewidth=0.7, **kwargs)
+    return ax.errorbar(
+        x, y, yerr=yerr, fmt=marker, mfc="none", label=label, elinewidth=0.7, **kwargs
+    )
 
 
 def save(fig, pdf_path: str | os.PathLike) -> None:

@@ -1,0 +1,26 @@
+# kinetic: every figure and table of four kinetic-theory documents, from this repository alone.
+#
+#   snakemake --cores all                      every available artefact (config/config.yaml)
+#   snakemake --cores all visco2008            one document
+#   snakemake --cores 1 results/visco2008/fig03.pdf   one figure, and only what it needs
+#   snakemake --cores all --configfile config/ci.yaml  the whole workflow in minutes
+#
+# This file is a table of contents; the rules live in workflow/rules/.
+
+from snakemake.utils import min_version
+
+min_version("9.0")
+
+
+configfile: "config/config.yaml"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/visco2008.smk"
+include: "workflow/rules/targets.smk"
+
+
+rule all:
+    input:
+        all_targets,
+    default_target: True

@@ -1,0 +1,115 @@
+"""Config validation with messages that name the key, the value and the allowed range.
+
+The workflow validates ``config`` against ``workflow/schemas/config.schema.yaml`` with
+``snakemake.utils.validate`` (which also fills the schema's defaults in place) before
+any job starts; ``validate_config`` wraps it and rewrites jsonschema's error into one
+sentence, e.g.::
+
+    config key visco2008.md.n_particles = -5 is not allowed: must be >= 2
+    (number of disks in the periodic box)
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import MutableMapping
+from pathlib import Path
+from typing import Any
+
+import jsonschema
+import yaml
+
+__all__ = ["SCHEMA", "ConfigError", "explain", "validate_config"]
+
+SCHEMA = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
+"""The workflow's top-level schema (in a source checkout)."""
+
+
+class ConfigError(ValueError):
+    """A config value that the schema rejects."""
+
+
+def _allowed(schema: dict[str, Any]) -> str:
+    """Describe the allowed values of one (sub)schema in words."""
+    parts = []
+    if "enum" in schema:
+        parts.append("one of " + ", ".join(repr(v) for v in schema["enum"]))
+    if "type" in schema:
+        kinds = schema["type"] if isinstance(schema["type"], list) else [schema["type"]]
+        parts.append(" or ".join(kinds))
+    bounds = {
+        "minimum": ">=",
+        "exclusiveMinimum": ">",
+        "maximum": "<=",
+        "exclusiveMaximum": "<",
+    }
+    parts += [f"{symbol} {schema[key]}" for key, symbol in bounds.items() if key in schema]
+    if "minItems" in schema:
+        parts.append(f"at least {schema['minItems']} item(s)")
+    if "pattern" in schema:
+        parts.append(f"matching {schema['pattern']}")
+    return ", ".join(parts)
+
+
+def explain(error: jsonschema.ValidationError) -> str:
+    """One-sentence description of a jsonschema validation error."""
+    # the most specific error of an anyOf/oneOf is the most useful one
+    if error.context:
+        error = max(error.context, key=lambda e: len(e.absolute_path))
+    path = ".".join(str(part) for part in error.absolute_path) or "<top level>"
+    schema = error.schema if isinstance(error.schema, dict) else {}
+    if error.validator == "additionalProperties":
+        return f"config section {path}: {error.message} (check the spelling of the key)"
+    if error.validator == "required":
+        return f"config section {path}: {error.message}"
+    allowed = _allowed(schema)
+    description = schema.get("description", "")
+    sentence = f"config key {path} = {error.instance!r} is not allowed: {error.message}"
+    if allowed:
+        sentence += f"; allowed: {allowed}"
+    if description:
+        sentence += f" ({description.strip()})"
+    return sentence
+
+
+def compose_schema(path: str | os.PathLike) -> dict[str, Any]:
+    """Load a schema and inline every ``$ref`` to a sibling file, recursively.
+
+    Each section's schema lives in its own file. jsonschema validates a referenced file
+    with a fresh validator of that file's dialect, which would skip the default-filling
+    extension of ``snakemake.utils.validate``; inlining keeps one validator throughout.
+    """
+    path = Path(path).resolve()
+
+    def inline(node: Any) -> Any:
+        if isinstance(node, dict):
+            node = {key: inline(value) for key, value in node.items()}
+            reference = node.pop("$ref", None)
+            if isinstance(reference, str) and not reference.startswith("#"):
+                target = compose_schema(path.parent / reference)
+                target.pop("$schema", None)
+                node = {**target, **node}
+            return node
+        if isinstance(node, list):
+            return [inline(item) for item in node]
+        return node
+
+    return inline(yaml.safe_load(path.read_text()))
+
+
+def validate_config(config: MutableMapping[str, Any], schema: str | os.PathLike = SCHEMA) -> None:
+    """Validate ``config`` in place (filling defaults) or raise ``ConfigError``."""
+    from snakemake.exceptions import WorkflowError
+    from snakemake.utils import validate
+
+    with tempfile.TemporaryDirectory() as directory:
+        composed = Path(directory) / "config.schema.yaml"
+        composed.write_text(yaml.safe_dump(compose_schema(schema), sort_keys=False))
+        try:
+            validate(config, str(composed))
+        except WorkflowError as workflow_error:
+            cause = workflow_error.__context__  # snakemake raises while handling it
+            if not isinstance(cause, jsonschema.ValidationError):
+                raise
+            raise ConfigError(explain(cause)) from None

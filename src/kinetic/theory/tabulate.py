@@ -1,0 +1,212 @@
+"""Theory curves tabulated on grids, as datasets the figures read.
+
+Figures never compute: every line they draw comes from one of these datasets, written
+to ``results/<paper>/theory/*.nc`` by the workflow. Each function takes its grid as
+keyword arguments (from the config) and returns an ``xarray.Dataset`` following the
+conventions of ``kinetic.io``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from kinetic.io import make_dataset
+from kinetic.theory import visco2008
+
+__all__ = [
+    "visco2008_closures",
+    "visco2008_free_flights",
+    "visco2008_free_paths",
+    "visco2008_large_deviations",
+]
+
+_RATE_UNIT = "omega"  # time in mean free times, the unit of visco2008's figures
+
+
+def visco2008_large_deviations(*, rate_max: float, points: int, d: int = 2):
+    """π(n) of Fig. 3: Gaussian closure (Legendre of Eq. 43), uncorrelated flights (Eq. 23),
+    Poisson(1) and Poisson(1/√2); n = N/t in units of ω."""
+    rate = np.linspace(0.0, rate_max, points)
+    ldf = "large deviation function pi(n)"
+    return make_dataset(
+        {
+            "gaussian": (
+                "rate",
+                visco2008.gaussian_ldf(rate),
+                _RATE_UNIT,
+                f"{ldf}, Gaussian closure (Legendre transform of Eq. 43)",
+            ),
+            "uncorrelated": (
+                "rate",
+                visco2008.uncorrelated_ldf(rate, d),
+                _RATE_UNIT,
+                f"{ldf}, uncorrelated free flights (Eq. 23)",
+            ),
+            "poisson": (
+                "rate",
+                visco2008.poisson_ldf(rate, 1.0),
+                _RATE_UNIT,
+                f"{ldf}, Poisson of rate omega (Eq. 40)",
+            ),
+            "poisson_slow": (
+                "rate",
+                visco2008.poisson_ldf(rate, 1 / np.sqrt(2)),
+                _RATE_UNIT,
+                f"{ldf}, Poisson of rate omega/sqrt(2)",
+            ),
+        },
+        coords={"rate": ("rate", rate, _RATE_UNIT, "collision rate n = N/t")},
+        attrs={"dimension": d},
+    )
+
+
+def visco2008_free_flights(*, time_max: float, points: int, d: int = 2):
+    """Free-flight-time densities of Figs. 1, 10 and 11, t in mean free times."""
+    time = np.linspace(0.0, time_max, points)
+    pdf = "free flight time density"
+    return make_dataset(
+        {
+            "hard_spheres": (
+                "time",
+                visco2008.free_flight_time_pdf(time, d),
+                _RATE_UNIT,
+                f"{pdf}, hard spheres (Eq. 9)",
+            ),
+            "hard_spheres_asymptotic": (
+                "time",
+                visco2008.free_flight_time_pdf_asymptotic(time, d),
+                _RATE_UNIT,
+                f"{pdf}, large-time form (Eq. 11)",
+            ),
+            "weighted": (
+                "time",
+                visco2008.weighted_free_flight_time_pdf(time, d),
+                _RATE_UNIT,
+                f"{pdf} with the Gaussian weight (A1)",
+            ),
+            "weighted_asymptotic": (
+                "time",
+                visco2008.weighted_free_flight_time_pdf_asymptotic(time, d),
+                _RATE_UNIT,
+                f"{pdf} with the Gaussian weight, large-time form (A8)",
+            ),
+            "very_hard_particles": (
+                "time",
+                visco2008.vhp_free_flight_time_pdf(time, d),
+                _RATE_UNIT,
+                f"{pdf}, very hard particles (B4)",
+            ),
+            "maxwell": (
+                "time",
+                np.exp(-time),
+                _RATE_UNIT,
+                f"{pdf}, Maxwell molecules (exponential, Eq. D1)",
+            ),
+        },
+        coords={"time": ("time", time, "1/omega", "time since the last collision")},
+        attrs={"dimension": d},
+    )
+
+
+def visco2008_free_paths(*, path_max: float, points: int, d: int = 2):
+    """Free-path densities of Figs. 2 and 12, x in mean free paths l = <v>/ω."""
+    path = np.linspace(0.0, path_max, points)
+    pdf = "free path density"
+    inner = path[1:]
+    hard = np.concatenate([[np.nan], visco2008.free_path_pdf(inner, d)])
+    maxwell = np.concatenate([[np.nan], visco2008.maxwell_free_path_pdf(inner, d)])
+    return make_dataset(
+        {
+            "hard_spheres": ("path", hard, "1/l", f"{pdf}, hard spheres (Eq. 14)"),
+            "hard_spheres_tail": (
+                "path",
+                visco2008.free_path_pdf_tail(path, d),
+                "1/l",
+                "dominant exponential exp(-x/(sqrt(2) l)) (Eq. 16)",
+            ),
+            "maxwell": ("path", maxwell, "1/l", f"{pdf}, Maxwell molecules (D3)"),
+            "maxwell_asymptotic": (
+                "path",
+                visco2008.maxwell_free_path_pdf_asymptotic(path, d),
+                "1/l",
+                f"{pdf}, Maxwell molecules, large-x form (D4)",
+            ),
+        },
+        coords={"path": ("path", path, "l", "free path length")},
+        attrs={"dimension": d},
+    )
+
+
+def visco2008_closures(*, lambda_min: float, lambda_max: float, points: int, d: int = 2):
+    """μ(λ), T(λ), a2(λ) of the Gaussian (Eq. 43) and Sonine (47–49) closures, the
+    Poisson generating functions, and the cumulants of Table I's theory rows."""
+    lam = np.linspace(lambda_min, lambda_max, points)
+    if not np.any(lam == 0):
+        lam = np.sort(np.append(lam, 0.0))
+    mu_sonine, temperature_sonine, a2_sonine = visco2008.sonine_solution(lam, d)
+    order = np.arange(1, 4)
+    return make_dataset(
+        {
+            "mu_gaussian": (
+                "lam",
+                visco2008.gaussian_mu(lam),
+                _RATE_UNIT,
+                "mu(lambda), Gaussian closure (Eq. 43a)",
+            ),
+            "temperature_gaussian": (
+                "lam",
+                visco2008.gaussian_temperature(lam),
+                "T0",
+                "T(lambda), Gaussian closure (Eq. 43b)",
+            ),
+            "mu_sonine": (
+                "lam",
+                mu_sonine,
+                _RATE_UNIT,
+                "mu(lambda), first Sonine closure (Eqs. 47-49), NaN past the fold",
+            ),
+            "temperature_sonine": (
+                "lam",
+                temperature_sonine,
+                "T0",
+                "T(lambda), first Sonine closure",
+            ),
+            "a2_sonine": ("lam", a2_sonine, "1", "a2(lambda), first Sonine closure"),
+            "mu_poisson": (
+                "lam",
+                visco2008.poisson_mu(lam, 1.0),
+                _RATE_UNIT,
+                "Poisson generating function omega (exp(-lambda) - 1)",
+            ),
+            "mu_poisson_slow": (
+                "lam",
+                visco2008.poisson_mu(lam, 1 / np.sqrt(2)),
+                _RATE_UNIT,
+                "Poisson generating function (omega/sqrt 2)(exp(-lambda) - 1)",
+            ),
+            "cumulant_poisson": ("order", np.ones(3), "1", "<N^p>_c/(omega t), Poisson"),
+            "cumulant_gaussian": (
+                "order",
+                visco2008.gaussian_cumulants(),
+                "1",
+                "<N^p>_c/(omega t), Gaussian closure (Eq. 43)",
+            ),
+            "cumulant_sonine": (
+                "order",
+                visco2008.sonine_cumulants(d),
+                "1",
+                "<N^p>_c/(omega t), Sonine closure (Eq. 50)",
+            ),
+            "cumulant_sonine_solved": (
+                "order",
+                visco2008.sonine_cumulants_numerical(d),
+                "1",
+                "<N^p>_c/(omega t), derivatives of the solved Sonine closure",
+            ),
+        },
+        coords={
+            "lam": ("lam", lam, "1", "counting field lambda"),
+            "order": ("order", order, "1", "cumulant order p"),
+        },
+        attrs={"dimension": d},
+    )

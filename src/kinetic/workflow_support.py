@@ -1,0 +1,46 @@
+"""Glue for workflow scripts: logging to the rule's log file, and reading parameters.
+
+Every script in ``workflow/scripts`` starts with::
+
+    from kinetic.workflow_support import start
+    log = start(snakemake)
+
+which sends the ``kinetic`` logger (progress lines with ETA) and uncaught exceptions to
+``snakemake.log[0]`` as well as to standard error, and limits numba to the job's threads.
+"""
+
+from __future__ import annotations
+
+import logging
+import sys
+from typing import Any
+
+__all__ = ["start"]
+
+
+def start(snakemake: Any) -> logging.Logger:
+    """Configure logging for one Snakemake job and return the ``kinetic`` logger."""
+    logger = logging.getLogger("kinetic")
+    logger.setLevel(logging.INFO)
+    logger.handlers.clear()
+    formatter = logging.Formatter("%(asctime)s %(message)s", "%H:%M:%S")
+    handlers: list[logging.Handler] = [logging.StreamHandler(sys.stderr)]
+    if len(snakemake.log) > 0:
+        handlers.append(logging.FileHandler(snakemake.log[0], mode="w"))
+    for handler in handlers:
+        handler.setFormatter(formatter)
+        logger.addHandler(handler)
+
+    def log_uncaught(kind, value, traceback):
+        logger.error("job failed", exc_info=(kind, value, traceback))
+
+    sys.excepthook = log_uncaught
+    threads = max(1, int(getattr(snakemake, "threads", 1)))
+    try:
+        import numba
+
+        numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+    except (ImportError, ValueError):
+        pass
+    logger.info("rule %s: output %s", snakemake.rule, list(snakemake.output))
+    return logger

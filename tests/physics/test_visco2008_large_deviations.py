@@ -1,0 +1,55 @@
+"""visco2008 Eqs. (23), (32), (40): Legendre transforms of cumulant generating functions."""
+
+import numpy as np
+import pytest
+
+from kinetic.theory import visco2008
+
+RATES = np.array([0.05, 0.3, 0.7, 1.0, 1.6, 2.5, 3.5])
+
+
+@pytest.mark.parametrize("rate", [1.0, 1 / np.sqrt(2)])
+def test_numerical_legendre_of_poisson_mu_is_eq_40(rate):
+    numerical = visco2008.legendre_transform(lambda lam: visco2008.poisson_mu(lam, rate), RATES)
+    np.testing.assert_allclose(numerical, visco2008.poisson_ldf(RATES, rate), atol=1e-8)
+
+
+def test_poisson_ldf_at_zero_rate_is_minus_the_rate():
+    exact = visco2008.legendre_transform(
+        lambda lam: visco2008.poisson_mu(lam, 1.0), np.array([0.0]), mu_at_infinity=-1.0
+    )
+    assert exact[0] == -1.0
+
+
+def test_gaussian_ldf_vanishes_at_the_mean_with_curvature_1_over_k2():
+    assert visco2008.gaussian_ldf(np.array([1.0]))[0] == pytest.approx(0, abs=1e-10)
+    h = 1e-3
+    around = visco2008.gaussian_ldf(np.array([1 - h, 1 + h]))
+    assert (around.sum() / h**2) == pytest.approx(-1 / 1.125, rel=1e-3)
+
+
+def test_gaussian_ldf_at_zero_rate_is_the_minimum_of_mu():
+    # the Gaussian closure approaches -1/√2 from below (Eq. 44), so its μ has a minimum
+    # below -1/√2 and π(0) = min μ: a deficiency of the closure, not of the transform
+    lam = np.linspace(0, 40, 400_001)
+    minimum = visco2008.gaussian_mu(lam).min()
+    assert minimum < -1 / np.sqrt(2) - 0.05
+    values = visco2008.gaussian_ldf(np.array([0.0, 1e-12]))
+    np.testing.assert_allclose(values, minimum, atol=1e-9)
+
+
+def test_uncorrelated_ldf_eq_23_is_close_to_the_gaussian_closure():
+    uncorrelated = visco2008.uncorrelated_ldf(RATES, 2)
+    gaussian = visco2008.gaussian_ldf(RATES)
+    assert uncorrelated[3] == pytest.approx(0, abs=1e-9)
+    # Fig. 3: the two agree closely, and both are wider than Poisson(1)
+    np.testing.assert_allclose(uncorrelated, gaussian, atol=0.04)
+    assert np.all(uncorrelated[RATES != 1] > visco2008.poisson_ldf(RATES[RATES != 1], 1.0))
+
+
+def test_legendre_at_the_edges_of_its_range():
+    edges = visco2008.gaussian_ldf(np.array([1e-9, 12.0]))
+    assert np.all(np.isfinite(edges))
+    assert visco2008.poisson_ldf(12.0, 1.0) < edges[1] < 0  # wider than Poisson(1)
+    with pytest.raises(ValueError, match=">= 0"):
+        visco2008.gaussian_ldf(np.array([-0.1]))

@@ -1,0 +1,66 @@
+"""Config validation: bad values are refused before any job, with the key, value and range."""
+
+import copy
+from pathlib import Path
+
+import pytest
+import yaml
+
+from kinetic.config import ConfigError, validate_config
+
+REPOSITORY = Path(__file__).resolve().parents[2]
+SCHEMA = REPOSITORY / "workflow" / "schemas" / "config.schema.yaml"
+
+
+def _load(name="config.yaml"):
+    return yaml.safe_load((REPOSITORY / "config" / name).read_text())
+
+
+@pytest.mark.parametrize("name", ["config.yaml", "ci.yaml", "paper.yaml"])
+def test_shipped_configs_are_valid(name):
+    validate_config(_load(name), SCHEMA)
+
+
+def test_defaults_are_filled_in():
+    config = {"seed": 3}
+    validate_config(config, SCHEMA)
+    assert config["targets"] == "all"
+    assert config["visco2008"]["theory"]["rate_points"] == 141
+
+
+def _set(config, dotted, value):
+    keys = dotted.split(".")
+    node = config
+    for key in keys[:-1]:
+        node = node.setdefault(key, {})
+    node[keys[-1]] = value
+
+
+# (key, bad value, fragments the message must contain)
+BAD_VALUES = [
+    ("seed", 1.5, ["seed", "1.5", "integer"]),
+    ("seed", "abc", ["seed", "'abc'", "integer"]),
+    ("seed", -4, ["seed", "-4", ">= 0"]),
+    ("visco2008.theory.rate_points", 0, ["visco2008.theory.rate_points", "0", ">= 11"]),
+    ("visco2008.theory.rate_points", -5, ["visco2008.theory.rate_points", "-5", ">= 11"]),
+    ("visco2008.theory.time_max", 0.0, ["visco2008.theory.time_max", "0.0", "> 0"]),
+    ("targets", ["visco2008/fig99"], ["targets.0", "visco2008/fig99", "one of"]),
+]
+
+
+@pytest.mark.parametrize(("key", "value", "fragments"), BAD_VALUES, ids=[c[0] for c in BAD_VALUES])
+def test_bad_values_are_refused_with_key_value_and_range(key, value, fragments):
+    config = copy.deepcopy(_load())
+    _set(config, key, value)
+    with pytest.raises(ConfigError) as error:
+        validate_config(config, SCHEMA)
+    message = str(error.value)
+    for fragment in fragments:
+        assert fragment in message, message
+
+
+def test_misspelt_key_is_refused():
+    config = copy.deepcopy(_load())
+    config["visco2008"]["theory"]["rate_pionts"] = 10
+    with pytest.raises(ConfigError, match="rate_pionts"):
+        validate_config(config, SCHEMA)

@@ -1,0 +1,90 @@
+"""kinetic.rng: derived seeds, independent streams and the jitted draws."""
+
+import numpy as np
+import pytest
+from numba import njit
+
+from kinetic.rng import (
+    derive_seed,
+    exponential,
+    normal_pair,
+    random_unit_vector,
+    stream_states,
+    uniform,
+)
+
+
+@njit(cache=False)
+def _draw_moments(state, n):
+    out = np.zeros(6)
+    for _ in range(n):
+        u = uniform(state)
+        g1, g2 = normal_pair(state)
+        e = exponential(state)
+        out[0] += u
+        out[1] += u * u
+        out[2] += g1 + g2
+        out[3] += g1 * g1 + g2 * g2
+        out[4] += g1 * g2
+        out[5] += e
+    return out
+
+
+@njit(cache=False)
+def _mean_direction(state, n, d):
+    direction = np.empty(d)
+    mean = np.zeros(d)
+    norm_error = 0.0
+    for _ in range(n):
+        random_unit_vector(state, direction)
+        mean += direction
+        norm_error = max(norm_error, abs(np.sum(direction * direction) - 1.0))
+    return mean / n, norm_error
+
+
+def test_derive_seed_is_stable_and_key_dependent():
+    assert derive_seed(1, "a") == derive_seed(1, "a")
+    assert derive_seed(1, "a") != derive_seed(1, "b")
+    assert derive_seed(1, "a") != derive_seed(2, "a")
+    assert 0 <= derive_seed(123, "visco2008/md/chunk0") < 2**63
+
+
+@pytest.mark.parametrize("bad", [-1, 1.5, "7", True])
+def test_derive_seed_rejects_non_integer_or_negative_root(bad):
+    with pytest.raises((TypeError, ValueError)):
+        derive_seed(bad, "key")
+
+
+def test_streams_are_reproducible_and_prefix_stable():
+    a = stream_states(42, 3)
+    b = stream_states(42, 5)
+    assert a.dtype == np.uint64 and a.shape == (3, 4)
+    np.testing.assert_array_equal(a, b[:3])
+    assert len({tuple(row) for row in b}) == 5
+
+
+def test_draws_have_the_right_moments():
+    n = 200_000
+    sums = _draw_moments(stream_states(3, 1)[0], n) / n
+    # 5-sigma bounds from the variance of each estimator
+    assert abs(sums[0] - 0.5) < 5 * np.sqrt(1 / 12 / n)
+    assert abs(sums[1] - 1 / 3) < 5 * np.sqrt(4 / 45 / n)
+    assert abs(sums[2]) < 5 * np.sqrt(2 / n)
+    assert abs(sums[3] - 2) < 5 * np.sqrt(4 / n)
+    assert abs(sums[4]) < 5 * np.sqrt(1 / n)
+    assert abs(sums[5] - 1) < 5 * np.sqrt(1 / n)
+
+
+def test_streams_are_independent():
+    n = 100_000
+    first = _draw_moments(stream_states(9, 2)[0], n)
+    second = _draw_moments(stream_states(9, 2)[1], n)
+    assert first[0] != second[0]
+
+
+@pytest.mark.parametrize("d", [2, 3, 5])
+def test_unit_vectors_are_isotropic(d):
+    n = 100_000
+    mean, norm_error = _mean_direction(stream_states(5, 1)[0], n, d)
+    assert norm_error < 1e-12
+    assert np.all(np.abs(mean) < 5 * np.sqrt(1 / d / n))

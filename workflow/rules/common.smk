@@ -1,0 +1,122 @@
+# Shared by every rule file: config validation, the target registry, seeds, code inputs.
+from pathlib import Path
+
+from snakemake.exceptions import WorkflowError
+
+from kinetic.config import ConfigError, validate_config
+from kinetic.rng import derive_seed
+
+try:
+    validate_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
+except ConfigError as error:
+    raise WorkflowError(str(error)) from None
+
+PAPERS = ["visco2008", "montanero2007", "krauth2025", "costantini2010"]
+
+# ---------------------------------------------------------------- target registry
+# Rule files register each figure/table they can build: provide(id, file, ...).
+TARGETS = {}
+
+# netCDF files with MD cumulants for Table I of visco2008 (filled by workflow/rules/edmd.smk).
+VISCO2008_TABLE1_MD = []
+
+
+def provide(target_id, *paths):
+    """Register the files of one figure or table under its id, e.g. 'visco2008/fig03'."""
+    TARGETS[target_id] = list(paths)
+
+
+def figure_files(paper, name):
+    """The PDF and its PNG twin: results/<paper>/<name>.pdf|png."""
+    return [f"results/{paper}/{name}.pdf", f"results/{paper}/{name}.png"]
+
+
+def table_files(paper, name):
+    """The CSV and its Markdown twin: results/<paper>/<name>.csv|md."""
+    return [f"results/{paper}/{name}.csv", f"results/{paper}/{name}.md"]
+
+
+def requested_target_ids():
+    """The ids selected by config['targets'] ('all' means every registered one)."""
+    wanted = config["targets"]
+    if wanted == "all":
+        return sorted(TARGETS)
+    missing = [target for target in wanted if target not in TARGETS]
+    if missing:
+        raise WorkflowError(
+            f"config key targets asks for {missing}, which this checkout cannot build yet; "
+            f"available: {sorted(TARGETS)}"
+        )
+    return list(wanted)
+
+
+def all_targets(wildcards):
+    """Input function of rule all."""
+    return [path for target in requested_target_ids() for path in TARGETS[target]]
+
+
+def paper_targets(paper):
+    """Every registered file of one paper (input of the per-paper rule)."""
+    return [
+        path
+        for target, paths in sorted(TARGETS.items())
+        if target.split("/")[0] == paper
+        for path in paths
+    ]
+
+
+# ---------------------------------------------------------------- seeds and code inputs
+def job_seed(key):
+    """Seed of the job named ``key``, derived from the root seed (kinetic.rng)."""
+    return derive_seed(config["seed"], key)
+
+
+def package_files(*modules):
+    """Source files of kinetic modules (packages or single modules) a rule depends on."""
+    root = Path(workflow.basedir) / "src" / "kinetic"
+    files = []
+    for module in modules:
+        path = root / module
+        files += sorted(str(p) for p in path.rglob("*.py")) if path.is_dir() else [f"{path}.py"]
+    return files
+
+
+def engine_sources(engine):
+    """Files whose change must rebuild a simulation of ``engine``."""
+    return package_files(engine, "rng")
+
+
+def numba_warm(engine):
+    """Flag file of wildcard_constraints:
+    engine="[a-z0-9_]+",
+
+
+rule warm_numba: compiled kernels of ``engine`` are in numba's cache."""
+    return f"results/.cache/numba-{engine}.done"
+
+
+def engine_sources_of_wildcard(wildcards):
+    """Input function: the sources of the engine named by the {engine} wildcard."""
+    return engine_sources(wildcards.engine)
+
+
+def figure_script(name):
+    """Scripts are inputs of their rule, so editing one re-renders only its figure."""
+    return str(Path(workflow.basedir) / "workflow" / "scripts" / f"{name}.py")
+
+
+wildcard_constraints:
+    engine="[a-z0-9_]+",
+
+
+rule warm_numba:
+    # Compile an engine's kernels once, before parallel simulation jobs read numba's cache
+    # (several processes compiling into one cache at once can corrupt it: numba #4807).
+    input:
+        engine_sources_of_wildcard,
+    output:
+        touch("results/.cache/numba-{engine}.done"),
+    log:
+        "logs/warm_numba/{engine}.log",
+    script:
+        "../scripts/warm_numba.py"

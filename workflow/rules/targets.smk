@@ -1,0 +1,48 @@
+# One aggregate target per paper: `snakemake visco2008` builds every registered artefact
+# of that paper. Included last, after every rule file has registered its targets.
+
+localrules:
+    all,
+    visco2008,
+    montanero2007,
+    krauth2025,
+    costantini2010,
+
+
+
+def visco2008_artefacts(wildcards):
+    return paper_targets("visco2008")
+
+
+def montanero2007_artefacts(wildcards):
+    return paper_targets("montanero2007")
+
+
+def krauth2025_artefacts(wildcards):
+    return paper_targets("krauth2025")
+
+
+def costantini2010_artefacts(wildcards):
+    return paper_targets("costantini2010")
+
+
+rule visco2008:
+    input:
+        visco2008_artefacts,
+
+
+rule montanero2007:
+    input:
+        montanero2007_artefacts,
+
+
+rule krauth2025:
+    # no krauth2025 artefact is implemented yet: this target builds nothing
+    input:
+        krauth2025_artefacts,
+
+
+rule costantini2010:
+    # no costantini2010 artefact is implemented yet: this target builds nothing
+    input:
+        costantini2010_artefacts,
