@@ -1,0 +1,1194 @@
+"""Numba kernels of the homogeneous DSMC engine (Bird's method), d = 2 and 3.
+
+Data layout (struct of arrays)
+------------------------------
+``velocity`` is a C-contiguous float64 array of shape ``(d, N)``: ``velocity[k, i]`` is
+component k of particle i (row k holds one component of every particle, so each row is
+contiguous). Units: m = σ = 1; a temperature T means ``<|v - u|^2> = d T``.
+
+Collision model
+---------------
+A pair (i, j) with relative velocity g = v_i - v_j and unit vector σ̂ (uniform on the
+full sphere, σ̂ and -σ̂ give the same collision) collides at the rate
+``pair_rate(g, σ̂) ∝ K(|g·σ̂|)``: hard spheres K = |g·σ̂|, Maxwell molecules K = const,
+very hard particles K = (g·σ̂)². Inelastic smooth spheres with restitution α:
+
+    v_i' = v_i - (1 + α)/2 (g·σ̂) σ̂,    v_j' = v_j + (1 + α)/2 (g·σ̂) σ̂.
+
+Momentum is conserved exactly, the energy changes by -(1 - α²)(g·σ̂)²/4.
+
+Selection: candidate pairs are drawn uniformly among the n(n-1)/2 pairs of a range at
+the rate ``pair_coefficient * n(n-1)/2 * B**p`` (p = 1 hard spheres, 0 Maxwell, 2 very
+hard particles) and accepted with probability ``K / K(B)``. ``B`` is a rigorous upper
+bound of every relative speed of the range, ``B = s1 + s2`` with ``s1 >= s2`` upper
+bounds of the two largest speeds |v_i - c| about a reference velocity ``c`` (any c
+works; the range's mean velocity gives the tightest bound). The bound is kept rigorous
+at every candidate: after each accepted collision the two new speeds are compared with
+``s1, s2`` and the bound (and the candidate rate) is raised at once when a collision
+created a faster particle, so an acceptance probability above 1 never occurs. Should a
+caller pass a stale bound (velocities changed behind the kernel's back), the first
+candidate that exceeds it is detected, counted in ``tally[TALLY_EXCEEDED]``, the bound is
+recomputed from the velocities and the candidate is re-tested against it; the pairs drawn
+before the detection were under-sampled, so fronts treat a nonzero count as an error.
+
+Two clocks: no-time-counter (NTC: deterministic spacing 1/rate between candidates, the
+fraction of a candidate left at the end of a call carried in ``carry[0]``) and Poisson
+(exponential spacing: exact continuous-time event times by thinning, used by the
+tagged-particle observers; memoryless, no carry).
+
+Kernels are reusable by the inhomogeneous engine: ``collide_range`` collides the pairs
+of particles ``first..last-1`` (particles sorted by cell), ``collide_members`` those of
+``members[start:stop]`` (an index list per cell). Each range/cell has its own ``bounds``,
+``carry`` and ``pair_coefficient`` (which holds its density).
+
+Random numbers: xoshiro256+ streams of :mod:`kinetic.rng`, one ``state`` row (4 uint64)
+advanced in place. No kernel allocates inside its loops, prints, or touches files.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from kinetic.rng import normal_pair
+
+__all__ = [
+    "BOUND_SAFETY",
+    "HARD_SPHERES",
+    "MAXWELL",
+    "STATUS_EULER_STEP_TOO_LARGE",
+    "STATUS_FORCE_BLOW_UP",
+    "STATUS_NONFINITE",
+    "STATUS_OK",
+    "TALLY_ACCEPTED",
+    "TALLY_CANDIDATES",
+    "TALLY_EXCEEDED",
+    "TALLY_RAISED",
+    "VERY_HARD",
+    "accumulate_histograms",
+    "accumulate_moments",
+    "advance",
+    "collide_members",
+    "collide_observed",
+    "collide_range",
+    "force_and_thermostat",
+    "maxwellian",
+    "members_speed_bounds",
+    "speed_bounds",
+]
+
+HARD_SPHERES = 0
+MAXWELL = 1
+VERY_HARD = 2
+
+TALLY_CANDIDATES = 0
+TALLY_ACCEPTED = 1
+TALLY_RAISED = 2
+TALLY_EXCEEDED = 3
+
+STATUS_OK = 0
+STATUS_FORCE_BLOW_UP = 1
+STATUS_EULER_STEP_TOO_LARGE = 2
+STATUS_NONFINITE = 3
+
+BOUND_SAFETY = 1.0 + 1e-12
+"""Relative margin on the relative-speed bound, above floating-point rounding of g."""
+
+EULER_LIMIT = 0.5
+"""Largest |ε V_x δt / 2| the Euler force step accepts (beyond it the step is not small)."""
+
+_SHIFT_32 = np.uint64(32)
+_SHIFT_11 = np.uint64(11)
+_SHIFT_17 = np.uint64(17)
+_SHIFT_45 = np.uint64(45)
+_SHIFT_19 = np.uint64(64 - 45)
+_LOW_32 = np.uint64(0xFFFFFFFF)
+_TWO_M53 = 2.0**-53
+
+# ----------------------------------------------------------------------------- helpers
+#
+# Small helpers are plain jitted functions that LLVM inlines; ``_trial`` and the loop
+# bodies are inlined at numba's IR level (``inline="always"``), which specialises the
+# loops on a literal dimension (twice faster than a runtime d) at a moderate compile cost.
+#
+# The loops keep the xoshiro256+ state in four local uint64 scalars (loaded from the
+# caller's ``state`` row at entry, stored back at exit) instead of advancing the array
+# in memory at every draw: numba cannot prove that the state row and the velocities do
+# not alias, so with the array every velocity store forces the state to be reloaded and
+# the loop runs about twice slower. ``_next`` is the generator of kinetic.rng
+# (``_next_u64``) written on scalars; a unit test checks the two give the same stream.
+
+
+@njit(error_model="numpy")
+def _next(s0, s1, s2, s3):
+    """One xoshiro256+ output and the advanced state: ``(x, s0, s1, s2, s3)``."""
+    x = s0 + s3
+    t = s1 << _SHIFT_17
+    s2 ^= s0
+    s3 ^= s1
+    s1 ^= s2
+    s0 ^= s3
+    s2 ^= t
+    s3 = (s3 << _SHIFT_45) | (s3 >> _SHIFT_19)
+    return x, s0, s1, s2, s3
+
+
+@njit(error_model="numpy")
+def _uniform(s0, s1, s2, s3):
+    """Uniform float64 in [0, 1) (upper 53 bits), as ``kinetic.rng.uniform``."""
+    x, s0, s1, s2, s3 = _next(s0, s1, s2, s3)
+    return float(x >> _SHIFT_11) * _TWO_M53, s0, s1, s2, s3
+
+
+@njit(error_model="numpy")
+def _exponential(s0, s1, s2, s3):
+    """Exponential variate of unit mean, as ``kinetic.rng.exponential``."""
+    x, s0, s1, s2, s3 = _next(s0, s1, s2, s3)
+    return -np.log((float(x >> _SHIFT_11) + 1.0) * _TWO_M53), s0, s1, s2, s3
+
+
+@njit(error_model="numpy")
+def _pair(n, s0, s1, s2, s3):
+    """Two distinct uniform indices in ``0..n-1`` from one 64-bit draw.
+
+    i from the top 32 bits, j from bits 11..42 (all within the 53 bits of xoshiro256+
+    that pass BigCrush), by multiply-shift (relative non-uniformity < n / 2**32).
+    Returns ``(i, j, s0, s1, s2, s3)``.
+    """
+    x, s0, s1, s2, s3 = _next(s0, s1, s2, s3)
+    nu = np.uint64(n)
+    i = np.int64(((x >> _SHIFT_32) * nu) >> _SHIFT_32)
+    j = np.int64((((x >> _SHIFT_11) & _LOW_32) * (nu - np.uint64(1))) >> _SHIFT_32)
+    if j >= i:
+        j += 1
+    return i, j, s0, s1, s2, s3
+
+
+@njit(error_model="numpy")
+def _unit_3d(s0, s1, s2, s3):
+    """Uniform direction on the sphere (Marsaglia 1972, no trigonometry).
+
+    Returns ``(e0, e1, e2, s0, s1, s2, s3)``.
+    """
+    while True:
+        a, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+        b, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+        x = 2.0 * a - 1.0
+        y = 2.0 * b - 1.0
+        s = x * x + y * y
+        if s < 1.0:
+            f = 2.0 * np.sqrt(1.0 - s)
+            return x * f, y * f, 1.0 - 2.0 * s, s0, s1, s2, s3
+
+
+@njit(error_model="numpy")
+def _unit_2d(s0, s1, s2, s3):
+    """Uniform direction on the circle (von Neumann's rejection, no trigonometry).
+
+    Returns ``(e0, e1, s0, s1, s2, s3)``.
+    """
+    while True:
+        a, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+        b, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+        x = 2.0 * a - 1.0
+        y = 2.0 * b - 1.0
+        s = x * x + y * y
+        if 0.0 < s < 1.0:
+            return (x * x - y * y) / s, 2.0 * x * y / s, s0, s1, s2, s3
+
+
+@njit(error_model="numpy")
+def _candidate_rate(kernel, pair_coefficient, n_pairs, bound):
+    """Candidates per unit time for a range: coefficient * pairs * bound**p."""
+    if kernel == HARD_SPHERES:
+        return pair_coefficient * n_pairs * bound
+    if kernel == VERY_HARD:
+        return pair_coefficient * n_pairs * bound * bound
+    return pair_coefficient * n_pairs
+
+
+@njit(inline="always")
+def _trial(velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3):
+    """Test one candidate pair; return ``(code, h0, h1, h2, s0, s1, s2, s3)``.
+
+    h = (g·σ̂)σ̂ with g = v_i - v_j. code 0: rejected; 1: accepted; 2: the pair's rate
+    exceeds the bound (stale bound; nothing drawn). Hard spheres are accepted with
+    probability |g|/B and σ̂ is then drawn from its conditional law ∝ |ĝ·σ̂|: in d = 3
+    the elastic post-collision direction g - 2(g·σ̂)σ̂ is then isotropic, so
+    (g·σ̂)σ̂ = (g - |g| n̂)/2 with n̂ uniform; in d = 2 sin∠(σ̂, ĝ) is uniform on (-1, 1).
+    Very hard particles: σ̂ uniform, accepted with probability (g·σ̂)²/B². Maxwell
+    molecules: σ̂ uniform, always accepted.
+    """
+    g0 = velocity[0, i] - velocity[0, j]
+    g1 = velocity[1, i] - velocity[1, j]
+    g2 = 0.0
+    if d == 3:
+        g2 = velocity[2, i] - velocity[2, j]
+    gg = g0 * g0 + g1 * g1 + g2 * g2
+    if kernel == HARD_SPHERES:
+        if gg > bound_sq:
+            return 2, 0.0, 0.0, 0.0, s0, s1, s2, s3
+        u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+        if u * u * bound_sq >= gg:
+            return 0, 0.0, 0.0, 0.0, s0, s1, s2, s3
+        if d == 3:
+            n0, n1, n2, s0, s1, s2, s3 = _unit_3d(s0, s1, s2, s3)
+            gm = np.sqrt(gg)
+            return (
+                1,
+                0.5 * (g0 - gm * n0),
+                0.5 * (g1 - gm * n1),
+                0.5 * (g2 - gm * n2),
+                s0,
+                s1,
+                s2,
+                s3,
+            )
+        u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+        sine = 2.0 * u - 1.0
+        c2 = 1.0 - sine * sine
+        cs = np.sqrt(c2) * sine
+        return 1, c2 * g0 - cs * g1, c2 * g1 + cs * g0, 0.0, s0, s1, s2, s3
+    if d == 3:
+        e0, e1, e2, s0, s1, s2, s3 = _unit_3d(s0, s1, s2, s3)
+    else:
+        e0, e1, s0, s1, s2, s3 = _unit_2d(s0, s1, s2, s3)
+        e2 = 0.0
+    gs = g0 * e0 + g1 * e1 + g2 * e2
+    if kernel == VERY_HARD:
+        if gg > bound_sq:
+            return 2, 0.0, 0.0, 0.0, s0, s1, s2, s3
+        u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+        if u * bound_sq >= gs * gs:
+            return 0, 0.0, 0.0, 0.0, s0, s1, s2, s3
+    return 1, gs * e0, gs * e1, gs * e2, s0, s1, s2, s3
+
+
+@njit(error_model="numpy")
+def _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2):
+    """v_i -= (1+α)/2 h, v_j += (1+α)/2 h (``half`` = (1+α)/2).
+
+    Returns the new squared speeds ``(|v_i - c|², |v_j - c|²)`` about c = (c0, c1, c2).
+    """
+    a0 = velocity[0, i] - half * h0
+    a1 = velocity[1, i] - half * h1
+    b0 = velocity[0, j] + half * h0
+    b1 = velocity[1, j] + half * h1
+    velocity[0, i] = a0
+    velocity[1, i] = a1
+    velocity[0, j] = b0
+    velocity[1, j] = b1
+    a0 -= c0
+    a1 -= c1
+    b0 -= c0
+    b1 -= c1
+    sa = a0 * a0 + a1 * a1
+    sb = b0 * b0 + b1 * b1
+    if d == 3:
+        a2 = velocity[2, i] - half * h2
+        b2 = velocity[2, j] + half * h2
+        velocity[2, i] = a2
+        velocity[2, j] = b2
+        a2 -= c2
+        b2 -= c2
+        sa += a2 * a2
+        sb += b2 * b2
+    return sa, sb
+
+
+@njit(error_model="numpy")
+def _raise(sa, sb, top1, top2):
+    """Update the speed bounds ``top1 >= top2`` with the new squared speeds sa, sb.
+
+    Invariant: every particle's speed about c is <= top1 and all but at most one are
+    <= top2, so top1 + top2 bounds every relative speed. Returns ``(raised, top1, top2)``.
+    """
+    if sa < sb:
+        sa, sb = sb, sa
+    if sa <= top2 * top2:
+        return False, top1, top2
+    a = np.sqrt(sa)
+    if a > top1:
+        return True, a, max(top1, np.sqrt(sb))
+    return True, top1, a
+
+
+@njit(error_model="numpy")
+def _speed_sq(velocity, i, d, c0, c1, c2):
+    """|v_i - c|²."""
+    a = velocity[0, i] - c0
+    b = velocity[1, i] - c1
+    s = a * a + b * b
+    if d == 3:
+        c = velocity[2, i] - c2
+        s += c * c
+    return s
+
+
+@njit(cache=True, error_model="numpy")
+def speed_bounds(velocity, first, last, bounds):
+    """Fill ``bounds`` (length d + 2) for particles ``first..last-1``.
+
+    ``bounds[:d]`` = their mean velocity c, ``bounds[d] >= bounds[d+1]`` = the two
+    largest speeds |v_i - c| (the second is 0 for a single particle).
+    """
+    d = velocity.shape[0]
+    n = last - first
+    for k in range(d):
+        total = 0.0
+        for i in range(first, last):
+            total += velocity[k, i]
+        bounds[k] = total / max(n, 1)
+    c0 = bounds[0]
+    c1 = bounds[1]
+    c2 = bounds[2] if d == 3 else 0.0
+    top1 = 0.0
+    top2 = 0.0
+    for i in range(first, last):
+        s = _speed_sq(velocity, i, d, c0, c1, c2)
+        if s > top2:
+            if s > top1:
+                top2 = top1
+                top1 = s
+            else:
+                top2 = s
+    bounds[d] = np.sqrt(top1)
+    bounds[d + 1] = np.sqrt(top2)
+
+
+@njit(cache=True, error_model="numpy")
+def members_speed_bounds(velocity, members, start, stop, bounds):
+    """``speed_bounds`` for the particles ``members[start:stop]``."""
+    d = velocity.shape[0]
+    n = stop - start
+    for k in range(d):
+        total = 0.0
+        for m in range(start, stop):
+            total += velocity[k, members[m]]
+        bounds[k] = total / max(n, 1)
+    c0 = bounds[0]
+    c1 = bounds[1]
+    c2 = bounds[2] if d == 3 else 0.0
+    top1 = 0.0
+    top2 = 0.0
+    for m in range(start, stop):
+        s = _speed_sq(velocity, members[m], d, c0, c1, c2)
+        if s > top2:
+            if s > top1:
+                top2 = top1
+                top1 = s
+            else:
+                top2 = s
+    bounds[d] = np.sqrt(top1)
+    bounds[d + 1] = np.sqrt(top2)
+
+
+# ------------------------------------------------------------------- collision kernels
+
+
+@njit(inline="always")
+def _collide_range_loop(
+    velocity,
+    first,
+    last,
+    state,
+    kernel,
+    restitution,
+    pair_coefficient,
+    duration,
+    poisson,
+    bounds,
+    carry,
+    tally,
+    d,
+):
+    """Body of ``collide_range`` for a literal dimension ``d`` (specialised by inlining)."""
+    n = last - first
+    if n < 2 or duration <= 0.0:
+        return
+    n_pairs = 0.5 * n * (n - 1.0)
+    half = 0.5 * (1.0 + restitution)
+    c0 = bounds[0]
+    c1 = bounds[1]
+    c2 = bounds[2] if d == 3 else 0.0
+    top1 = bounds[d]
+    top2 = bounds[d + 1]
+    bound = (top1 + top2) * BOUND_SAFETY
+    bound_sq = bound * bound
+    rate = _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+    spacing = 1.0 / rate
+    budget = duration
+    if not poisson:
+        budget += carry[0] * spacing
+    s0 = state[0]
+    s1 = state[1]
+    s2 = state[2]
+    s3 = state[3]
+    candidates = 0
+    accepted = 0
+    while True:
+        if poisson:
+            e, s0, s1, s2, s3 = _exponential(s0, s1, s2, s3)
+            step = e * spacing
+        else:
+            step = spacing
+        if step > budget:
+            break
+        budget -= step
+        candidates += 1
+        i, j, s0, s1, s2, s3 = _pair(n, s0, s1, s2, s3)
+        i += first
+        j += first
+        code, h0, h1, h2, s0, s1, s2, s3 = _trial(
+            velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
+        )
+        if code == 2:
+            tally[TALLY_EXCEEDED] += 1
+            speed_bounds(velocity, first, last, bounds)
+            c0 = bounds[0]
+            c1 = bounds[1]
+            c2 = bounds[2] if d == 3 else 0.0
+            top1 = bounds[d]
+            top2 = bounds[d + 1]
+            bound = (top1 + top2) * BOUND_SAFETY
+            bound_sq = bound * bound
+            spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+            code, h0, h1, h2, s0, s1, s2, s3 = _trial(
+                velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
+            )
+        if code != 1:
+            continue
+        sa, sb = _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2)
+        accepted += 1
+        if kernel != MAXWELL:
+            raised, top1, top2 = _raise(sa, sb, top1, top2)
+            if raised:
+                tally[TALLY_RAISED] += 1
+                bound = (top1 + top2) * BOUND_SAFETY
+                bound_sq = bound * bound
+                spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+    state[0] = s0
+    state[1] = s1
+    state[2] = s2
+    state[3] = s3
+    bounds[d] = top1
+    bounds[d + 1] = top2
+    if not poisson:
+        carry[0] = budget / spacing
+    tally[TALLY_CANDIDATES] += candidates
+    tally[TALLY_ACCEPTED] += accepted
+
+
+@njit(cache=True, error_model="numpy")
+def collide_range(
+    velocity,
+    first,
+    last,
+    state,
+    kernel,
+    restitution,
+    pair_coefficient,
+    duration,
+    poisson,
+    bounds,
+    carry,
+    tally,
+):
+    """Collide the particles ``first..last-1`` for a time ``duration``.
+
+    velocity: (d, N) float64, updated in place. state: (4,) uint64 stream, advanced.
+    kernel: HARD_SPHERES, MAXWELL or VERY_HARD. restitution: α in (0, 1].
+    pair_coefficient: candidate rate per pair per unit bound**p (see the module
+    docstring; it holds the range's density and 1/(n - 1)). duration: time (>= 0).
+    poisson: False = NTC clock (carry[0] holds the fraction of a candidate carried to
+    the next call), True = exact exponential event times (carry unused).
+    bounds: (d + 2,) float64 from ``speed_bounds`` (kept valid in place).
+    tally: (4,) int64 += candidates, accepted, bound raises, stale-bound detections.
+    """
+    if velocity.shape[0] == 3:
+        _collide_range_loop(
+            velocity,
+            first,
+            last,
+            state,
+            kernel,
+            restitution,
+            pair_coefficient,
+            duration,
+            poisson,
+            bounds,
+            carry,
+            tally,
+            3,
+        )
+    else:
+        _collide_range_loop(
+            velocity,
+            first,
+            last,
+            state,
+            kernel,
+            restitution,
+            pair_coefficient,
+            duration,
+            poisson,
+            bounds,
+            carry,
+            tally,
+            2,
+        )
+
+
+@njit(inline="always")
+def _collide_members_loop(
+    velocity,
+    members,
+    start,
+    stop,
+    state,
+    kernel,
+    restitution,
+    pair_coefficient,
+    duration,
+    poisson,
+    bounds,
+    carry,
+    tally,
+    d,
+):
+    """Body of ``collide_members`` for a literal dimension ``d`` (specialised by inlining)."""
+    n = stop - start
+    if n < 2 or duration <= 0.0:
+        return
+    n_pairs = 0.5 * n * (n - 1.0)
+    half = 0.5 * (1.0 + restitution)
+    c0 = bounds[0]
+    c1 = bounds[1]
+    c2 = bounds[2] if d == 3 else 0.0
+    top1 = bounds[d]
+    top2 = bounds[d + 1]
+    bound = (top1 + top2) * BOUND_SAFETY
+    bound_sq = bound * bound
+    spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+    budget = duration
+    if not poisson:
+        budget += carry[0] * spacing
+    s0 = state[0]
+    s1 = state[1]
+    s2 = state[2]
+    s3 = state[3]
+    while True:
+        if poisson:
+            e, s0, s1, s2, s3 = _exponential(s0, s1, s2, s3)
+            step = e * spacing
+        else:
+            step = spacing
+        if step > budget:
+            break
+        budget -= step
+        tally[TALLY_CANDIDATES] += 1
+        a, b, s0, s1, s2, s3 = _pair(n, s0, s1, s2, s3)
+        i = members[start + a]
+        j = members[start + b]
+        code, h0, h1, h2, s0, s1, s2, s3 = _trial(
+            velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
+        )
+        if code == 2:
+            tally[TALLY_EXCEEDED] += 1
+            members_speed_bounds(velocity, members, start, stop, bounds)
+            c0 = bounds[0]
+            c1 = bounds[1]
+            c2 = bounds[2] if d == 3 else 0.0
+            top1 = bounds[d]
+            top2 = bounds[d + 1]
+            bound = (top1 + top2) * BOUND_SAFETY
+            bound_sq = bound * bound
+            spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+            code, h0, h1, h2, s0, s1, s2, s3 = _trial(
+                velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
+            )
+        if code != 1:
+            continue
+        sa, sb = _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2)
+        tally[TALLY_ACCEPTED] += 1
+        if kernel != MAXWELL:
+            raised, top1, top2 = _raise(sa, sb, top1, top2)
+            if raised:
+                tally[TALLY_RAISED] += 1
+                bound = (top1 + top2) * BOUND_SAFETY
+                bound_sq = bound * bound
+                spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+    state[0] = s0
+    state[1] = s1
+    state[2] = s2
+    state[3] = s3
+    bounds[d] = top1
+    bounds[d + 1] = top2
+    if not poisson:
+        carry[0] = budget / spacing
+
+
+@njit(cache=True, error_model="numpy")
+def collide_members(
+    velocity,
+    members,
+    start,
+    stop,
+    state,
+    kernel,
+    restitution,
+    pair_coefficient,
+    duration,
+    poisson,
+    bounds,
+    carry,
+    tally,
+):
+    """``collide_range`` for the particles ``members[start:stop]`` (an index list per cell).
+
+    members: int64 particle indices; ``bounds`` from ``members_speed_bounds``.
+    Everything else as in ``collide_range``.
+    """
+    if velocity.shape[0] == 3:
+        _collide_members_loop(
+            velocity,
+            members,
+            start,
+            stop,
+            state,
+            kernel,
+            restitution,
+            pair_coefficient,
+            duration,
+            poisson,
+            bounds,
+            carry,
+            tally,
+            3,
+        )
+    else:
+        _collide_members_loop(
+            velocity,
+            members,
+            start,
+            stop,
+            state,
+            kernel,
+            restitution,
+            pair_coefficient,
+            duration,
+            poisson,
+            bounds,
+            carry,
+            tally,
+            2,
+        )
+
+
+@njit(error_model="numpy")
+def _record_flight(
+    velocity,
+    i,
+    d,
+    now,
+    last_collision,
+    inverse_time_width,
+    time_counts,
+    inverse_path_width,
+    path_counts,
+):
+    """Histogram particle i's free flight ending at ``now`` (speed before the collision).
+
+    Bins are uniform from 0; the last entry of each counts array is the overflow bin.
+    A particle that has not collided yet (``last_collision < 0``) records nothing: its
+    first interval starts at an arbitrary time, not at a collision.
+    """
+    start = last_collision[i]
+    if start >= 0.0:
+        flight = now - start
+        speed = velocity[0, i] * velocity[0, i] + velocity[1, i] * velocity[1, i]
+        if d == 3:
+            speed += velocity[2, i] * velocity[2, i]
+        path = np.sqrt(speed) * flight
+        overflow = time_counts.shape[0] - 1
+        b = int(flight * inverse_time_width)
+        time_counts[min(b, overflow)] += 1
+        overflow = path_counts.shape[0] - 1
+        b = int(path * inverse_path_width)
+        path_counts[min(b, overflow)] += 1
+    last_collision[i] = now
+
+
+@njit(inline="always")
+def _collide_observed_loop(
+    velocity,
+    state,
+    kernel,
+    restitution,
+    pair_coefficient,
+    start_time,
+    duration,
+    bounds,
+    tally,
+    last_collision,
+    time_bin_width,
+    time_counts,
+    path_bin_width,
+    path_counts,
+    d,
+):
+    """Body of ``collide_observed`` for a literal dimension ``d`` (specialised by inlining)."""
+    n = velocity.shape[1]
+    if n < 2 or duration <= 0.0:
+        return
+    n_pairs = 0.5 * n * (n - 1.0)
+    half = 0.5 * (1.0 + restitution)
+    inverse_time_width = 1.0 / time_bin_width
+    inverse_path_width = 1.0 / path_bin_width
+    c0 = bounds[0]
+    c1 = bounds[1]
+    c2 = bounds[2] if d == 3 else 0.0
+    top1 = bounds[d]
+    top2 = bounds[d + 1]
+    bound = (top1 + top2) * BOUND_SAFETY
+    bound_sq = bound * bound
+    spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+    s0 = state[0]
+    s1 = state[1]
+    s2 = state[2]
+    s3 = state[3]
+    now = start_time
+    end = start_time + duration
+    while True:
+        e, s0, s1, s2, s3 = _exponential(s0, s1, s2, s3)
+        now += e * spacing
+        if now > end:
+            break
+        tally[TALLY_CANDIDATES] += 1
+        i, j, s0, s1, s2, s3 = _pair(n, s0, s1, s2, s3)
+        code, h0, h1, h2, s0, s1, s2, s3 = _trial(
+            velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
+        )
+        if code == 2:
+            tally[TALLY_EXCEEDED] += 1
+            speed_bounds(velocity, 0, n, bounds)
+            c0 = bounds[0]
+            c1 = bounds[1]
+            c2 = bounds[2] if d == 3 else 0.0
+            top1 = bounds[d]
+            top2 = bounds[d + 1]
+            bound = (top1 + top2) * BOUND_SAFETY
+            bound_sq = bound * bound
+            spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+            code, h0, h1, h2, s0, s1, s2, s3 = _trial(
+                velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
+            )
+        if code != 1:
+            continue
+        _record_flight(
+            velocity,
+            i,
+            d,
+            now,
+            last_collision,
+            inverse_time_width,
+            time_counts,
+            inverse_path_width,
+            path_counts,
+        )
+        _record_flight(
+            velocity,
+            j,
+            d,
+            now,
+            last_collision,
+            inverse_time_width,
+            time_counts,
+            inverse_path_width,
+            path_counts,
+        )
+        sa, sb = _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2)
+        tally[TALLY_ACCEPTED] += 1
+        if kernel != MAXWELL:
+            raised, top1, top2 = _raise(sa, sb, top1, top2)
+            if raised:
+                tally[TALLY_RAISED] += 1
+                bound = (top1 + top2) * BOUND_SAFETY
+                bound_sq = bound * bound
+                spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+    state[0] = s0
+    state[1] = s1
+    state[2] = s2
+    state[3] = s3
+    bounds[d] = top1
+    bounds[d + 1] = top2
+
+
+@njit(cache=True, error_model="numpy")
+def collide_observed(
+    velocity,
+    state,
+    kernel,
+    restitution,
+    pair_coefficient,
+    start_time,
+    duration,
+    bounds,
+    tally,
+    last_collision,
+    time_bin_width,
+    time_counts,
+    path_bin_width,
+    path_counts,
+):
+    """Continuous-time collisions of all particles with free-flight observers.
+
+    Exact event times (Poisson clock, thinning with the rigorous bound) from
+    ``start_time`` to ``start_time + duration`` (memoryless: consecutive calls make one
+    Poisson process). At each collision the free-flight time and the free path (speed
+    x time; speeds about the origin, the gas being at rest) of both partners since
+    their previous collision are histogrammed.
+    last_collision: (N,) float64 time of each particle's last collision, < 0 if none.
+    time_counts, path_counts: (n_bins + 1,) int64, last entry = overflow.
+    Other arguments as in ``collide_range``.
+    """
+    if velocity.shape[0] == 3:
+        _collide_observed_loop(
+            velocity,
+            state,
+            kernel,
+            restitution,
+            pair_coefficient,
+            start_time,
+            duration,
+            bounds,
+            tally,
+            last_collision,
+            time_bin_width,
+            time_counts,
+            path_bin_width,
+            path_counts,
+            3,
+        )
+    else:
+        _collide_observed_loop(
+            velocity,
+            state,
+            kernel,
+            restitution,
+            pair_coefficient,
+            start_time,
+            duration,
+            bounds,
+            tally,
+            last_collision,
+            time_bin_width,
+            time_counts,
+            path_bin_width,
+            path_counts,
+            2,
+        )
+
+
+# --------------------------------------------------------------- forcing and thermostat
+
+
+@njit(cache=True, error_model="numpy")
+def force_and_thermostat(velocity, half_field_step, exact, target_energy, bounds):
+    """Heat-flux force step then the thermostat of montanero2007 (Eqs. 4.1, 4.2).
+
+    Force (velocity-dependent part of Eq. 3.2 with ε = ε x̂), a = ε δt / 2 =
+    ``half_field_step``: Euler (Eq. 4.1) V -> V (1 - a V_x); exact (``exact`` True)
+    V -> V / (1 + a V_x), the solution of dV/dt = -(ε/2) V_x V over δt (V_x and V_⊥
+    scaled by the same factor). Then Eq. (4.2): V -> sqrt(K0/K')(V - u') with u' the
+    mean velocity and K' = <|V - u'|²>/2 the kinetic energy per particle (m = 1), so that
+    the total momentum is zero and the energy per particle is ``target_energy`` = K0 to
+    round-off. ``bounds`` (d + 2) is refilled (c = 0 and the two largest speeds).
+
+    Returns ``(status, log_scale)`` with log_scale = ln sqrt(K0/K') (the thermostat's
+    energy injection) and status STATUS_OK, STATUS_FORCE_BLOW_UP (exact step: 1 + a V_x
+    <= 0, the particle would reach infinite speed within δt), STATUS_EULER_STEP_TOO_LARGE
+    (|a V_x| > EULER_LIMIT) or STATUS_NONFINITE.
+    """
+    d = velocity.shape[0]
+    n = velocity.shape[1]
+    sum0 = 0.0
+    sum1 = 0.0
+    sum2 = 0.0
+    total_sq = 0.0
+    status = STATUS_OK
+    for i in range(n):
+        v0 = velocity[0, i]
+        v1 = velocity[1, i]
+        v2 = velocity[2, i] if d == 3 else 0.0
+        if half_field_step != 0.0:
+            ax = half_field_step * v0
+            if exact:
+                denominator = 1.0 + ax
+                if denominator <= 0.0:
+                    status = STATUS_FORCE_BLOW_UP
+                    denominator = 1.0
+                f = 1.0 / denominator
+            else:
+                if abs(ax) > EULER_LIMIT:
+                    status = STATUS_EULER_STEP_TOO_LARGE
+                f = 1.0 - ax
+            v0 *= f
+            v1 *= f
+            v2 *= f
+            velocity[0, i] = v0
+            velocity[1, i] = v1
+            if d == 3:
+                velocity[2, i] = v2
+        sum0 += v0
+        sum1 += v1
+        sum2 += v2
+        total_sq += v0 * v0 + v1 * v1 + v2 * v2
+    if status != STATUS_OK:
+        return status, 0.0
+    u0 = sum0 / n
+    u1 = sum1 / n
+    u2 = sum2 / n
+    energy = 0.5 * (total_sq / n - (u0 * u0 + u1 * u1 + u2 * u2))
+    if not (np.isfinite(energy) and energy > 0.0):
+        return STATUS_NONFINITE, 0.0
+    scale = np.sqrt(target_energy / energy)
+    s1 = 0.0
+    s2 = 0.0
+    for i in range(n):
+        v0 = scale * (velocity[0, i] - u0)
+        v1 = scale * (velocity[1, i] - u1)
+        velocity[0, i] = v0
+        velocity[1, i] = v1
+        s = v0 * v0 + v1 * v1
+        if d == 3:
+            v2 = scale * (velocity[2, i] - u2)
+            velocity[2, i] = v2
+            s += v2 * v2
+        if s > s2:
+            if s > s1:
+                s2 = s1
+                s1 = s
+            else:
+                s2 = s
+    for k in range(d):
+        bounds[k] = 0.0
+    bounds[d] = np.sqrt(s1)
+    bounds[d + 1] = np.sqrt(s2)
+    return STATUS_OK, np.log(scale)
+
+
+# ------------------------------------------------------------------------- observers
+
+N_MOMENTS = 14
+"""Entries of ``accumulate_moments``: see ``MOMENT_NAMES`` in :mod:`kinetic.dsmc.simulate`."""
+
+
+@njit(error_model="numpy")
+def _laguerre_123(p, x):
+    """(L_1^(p)(x), L_2^(p)(x), L_3^(p)(x)), generalized Laguerre polynomials."""
+    l1 = 1.0 + p - x
+    l2 = 0.5 * (p + 1.0) * (p + 2.0) - (p + 2.0) * x + 0.5 * x * x
+    l3 = (
+        (p + 1.0) * (p + 2.0) * (p + 3.0) / 6.0
+        - 0.5 * (p + 2.0) * (p + 3.0) * x
+        + 0.5 * (p + 3.0) * x * x
+        - x * x * x / 6.0
+    )
+    return l1, l2, l3
+
+
+@njit(cache=True, error_model="numpy")
+def accumulate_moments(velocity, inverse_v0, sums):
+    """Add the particle averages of one snapshot to ``sums`` (N_MOMENTS,).
+
+    c = V * inverse_v0 (V peculiar velocity, v0 = sqrt(2T) the thermal speed). Entries:
+    <c_x>, <c²>, <c_x²>, <c⁴>, <c² c_x>, <c_x L_k^(d/2)(c²)> for k = 1, 2, 3 (Eq. 3.10),
+    <c_x L_k^(1/2)(c_x²)> for k = 1, 2, 3 (Eq. 3.12), <c⁶>, <c_x⁴>, <c_x c_y>.
+    """
+    d = velocity.shape[0]
+    n = velocity.shape[1]
+    p_full = 0.5 * d
+    m0 = m1 = m2 = m3 = m4 = m5 = m6 = m7 = m8 = m9 = m10 = m11 = m12 = m13 = 0.0
+    for i in range(n):
+        cx = velocity[0, i] * inverse_v0
+        cy = velocity[1, i] * inverse_v0
+        c2 = cx * cx + cy * cy
+        if d == 3:
+            cz = velocity[2, i] * inverse_v0
+            c2 += cz * cz
+        cx2 = cx * cx
+        m0 += cx
+        m1 += c2
+        m2 += cx2
+        m3 += c2 * c2
+        m4 += c2 * cx
+        f1, f2, f3 = _laguerre_123(p_full, c2)
+        m5 += cx * f1
+        m6 += cx * f2
+        m7 += cx * f3
+        g1, g2, g3 = _laguerre_123(0.5, cx2)
+        m8 += cx * g1
+        m9 += cx * g2
+        m10 += cx * g3
+        m11 += c2 * c2 * c2
+        m12 += cx2 * cx2
+        m13 += cx * cy
+    sums[0] += m0 / n
+    sums[1] += m1 / n
+    sums[2] += m2 / n
+    sums[3] += m3 / n
+    sums[4] += m4 / n
+    sums[5] += m5 / n
+    sums[6] += m6 / n
+    sums[7] += m7 / n
+    sums[8] += m8 / n
+    sums[9] += m9 / n
+    sums[10] += m10 / n
+    sums[11] += m11 / n
+    sums[12] += m12 / n
+    sums[13] += m13 / n
+
+
+@njit(cache=True, error_model="numpy")
+def accumulate_histograms(
+    velocity, inverse_v0, cx_low, cx_width, cx_counts, speed_width, speed_counts
+):
+    """Histogram c_x (bins from ``cx_low``) and |c| (bins from 0) of one snapshot.
+
+    cx_counts: (n_bins + 2,) int64 with [0] = underflow and [-1] = overflow;
+    speed_counts: (n_bins + 1,) int64 with [-1] = overflow.
+    """
+    d = velocity.shape[0]
+    n = velocity.shape[1]
+    n_cx = cx_counts.shape[0] - 2
+    n_speed = speed_counts.shape[0] - 1
+    inverse_cx = 1.0 / cx_width
+    inverse_speed = 1.0 / speed_width
+    for i in range(n):
+        cx = velocity[0, i] * inverse_v0
+        c2 = 0.0
+        for k in range(d):
+            c = velocity[k, i] * inverse_v0
+            c2 += c * c
+        position = (cx - cx_low) * inverse_cx
+        if position < 0.0:
+            cx_counts[0] += 1
+        elif position >= n_cx:
+            cx_counts[n_cx + 1] += 1
+        else:
+            cx_counts[1 + int(position)] += 1
+        b = int(np.sqrt(c2) * inverse_speed)
+        speed_counts[min(b, n_speed)] += 1
+
+
+# ----------------------------------------------------------------------- composition
+
+
+@njit(cache=True, error_model="numpy")
+def advance(
+    velocity,
+    state,
+    kernel,
+    restitution,
+    pair_coefficient,
+    time_step,
+    n_steps,
+    poisson,
+    half_field_step,
+    exact_force,
+    target_energy,
+    rate_exponent,
+    bounds,
+    carry,
+    tally,
+    clock,
+    sample_stride,
+    inverse_v0,
+    moment_sums,
+    histogram,
+    cx_low,
+    cx_width,
+    cx_counts,
+    speed_width,
+    speed_counts,
+):
+    """``n_steps`` DSMC steps: collisions (time_step), force, thermostat, observers.
+
+    Per step, in the order of montanero2007 Section 4: collide all particles for
+    ``time_step``; apply the force step and the thermostat (``force_and_thermostat``);
+    every ``sample_stride``-th step (counted by clock[3]) add the snapshot moments to
+    ``moment_sums[1:]`` (and 1 to moment_sums[0]) and, if ``histogram``, the snapshot
+    to the histograms. clock: (4,) float64, updated:
+    [0] time (thermostatted gas, = steps x time_step), [1] ln(T/T0) and [2] time of the
+    freely cooling gas that the same run represents at zero field (the thermostat only
+    rescales, and the dynamics is invariant under v -> v/s, t -> s^p t with
+    p = ``rate_exponent``: 1 hard spheres, 0 Maxwell, 2 very hard particles); at nonzero
+    field -d clock[1]/d clock[0] is the thermostat rate (Eq. 3.5's left side), [3] steps.
+    Returns a STATUS_* code (the step that failed is left applied).
+    """
+    for _ in range(n_steps):
+        collide_range(
+            velocity,
+            0,
+            velocity.shape[1],
+            state,
+            kernel,
+            restitution,
+            pair_coefficient,
+            time_step,
+            poisson,
+            bounds,
+            carry,
+            tally,
+        )
+        status, log_scale = force_and_thermostat(
+            velocity, half_field_step, exact_force, target_energy, bounds
+        )
+        if status != STATUS_OK:
+            return status
+        # free-cooling picture: physical step = time_step * (T0/T)^(p/2), T at mid-step
+        clock[2] += time_step * np.exp(-0.5 * rate_exponent * (clock[1] - log_scale))
+        clock[1] -= 2.0 * log_scale
+        clock[0] += time_step
+        clock[3] += 1.0
+        if int(clock[3]) % sample_stride == 0:
+            moment_sums[0] += 1.0
+            accumulate_moments(velocity, inverse_v0, moment_sums[1:])
+            if histogram:
+                accumulate_histograms(
+                    velocity, inverse_v0, cx_low, cx_width, cx_counts, speed_width, speed_counts
+                )
+    return STATUS_OK
+
+
+@njit(cache=True, error_model="numpy")
+def maxwellian(velocity, state, temperature):
+    """Fill velocity (d, N) with a Maxwellian of zero total momentum and exact energy.
+
+    Draws standard normals, removes the mean and rescales so that
+    <|v|^2> = d * temperature exactly (to round-off). Needs N >= 2.
+    """
+    d = velocity.shape[0]
+    n = velocity.shape[1]
+    for k in range(d):
+        i = 0
+        while i < n:
+            a, b = normal_pair(state)
+            velocity[k, i] = a
+            if i + 1 < n:
+                velocity[k, i + 1] = b
+            i += 2
+    total_sq = 0.0
+    for k in range(d):
+        mean = 0.0
+        for i in range(n):
+            mean += velocity[k, i]
+        mean /= n
+        for i in range(n):
+            velocity[k, i] -= mean
+            total_sq += velocity[k, i] * velocity[k, i]
+    scale = np.sqrt(d * temperature * n / total_sq)
+    for k in range(d):
+        for i in range(n):
+            velocity[k, i] *= scale
