@@ -30,13 +30,19 @@ __all__ = [
     "beta1_estimate",
     "beta1_ratio_estimate",
     "distributions_of",
+    "error_budget",
     "kappa_prime_estimate",
+    "linear_response_fit",
     "odd_marginal_estimate",
+    "particle_number_bias",
     "phi_estimate",
     "rebin",
     "steady_average",
     "steady_summary_of",
+    "summary_row",
     "time_series_of",
+    "time_step_bias_fit",
+    "tolerance_factor",
 ]
 
 N_SONINE = 3
@@ -44,6 +50,22 @@ ROUTES = ("full", "marginal")
 
 
 # ------------------------------------------------------------------- array level
+
+
+def tolerance_factor(sigmas: float, dof: int) -> float:
+    """Multiple of a standard error with the two-sided probability of ``sigmas`` Gaussian
+    standard deviations, for an error estimated from ``dof`` degrees of freedom.
+
+    A standard error from R realizations is itself uncertain (Student's t with R - 1
+    degrees of freedom): with R = 4, a "4 sigma" check needs about 20 estimated errors,
+    with R = 32 about 4.9, and it tends to ``sigmas`` as R grows.
+    """
+    from scipy import stats
+
+    if dof < 1:
+        raise ValueError(f"need >= 1 degree of freedom (>= 2 realizations), got {dof}")
+    tail = stats.norm.sf(sigmas)
+    return float(stats.t.isf(tail, dof))
 
 
 def steady_average(series, times, t_start: float):
@@ -299,3 +321,231 @@ def distributions_of(ds, summary: dict[str, Any] | None = None, rebin_factor: in
     cx, g, g_err, odd, odd_err = odd_marginal_estimate(counts, n_samples, edges)
     out.update(cx=cx, g=g, g_err=g_err, odd=odd, odd_err=odd_err)
     return out
+
+
+def summary_row(ds, summary: dict[str, Any] | None = None) -> dict[str, Any]:
+    """One flat table row of a run: parameters, steady estimates, errors and cost.
+
+    Columns: run, family, setting, alpha, reduced_field, time_step, force_step,
+    n_particles, realizations, kappa_ratio(_err), b{k}_full(_err), b{k}_marginal(_err),
+    b{k}_route_difference(_err) for k = 1..3, a2(_err), thermostat_rate(_err),
+    anisotropy(_err), max_abs_cx, max_abs_energy_error, cpu_seconds, particle_tau,
+    steady_particle_tau, collisions.
+    """
+    summary = summary or steady_summary_of(ds)
+    p = summary["parameters"]
+    row: dict[str, Any] = {
+        "run": p.get("run", ""),
+        "family": p.get("family", ""),
+        "setting": p.get("setting", ""),
+        "alpha": p["restitution"],
+        "reduced_field": p["reduced_field"],
+        "time_step": p["time_step_tau"],
+        "force_step": p["force_step"],
+        "n_particles": p["n_particles"],
+        "realizations": summary["realizations"],
+    }
+    nan = float("nan")
+    row["kappa_ratio"] = summary.get("kappa_ratio", nan)
+    row["kappa_ratio_err"] = summary.get("kappa_ratio_err", nan)
+    for key in ("b_full", "b_marginal", "route_difference"):
+        values = summary.get(key, np.full(N_SONINE, nan))
+        errors = summary.get(f"{key}_err", np.full(N_SONINE, nan))
+        name = key.removeprefix("b_")
+        for k in range(N_SONINE):
+            row[f"b{k + 1}_{name}"] = float(values[k])
+            row[f"b{k + 1}_{name}_err"] = float(errors[k])
+    for key in ("a2", "thermostat_rate", "anisotropy"):
+        row[key] = float(summary[key])
+        row[f"{key}_err"] = float(summary[f"{key}_err"])
+    for key in (
+        "max_abs_cx",
+        "max_abs_energy_error",
+        "cpu_seconds",
+        "particle_tau",
+        "steady_particle_tau",
+        "collisions",
+    ):
+        row[key] = summary[key]
+    return row
+
+
+# --------------------------------------------------------- error against run time
+
+
+def _weighted_polyfit(x, y, err, degree: int):
+    """Weighted least squares y = sum_j c_j x^j; returns (coefficients, covariance, chi2/dof)."""
+    x, y, err = (np.asarray(a, dtype=float) for a in (x, y, err))
+    design = np.vander(x, degree + 1, increasing=True) / err[:, None]
+    rhs = y / err
+    coefficients, *_ = np.linalg.lstsq(design, rhs, rcond=None)
+    covariance = np.linalg.inv(design.T @ design)
+    dof = max(len(x) - degree - 1, 1)
+    chi2 = float(np.sum((design @ coefficients - rhs) ** 2)) / dof
+    return coefficients, covariance, chi2
+
+
+def time_step_bias_fit(rows, n_particles: int, degree: int = 2):
+    """Fit kappa'/kappa0 = k0 + k1 dt + k2 dt^2 over the runs with ``n_particles``.
+
+    With fewer than degree + 2 distinct time steps the degree is lowered (to 1 if
+    possible) so that the fit keeps a degree of freedom; k2 is then 0.
+
+    ``rows``: summary rows (:func:`summary_row`) of one alpha, both force steps (the force
+    step only changes kappa' at O(eps^2): its linear response is the same).  Returns
+    ``{"coefficients", "covariance", "chi2_per_dof", "time_steps"}``.
+    """
+    chosen = [row for row in rows if row["n_particles"] == n_particles]
+    steps = sorted({row["time_step"] for row in chosen})
+    if len(steps) < 2:
+        raise ValueError(f"need runs at >= 2 time steps with N = {n_particles}, got {steps}")
+    used = min(degree, max(len(steps) - 2, 1))
+    coefficients, covariance, chi2 = _weighted_polyfit(
+        [row["time_step"] for row in chosen],
+        [row["kappa_ratio"] for row in chosen],
+        [row["kappa_ratio_err"] for row in chosen],
+        used,
+    )
+    padded = np.zeros(degree + 1)
+    padded[: used + 1] = coefficients
+    padded_covariance = np.zeros((degree + 1, degree + 1))
+    padded_covariance[: used + 1, : used + 1] = covariance
+    coefficients, covariance = padded, padded_covariance
+    return {
+        "coefficients": coefficients,
+        "covariance": covariance,
+        "chi2_per_dof": chi2,
+        "time_steps": steps,
+    }
+
+
+def particle_number_bias(rows, n_reference: int):
+    """Finite-N bias c_N/N from runs at one time step and force step: returns (c_N, error).
+
+    For each run with N != ``n_reference``, the difference to the run with N_reference at
+    the same time step and force step estimates c_N (1/N - 1/N_ref); the weighted mean of
+    those estimates is returned ((0, inf) if there is none).
+    """
+    reference = {
+        (row["time_step"], row["force_step"]): row
+        for row in rows
+        if row["n_particles"] == n_reference
+    }
+    estimates, errors = [], []
+    for row in rows:
+        base = reference.get((row["time_step"], row["force_step"]))
+        if base is None or row["n_particles"] == n_reference:
+            continue
+        lever = 1.0 / row["n_particles"] - 1.0 / n_reference
+        estimates.append((row["kappa_ratio"] - base["kappa_ratio"]) / lever)
+        errors.append(np.hypot(row["kappa_ratio_err"], base["kappa_ratio_err"]) / abs(lever))
+    if not estimates:
+        return 0.0, float("inf")
+    weights = 1.0 / np.square(errors)
+    return float(np.sum(weights * estimates) / np.sum(weights)), float(np.sqrt(1 / weights.sum()))
+
+
+def error_budget(rows, n_reference: int, target_errors):
+    """The error-against-run-time study of one alpha.
+
+    Bias model: kappa(dt, N) = k_inf + k1 dt + k2 dt^2 + c_N / N, with (k0, k1, k2) from
+    :func:`time_step_bias_fit` at N = ``n_reference`` and c_N from
+    :func:`particle_number_bias`, k_inf = k0 - c_N / n_reference.  Per run (setting):
+    relative statistical error s, CPU time C, inefficiency I = s^2 C (CPU seconds for a
+    relative error of 1), relative bias b; CPU time for a total relative error E:
+    I / (E^2 - b^2) when |b| < E.  Returns (per-setting rows, per-target rows, model).
+    """
+    fit = time_step_bias_fit(rows, n_reference)
+    k0, k1, k2 = fit["coefficients"]
+    c_n, c_n_err = particle_number_bias(rows, n_reference)
+    if not np.isfinite(c_n_err):
+        c_n = 0.0
+    k_inf = k0 - c_n / n_reference
+    settings = []
+    for row in rows:
+        dt, n = row["time_step"], row["n_particles"]
+        gradient = np.array([1.0, dt, dt * dt])
+        bias = k1 * dt + k2 * dt * dt + c_n * (1.0 / n - 1.0 / n_reference)
+        dt_part = np.array([0.0, dt, dt * dt])
+        bias_err = float(np.sqrt(dt_part @ fit["covariance"] @ dt_part))
+        if np.isfinite(c_n_err) and n != n_reference:
+            bias_err = float(np.hypot(bias_err, c_n_err * abs(1.0 / n - 1.0 / n_reference)))
+        relative_stat = row["kappa_ratio_err"] / row["kappa_ratio"]
+        settings.append(
+            {
+                "setting": row["setting"] or "protocol",
+                "force_step": row["force_step"],
+                "time_step": dt,
+                "n_particles": n,
+                "realizations": row["realizations"],
+                "cpu_seconds": row["cpu_seconds"],
+                "cpu_us_per_particle_tau": 1e6 * row["cpu_seconds"] / row["particle_tau"],
+                "kappa_ratio": row["kappa_ratio"],
+                "kappa_ratio_err": row["kappa_ratio_err"],
+                "model": float(gradient @ fit["coefficients"]) + c_n / n,
+                "relative_stat_err": relative_stat,
+                "relative_bias": bias / k_inf,
+                "relative_bias_err": bias_err / k_inf,
+                "inefficiency": relative_stat**2 * row["cpu_seconds"],
+            }
+        )
+    targets = []
+    for target in target_errors:
+        best = None
+        for setting in settings:
+            margin = target**2 - setting["relative_bias"] ** 2
+            if margin <= 0:
+                continue
+            cpu = setting["inefficiency"] / margin
+            if best is None or cpu < best[1]:
+                best = (setting, cpu)
+        paper = [s for s in settings if s["setting"] == "protocol"]
+        paper_cpu = float("nan")
+        if paper and paper[0]["relative_bias"] ** 2 < target**2:
+            paper_cpu = paper[0]["inefficiency"] / (target**2 - paper[0]["relative_bias"] ** 2)
+        targets.append(
+            {
+                "target_error": target,
+                "cheapest_setting": best[0]["setting"] if best else "",
+                "force_step": best[0]["force_step"] if best else "",
+                "time_step": best[0]["time_step"] if best else float("nan"),
+                "n_particles": best[0]["n_particles"] if best else 0,
+                "cpu_seconds_needed": best[1] if best else float("nan"),
+                "relative_bias": best[0]["relative_bias"] if best else float("nan"),
+                "protocol_cpu_seconds": paper_cpu,
+            }
+        )
+    model = {
+        "k_inf": k_inf,
+        "k0": k0,
+        "k1": k1,
+        "k2": k2,
+        "covariance": fit["covariance"],
+        "chi2_per_dof": fit["chi2_per_dof"],
+        "c_n": c_n,
+        "c_n_err": c_n_err,
+    }
+    return settings, targets, model
+
+
+# ------------------------------------------------------------- beyond linear response
+
+
+def linear_response_fit(fields, kappa, kappa_err, max_field: float):
+    """Fit kappa'(eps*) = k0 (1 - C eps*^2) to the fields <= ``max_field``.
+
+    q_x is odd in eps, so kappa' = -q_x/(T eps) is even: the first correction is O(eps*^2).
+    Returns (k0, k0_err, C, C_err).
+    """
+    fields, kappa, kappa_err = (np.asarray(a, dtype=float) for a in (fields, kappa, kappa_err))
+    mask = fields <= max_field
+    if mask.sum() < 2:
+        raise ValueError(f"need >= 2 fields <= {max_field} for the linear-response fit")
+    coefficients, covariance, _ = _weighted_polyfit(
+        fields[mask] ** 2, kappa[mask], kappa_err[mask], 1
+    )
+    k0, slope = coefficients
+    c = -slope / k0
+    jacobian = np.array([slope / k0**2, -1.0 / k0])
+    c_err = float(np.sqrt(jacobian @ covariance @ jacobian))
+    return float(k0), float(np.sqrt(covariance[0, 0])), float(c), c_err

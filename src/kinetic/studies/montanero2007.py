@@ -25,6 +25,7 @@ stream row k of the run's seed, so batching does not change the data.
 from __future__ import annotations
 
 import copy
+import json
 import math
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -36,6 +37,7 @@ __all__ = [
     "alpha_key",
     "batches",
     "combine",
+    "load_runs",
     "run_plan",
     "simulate_batch",
 ]
@@ -129,7 +131,34 @@ def run_plan(section: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
         )
     for name, run in plan.items():
         _check_run(name, run)
+    _check_references(section)
     return plan
+
+
+def _check_references(section: Mapping[str, Any]) -> None:
+    """Figures, the error study and the extreme fields reuse scan runs: those must exist."""
+    scan = {alpha_key(alpha) for alpha in section["alphas"]}
+    figures = section["figures"]
+    wanted = {
+        "figures.fig01_alpha": [figures["fig01_alpha"]],
+        "field_check.restitution": [section["field_check"]["restitution"]],
+        "error_study.alphas": section["error_study"]["alphas"],
+        "extreme.alphas": section["extreme"]["alphas"],
+        **{f"figures.{key}": figures[key] for key in figures if key.endswith("_alphas")},
+    }
+    for key, alphas in wanted.items():
+        missing = [alpha for alpha in alphas if alpha_key(alpha) not in scan]
+        if missing:
+            raise ValueError(
+                f"config key montanero2007.{key} names restitution {missing}, which is not in "
+                f"montanero2007.alphas = {list(section['alphas'])} (that key reuses scan runs)"
+            )
+    half = section["protocol"]["cx_bins"] // 2
+    if half % figures["phi_rebin"]:
+        raise ValueError(
+            f"config key montanero2007.figures.phi_rebin = {figures['phi_rebin']} must divide "
+            f"protocol.cx_bins / 2 = {half}"
+        )
 
 
 def _check_run(name: str, run: Mapping[str, Any]) -> None:
@@ -220,4 +249,28 @@ def combine(datasets: Sequence[Any]):
         raise ValueError(f"batches overlap: realizations {sorted(realizations.tolist())}")
     combined.attrs["n_realizations"] = len(realizations)
     combined.attrs["first_realization"] = int(realizations.min())
+    if "parameters_json" in combined.attrs:
+        parameters = json.loads(combined.attrs["parameters_json"])
+        parameters.update(
+            n_realizations=len(realizations), first_realization=int(realizations.min())
+        )
+        combined.attrs["parameters_json"] = json.dumps(parameters, sort_keys=True)
     return combined
+
+
+def load_runs(paths: Sequence[Any]) -> dict[str, Any]:
+    """Read batch files and combine them per run: ``{run name: dataset}``.
+
+    The run of a batch is the ``run`` parameter the workflow stamped into it; runs keep
+    the order of their first batch in ``paths``.
+    """
+    from kinetic import io
+
+    grouped: dict[str, list[Any]] = {}
+    for path in paths:
+        dataset = io.read_dataset(path)
+        name = io.parameters_of(dataset).get("run")
+        if not name:
+            raise ValueError(f"{path} has no 'run' parameter: not written by the workflow")
+        grouped.setdefault(name, []).append(dataset)
+    return {name: combine(datasets) for name, datasets in grouped.items()}

@@ -1,0 +1,113 @@
+"""montanero2007 error of kappa' against CPU time: statistics, time-step and N biases.
+
+Figure: top, kappa'/kappa0 against the time step (Euler and exact force steps, the bias
+model); bottom, total relative error against CPU time for each setting.  Tables:
+error_vs_time.csv (one row per run) and error_targets.csv (cheapest setting per target).
+"""
+
+import numpy as np
+import pandas as pd
+
+from kinetic import io, plotting
+from kinetic.analysis import montanero2007 as analysis
+from kinetic.studies.montanero2007 import load_runs
+from kinetic.workflow_support import start
+
+log = start(snakemake)
+section = snakemake.params.section
+n_reference = section["error_study"]["overrides"].get(
+    "n_particles", section["protocol"]["n_particles"]
+)
+rows = [analysis.summary_row(ds) for ds in load_runs(snakemake.input.runs).values()]
+alphas = sorted({row["alpha"] for row in rows})
+
+fig, axes = plotting.figure(2, len(alphas), figsize=(3.4 * len(alphas), 5.0), squeeze=False)
+all_settings, all_targets = [], []
+for column, alpha in enumerate(alphas):
+    chosen = [row for row in rows if row["alpha"] == alpha]
+    settings, targets, model = analysis.error_budget(
+        chosen, n_reference, section["error_study"]["target_errors"]
+    )
+    log.info(
+        "alpha = %g: kappa'/kappa0(dt -> 0, N -> inf) = %.4f; slope %.4f per tau, "
+        "curvature %.4f, chi2/dof %.2f; c_N = %.3g +- %.3g",
+        alpha,
+        model["k_inf"],
+        model["k1"],
+        model["k2"],
+        model["chi2_per_dof"],
+        model["c_n"],
+        model["c_n_err"],
+    )
+    all_settings += [{"alpha": alpha, **s} for s in settings]
+    all_targets += [{"alpha": alpha, **t} for t in targets]
+
+    top, bottom = axes[0, column], axes[1, column]
+    for force_step, marker in (("euler", "o"), ("exact", "s")):
+        own = [
+            s for s in settings if s["force_step"] == force_step and s["n_particles"] == n_reference
+        ]
+        plotting.errorbar(
+            top,
+            [s["time_step"] for s in own],
+            [s["kappa_ratio"] for s in own],
+            [s["kappa_ratio_err"] for s in own],
+            marker=marker,
+            label=f"{force_step} force step, N = {n_reference}",
+        )
+    small = [s for s in settings if s["n_particles"] != n_reference]
+    if small:
+        plotting.errorbar(
+            top,
+            [s["time_step"] for s in small],
+            [s["kappa_ratio"] for s in small],
+            [s["kappa_ratio_err"] for s in small],
+            marker="^",
+            label="N = " + ", ".join(str(s["n_particles"]) for s in small),
+        )
+    steps = np.geomspace(
+        min(s["time_step"] for s in settings) / 2, max(s["time_step"] for s in settings) * 1.2, 100
+    )
+    curve = model["k0"] + model["k1"] * steps + model["k2"] * steps**2
+    top.plot(steps, curve, "-", color="k", lw=0.8, label="bias model")
+    top.axhline(model["k_inf"], ls=":", color="k", lw=0.6)
+    top.set_xscale("log")
+    top.set_xlabel(r"$\delta t/\tau$")
+    top.set_ylabel(r"$\kappa'/\kappa_0$")
+    top.set_title(rf"$\alpha = {alpha:g}$", fontsize=8)
+    top.legend(fontsize=5)
+
+    cpu_min = min(s["cpu_seconds"] for s in settings) / 10
+    cpu = np.geomspace(cpu_min, cpu_min * 1e6, 200)
+    for s in settings:
+        total = np.sqrt(s["inefficiency"] / cpu + s["relative_bias"] ** 2)
+        line = bottom.plot(
+            cpu,
+            total,
+            lw=0.8,
+            label=f"{s['setting']} ({s['force_step']}, "
+            rf"$\delta t$={s['time_step']:g}, N={s['n_particles']})",
+        )[0]
+        bottom.plot(
+            [s["cpu_seconds"]],
+            [np.hypot(s["relative_stat_err"], s["relative_bias"])],
+            "o",
+            mfc="none",
+            color=line.get_color(),
+            ms=3,
+        )
+    bottom.set_xscale("log")
+    bottom.set_yscale("log")
+    bottom.set_xlabel("CPU time (s, one core)")
+    bottom.set_ylabel(r"relative error of $\kappa'$")
+    bottom.legend(fontsize=4, ncol=1)
+
+settings_table = pd.DataFrame(all_settings)
+targets_table = pd.DataFrame(all_targets)
+plotting.save(fig, snakemake.output.pdf)
+io.write_table(settings_table, snakemake.output.csv, snakemake.output.md, float_format=".4g")
+io.write_table(
+    targets_table, snakemake.output.targets_csv, snakemake.output.targets_md, float_format=".4g"
+)
+log.info("settings:\n%s", settings_table.to_string(index=False))
+log.info("cheapest settings:\n%s", targets_table.to_string(index=False))
