@@ -63,7 +63,7 @@ def test_batches_cover_realizations_once():
 def test_inconsistent_sections_are_refused_with_the_key():
     section = copy.deepcopy(_section())
     section["figures"]["fig05_alphas"] = [0.95]
-    with pytest.raises(ValueError, match="figures.fig05_alphas"):
+    with pytest.raises(ValueError, match=r"figures\.fig05_alphas"):
         study.run_plan(section)
     section = copy.deepcopy(_section())
     section["protocol"]["time_step"] = 0.007
