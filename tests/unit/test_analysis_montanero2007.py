@@ -111,3 +111,48 @@ def test_steady_average_and_errors():
     np.testing.assert_allclose(analysis.steady_average(series, times, 5.0), 7.0)
     with pytest.raises(ValueError, match="t_start"):
         analysis.steady_average(series, times, 50.0)
+
+
+def _row(dt, force_step, n, kappa, err, setting, cpu_per_particle_tau):
+    steady = n * 50.0 * 16
+    return {
+        "time_step": dt,
+        "force_step": force_step,
+        "n_particles": n,
+        "kappa_ratio": kappa,
+        "kappa_ratio_err": err,
+        "setting": setting,
+        "realizations": 16,
+        "cpu_seconds": cpu_per_particle_tau * steady * 1.2,
+        "particle_tau": steady * 1.2,
+        "steady_particle_tau": steady,
+    }
+
+
+def test_error_budget_recovers_a_linear_time_step_bias():
+    # kappa(dt) = 1.2 (1 + 0.3 dt) exactly, equal errors: the fit returns k_inf = 1.2
+    steps = [0.003, 0.01, 0.03, 0.1, 0.3]
+    costs = {0.003: 1.3e-6, 0.01: 4.7e-7, 0.03: 2.4e-7, 0.1: 1.9e-7, 0.3: 9e-8}
+    rows = [
+        _row(dt, "euler", 20000, 1.2 * (1 + 0.3 * dt), 0.01, f"s{dt}", costs[dt]) for dt in steps
+    ]
+    rows[0]["setting"] = ""
+    settings, targets, model = analysis.error_budget(rows, 20000, [0.05, 0.01, 0.002])
+    assert model["k_inf"] == pytest.approx(1.2, rel=1e-9)
+    assert model["k1"] == pytest.approx(0.36, rel=1e-6)
+    by_step = {s["time_step"]: s for s in settings}
+    assert by_step[0.1]["relative_bias"] == pytest.approx(0.03, rel=1e-6)
+    assert by_step[0.003]["setting"] == "protocol"
+    # a 5 % target tolerates dt = 0.1 (bias 3 %), a 0.2 % target needs dt <= 0.003
+    chosen = {t["target_error"]: t for t in targets}
+    assert chosen[0.05]["time_step"] >= 0.03
+    assert chosen[0.002]["time_step"] == 0.003
+    assert all(t["cpu_seconds_needed"] > 0 for t in targets)
+
+
+def test_linear_response_fit_recovers_the_eps_squared_law():
+    fields = np.array([0.025, 0.05, 0.1, 0.2])
+    kappa = 1.1 * (1 - 6.0 * fields**2)
+    k0, _, c, _ = analysis.linear_response_fit(fields, kappa, np.full(4, 1e-3), 0.1)
+    assert k0 == pytest.approx(1.1, rel=1e-9)
+    assert c == pytest.approx(6.0, rel=1e-7)

@@ -138,6 +138,12 @@ def montanero2007_fig07_runs(wildcards):
     return montanero2007_figure_runs("fig07_alphas")
 
 
+MONTANERO2007_ANALYSIS_CODE = package_files(
+    "analysis/montanero2007", "theory/montanero2007", "studies/montanero2007"
+)
+"""Package modules every figure and table of montanero2007 computes with."""
+
+
 def montanero2007_scan_runs(wildcards):
     return montanero2007_runs_of("scan")
 
@@ -167,6 +173,7 @@ rule montanero2007_fig01:
     input:
         runs=montanero2007_field_pair,
         script=figure_script("montanero2007_fig01"),
+        code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/fig01.pdf",
         png=report(
@@ -184,6 +191,7 @@ rule montanero2007_fig02:
     input:
         runs=montanero2007_fig02_runs,
         script=figure_script("montanero2007_fig02"),
+        code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/fig02.pdf",
         png=report(
@@ -201,6 +209,7 @@ rule montanero2007_fig03:
     input:
         runs=montanero2007_scan_runs,
         script=figure_script("montanero2007_fig03"),
+        code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/fig03.pdf",
         png=report(
@@ -218,6 +227,7 @@ rule montanero2007_fig04:
     input:
         runs=montanero2007_scan_runs,
         script=figure_script("montanero2007_fig04"),
+        code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/fig04.pdf",
         png=report(
@@ -235,6 +245,7 @@ rule montanero2007_fig05:
     input:
         runs=montanero2007_fig05_runs,
         script=figure_script("montanero2007_phi"),
+        code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/fig05.pdf",
         png=report(
@@ -254,6 +265,7 @@ rule montanero2007_fig06:
     input:
         runs=montanero2007_fig06_runs,
         script=figure_script("montanero2007_phi"),
+        code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/fig06.pdf",
         png=report(
@@ -273,6 +285,7 @@ rule montanero2007_fig07:
     input:
         runs=montanero2007_fig07_runs,
         script=figure_script("montanero2007_fig07"),
+        code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/fig07.pdf",
         png=report(
@@ -292,6 +305,7 @@ rule montanero2007_table1:
     input:
         runs=montanero2007_scan_runs,
         script=figure_script("montanero2007_table1"),
+        code=MONTANERO2007_ANALYSIS_CODE,
     output:
         csv="results/montanero2007/table1.csv",
         md="results/montanero2007/table1.md",
@@ -305,6 +319,7 @@ rule montanero2007_error_vs_time:
     input:
         runs=montanero2007_error_inputs,
         script=figure_script("montanero2007_error_vs_time"),
+        code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/error_vs_time.pdf",
         png=report(
@@ -328,6 +343,7 @@ rule montanero2007_extreme:
     input:
         runs=montanero2007_extreme_inputs,
         script=figure_script("montanero2007_extreme"),
+        code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/extreme.pdf",
         png=report(
@@ -348,6 +364,7 @@ rule montanero2007_checks:
     input:
         runs=montanero2007_check_inputs,
         script=figure_script("montanero2007_checks"),
+        code=MONTANERO2007_ANALYSIS_CODE,
     output:
         csv="results/montanero2007/checks.csv",
         md="results/montanero2007/checks.md",

@@ -36,19 +36,26 @@ for ax, ds in zip(axes[:, 0], runs, strict=True):
     ax.set_ylabel(r"$b'_k(t)$")
     ax.text(
         0.97,
-        0.9,
+        0.5,
         rf"$\alpha = {steady['parameters']['restitution']:g}$",
         transform=ax.transAxes,
         ha="right",
-        va="top",
+        va="center",
+        bbox={"facecolor": "white", "edgecolor": "none", "pad": 1},
     )
 handles = [Line2D([], [], color=colors[k], label=f"$b'_{k + 1}$") for k in range(3)]
 handles += [
     Line2D([], [], color="0.4", ls="-", label=r"from $\langle c_x L_k^{(3/2)}(c^2)\rangle$"),
     Line2D([], [], color="0.4", ls="--", label=r"from $\langle c_x L_k^{(1/2)}(c_x^2)\rangle$"),
 ]
-axes[0, 0].legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 1.32), ncol=3,
-                  fontsize=5, frameon=False)
+axes[0, 0].legend(
+    handles=handles,
+    loc="upper center",
+    bbox_to_anchor=(0.5, 1.32),
+    ncol=3,
+    fontsize=5,
+    frameon=False,
+)
 axes[-1, 0].set_xlabel(r"$t/\tau$")
 axes[-1, 0].set_xlim(0, float(t.max()))
 plotting.save(fig, snakemake.output.pdf)

@@ -144,7 +144,10 @@ def phi_estimate(counts, n_samples, edges, eps_star: float):
     On a bin [a, b], Eq. (4.3) integrates to ``P_odd = phi eps* (e^{-a^2} - e^{-b^2}) /
     (2 sqrt(pi))`` if phi is constant on the bin, so
     ``phi = 2 sqrt(pi) P_odd / (eps* (e^{-a^2} - e^{-b^2}))`` (no division by c_x -> 0).
-    Returns ``(cx2, mean, sem)`` at the squared bin centres.
+    That is the mean of phi over the bin with the weight c_x e^{-c_x^2}, so the value is
+    placed at the weighted mean of c_x^2, ``[(a^2+1) e^{-a^2} - (b^2+1) e^{-b^2}] /
+    (e^{-a^2} - e^{-b^2})``: exact for phi linear in c_x^2, whatever the bin width.
+    Returns ``(cx2, mean, sem)``.
     """
     counts = np.asarray(counts, dtype=float)
     n_samples = np.asarray(n_samples, dtype=float)[:, None]
@@ -154,8 +157,9 @@ def phi_estimate(counts, n_samples, edges, eps_star: float):
     gaussian_mass = np.exp(-(positive[:-1] ** 2)) - np.exp(-(positive[1:] ** 2))
     phi = 2.0 * np.sqrt(np.pi) * odd_probability / (eps_star * gaussian_mass)
     mean, sem = mean_and_sem(phi, axis=0)
-    centres = 0.5 * (positive[1:] + positive[:-1])
-    return centres**2, mean, sem
+    low, high = positive[:-1] ** 2, positive[1:] ** 2
+    weighted = ((low + 1) * np.exp(-low) - (high + 1) * np.exp(-high)) / gaussian_mass
+    return weighted, mean, sem
 
 
 def _beta1_per_realization(counts, n_samples, edges, eps_star):
@@ -450,10 +454,17 @@ def error_budget(rows, n_reference: int, target_errors):
 
     Bias model: kappa(dt, N) = k_inf + k1 dt + k2 dt^2 + c_N / N, with (k0, k1, k2) from
     :func:`time_step_bias_fit` at N = ``n_reference`` and c_N from
-    :func:`particle_number_bias`, k_inf = k0 - c_N / n_reference.  Per run (setting):
-    relative statistical error s, CPU time C, inefficiency I = s^2 C (CPU seconds for a
-    relative error of 1), relative bias b; CPU time for a total relative error E:
-    I / (E^2 - b^2) when |b| < E.  Returns (per-setting rows, per-target rows, model).
+    :func:`particle_number_bias`, k_inf = k0 - c_N / n_reference.  Relative bias b and
+    its error db per run (setting).
+
+    Statistics: the variance of kappa' per steady particle-tau hardly depends on the time
+    step, so it is pooled over the runs with the same N (weights: realizations - 1); a
+    setting's inefficiency is I = s^2 C, the CPU seconds C it needs for a relative
+    standard error s = 1, from that pooled variance and its own CPU time per steady
+    particle-tau (transient included).  ``inefficiency_measured`` is its own s^2 C.
+    CPU time for a total relative error E (more realizations of the same run):
+    I / (E^2 - (|b| + 2 db)^2), the bias taken at its upper 2-sigma bound, when positive.
+    Returns (per-setting rows, per-target rows, model).
     """
     fit = time_step_bias_fit(rows, n_reference)
     k0, k1, k2 = fit["coefficients"]
@@ -461,6 +472,17 @@ def error_budget(rows, n_reference: int, target_errors):
     if not np.isfinite(c_n_err):
         c_n = 0.0
     k_inf = k0 - c_n / n_reference
+    pooled = {}
+    for n in {row["n_particles"] for row in rows}:
+        same = [row for row in rows if row["n_particles"] == n]
+        weights = np.array([row["realizations"] - 1.0 for row in same])
+        variances = np.array(
+            [
+                (row["kappa_ratio_err"] / row["kappa_ratio"]) ** 2 * row["steady_particle_tau"]
+                for row in same
+            ]
+        )
+        pooled[n] = float(np.sum(weights * variances) / np.sum(weights))
     settings = []
     for row in rows:
         dt, n = row["time_step"], row["n_particles"]
@@ -486,33 +508,35 @@ def error_budget(rows, n_reference: int, target_errors):
                 "relative_stat_err": relative_stat,
                 "relative_bias": bias / k_inf,
                 "relative_bias_err": bias_err / k_inf,
-                "inefficiency": relative_stat**2 * row["cpu_seconds"],
+                "inefficiency": pooled[n] * row["cpu_seconds"] / row["steady_particle_tau"],
+                "inefficiency_measured": relative_stat**2 * row["cpu_seconds"],
             }
         )
+
+    def needed_cpu(setting, target):
+        bound = abs(setting["relative_bias"]) + 2.0 * setting["relative_bias_err"]
+        margin = target**2 - bound**2
+        return setting["inefficiency"] / margin if margin > 0 else float("inf")
+
     targets = []
     for target in target_errors:
-        best = None
-        for setting in settings:
-            margin = target**2 - setting["relative_bias"] ** 2
-            if margin <= 0:
-                continue
-            cpu = setting["inefficiency"] / margin
-            if best is None or cpu < best[1]:
-                best = (setting, cpu)
-        paper = [s for s in settings if s["setting"] == "protocol"]
-        paper_cpu = float("nan")
-        if paper and paper[0]["relative_bias"] ** 2 < target**2:
-            paper_cpu = paper[0]["inefficiency"] / (target**2 - paper[0]["relative_bias"] ** 2)
+        costs = [(needed_cpu(setting, target), setting) for setting in settings]
+        cpu, best = min(costs, key=lambda pair: pair[0])
+        found = np.isfinite(cpu)
+        protocol = [c for c, s in costs if s["setting"] == "protocol"]
         targets.append(
             {
                 "target_error": target,
-                "cheapest_setting": best[0]["setting"] if best else "",
-                "force_step": best[0]["force_step"] if best else "",
-                "time_step": best[0]["time_step"] if best else float("nan"),
-                "n_particles": best[0]["n_particles"] if best else 0,
-                "cpu_seconds_needed": best[1] if best else float("nan"),
-                "relative_bias": best[0]["relative_bias"] if best else float("nan"),
-                "protocol_cpu_seconds": paper_cpu,
+                "cheapest_setting": best["setting"] if found else "",
+                "force_step": best["force_step"] if found else "",
+                "time_step": best["time_step"] if found else float("nan"),
+                "n_particles": best["n_particles"] if found else 0,
+                "cpu_seconds_needed": cpu if found else float("nan"),
+                "relative_bias": best["relative_bias"] if found else float("nan"),
+                "relative_bias_err": best["relative_bias_err"] if found else float("nan"),
+                "protocol_cpu_seconds": (
+                    protocol[0] if protocol and np.isfinite(protocol[0]) else float("nan")
+                ),
             }
         )
     model = {
@@ -524,6 +548,7 @@ def error_budget(rows, n_reference: int, target_errors):
         "chi2_per_dof": fit["chi2_per_dof"],
         "c_n": c_n,
         "c_n_err": c_n_err,
+        "pooled_variance": pooled,
     }
     return settings, targets, model
 
