@@ -37,6 +37,7 @@ def check(name, row, quantity, measured, error, expected, tolerance, passed=None
             "measured": measured,
             "error": error,
             "expected": expected,
+            "relative_deviation": (measured - expected) / expected if expected else float("nan"),
             "tolerance": tolerance,
             "passed": "" if passed is None else ("yes" if passed else "NO"),
         }
