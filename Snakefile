@@ -17,6 +17,8 @@ configfile: "config/config.yaml"
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/visco2008.smk"
+include: "workflow/rules/dsmc.smk"
+include: "workflow/rules/visco2008_dsmc.smk"
 include: "workflow/rules/montanero2007.smk"
 include: "workflow/rules/targets.smk"
 

@@ -87,11 +87,7 @@ def engine_sources(engine):
 
 
 def numba_warm(engine):
-    """Flag file of wildcard_constraints:
-    engine="[a-z0-9_]+",
-
-
-rule warm_numba: compiled kernels of ``engine`` are in numba's cache."""
+    """Flag file of rule warm_numba: compiled kernels of ``engine`` are in numba's cache."""
     return f"results/.cache/numba-{engine}.done"
 
 

@@ -42,7 +42,10 @@ def warmup() -> None:
     from kinetic.dsmc import kernels
 
     for dimension in (2, 3):
-        for selection, force_step in (("ntc", "euler"), ("poisson", "exact")):
+        for selection, force_step, splitting in (
+            ("ntc", "euler", "lie"),
+            ("poisson", "exact", "strang"),
+        ):
             settings = HomogeneousSettings(
                 n_particles=8,
                 restitution=0.9,
@@ -51,6 +54,7 @@ def warmup() -> None:
                 reduced_field=0.05,
                 force_step=force_step,
                 selection=selection,
+                splitting=splitting,
             )
             gas = new_gas(settings, realization_streams(0, 0, 1)[0])
             advance_gas(gas, 2, Samples(stride=1, histogram=True))

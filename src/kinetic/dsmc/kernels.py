@@ -28,8 +28,9 @@ at every candidate: after each accepted collision the two new speeds are compare
 created a faster particle, so an acceptance probability above 1 never occurs. Should a
 caller pass a stale bound (velocities changed behind the kernel's back), the first
 candidate that exceeds it is detected, counted in ``tally[TALLY_EXCEEDED]``, the bound is
-recomputed from the velocities and the candidate is re-tested against it; the pairs drawn
-before the detection were under-sampled, so fronts treat a nonzero count as an error.
+recomputed from the velocities and the run goes on at the corrected candidate rate (that
+candidate is dropped); the pairs drawn before the detection were under-sampled, so fronts
+treat a nonzero count as an error.
 
 Two clocks: no-time-counter (NTC: deterministic spacing 1/rate between candidates, the
 fraction of a candidate left at the end of a call carried in ``carry[0]``) and Poisson
@@ -453,10 +454,8 @@ def _collide_range_loop(
             bound = (top1 + top2) * BOUND_SAFETY
             bound_sq = bound * bound
             spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
-            code, h0, h1, h2, s0, s1, s2, s3 = _trial(
-                velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
-            )
-        if code != 1:
+            continue  # the candidate drawn under the stale bound is dropped
+        if code == 0:
             continue
         sa, sb = _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2)
         accepted += 1
@@ -604,10 +603,8 @@ def _collide_members_loop(
             bound = (top1 + top2) * BOUND_SAFETY
             bound_sq = bound * bound
             spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
-            code, h0, h1, h2, s0, s1, s2, s3 = _trial(
-                velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
-            )
-        if code != 1:
+            continue  # the candidate drawn under the stale bound is dropped
+        if code == 0:
             continue
         sa, sb = _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2)
         tally[TALLY_ACCEPTED] += 1
@@ -692,6 +689,8 @@ def _record_flight(
     d,
     now,
     last_collision,
+    record_start,
+    record_end,
     inverse_time_width,
     time_counts,
     inverse_path_width,
@@ -699,12 +698,14 @@ def _record_flight(
 ):
     """Histogram particle i's free flight ending at ``now`` (speed before the collision).
 
-    Bins are uniform from 0; the last entry of each counts array is the overflow bin.
-    A particle that has not collided yet (``last_collision < 0``) records nothing: its
-    first interval starts at an arbitrary time, not at a collision.
+    Only flights that start (at a collision) in [record_start, record_end) are recorded:
+    histogramming the flights that *end* in a window would under-count long flights
+    (by a factor 1 - t/window). Bins are uniform from 0; the last entry of each counts
+    array is the overflow bin. A particle that has not collided yet has
+    ``last_collision < 0`` (its first interval does not start at a collision).
     """
     start = last_collision[i]
-    if start >= 0.0:
+    if record_start <= start < record_end:
         flight = now - start
         speed = velocity[0, i] * velocity[0, i] + velocity[1, i] * velocity[1, i]
         if d == 3:
@@ -731,6 +732,8 @@ def _collide_observed_loop(
     bounds,
     tally,
     last_collision,
+    record_start,
+    record_end,
     time_bin_width,
     time_counts,
     path_bin_width,
@@ -780,10 +783,8 @@ def _collide_observed_loop(
             bound = (top1 + top2) * BOUND_SAFETY
             bound_sq = bound * bound
             spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
-            code, h0, h1, h2, s0, s1, s2, s3 = _trial(
-                velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
-            )
-        if code != 1:
+            continue  # the candidate drawn under the stale bound is dropped
+        if code == 0:
             continue
         _record_flight(
             velocity,
@@ -791,6 +792,8 @@ def _collide_observed_loop(
             d,
             now,
             last_collision,
+            record_start,
+            record_end,
             inverse_time_width,
             time_counts,
             inverse_path_width,
@@ -802,6 +805,8 @@ def _collide_observed_loop(
             d,
             now,
             last_collision,
+            record_start,
+            record_end,
             inverse_time_width,
             time_counts,
             inverse_path_width,
@@ -836,6 +841,8 @@ def collide_observed(
     bounds,
     tally,
     last_collision,
+    record_start,
+    record_end,
     time_bin_width,
     time_counts,
     path_bin_width,
@@ -847,7 +854,9 @@ def collide_observed(
     ``start_time`` to ``start_time + duration`` (memoryless: consecutive calls make one
     Poisson process). At each collision the free-flight time and the free path (speed
     x time; speeds about the origin, the gas being at rest) of both partners since
-    their previous collision are histogrammed.
+    their previous collision are histogrammed if that flight started in
+    [record_start, record_end) (run until record_end + the longest flight of interest
+    so that every such flight is either complete or known to be longer).
     last_collision: (N,) float64 time of each particle's last collision, < 0 if none.
     time_counts, path_counts: (n_bins + 1,) int64, last entry = overflow.
     Other arguments as in ``collide_range``.
@@ -864,6 +873,8 @@ def collide_observed(
             bounds,
             tally,
             last_collision,
+            record_start,
+            record_end,
             time_bin_width,
             time_counts,
             path_bin_width,
@@ -882,6 +893,8 @@ def collide_observed(
             bounds,
             tally,
             last_collision,
+            record_start,
+            record_end,
             time_bin_width,
             time_counts,
             path_bin_width,
@@ -1052,12 +1065,14 @@ def accumulate_moments(velocity, inverse_v0, sums):
 
 @njit(cache=True, error_model="numpy")
 def accumulate_histograms(
-    velocity, inverse_v0, cx_low, cx_width, cx_counts, speed_width, speed_counts
+    velocity, inverse_v0, cx_low, cx_width, cx_counts, cx_weights, speed_width, speed_counts
 ):
     """Histogram c_x (bins from ``cx_low``) and |c| (bins from 0) of one snapshot.
 
     cx_counts: (n_bins + 2,) int64 with [0] = underflow and [-1] = overflow;
-    speed_counts: (n_bins + 1,) int64 with [-1] = overflow.
+    cx_weights: (n_bins + 2,) float64, same bins, += c_x (3/2 - c_x²) of each particle
+    (the integrand of montanero2007 Eq. 4.6, so that β1 at the bin edges needs no
+    interpolation); speed_counts: (n_bins + 1,) int64 with [-1] = overflow.
     """
     d = velocity.shape[0]
     n = velocity.shape[1]
@@ -1073,11 +1088,13 @@ def accumulate_histograms(
             c2 += c * c
         position = (cx - cx_low) * inverse_cx
         if position < 0.0:
-            cx_counts[0] += 1
+            b = 0
         elif position >= n_cx:
-            cx_counts[n_cx + 1] += 1
+            b = n_cx + 1
         else:
-            cx_counts[1 + int(position)] += 1
+            b = 1 + int(position)
+        cx_counts[b] += 1
+        cx_weights[b] += cx * (1.5 - cx * cx)
         b = int(np.sqrt(c2) * inverse_speed)
         speed_counts[min(b, n_speed)] += 1
 
@@ -1097,6 +1114,7 @@ def advance(
     poisson,
     half_field_step,
     exact_force,
+    strang,
     target_energy,
     rate_exponent,
     bounds,
@@ -1110,24 +1128,38 @@ def advance(
     cx_low,
     cx_width,
     cx_counts,
+    cx_weights,
     speed_width,
     speed_counts,
 ):
     """``n_steps`` DSMC steps: collisions (time_step), force, thermostat, observers.
 
-    Per step, in the order of montanero2007 Section 4: collide all particles for
-    ``time_step``; apply the force step and the thermostat (``force_and_thermostat``);
-    every ``sample_stride``-th step (counted by clock[3]) add the snapshot moments to
+    Per step, in the order of montanero2007 Section 4 (``strang`` False, Lie splitting):
+    collide all particles for ``time_step``; apply the force step and the thermostat
+    (``force_and_thermostat``, a = ``half_field_step`` = ε δt/2). With ``strang`` True
+    the force and thermostat act for half a step before and after the collisions
+    (Strang splitting: splitting error O(δt²) instead of O(δt), for twice the force
+    work). Then, every ``sample_stride``-th step (counted by clock[3]) add the snapshot moments to
     ``moment_sums[1:]`` (and 1 to moment_sums[0]) and, if ``histogram``, the snapshot
-    to the histograms. clock: (4,) float64, updated:
+    to the histograms. clock: (5,) float64, updated:
     [0] time (thermostatted gas, = steps x time_step), [1] ln(T/T0) and [2] time of the
     freely cooling gas that the same run represents at zero field (the thermostat only
     rescales, and the dynamics is invariant under v -> v/s, t -> s^p t with
     p = ``rate_exponent``: 1 hard spheres, 0 Maxwell, 2 very hard particles); at nonzero
-    field -d clock[1]/d clock[0] is the thermostat rate (Eq. 3.5's left side), [3] steps.
+    field -d clock[1]/d clock[0] is the thermostat rate (Eq. 3.5's left side), [3] steps,
+    [4] the sum over steps of ζ_k time_step with ζ_k the free cooling rate at the start
+    of step k (at zero field; exact for any step since T(t) follows Haff's law within a
+    step).
     Returns a STATUS_* code (the step that failed is left applied).
     """
     for _ in range(n_steps):
+        log_scale = 0.0
+        if strang:
+            status, log_scale = force_and_thermostat(
+                velocity, 0.5 * half_field_step, exact_force, target_energy, bounds
+            )
+            if status != STATUS_OK:
+                return status
         collide_range(
             velocity,
             0,
@@ -1142,22 +1174,43 @@ def advance(
             carry,
             tally,
         )
-        status, log_scale = force_and_thermostat(
-            velocity, half_field_step, exact_force, target_energy, bounds
+        status, second_scale = force_and_thermostat(
+            velocity,
+            0.5 * half_field_step if strang else half_field_step,
+            exact_force,
+            target_energy,
+            bounds,
         )
         if status != STATUS_OK:
             return status
-        # free-cooling picture: physical step = time_step * (T0/T)^(p/2), T at mid-step
-        clock[2] += time_step * np.exp(-0.5 * rate_exponent * (clock[1] - log_scale))
+        log_scale += second_scale
+        # free-cooling picture: during the step the internal velocities are the physical
+        # ones times sqrt(T0/T_k), T_k the physical temperature at the step's start, so
+        # the step lasts time_step (T0/T_k)^(p/2) of physical time (exactly)
+        clock[2] += time_step * np.exp(-0.5 * rate_exponent * clock[1])
         clock[1] -= 2.0 * log_scale
         clock[0] += time_step
         clock[3] += 1.0
+        # Haff within the step: T^(-p/2) grows linearly, so the cooling rate at the
+        # step's start is (2/p)((T_k/T_k+1)^(p/2) - 1)/time_step (2 ln(scale)/time_step
+        # for p = 0), exact whatever the step
+        if rate_exponent > 0.0:
+            clock[4] += (2.0 / rate_exponent) * np.expm1(rate_exponent * log_scale)
+        else:
+            clock[4] += 2.0 * log_scale
         if int(clock[3]) % sample_stride == 0:
             moment_sums[0] += 1.0
             accumulate_moments(velocity, inverse_v0, moment_sums[1:])
             if histogram:
                 accumulate_histograms(
-                    velocity, inverse_v0, cx_low, cx_width, cx_counts, speed_width, speed_counts
+                    velocity,
+                    inverse_v0,
+                    cx_low,
+                    cx_width,
+                    cx_counts,
+                    cx_weights,
+                    speed_width,
+                    speed_counts,
                 )
     return STATUS_OK
 

@@ -1,0 +1,244 @@
+"""Speed of the homogeneous DSMC engine: ``python -m kinetic.bench dsmc``.
+
+Measured for hard spheres in d = 3, N = 10⁴ and 2·10⁵, α = 1 and 0.5 (each gas first
+relaxed to its steady or scaled cooling state, so the acceptance ratio is the one of
+production runs):
+
+- the collision stage (``kernels.collide_range``, NTC): accepted collisions and candidate
+  pairs per CPU-second, acceptance ratio, random numbers and memory touched per
+  collision, and how far the kernel is from two floors measured on the same data — the
+  candidate loop alone (draw a pair and the acceptance number, load the six velocity
+  components, test; no collision) and the random-number generator alone;
+- the forcing stage (``kernels.force_and_thermostat``, montanero2007 Eqs. 4.1-4.2):
+  particle updates per CPU-second for the Euler and the exact force steps, and the
+  moment observer (``kernels.accumulate_moments``);
+- one step of the paper's protocol (N = 2·10⁵, δt = 0.003 τ, Lie splitting) and of the
+  Strang-split protocol at δt = 0.2 τ (as accurate, see test_dsmc_force_splitting.py):
+  CPU time per step and per τ.
+
+Target (issue 4): at least 5·10⁶ accepted collisions per CPU-second at N = 2·10⁵.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+from numba import njit
+
+from kinetic.bench import median_rate
+from kinetic.dsmc import HomogeneousSettings, advance_gas, kernels, new_gas, realization_streams
+from kinetic.dsmc.kernels import _pair, _uniform
+from kinetic.progress import logger
+
+TARGET_COLLISIONS_PER_SECOND = 5e6
+DIMENSION = 3
+MARSAGLIA_DRAWS = 2 * 4 / math.pi  # uniforms per direction on the sphere (rejection)
+
+
+@njit(cache=True)
+def _candidate_floor(velocity, state, n_candidates, bound_sq):
+    """The candidate loop of collide_range without collisions: draws, loads, test."""
+    s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
+    n = velocity.shape[1]
+    accepted = 0
+    for _ in range(n_candidates):
+        i, j, s0, s1, s2, s3 = _pair(n, s0, s1, s2, s3)
+        g0 = velocity[0, i] - velocity[0, j]
+        g1 = velocity[1, i] - velocity[1, j]
+        g2 = velocity[2, i] - velocity[2, j]
+        u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+        if u * u * bound_sq < g0 * g0 + g1 * g1 + g2 * g2:
+            accepted += 1
+    state[0], state[1], state[2], state[3] = s0, s1, s2, s3
+    return accepted
+
+
+@njit(cache=True)
+def _generator_floor(state, n_draws):
+    """n_draws uniforms from the scalar xoshiro256+ of the kernels."""
+    s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
+    total = 0.0
+    for _ in range(n_draws):
+        u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+        total += u
+    state[0], state[1], state[2], state[3] = s0, s1, s2, s3
+    return total
+
+
+def _relaxed_gas(n: int, alpha: float):
+    """A hard-sphere gas in its (scaled) steady state after 5 τ, and its settings."""
+    settings = HomogeneousSettings(n_particles=n, restitution=alpha, time_step=0.25)
+    gas = new_gas(settings, realization_streams(2024, 0, 1)[0])
+    advance_gas(gas, 20)
+    return settings, gas
+
+
+def _collision_stage(n: int, alpha: float, repeats: int, collisions_per_particle: float):
+    settings, gas = _relaxed_gas(n, alpha)
+    duration = collisions_per_particle / (settings.collision_frequency / settings.tau) * 2
+    tally = np.zeros(4, dtype=np.int64)
+
+    def work() -> float:
+        before = int(tally[kernels.TALLY_ACCEPTED])
+        kernels.collide_range(
+            gas.velocity,
+            0,
+            n,
+            gas.rng,
+            kernels.HARD_SPHERES,
+            alpha,
+            settings.pair_coefficient,
+            duration,
+            False,
+            gas.bounds,
+            gas.carry,
+            tally,
+        )
+        # restore the temperature (α < 1 cools): part of the timed work, O(N)
+        kernels.force_and_thermostat(gas.velocity, 0.0, False, settings.target_energy, gas.bounds)
+        return float(tally[kernels.TALLY_ACCEPTED] - before)
+
+    rates = median_rate(work, repeats=repeats)
+    acceptance = tally[kernels.TALLY_ACCEPTED] / tally[kernels.TALLY_CANDIDATES]
+    accepted_rate = rates["rate_per_cpu_second"]
+    candidate_rate = accepted_rate / acceptance
+
+    bound = gas.bounds[DIMENSION] + gas.bounds[DIMENSION + 1]
+    candidates = int(min(2e7, candidate_rate * 0.2))
+    draws = 10_000_000
+
+    def candidate_loop() -> float:
+        _candidate_floor(gas.velocity, gas.rng, candidates, bound * bound)
+        return float(candidates)
+
+    def generator_loop() -> float:
+        _generator_floor(gas.rng, draws)
+        return float(draws)
+
+    floor = median_rate(candidate_loop, repeats=repeats)["rate_per_cpu_second"]
+    generator = median_rate(generator_loop, repeats=repeats)["rate_per_cpu_second"]
+    draws_per_collision = 2.0 / acceptance + MARSAGLIA_DRAWS
+    return {
+        "n_particles": n,
+        "restitution": alpha,
+        "accepted_collisions_per_cpu_second": accepted_rate,
+        "accepted_collisions_per_wall_second": rates["rate_per_wall_second"],
+        "candidate_pairs_per_cpu_second": candidate_rate,
+        "acceptance_ratio": float(acceptance),
+        "relative_speed_bound_over_mean": float(bound / (4 / math.sqrt(math.pi))),
+        "repeats_accepted_per_cpu_second": rates["cpu_rates"],
+        "random_numbers_per_collision": draws_per_collision,
+        "memory_per_collision": {
+            "doubles_read": 6.0 / acceptance,
+            "doubles_written": 6.0,
+            "cache_lines_touched": 6.0 / acceptance,
+            "note": "struct of arrays: a candidate reads 3 components of 2 random "
+            "particles, 6 cache lines; an accepted pair writes the same 6",
+        },
+        "floors": {
+            "candidate_loop_per_cpu_second": floor,
+            "uniforms_per_cpu_second": generator,
+            "ns_per_candidate_kernel": 1e9 / candidate_rate,
+            "ns_per_candidate_floor": 1e9 / floor,
+            "ns_per_collision_kernel": 1e9 / accepted_rate,
+            "ns_per_collision_random_numbers_only": 1e9 * draws_per_collision / generator,
+            "collision_work_ns": 1e9 / accepted_rate - 1e9 / (floor * acceptance),
+        },
+        "meets_target": bool(n < 100_000 or accepted_rate >= TARGET_COLLISIONS_PER_SECOND),
+    }
+
+
+def _forcing_stage(n: int, repeats: int):
+    settings, gas = _relaxed_gas(n, 1.0)
+    bounds = np.empty(DIMENSION + 2)
+    moments = np.zeros(kernels.N_MOMENTS)
+    sweeps = max(1, 2_000_000 // n)
+    result = {"n_particles": n}
+    for name, exact in (("euler", False), ("exact", True)):
+
+        def work(exact=exact) -> float:
+            for _ in range(sweeps):
+                kernels.force_and_thermostat(
+                    gas.velocity, 1e-4, exact, settings.target_energy, bounds
+                )
+            return float(sweeps * n)
+
+        result[f"force_{name}_particle_updates_per_cpu_second"] = median_rate(
+            work, repeats=repeats
+        )["rate_per_cpu_second"]
+
+    def observe() -> float:
+        for _ in range(sweeps):
+            kernels.accumulate_moments(gas.velocity, 1.0 / math.sqrt(2.0), moments)
+        return float(sweeps * n)
+
+    result["moment_observer_particles_per_cpu_second"] = median_rate(observe, repeats=repeats)[
+        "rate_per_cpu_second"
+    ]
+    return result
+
+
+def _protocol_step(repeats: int, time_step: float = 0.003, splitting: str = "lie"):
+    """One step of montanero2007's protocol (N = 2e5, δt = 0.003 τ, ε* = 0.025, Lie
+    splitting) or of the Strang-split protocol at a larger step."""
+    n = 200_000
+    settings = HomogeneousSettings(
+        n_particles=n,
+        restitution=0.5,
+        time_step=time_step,
+        reduced_field=0.025,
+        force_step="exact",
+        splitting=splitting,
+    )
+    gas = new_gas(settings, realization_streams(7, 0, 1)[0])
+    steps = 50
+    advance_gas(gas, steps)
+    timings = []
+    for _ in range(repeats):
+        start = time.process_time()
+        advance_gas(gas, steps)
+        timings.append((time.process_time() - start) / steps)
+    per_step = float(np.median(timings))
+    collisions_per_step = 0.5 * n * settings.collision_frequency * settings.time_step
+    return {
+        "n_particles": n,
+        "splitting": splitting,
+        "time_step_tau": settings.time_step,
+        "cpu_seconds_per_step": per_step,
+        "collisions_per_step": collisions_per_step,
+        "particle_updates_per_cpu_second": n / per_step,
+        "cpu_seconds_per_tau": per_step / settings.time_step,
+    }
+
+
+def run(quick: bool) -> dict[str, Any]:
+    """Benchmarks of the DSMC engine (see the module docstring)."""
+    repeats = 3 if quick else 7
+    sizes = (10_000, 200_000)
+    collisions = []
+    for n in sizes:
+        for alpha in (1.0, 0.5):
+            logger.info("dsmc bench: collision stage N=%d alpha=%g", n, alpha)
+            collisions.append(_collision_stage(n, alpha, repeats, 1.0 if quick else 2.0))
+    forcing = []
+    for n in sizes:
+        logger.info("dsmc bench: forcing stage N=%d", n)
+        forcing.append(_forcing_stage(n, repeats))
+    logger.info("dsmc bench: protocol steps")
+    paper = _protocol_step(repeats)
+    strang = _protocol_step(repeats, time_step=0.2, splitting="strang")
+    large = [c for c in collisions if c["n_particles"] == max(sizes)]
+    return {
+        "target_accepted_collisions_per_cpu_second": TARGET_COLLISIONS_PER_SECOND,
+        "target_met_at_n_200000": all(
+            c["accepted_collisions_per_cpu_second"] >= TARGET_COLLISIONS_PER_SECOND for c in large
+        ),
+        "collision_stage": collisions,
+        "forcing_stage": forcing,
+        "paper_protocol_step": paper,
+        "strang_protocol_step": strang,
+        "quick": quick,
+    }

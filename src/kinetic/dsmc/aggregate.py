@@ -1,0 +1,134 @@
+"""Combine batches of DSMC realizations into the numbers that figures plot (with errors)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import xarray as xr
+
+from kinetic import io
+from kinetic.analysis.statistics import mean_and_sem
+
+__all__ = ["combine_free_flights"]
+
+
+def combine_free_flights(batches: Sequence[xr.Dataset]) -> xr.Dataset:
+    """Free-flight densities over every realization of ``simulate_free_flights`` batches.
+
+    The batches must share their parameters except the realization range, and hold
+    distinct realizations (two or more in all). Returns a dataset with the densities
+    ``time_pdf``/``path_pdf`` (mean over realizations) and their standard errors
+    ``time_pdf_sem``/``path_pdf_sem`` on the bin centres ``flight_time`` (1/ω) and
+    ``free_path`` (l), the per-realization densities, the measured collision frequency
+    (mean and sem), and totals of flights, unresolved paths and CPU seconds.
+    """
+    if not batches:
+        raise ValueError("no batch to combine")
+    reference = io.parameters_of(batches[0])
+    ignored = {"first_realization", "n_realizations"}
+    for batch in batches[1:]:
+        other = io.parameters_of(batch)
+        differing = sorted(
+            k
+            for k in reference.keys() | other.keys()
+            if k not in ignored and reference.get(k) != other.get(k)
+        )
+        if differing:
+            raise ValueError(f"batches differ in {differing}: they are not one run")
+    seeds = {int(batch.attrs["seed"]) for batch in batches}
+    if len(seeds) != 1:
+        raise ValueError(f"batches come from different seeds {sorted(seeds)}")
+    realizations = np.concatenate([batch.realization.values for batch in batches])
+    if len(np.unique(realizations)) != len(realizations):
+        raise ValueError("batches overlap: a realization appears twice")
+    order = np.argsort(realizations)
+    time_pdf = np.concatenate([batch.time_pdf.values for batch in batches])[order]
+    path_pdf = np.concatenate([batch.path_pdf.values for batch in batches])[order]
+    frequency = np.concatenate([batch.collision_frequency.values for batch in batches])[order]
+    time_mean, time_sem = mean_and_sem(time_pdf)
+    path_mean, path_sem = mean_and_sem(path_pdf)
+    frequency_mean, frequency_sem = mean_and_sem(frequency)
+
+    def total(name: str):
+        return sum(batch[name].values.sum() for batch in batches)
+
+    first = batches[0]
+    dataset = io.make_dataset(
+        {
+            "time_pdf": (
+                "flight_time",
+                time_mean,
+                "omega",
+                "free-flight time density P_FFT, mean over realizations",
+            ),
+            "time_pdf_sem": ("flight_time", time_sem, "omega", "standard error of time_pdf"),
+            "path_pdf": (
+                "free_path",
+                path_mean,
+                "1/l",
+                "free-path density P_FPL, mean over realizations",
+            ),
+            "path_pdf_sem": ("free_path", path_sem, "1/l", "standard error of path_pdf"),
+            "time_pdf_by_realization": (
+                ("realization", "flight_time"),
+                time_pdf,
+                "omega",
+                "free-flight time density of each realization",
+            ),
+            "path_pdf_by_realization": (
+                ("realization", "free_path"),
+                path_pdf,
+                "1/l",
+                "free-path density of each realization",
+            ),
+            "time_edges": (
+                "flight_time_edge",
+                first.time_edges.values,
+                "1/omega",
+                "flight-time bin edges",
+            ),
+            "path_edges": ("free_path_edge", first.path_edges.values, "l", "free-path bin edges"),
+            "collision_frequency": (
+                (),
+                frequency_mean,
+                "omega",
+                "measured collisions per particle per unit time",
+            ),
+            "collision_frequency_sem": (
+                (),
+                frequency_sem,
+                "omega",
+                "standard error of collision_frequency",
+            ),
+            "flights": ((), total("flights"), "1", "recorded free flights, all realizations"),
+            "unresolved_paths": (
+                (),
+                total("unresolved_paths"),
+                "1",
+                "open flights of unknown free path, all realizations",
+            ),
+            "cpu_seconds": ((), total("cpu_seconds"), "s", "CPU time of all realizations"),
+        },
+        coords={
+            "realization": ("realization", realizations[order], "1", "realization index"),
+            "flight_time": (
+                "flight_time",
+                first.flight_time.values,
+                "1/omega",
+                "free-flight time (bin centre)",
+            ),
+            "free_path": ("free_path", first.free_path.values, "l", "free path (bin centre)"),
+            "flight_time_edge": (
+                "flight_time_edge",
+                first.flight_time_edge.values,
+                "1/omega",
+                "bin edge",
+            ),
+            "free_path_edge": ("free_path_edge", first.free_path_edge.values, "l", "bin edge"),
+        },
+        attrs={"engine": "kinetic.dsmc", "units": first.attrs["units"]},
+    )
+    parameters = {key: value for key, value in reference.items() if key not in ignored}
+    parameters["n_realizations"] = len(realizations)
+    return io.stamp(dataset, parameters=parameters, seed=seeds.pop())

@@ -1,0 +1,83 @@
+"""Continuous-time DSMC free flights against visco2008 (d = 2, equilibrium, ω = 1).
+
+Hard disks: free-flight times against Eq. (9) (the curve of Fig. 1's DSMC squares);
+Maxwell molecules: free paths against Eq. (D3) (Fig. 12) and flight times against the
+exponential (D1); very hard particles: flight times against Eq. (B4). Bin averages of the
+theory (Gauss-Legendre on each bin) against the histograms of 16 independent
+realizations: chi²/dof and the largest deviation in units of the standard error.
+"""
+
+import numpy as np
+import pytest
+
+from kinetic.analysis.statistics import mean_and_sem
+from kinetic.dsmc import simulate_free_flights
+from kinetic.theory import visco2008
+
+NODES, WEIGHTS = np.polynomial.legendre.leggauss(8)
+
+
+def _bin_average(pdf, edges):
+    """(1/Δ) ∫_bin pdf for every bin of ``edges``."""
+    low, high = edges[:-1, None], edges[1:, None]
+    x = 0.5 * (high + low) + 0.5 * (high - low) * NODES
+    return 0.5 * np.sum(WEIGHTS * pdf(x.ravel()).reshape(x.shape), axis=1)
+
+
+def _compare(measured, theory):
+    mean, sem = mean_and_sem(measured)
+    z = (mean - theory) / sem
+    return np.mean(z**2), np.max(np.abs(z))
+
+
+@pytest.fixture(scope="module")
+def runs():
+    common = dict(
+        n_particles=2000,
+        duration=30.0,
+        seed=61,
+        n_realizations=16,
+        dimension=2,
+        max_flight_time=10.0,
+        n_time_bins=20,
+        max_free_path=10.0,
+        n_path_bins=20,
+    )
+    return {
+        kernel: simulate_free_flights(kernel=kernel, **common)
+        for kernel in ("hard_spheres", "maxwell", "very_hard")
+    }
+
+
+def test_hard_disk_free_flight_times_follow_eq_9(runs):
+    run = runs["hard_spheres"]
+    theory = _bin_average(lambda t: visco2008.free_flight_time_pdf(t, 2), run.time_edges.values)
+    chi2, worst = _compare(run.time_pdf.values, theory)
+    assert chi2 < 2.0 and worst < 4.5
+    # the Poisson expectation e^{-t} is clearly rejected by the same data
+    poisson = _bin_average(lambda t: np.exp(-t), run.time_edges.values)
+    assert _compare(run.time_pdf.values, poisson)[0] > 20
+    mean, sem = mean_and_sem(run.collision_frequency.values)
+    assert abs(mean - 1.0) < 4 * sem
+
+
+def test_maxwell_free_paths_follow_d3(runs):
+    run = runs["maxwell"]
+    theory = _bin_average(lambda x: visco2008.maxwell_free_path_pdf(x, 2), run.path_edges.values)
+    chi2, worst = _compare(run.path_pdf.values, theory)
+    assert chi2 < 2.0 and worst < 4.5
+    assert int(run.unresolved_paths.sum()) == 0
+
+
+def test_maxwell_free_flight_times_are_exponential(runs):
+    run = runs["maxwell"]
+    exponential = _bin_average(lambda t: np.exp(-t), run.time_edges.values)
+    chi2, worst = _compare(run.time_pdf.values, exponential)
+    assert chi2 < 2.0 and worst < 4.5
+
+
+def test_very_hard_particle_flight_times_follow_b4(runs):
+    run = runs["very_hard"]
+    theory = _bin_average(lambda t: visco2008.vhp_free_flight_time_pdf(t, 2), run.time_edges.values)
+    chi2, worst = _compare(run.time_pdf.values, theory)
+    assert chi2 < 2.0 and worst < 4.5

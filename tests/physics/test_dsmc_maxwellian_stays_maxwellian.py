@@ -1,0 +1,61 @@
+"""Elastic DSMC: a Maxwellian stays Maxwellian, and a non-Maxwellian start relaxes to it."""
+
+import numpy as np
+from scipy import special
+
+from kinetic.analysis.statistics import mean_and_sem
+from kinetic.dsmc import (
+    HomogeneousSettings,
+    Samples,
+    advance_gas,
+    new_gas,
+    realization_streams,
+    simulate_homogeneous,
+)
+
+
+def test_maxwellian_stays_maxwellian():
+    run = simulate_homogeneous(
+        n_particles=4000,
+        restitution=1.0,
+        duration=20.0,
+        time_step=0.1,
+        sample_interval=2.0,
+        seed=31,
+        n_realizations=6,
+        sample_stride=2,
+        histogram_start=2.0,
+        cx_max=3.0,
+        n_cx_bins=12,
+    )
+    steady = run.isel(time=slice(1, None))
+    # fourth and sixth moments of c = V/v0 in d = 3: <c^4> = 15/4, <c^6> = 105/8
+    for name, exact in (("c4", 15 / 4), ("c6", 105 / 8), ("cx2", 1 / 2)):
+        mean, sem = mean_and_sem(steady.moments.sel(moment=name).mean("time").values)
+        assert abs(mean - exact) < 4 * sem, name
+    # the c_x histogram against the Gaussian exp(-c_x^2)/sqrt(pi), bin by bin
+    edges = run.cx_edges.values
+    gaussian = 0.5 * np.diff(special.erf(edges))
+    fraction = run.cx_counts.values / run.histogram_observations.values[:, None]
+    mean, sem = mean_and_sem(fraction)
+    z = (mean - gaussian) / sem
+    assert np.mean(z**2) < 1 + 5 * np.sqrt(2 / z.size) + 0.5  # chi2/dof (sem from 6 runs)
+    assert np.max(np.abs(z)) < 5
+
+
+def test_a_uniform_start_relaxes_to_the_maxwellian():
+    settings = HomogeneousSettings(n_particles=20000, restitution=1.0, time_step=0.1)
+    values = []
+    for stream in realization_streams(32, 0, 4):
+        cube = np.random.default_rng(int(stream[0] % 2**32)).uniform(-1, 1, size=(3, 20000))
+        gas = new_gas(settings, stream, cube)
+        samples = Samples(stride=1)
+        advance_gas(gas, 1, samples)
+        a2_start = 4 * samples.moment_sums[4] / 15 - 1
+        assert a2_start < -0.2  # uniform components: a2 = (19/15)/(5/3) - 1 = -0.24
+        advance_gas(gas, 100)  # 10 tau: about 11 collisions per particle
+        samples = Samples(stride=1)
+        advance_gas(gas, 50, samples)
+        values.append(4 * samples.moment_sums[4] / samples.moment_sums[0] / 15 - 1)
+    mean, sem = mean_and_sem(values)
+    assert abs(mean) < max(4 * sem, 2e-3)

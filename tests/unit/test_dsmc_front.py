@@ -1,0 +1,167 @@
+"""The DSMC fronts: validation before work, reproducibility, batching, dataset conventions."""
+
+import math
+
+import numpy as np
+import pytest
+
+from kinetic import io
+from kinetic.dsmc import (
+    HomogeneousSettings,
+    Samples,
+    advance_gas,
+    new_gas,
+    realization_streams,
+    simulate_free_flights,
+    simulate_homogeneous,
+)
+
+SMALL = dict(
+    n_particles=200,
+    restitution=0.9,
+    duration=1.0,
+    time_step=0.05,
+    sample_interval=0.5,
+    seed=3,
+    sample_stride=2,
+)
+
+
+@pytest.mark.parametrize(
+    ("changes", "fragment"),
+    [
+        ({"restitution": 0.0}, "restitution = 0.0 is outside the allowed range (0, 1]"),
+        ({"restitution": 1.2}, "restitution = 1.2 is outside the allowed range (0, 1]"),
+        ({"restitution": math.nan}, "restitution = nan"),
+        ({"n_particles": 1}, "n_particles = 1 is not allowed: must be >= 2"),
+        ({"reduced_field": -0.1}, "reduced_field = -0.1 is outside the allowed range [0, 1]"),
+        ({"reduced_field": 1.5}, "reduced_field = 1.5 is outside the allowed range [0, 1]"),
+        ({"time_step": 0.6}, "time_step = 0.6 τ is not allowed: must be in (0, 0.4431] τ"),
+        ({"time_step": -0.01}, "time_step = -0.01 τ is not allowed"),
+        ({"time_step": math.inf}, "time_step = inf τ is not allowed"),
+        ({"dimension": 4}, "dimension = 4 is not allowed: must be in [2, 3]"),
+        ({"kernel": "soft"}, "kernel = 'soft' is not allowed: must be one of hard_spheres"),
+        ({"force_step": "rk4"}, "force_step = 'rk4' is not allowed: must be one of euler, exact"),
+        ({"sample_interval": 0.07}, "sample_interval = 0.07 must be a whole multiple"),
+        ({"duration": 1.2}, "duration = 1.2 must be a whole multiple (>= 1) of sample_interval"),
+        ({"sample_stride": 20}, "sample_stride = 20 is not allowed: must be in [1, 10]"),
+        ({"histogram_start": 1.0}, "histogram_start = 1.0 τ is outside the allowed range"),
+        ({"n_cx_bins": 7}, "n_cx_bins = 7 must be an even integer"),
+        ({"seed": -1}, "seed = -1 is not allowed"),
+        ({"n_realizations": 0}, "n_realizations = 0 is not allowed"),
+    ],
+)
+def test_bad_parameters_are_refused_with_the_value_and_range(changes, fragment):
+    with pytest.raises((ValueError, TypeError)) as error:
+        simulate_homogeneous(**{**SMALL, **changes})
+    assert fragment in str(error.value)
+
+
+def test_force_step_too_coarse_is_refused():
+    with pytest.raises(ValueError, match=r"too large a force step: must be <= 0.1"):
+        HomogeneousSettings(n_particles=10, restitution=1.0, time_step=0.4, reduced_field=0.5)
+
+
+def test_time_step_limit_names_the_collision_time():
+    with pytest.raises(ValueError, match=r"collision time is 0.886"):
+        HomogeneousSettings(n_particles=10, restitution=1.0, time_step=1.0)
+
+
+def test_free_flight_front_validates_before_work():
+    with pytest.raises(ValueError, match=r"duration = 0\.0 /omega is outside"):
+        simulate_free_flights(n_particles=10, duration=0.0, seed=1)
+    with pytest.raises(ValueError, match="kernel = 'hard' is not allowed"):
+        simulate_free_flights(n_particles=10, duration=1.0, seed=1, kernel="hard")
+
+
+def test_initial_velocities_must_be_finite_and_shaped():
+    settings = HomogeneousSettings(n_particles=4, restitution=1.0, time_step=0.1, dimension=2)
+    stream = realization_streams(1, 0, 1)[0]
+    with pytest.raises(ValueError, match=r"velocity has shape \(3, 4\), expected"):
+        new_gas(settings, stream, np.ones((3, 4)))
+    bad = np.ones((2, 4))
+    bad[1, 2] = np.inf
+    with pytest.raises(ValueError, match=r"velocity\[1, 2\] = inf is not finite"):
+        new_gas(settings, stream, bad)
+
+
+def test_same_seed_same_data_and_batching_does_not_matter():
+    whole = simulate_homogeneous(**SMALL, n_realizations=3)
+    again = simulate_homogeneous(**SMALL, n_realizations=3)
+    first = simulate_homogeneous(**SMALL, n_realizations=1)
+    rest = simulate_homogeneous(**SMALL, n_realizations=2, first_realization=1)
+    np.testing.assert_array_equal(whole.moments.values, again.moments.values)
+    np.testing.assert_array_equal(whole.moments.values[:1], first.moments.values)
+    np.testing.assert_array_equal(whole.moments.values[1:], rest.moments.values)
+    np.testing.assert_array_equal(whole.cx_counts.values[1:], rest.cx_counts.values)
+    assert list(rest.realization.values) == [1, 2]
+
+
+def test_datasets_follow_the_io_conventions(tmp_path):
+    homogeneous = simulate_homogeneous(**SMALL, reduced_field=0.05, force_step="exact")
+    flights = simulate_free_flights(
+        n_particles=50,
+        duration=2.0,
+        seed=1,
+        n_time_bins=10,
+        n_path_bins=10,
+        max_flight_time=5.0,
+        max_free_path=5.0,
+    )
+    for dataset in (homogeneous, flights):
+        io.check_conventions(dataset)
+        path = io.write_dataset(dataset, tmp_path / "run.nc")
+        back = io.read_dataset(path)
+        assert io.parameters_of(back)["n_particles"] == dataset.attrs["n_particles"]
+    assert homogeneous.attrs["seed"] == 3
+    assert int(homogeneous.snapshots.sum()) == 10  # 20 steps, every 2nd step
+    assert np.all(homogeneous.cpu_seconds.values > 0)
+
+
+def test_exact_force_step_blow_up_stops_with_a_clear_message():
+    n = 1000
+    settings = HomogeneousSettings(
+        n_particles=n, restitution=1.0, time_step=0.1, reduced_field=1.0, force_step="exact"
+    )
+    velocity = np.random.default_rng(1).normal(size=(3, n))
+    velocity[0, 0] = -400.0  # after rescaling to T0 this particle has c_x of about -38
+    gas = new_gas(settings, realization_streams(1, 0, 1)[0], velocity)
+    with pytest.raises(RuntimeError, match=r"exact force step diverged: .* c_x <= -20"):
+        advance_gas(gas, 1)
+
+
+def test_euler_force_step_too_large_stops_with_a_clear_message():
+    n = 1000
+    settings = HomogeneousSettings(
+        n_particles=n, restitution=1.0, time_step=0.1, reduced_field=1.0, force_step="euler"
+    )
+    velocity = np.random.default_rng(1).normal(size=(3, n))
+    velocity[0, 0] = 400.0
+    gas = new_gas(settings, realization_streams(1, 0, 1)[0], velocity)
+    with pytest.raises(RuntimeError, match=r"Euler force step is not small: .* \|c_x\| > 10"):
+        advance_gas(gas, 1)
+
+
+def test_state_api_exposes_reduced_velocities_and_timing():
+    settings = HomogeneousSettings(n_particles=300, restitution=0.7, time_step=0.05)
+    gas = new_gas(settings, realization_streams(2, 0, 1)[0])
+    samples = Samples(stride=1)
+    advance_gas(gas, 4, samples)
+    c = gas.reduced_velocities()
+    assert c.shape == (300, 3)
+    assert np.mean(np.sum(c**2, axis=1)) == pytest.approx(1.5, rel=1e-12)
+    assert samples.moment_sums[0] == 4
+    assert gas.steps == 4 and gas.time == pytest.approx(0.2)
+    assert gas.collisions > 0 and gas.cpu_seconds > 0
+
+
+def test_beta1_weights_sum_to_the_marginal_moment():
+    run = simulate_homogeneous(
+        **{**SMALL, "histogram_start": 0.0, "cx_max": 8.0}, reduced_field=0.1
+    )
+    # c_x (3/2 - c_x^2) = c_x L_1^(1/2)(c_x^2): summed over particles and snapshots it is
+    # N x the sum over snapshots of the moment marginal_1
+    total = run.cx_weights.sum("cx") + run.cx_outside_weights.sum("side")
+    per_snapshot = run.moments.sel(moment="marginal_1") * run.snapshots
+    expected = per_snapshot.sum("time") * 200
+    np.testing.assert_allclose(total.values, expected.values, rtol=1e-9, atol=1e-9)

@@ -1,0 +1,189 @@
+"""Kernel-level checks of kinetic.dsmc.kernels: random streams, pair selection, bounds."""
+
+import numpy as np
+import pytest
+
+from kinetic import rng
+from kinetic.dsmc import kernels
+from kinetic.dsmc.units import candidate_coefficient
+
+
+def _gas(d, n, seed=1):
+    state = rng.stream_states(seed, 1)[0].copy()
+    velocity = np.empty((d, n))
+    kernels.maxwellian(velocity, state, 1.0)
+    bounds = np.empty(d + 2)
+    kernels.speed_bounds(velocity, 0, n, bounds)
+    return velocity, state, bounds
+
+
+def test_scalar_generator_is_the_stream_of_kinetic_rng():
+    state = rng.stream_states(11, 1)[0]
+    reference = state.copy()
+    s = [np.uint64(w) for w in state]
+    for _ in range(100):
+        x, *words = kernels._next(*s)
+        s = [np.uint64(w) for w in words]  # called from Python, numba returns plain ints
+        assert x == rng._next_u64(reference)
+
+
+def test_pair_indices_are_distinct_and_uniform():
+    s = [np.uint64(w) for w in rng.stream_states(3, 1)[0]]
+    n, draws = 5, 20000
+    counts = np.zeros((n, n), dtype=int)
+    for _ in range(draws):
+        i, j, *words = kernels._pair(n, *s)
+        s = [np.uint64(w) for w in words]
+        counts[i, j] += 1
+    assert np.trace(counts) == 0
+    expected = draws / (n * (n - 1))
+    off_diagonal = counts[~np.eye(n, dtype=bool)]
+    chi2 = np.sum((off_diagonal - expected) ** 2 / expected)
+    dof = off_diagonal.size - 1
+    assert chi2 < dof + 5 * np.sqrt(2 * dof)
+
+
+def test_maxwellian_has_zero_momentum_and_exact_energy():
+    velocity, _, _ = _gas(3, 1001)
+    assert np.all(np.abs(velocity.sum(axis=1)) < 1e-12)
+    assert np.sum(velocity**2) / 1001 == pytest.approx(3.0, rel=1e-14)
+
+
+def test_speed_bounds_are_the_two_largest_speeds():
+    velocity, _, bounds = _gas(3, 500)
+    speeds = np.sort(np.linalg.norm(velocity - bounds[:3, None], axis=0))
+    np.testing.assert_allclose(bounds[:3], velocity.mean(axis=1), atol=1e-15)
+    assert bounds[3] == pytest.approx(speeds[-1])
+    assert bounds[4] == pytest.approx(speeds[-2])
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_bound_stays_rigorous_while_collisions_raise_it(d):
+    n = 400
+    velocity, state, bounds = _gas(d, n)
+    tally = np.zeros(4, dtype=np.int64)
+    coefficient = candidate_coefficient("hard_spheres", d, 1.0, n)
+    for _ in range(50):
+        kernels.collide_range(
+            velocity,
+            0,
+            n,
+            state,
+            kernels.HARD_SPHERES,
+            1.0,
+            coefficient,
+            0.2,
+            False,
+            bounds,
+            np.zeros(1),
+            tally,
+        )
+        speeds = np.sort(np.linalg.norm(velocity - bounds[:d, None], axis=0))
+        assert bounds[d] >= speeds[-1] * (1 - 1e-12)
+        assert bounds[d] + bounds[d + 1] >= (speeds[-1] + speeds[-2]) * (1 - 1e-12)
+    assert tally[kernels.TALLY_RAISED] > 0
+    assert tally[kernels.TALLY_EXCEEDED] == 0
+
+
+@pytest.mark.parametrize("kernel", [kernels.HARD_SPHERES, kernels.VERY_HARD])
+def test_stale_bound_is_detected_and_raised(kernel):
+    d, n = 3, 200
+    velocity, state, bounds = _gas(d, n)
+    velocity[:, 0] += [60.0, 0.0, 0.0]  # outlier injected behind the kernel's back
+    tally = np.zeros(4, dtype=np.int64)
+    kernels.collide_range(
+        velocity, 0, n, state, kernel, 1.0, 0.05, 1.0, False, bounds, np.zeros(1), tally
+    )
+    assert tally[kernels.TALLY_EXCEEDED] >= 1
+    speeds = np.linalg.norm(velocity - bounds[:d, None], axis=0)
+    assert bounds[d] >= speeds.max() * (1 - 1e-12)
+
+
+def test_members_kernel_equals_range_kernel_on_the_identity_list():
+    d, n = 3, 300
+    v1, s1, b1 = _gas(d, n, seed=4)
+    v2, s2, b2 = v1.copy(), s1.copy(), b1.copy()
+    members = np.arange(n, dtype=np.int64)
+    t1, t2 = np.zeros(4, dtype=np.int64), np.zeros(4, dtype=np.int64)
+    c1, c2 = np.zeros(1), np.zeros(1)
+    kernels.collide_range(v1, 0, n, s1, kernels.HARD_SPHERES, 0.8, 0.01, 3.0, False, b1, c1, t1)
+    kernels.collide_members(
+        v2, members, 0, n, s2, kernels.HARD_SPHERES, 0.8, 0.01, 3.0, False, b2, c2, t2
+    )
+    np.testing.assert_array_equal(v1, v2)
+    np.testing.assert_array_equal(t1, t2)
+    assert c1[0] == c2[0]
+
+
+def test_members_kernel_touches_only_its_cell():
+    d, n = 2, 100
+    velocity, state, _ = _gas(d, n)
+    before = velocity.copy()
+    members = np.array([3, 17, 42, 58, 91], dtype=np.int64)
+    bounds = np.empty(d + 2)
+    kernels.members_speed_bounds(velocity, members, 1, 4, bounds)
+    kernels.collide_members(
+        velocity,
+        members,
+        1,
+        4,
+        state,
+        kernels.MAXWELL,
+        1.0,
+        1.0,
+        5.0,
+        True,
+        bounds,
+        np.zeros(1),
+        np.zeros(4, dtype=np.int64),
+    )
+    untouched = np.setdiff1d(np.arange(n), members[1:4])
+    np.testing.assert_array_equal(velocity[:, untouched], before[:, untouched])
+    assert not np.array_equal(velocity[:, members[1:4]], before[:, members[1:4]])
+    np.testing.assert_allclose(
+        velocity[:, members[1:4]].sum(axis=1), before[:, members[1:4]].sum(axis=1), atol=1e-13
+    )
+
+
+def test_ntc_carry_keeps_the_candidate_count_of_split_steps():
+    d, n = 3, 1000
+    v1, s1, b1 = _gas(d, n)
+    tally_once, tally_split = np.zeros(4, dtype=np.int64), np.zeros(4, dtype=np.int64)
+    # Maxwell molecules: constant rate, so the number of candidates is deterministic
+    kernels.collide_range(
+        v1, 0, n, s1, kernels.MAXWELL, 1.0, 0.001, 1.0, False, b1, np.zeros(1), tally_once
+    )
+    v2, s2, b2 = _gas(d, n)
+    carry = np.zeros(1)
+    for _ in range(10):
+        kernels.collide_range(
+            v2, 0, n, s2, kernels.MAXWELL, 1.0, 0.001, 0.1, False, b2, carry, tally_split
+        )
+    rate = 0.001 * n * (n - 1) / 2
+    assert tally_once[0] == int(rate * 1.0)
+    assert abs(tally_split[0] - rate * 1.0) <= 1
+
+
+def test_force_steps_are_the_euler_and_exact_maps_then_the_thermostat():
+    d, n, a = 3, 50, 0.01
+    velocity, _, _ = _gas(d, n)
+    for exact in (False, True):
+        v = velocity.copy()
+        factor = 1.0 / (1.0 + a * v[0]) if exact else 1.0 - a * v[0]
+        expected = v * factor
+        expected -= expected.mean(axis=1, keepdims=True)
+        expected *= np.sqrt(2 * 1.5 * n / np.sum(expected**2))
+        status, _ = kernels.force_and_thermostat(v, a, exact, 1.5, np.empty(d + 2))
+        assert status == kernels.STATUS_OK
+        np.testing.assert_allclose(v, expected, rtol=1e-12, atol=1e-13)
+
+
+def test_exact_force_step_composes_like_the_flow_it_integrates():
+    # V -> V/(1 + a V_x) is the time-a flow of dV/dt = -V_x V: two steps a/2 equal one step a
+    vx, vy, a = 1.7, -0.4, 0.3
+    half = 1.0 / (1.0 + 0.5 * a * vx)
+    vx1, vy1 = vx * half, vy * half
+    half1 = 1.0 / (1.0 + 0.5 * a * vx1)
+    full = 1.0 / (1.0 + a * vx)
+    assert vx1 * half1 == pytest.approx(vx * full, rel=1e-14)
+    assert vy1 * half1 == pytest.approx(vy * full, rel=1e-14)

@@ -1,0 +1,47 @@
+"""The DSMC part of the workflow: Fig. 12 plans only its own DSMC jobs."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPOSITORY = Path(__file__).resolve().parents[2]
+
+
+@pytest.mark.workflow
+def test_fig12_plans_the_maxwell_jobs_only(tmp_path):
+    result = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "snakemake",
+            "--snakefile",
+            str(REPOSITORY / "Snakefile"),
+            "--directory",
+            str(tmp_path),
+            "--configfile",
+            str(REPOSITORY / "config" / "ci.yaml"),
+            "--dry-run",
+            "results/visco2008/fig12.pdf",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        env={**os.environ, "MPLBACKEND": "Agg"},
+    )
+    plan = result.stdout + result.stderr
+    assert result.returncode == 0, plan
+    assert "results/visco2008/dsmc/maxwell_free_paths/batch0000.nc" in plan
+    assert "results/visco2008/dsmc/maxwell_free_paths/batch0001.nc" in plan  # 8 = 2 x 4
+    assert "batch0002" not in plan
+    assert "free_flight_times" not in plan
+    for rule in (
+        "warm_numba",
+        "simulate_visco2008_dsmc",
+        "aggregate_visco2008_dsmc",
+        "visco2008_theory",
+        "visco2008_fig12",
+    ):
+        assert rule in plan
