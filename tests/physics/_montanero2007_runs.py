@@ -27,6 +27,7 @@ def steady_run(
         "time_step": time_step,
         "force_step": force_step,
         "selection": "ntc",
+        "splitting": "lie",
         "reduced_field": reduced_field,
         "duration": duration,
         "steady_from": steady_from,

@@ -20,6 +20,7 @@ def strong_dissipation():
         "time_step": 0.01,
         "force_step": "euler",
         "selection": "ntc",
+        "splitting": "lie",
         "reduced_field": 0.05,
         "duration": 30.0,
         "steady_from": 12.0,

@@ -20,6 +20,7 @@ def test_every_window_has_zero_momentum_and_the_initial_energy(
         "time_step": 0.01,
         "force_step": force_step,
         "selection": "ntc",
+        "splitting": "lie",
         "reduced_field": reduced_field,
         "duration": 3.0,
         "steady_from": 1.5,

@@ -81,6 +81,7 @@ def _run():
         "time_step": 0.02,
         "force_step": "euler",
         "selection": "ntc",
+        "splitting": "lie",
         "reduced_field": 0.05,
         "duration": 2.0,
         "steady_from": 0.9,

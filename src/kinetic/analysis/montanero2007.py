@@ -346,6 +346,7 @@ def summary_row(ds, summary: dict[str, Any] | None = None) -> dict[str, Any]:
         "reduced_field": p["reduced_field"],
         "time_step": p["time_step_tau"],
         "force_step": p["force_step"],
+        "splitting": p.get("splitting", "lie"),
         "n_particles": p["n_particles"],
         "realizations": summary["realizations"],
     }
@@ -389,37 +390,57 @@ def _weighted_polyfit(x, y, err, degree: int):
     return coefficients, covariance, chi2
 
 
-def time_step_bias_fit(rows, n_particles: int, degree: int = 2):
-    """Fit kappa'/kappa0 = k0 + k1 dt + k2 dt^2 over the runs with ``n_particles``.
+def _splitting(row) -> str:
+    return row.get("splitting") or "lie"
 
-    With fewer than degree + 2 distinct time steps the degree is lowered (to 1 if
-    possible) so that the fit keeps a degree of freedom; k2 is then 0.
 
-    ``rows``: summary rows (:func:`summary_row`) of one alpha, both force steps (the force
-    step only changes kappa' at O(eps^2): its linear response is the same).  Returns
-    ``{"coefficients", "covariance", "chi2_per_dof", "time_steps"}``.
+def _bias_columns(time_step: float, splitting: str) -> np.ndarray:
+    """Columns (k0, k1, k2, s2) of the bias model for one run: the Lie splitting of
+    collisions and force biases kappa' at O(dt) (k1 dt + k2 dt^2), the Strang splitting
+    at O(dt^2) (s2 dt^2); k0 is the dt -> 0 limit shared by both."""
+    if splitting == "strang":
+        return np.array([1.0, 0.0, 0.0, time_step**2])
+    return np.array([1.0, time_step, time_step**2, 0.0])
+
+
+def time_step_bias_fit(rows, n_particles: int):
+    """Weighted fit of kappa'/kappa0 = k0 + (Lie) k1 dt + k2 dt^2 or (Strang) s2 dt^2.
+
+    ``rows``: summary rows (:func:`summary_row`) of one alpha at ``n_particles``, both
+    force steps (the force integrator only changes kappa' at O(eps^2)) and both
+    splittings.  k2 is dropped (set to 0) unless the time steps leave a degree of freedom
+    with it; s2 enters only with Strang runs.  Returns
+    ``{"coefficients": (k0, k1, k2, s2), "covariance": (4, 4), "chi2_per_dof",
+    "time_steps"}``.
     """
     chosen = [row for row in rows if row["n_particles"] == n_particles]
-    steps = sorted({row["time_step"] for row in chosen})
-    if len(steps) < 2:
-        raise ValueError(f"need runs at >= 2 time steps with N = {n_particles}, got {steps}")
-    used = min(degree, max(len(steps) - 2, 1))
-    coefficients, covariance, chi2 = _weighted_polyfit(
-        [row["time_step"] for row in chosen],
-        [row["kappa_ratio"] for row in chosen],
-        [row["kappa_ratio_err"] for row in chosen],
-        used,
-    )
-    padded = np.zeros(degree + 1)
-    padded[: used + 1] = coefficients
-    padded_covariance = np.zeros((degree + 1, degree + 1))
-    padded_covariance[: used + 1, : used + 1] = covariance
-    coefficients, covariance = padded, padded_covariance
+    lie = sorted({row["time_step"] for row in chosen if _splitting(row) == "lie"})
+    strang = sorted({row["time_step"] for row in chosen if _splitting(row) == "strang"})
+    if len(lie) < 2:
+        raise ValueError(f"need Lie runs at >= 2 time steps with N = {n_particles}, got {lie}")
+    used = [0, 1]
+    if strang:
+        used.append(3)
+    if len(lie) + len(strang) >= len(used) + 2:
+        used.insert(2, 2)
+    design = np.array([_bias_columns(row["time_step"], _splitting(row)) for row in chosen])
+    design = design[:, used]
+    values = np.array([row["kappa_ratio"] for row in chosen])
+    errors = np.array([row["kappa_ratio_err"] for row in chosen])
+    weighted = design / errors[:, None]
+    solution, *_ = np.linalg.lstsq(weighted, values / errors, rcond=None)
+    covariance_used = np.linalg.inv(weighted.T @ weighted)
+    dof = max(len(values) - len(used), 1)
+    chi2 = float(np.sum((weighted @ solution - values / errors) ** 2)) / dof
+    coefficients = np.zeros(4)
+    coefficients[used] = solution
+    covariance = np.zeros((4, 4))
+    covariance[np.ix_(used, used)] = covariance_used
     return {
         "coefficients": coefficients,
         "covariance": covariance,
         "chi2_per_dof": chi2,
-        "time_steps": steps,
+        "time_steps": {"lie": lie, "strang": strang},
     }
 
 
@@ -431,13 +452,13 @@ def particle_number_bias(rows, n_reference: int):
     those estimates is returned ((0, inf) if there is none).
     """
     reference = {
-        (row["time_step"], row["force_step"]): row
+        (row["time_step"], row["force_step"], _splitting(row)): row
         for row in rows
         if row["n_particles"] == n_reference
     }
     estimates, errors = [], []
     for row in rows:
-        base = reference.get((row["time_step"], row["force_step"]))
+        base = reference.get((row["time_step"], row["force_step"], _splitting(row)))
         if base is None or row["n_particles"] == n_reference:
             continue
         lever = 1.0 / row["n_particles"] - 1.0 / n_reference
@@ -452,8 +473,8 @@ def particle_number_bias(rows, n_reference: int):
 def error_budget(rows, n_reference: int, target_errors):
     """The error-against-run-time study of one alpha.
 
-    Bias model: kappa(dt, N) = k_inf + k1 dt + k2 dt^2 + c_N / N, with (k0, k1, k2) from
-    :func:`time_step_bias_fit` at N = ``n_reference`` and c_N from
+    Bias model: kappa(dt, N) = k_inf + (Lie) k1 dt + k2 dt^2 or (Strang) s2 dt^2 + c_N / N,
+    with (k0, k1, k2, s2) from :func:`time_step_bias_fit` at N = ``n_reference`` and c_N from
     :func:`particle_number_bias`, k_inf = k0 - c_N / n_reference.  Relative bias b and
     its error db per run (setting).
 
@@ -467,7 +488,7 @@ def error_budget(rows, n_reference: int, target_errors):
     Returns (per-setting rows, per-target rows, model).
     """
     fit = time_step_bias_fit(rows, n_reference)
-    k0, k1, k2 = fit["coefficients"]
+    k0, k1, k2, s2 = fit["coefficients"]
     c_n, c_n_err = particle_number_bias(rows, n_reference)
     if not np.isfinite(c_n_err):
         c_n = 0.0
@@ -486,9 +507,10 @@ def error_budget(rows, n_reference: int, target_errors):
     settings = []
     for row in rows:
         dt, n = row["time_step"], row["n_particles"]
-        gradient = np.array([1.0, dt, dt * dt])
-        bias = k1 * dt + k2 * dt * dt + c_n * (1.0 / n - 1.0 / n_reference)
-        dt_part = np.array([0.0, dt, dt * dt])
+        gradient = _bias_columns(dt, _splitting(row))
+        dt_part = gradient.copy()
+        dt_part[0] = 0.0
+        bias = float(dt_part @ fit["coefficients"]) + c_n * (1.0 / n - 1.0 / n_reference)
         bias_err = float(np.sqrt(dt_part @ fit["covariance"] @ dt_part))
         if np.isfinite(c_n_err) and n != n_reference:
             bias_err = float(np.hypot(bias_err, c_n_err * abs(1.0 / n - 1.0 / n_reference)))
@@ -496,6 +518,7 @@ def error_budget(rows, n_reference: int, target_errors):
         settings.append(
             {
                 "setting": row["setting"] or "protocol",
+                "splitting": _splitting(row),
                 "force_step": row["force_step"],
                 "time_step": dt,
                 "n_particles": n,
@@ -528,6 +551,7 @@ def error_budget(rows, n_reference: int, target_errors):
             {
                 "target_error": target,
                 "cheapest_setting": best["setting"] if found else "",
+                "splitting": best["splitting"] if found else "",
                 "force_step": best["force_step"] if found else "",
                 "time_step": best["time_step"] if found else float("nan"),
                 "n_particles": best["n_particles"] if found else 0,
@@ -544,6 +568,7 @@ def error_budget(rows, n_reference: int, target_errors):
         "k0": k0,
         "k1": k1,
         "k2": k2,
+        "s2": s2,
         "covariance": fit["covariance"],
         "chi2_per_dof": fit["chi2_per_dof"],
         "c_n": c_n,
