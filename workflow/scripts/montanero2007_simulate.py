@@ -24,7 +24,7 @@ dataset = io.stamp(
         "setting": run.get("setting", ""),
     },
     seed=int(snakemake.params.seed),
-    config=snakemake.config["montanero2007"],
+    config=snakemake.config,
 )
 io.write_dataset(dataset, snakemake.output[0])
 log.info("wrote %s (%.1f CPU s)", snakemake.output[0], float(dataset["cpu_seconds"].sum()))
