@@ -23,6 +23,7 @@ include: "workflow/rules/cloning.smk"
 include: "workflow/rules/visco2008_cloning.smk"
 include: "workflow/rules/dsmc.smk"
 include: "workflow/rules/visco2008_dsmc.smk"
+include: "workflow/rules/montanero2007.smk"
 include: "workflow/rules/targets.smk"
 
 

@@ -1,0 +1,1 @@
+"""Theory curves: one module per document (``visco2008``, ``montanero2007``, ...)."""

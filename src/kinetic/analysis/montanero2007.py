@@ -1,0 +1,601 @@
+"""Estimators of the montanero2007 heat-flux study: DSMC samples -> numbers with error bars.
+
+Inputs are the window averages and histograms of :func:`kinetic.dsmc.simulate_homogeneous`
+(velocities c = V/v0, time in τ, field ε*).  Every estimate comes with the standard
+error from independent realizations (axis 0 of every per-realization array):
+
+- kappa'/kappa0 from the heat flux (Eq. 3.9 over Eq. 2.47);
+- b'_k, k = 1..3, by Eq. (3.10) (``full``: <c_x L_k^(3/2)(c^2)>) and by Eq. (3.12)
+  (``marginal``: <c_x L_k^(1/2)(c_x^2)>), and their paired difference;
+- the odd part of the marginal g(V_x) (Eq. 3.15), phi(c_x^2) (Eq. 4.3), the truncated
+  series phi_p (Eq. 4.5) with the measured b'_k, and beta_1(c_x^2)/b'_1 (Eq. 4.6);
+- a2 (Eq. 2.13), the thermostat rate, and the exactness of the thermostat.
+
+Array-level functions take numpy arrays; ``*_of`` functions take a run's dataset.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from kinetic.analysis.statistics import mean_and_sem
+from kinetic.io import parameters_of
+from kinetic.theory import montanero2007 as theory
+
+__all__ = [
+    "N_SONINE",
+    "b_estimates",
+    "beta1_estimate",
+    "beta1_ratio_estimate",
+    "distributions_of",
+    "error_budget",
+    "kappa_prime_estimate",
+    "linear_response_fit",
+    "odd_marginal_estimate",
+    "particle_number_bias",
+    "phi_estimate",
+    "rebin",
+    "steady_average",
+    "steady_summary_of",
+    "summary_row",
+    "time_series_of",
+    "time_step_bias_fit",
+    "tolerance_factor",
+]
+
+N_SONINE = 3
+ROUTES = ("full", "marginal")
+
+
+# ------------------------------------------------------------------- array level
+
+
+def tolerance_factor(sigmas: float, dof: int) -> float:
+    """Multiple of a standard error with the two-sided probability of ``sigmas`` Gaussian
+    standard deviations, for an error estimated from ``dof`` degrees of freedom.
+
+    A standard error from R realizations is itself uncertain (Student's t with R - 1
+    degrees of freedom): with R = 4, a "4 sigma" check needs about 20 estimated errors,
+    with R = 32 about 4.9, and it tends to ``sigmas`` as R grows.
+    """
+    from scipy import stats
+
+    if dof < 1:
+        raise ValueError(f"need >= 1 degree of freedom (>= 2 realizations), got {dof}")
+    tail = stats.norm.sf(sigmas)
+    return float(stats.t.isf(tail, dof))
+
+
+def steady_average(series, times, t_start: float):
+    """Time average of each realization over the windows with ``times >= t_start``.
+
+    ``series``: (..., n_times) (last axis is time); returns (...,).
+    """
+    times = np.asarray(times, dtype=float)
+    mask = times >= t_start
+    if mask.sum() < 1:
+        raise ValueError(f"no sample at or after t_start = {t_start} (last time {times[-1]})")
+    return np.asarray(series, dtype=float)[..., mask].mean(axis=-1)
+
+
+def kappa_prime_estimate(c2cx, eps_star: float, d: int = 3):
+    """kappa'/kappa0 (Eq. 3.9 over Eq. 2.47) from per-realization ``<c^2 c_x>``.
+
+    ``c2cx``: (R, ...) independent realizations along axis 0.  Returns (mean, sem).
+    """
+    ratio = theory.kappa_prime_ratio_from_heat_flux(c2cx, eps_star, d)
+    return mean_and_sem(ratio, axis=0)
+
+
+def b_estimates(moments, eps_star: float, route: str, d: int = 3):
+    """b'_k from per-realization averages, Eq. (3.10) (``route="full"``) or (3.12).
+
+    ``moments``: (R, ..., K) with ``<c_x L_k(.)>`` for k = 1..K on the last axis.
+    Returns (mean, sem), each (..., K).
+    """
+    b = theory.b_coefficients(moments, eps_star, route, d)
+    return mean_and_sem(b, axis=0)
+
+
+def rebin(counts, edges, factor: int):
+    """Merge ``factor`` adjacent bins (symmetric about 0: the positive half is merged
+    outward from 0).  ``counts``: (..., n_bins); returns (counts, edges)."""
+    counts = np.asarray(counts)
+    n_bins = counts.shape[-1]
+    half = n_bins // 2
+    if factor < 1 or half % factor:
+        raise ValueError(f"rebin factor {factor} must divide the {half} bins of each half")
+    positive = counts[..., half:].reshape(*counts.shape[:-1], half // factor, factor).sum(-1)
+    negative = counts[..., :half][..., ::-1]
+    negative = negative.reshape(*counts.shape[:-1], half // factor, factor).sum(-1)[..., ::-1]
+    positive_edges = edges[half::factor]
+    new_edges = np.concatenate([-positive_edges[:0:-1], positive_edges])
+    return np.concatenate([negative, positive], axis=-1), new_edges
+
+
+def _odd_part(values):
+    """For symmetric bins, (values[+c] - values[-c]) / 2 on the positive half (..., n/2)."""
+    values = np.asarray(values, dtype=float)
+    half = values.shape[-1] // 2
+    return 0.5 * (values[..., half:] - values[..., :half][..., ::-1])
+
+
+def odd_marginal_estimate(counts, n_samples, edges):
+    """Marginal density g(c_x) and its odd part ``[g(c_x) - g(-c_x)] / 2`` (Eq. 3.15).
+
+    ``counts``: (R, n_bins) histogram of c_x per realization (symmetric ``edges``,
+    (n_bins + 1,)); ``n_samples``: (R,) particle observations behind each histogram.
+    g is the probability density of c_x (``g(V_x) = n g(c_x) / v0``).  Returns
+    ``(centres, g_mean, g_sem, odd_mean, odd_sem)``, the odd part on the bins c_x > 0.
+    """
+    counts = np.asarray(counts, dtype=float)
+    n_samples = np.asarray(n_samples, dtype=float)[:, None]
+    density = counts / (n_samples * np.diff(edges))
+    g_mean, g_sem = mean_and_sem(density, axis=0)
+    odd_mean, odd_sem = mean_and_sem(_odd_part(density), axis=0)
+    return 0.5 * (edges[1:] + edges[:-1]), g_mean, g_sem, odd_mean, odd_sem
+
+
+def phi_estimate(counts, n_samples, edges, eps_star: float):
+    """phi(c_x^2) of Eq. (4.3) from the odd part of the c_x histogram, per bin c_x > 0.
+
+    On a bin [a, b], Eq. (4.3) integrates to ``P_odd = phi eps* (e^{-a^2} - e^{-b^2}) /
+    (2 sqrt(pi))`` if phi is constant on the bin, so
+    ``phi = 2 sqrt(pi) P_odd / (eps* (e^{-a^2} - e^{-b^2}))`` (no division by c_x -> 0).
+    That is the mean of phi over the bin with the weight c_x e^{-c_x^2}, so the value is
+    placed at the weighted mean of c_x^2, ``[(a^2+1) e^{-a^2} - (b^2+1) e^{-b^2}] /
+    (e^{-a^2} - e^{-b^2})``: exact for phi linear in c_x^2, whatever the bin width.
+    Returns ``(cx2, mean, sem)``.
+    """
+    counts = np.asarray(counts, dtype=float)
+    n_samples = np.asarray(n_samples, dtype=float)[:, None]
+    half = counts.shape[-1] // 2
+    positive = edges[half:]
+    odd_probability = _odd_part(counts / n_samples)
+    gaussian_mass = np.exp(-(positive[:-1] ** 2)) - np.exp(-(positive[1:] ** 2))
+    phi = 2.0 * np.sqrt(np.pi) * odd_probability / (eps_star * gaussian_mass)
+    mean, sem = mean_and_sem(phi, axis=0)
+    low, high = positive[:-1] ** 2, positive[1:] ** 2
+    weighted = ((low + 1) * np.exp(-low) - (high + 1) * np.exp(-high)) / gaussian_mass
+    return weighted, mean, sem
+
+
+def _beta1_per_realization(counts, n_samples, edges, eps_star):
+    """beta_1 at the positive edges, per realization: (R, n_bins/2 + 1).
+
+    beta_1(X) = 4/(3 eps*) <c_x (3/2 - c_x^2) 1[c_x^2 < X]> (Eq. 4.6 rewritten with
+    Eq. 4.3), the weight taken at each bin's centre.
+    """
+    counts = np.asarray(counts, dtype=float)
+    centres = 0.5 * (edges[1:] + edges[:-1])
+    weights = counts * centres * (1.5 - centres**2)
+    half = weights.shape[-1] // 2
+    folded = weights[..., half:] + weights[..., :half][..., ::-1]
+    zero = np.zeros((*folded.shape[:-1], 1))
+    cumulative = np.concatenate([zero, np.cumsum(folded, axis=-1)], axis=-1)
+    return 4.0 / (3.0 * eps_star) * cumulative / np.asarray(n_samples, dtype=float)[:, None]
+
+
+def beta1_estimate(counts, n_samples, edges, eps_star: float):
+    """beta_1(c_x^2) of Eq. (4.6) at the bin edges c_x^2 = e^2 (e >= 0): (cx2, mean, sem).
+
+    Bin-centre quadrature of the weight c_x (3/2 - c_x^2): relative error
+    O((bin width)^2).  Tends to b'_1 (marginal route, k = 1) beyond the histogram.
+    """
+    per_realization = _beta1_per_realization(counts, n_samples, edges, eps_star)
+    mean, sem = mean_and_sem(per_realization, axis=0)
+    half = np.asarray(counts).shape[-1] // 2
+    return edges[half:] ** 2, mean, sem
+
+
+def beta1_ratio_estimate(counts, n_samples, edges, b1, eps_star: float):
+    """Fig. 7: beta_1(c_x^2) / b'_1 as a ratio of realization means, with its error.
+
+    ``b1``: (R,) b'_1 per realization from the same snapshots (marginal route, so that
+    the ratio tends to 1).  Error by first-order propagation with the covariance of
+    numerator and denominator.  Returns ``(cx2, ratio, sem)``.
+    """
+    numerator = _beta1_per_realization(counts, n_samples, edges, eps_star)
+    denominator = np.asarray(b1, dtype=float)
+    r = numerator.shape[0]
+    num_mean = numerator.mean(axis=0)
+    den_mean = denominator.mean()
+    ratio = num_mean / den_mean
+    dn = numerator - num_mean
+    dd = (denominator - den_mean)[:, None]
+    var_n = (dn**2).sum(axis=0) / (r - 1)
+    var_d = (dd**2).sum(axis=0) / (r - 1)
+    cov = (dn * dd).sum(axis=0) / (r - 1)
+    variance = (var_n - 2.0 * ratio * cov + ratio**2 * var_d) / (den_mean**2 * r)
+    half = np.asarray(counts).shape[-1] // 2
+    return edges[half:] ** 2, ratio, np.sqrt(np.maximum(variance, 0.0))
+
+
+# ----------------------------------------------------------------- dataset level
+
+
+def _moment(ds, name: str) -> np.ndarray:
+    """(R, T) window averages of one snapshot moment."""
+    return np.asarray(ds["moments"].sel(moment=name).values, dtype=float)
+
+
+def _sonine_moments(ds, route: str) -> np.ndarray:
+    """(R, T, 3) <c_x L_k(.)> of one route."""
+    return np.stack([_moment(ds, f"{route}_{k}") for k in range(1, N_SONINE + 1)], axis=-1)
+
+
+def run_parameters(ds) -> dict[str, Any]:
+    """Parameters of a run's dataset (those stamped by the engine plus the steady start)."""
+    parameters = parameters_of(ds)
+    parameters["steady_from_tau"] = float(ds.attrs["steady_from_tau"])
+    return parameters
+
+
+def time_series_of(ds) -> dict[str, np.ndarray]:
+    """Realization means and errors of the time-dependent quantities (Figs 1 and 2).
+
+    Keys: ``time`` (T,) [τ]; ``kappa_ratio``, ``kappa_ratio_err`` (T,) kappa'(t)/kappa0;
+    ``b_full``, ``b_full_err``, ``b_marginal``, ``b_marginal_err`` (T, 3); ``a2``,
+    ``a2_err`` (T,).
+    """
+    p = run_parameters(ds)
+    eps = p["reduced_field"]
+    out = {"time": np.asarray(ds["time"].values, dtype=float)}
+    a2 = theory.reduced_a2_from_moment(_moment(ds, "c4"))
+    out["a2"], out["a2_err"] = mean_and_sem(a2, axis=0)
+    if eps > 0:
+        out["kappa_ratio"], out["kappa_ratio_err"] = kappa_prime_estimate(_moment(ds, "c2cx"), eps)
+        for route in ROUTES:
+            out[f"b_{route}"], out[f"b_{route}_err"] = b_estimates(
+                _sonine_moments(ds, route), eps, route
+            )
+    return out
+
+
+def steady_summary_of(ds) -> dict[str, Any]:
+    """Steady-state estimates of one run (time averages over t >= steady_from).
+
+    Scalars (with ``_err``): ``kappa_ratio`` (kappa'/kappa0), ``a2``, ``thermostat_rate``
+    [1/τ], ``anisotropy`` (<c_x^2> - 1/2: O(eps*^2), the pressure tensor of Eq. 2.6);
+    arrays (3,): ``b_full``, ``b_marginal`` (+ ``_err``) and ``route_difference``
+    (paired b_full - b_marginal, + ``_err``); thermostat exactness ``max_abs_cx`` and
+    ``max_abs_energy_error`` (max over windows of |<c_x>| and |<c^2> - d/2|); cost
+    ``cpu_seconds`` (total), ``particle_tau`` (N x duration x R), ``collisions``; the
+    run's parameters; per-realization arrays under ``per_realization``.
+    """
+    p = run_parameters(ds)
+    eps, t0 = p["reduced_field"], p["steady_from_tau"]
+    times = ds["time"].values
+    steady = {}
+    out: dict[str, Any] = {"parameters": p, "per_realization": steady}
+    a2 = steady_average(theory.reduced_a2_from_moment(_moment(ds, "c4")), times, t0)
+    steady["a2"] = a2
+    out["a2"], out["a2_err"] = mean_and_sem(a2)
+    rate = steady_average(ds["thermostat_rate"].values, times, t0)
+    out["thermostat_rate"], out["thermostat_rate_err"] = mean_and_sem(rate)
+    anisotropy = steady_average(_moment(ds, "cx2"), times, t0) - 0.5
+    out["anisotropy"], out["anisotropy_err"] = mean_and_sem(anisotropy)
+    out["max_abs_cx"] = float(np.nanmax(np.abs(_moment(ds, "cx"))))
+    out["max_abs_energy_error"] = float(np.nanmax(np.abs(_moment(ds, "c2") - 1.5)))
+    if eps > 0:
+        c2cx = steady_average(_moment(ds, "c2cx"), times, t0)
+        steady["kappa_ratio"] = theory.kappa_prime_ratio_from_heat_flux(c2cx, eps)
+        out["kappa_ratio"], out["kappa_ratio_err"] = mean_and_sem(steady["kappa_ratio"])
+        for route in ROUTES:
+            moments = steady_average(np.moveaxis(_sonine_moments(ds, route), -1, 1), times, t0)
+            steady[f"b_{route}"] = theory.b_coefficients(moments, eps, route)
+            out[f"b_{route}"], out[f"b_{route}_err"] = mean_and_sem(steady[f"b_{route}"])
+        difference = steady["b_full"] - steady["b_marginal"]
+        out["route_difference"], out["route_difference_err"] = mean_and_sem(difference)
+    r = ds.sizes["realization"]
+    out["cpu_seconds"] = float(np.sum(ds["cpu_seconds"].values))
+    out["particle_tau"] = float(p["n_particles"] * p["duration_tau"] * r)
+    out["steady_particle_tau"] = float(p["n_particles"] * (p["duration_tau"] - t0) * r)
+    out["collisions"] = int(np.sum(ds["collisions"].values))
+    out["realizations"] = int(r)
+    return out
+
+
+def distributions_of(ds, summary: dict[str, Any] | None = None, rebin_factor: int = 1):
+    """phi(c_x^2), phi_p (p = 1..3 with the measured b'_k, Eq. 4.5), beta_1/b'_1, g(c_x).
+
+    Keys: ``phi_cx2``, ``phi``, ``phi_err`` (bins c_x > 0); ``phi_p`` (3, n) at
+    ``phi_cx2`` using the full-route b'_k (the paper's choice); ``beta_cx2``,
+    ``beta_ratio``, ``beta_ratio_err``; ``cx``, ``g``, ``g_err``, ``odd``, ``odd_err``.
+    """
+    summary = summary or steady_summary_of(ds)
+    eps = summary["parameters"]["reduced_field"]
+    counts = np.asarray(ds["cx_counts"].values, dtype=float)
+    edges = np.asarray(ds["cx_edges"].values, dtype=float)
+    n_samples = np.asarray(ds["histogram_observations"].values, dtype=float)
+    out: dict[str, Any] = {}
+    beta_cx2, ratio, ratio_err = beta1_ratio_estimate(
+        counts, n_samples, edges, summary["per_realization"]["b_marginal"][:, 0], eps
+    )
+    out.update(beta_cx2=beta_cx2, beta_ratio=ratio, beta_ratio_err=ratio_err)
+    if rebin_factor > 1:
+        counts, edges = rebin(counts, edges, rebin_factor)
+    cx2, phi, phi_err = phi_estimate(counts, n_samples, edges, eps)
+    out.update(phi_cx2=cx2, phi=phi, phi_err=phi_err)
+    out["phi_p"] = np.stack(
+        [theory.phi_sonine(cx2, summary["b_full"][:p]) for p in range(1, N_SONINE + 1)]
+    )
+    cx, g, g_err, odd, odd_err = odd_marginal_estimate(counts, n_samples, edges)
+    out.update(cx=cx, g=g, g_err=g_err, odd=odd, odd_err=odd_err)
+    return out
+
+
+def summary_row(ds, summary: dict[str, Any] | None = None) -> dict[str, Any]:
+    """One flat table row of a run: parameters, steady estimates, errors and cost.
+
+    Columns: run, family, setting, alpha, reduced_field, time_step, force_step,
+    n_particles, realizations, kappa_ratio(_err), b{k}_full(_err), b{k}_marginal(_err),
+    b{k}_route_difference(_err) for k = 1..3, a2(_err), thermostat_rate(_err),
+    anisotropy(_err), max_abs_cx, max_abs_energy_error, cpu_seconds, particle_tau,
+    steady_particle_tau, collisions.
+    """
+    summary = summary or steady_summary_of(ds)
+    p = summary["parameters"]
+    row: dict[str, Any] = {
+        "run": p.get("run", ""),
+        "family": p.get("family", ""),
+        "setting": p.get("setting", ""),
+        "alpha": p["restitution"],
+        "reduced_field": p["reduced_field"],
+        "time_step": p["time_step_tau"],
+        "force_step": p["force_step"],
+        "splitting": p.get("splitting", "lie"),
+        "n_particles": p["n_particles"],
+        "realizations": summary["realizations"],
+    }
+    nan = float("nan")
+    row["kappa_ratio"] = summary.get("kappa_ratio", nan)
+    row["kappa_ratio_err"] = summary.get("kappa_ratio_err", nan)
+    for key in ("b_full", "b_marginal", "route_difference"):
+        values = summary.get(key, np.full(N_SONINE, nan))
+        errors = summary.get(f"{key}_err", np.full(N_SONINE, nan))
+        name = key.removeprefix("b_")
+        for k in range(N_SONINE):
+            row[f"b{k + 1}_{name}"] = float(values[k])
+            row[f"b{k + 1}_{name}_err"] = float(errors[k])
+    for key in ("a2", "thermostat_rate", "anisotropy"):
+        row[key] = float(summary[key])
+        row[f"{key}_err"] = float(summary[f"{key}_err"])
+    for key in (
+        "max_abs_cx",
+        "max_abs_energy_error",
+        "cpu_seconds",
+        "particle_tau",
+        "steady_particle_tau",
+        "collisions",
+    ):
+        row[key] = summary[key]
+    return row
+
+
+# --------------------------------------------------------- error against run time
+
+
+def _weighted_polyfit(x, y, err, degree: int):
+    """Weighted least squares y = sum_j c_j x^j; returns (coefficients, covariance, chi2/dof)."""
+    x, y, err = (np.asarray(a, dtype=float) for a in (x, y, err))
+    design = np.vander(x, degree + 1, increasing=True) / err[:, None]
+    rhs = y / err
+    coefficients, *_ = np.linalg.lstsq(design, rhs, rcond=None)
+    covariance = np.linalg.inv(design.T @ design)
+    dof = max(len(x) - degree - 1, 1)
+    chi2 = float(np.sum((design @ coefficients - rhs) ** 2)) / dof
+    return coefficients, covariance, chi2
+
+
+def _splitting(row) -> str:
+    return row.get("splitting") or "lie"
+
+
+def _bias_columns(time_step: float, splitting: str) -> np.ndarray:
+    """Columns (k0, k1, k2, s2) of the bias model for one run: the Lie splitting of
+    collisions and force biases kappa' at O(dt) (k1 dt + k2 dt^2), the Strang splitting
+    at O(dt^2) (s2 dt^2); k0 is the dt -> 0 limit shared by both."""
+    if splitting == "strang":
+        return np.array([1.0, 0.0, 0.0, time_step**2])
+    return np.array([1.0, time_step, time_step**2, 0.0])
+
+
+def time_step_bias_fit(rows, n_particles: int):
+    """Weighted fit of kappa'/kappa0 = k0 + (Lie) k1 dt + k2 dt^2 or (Strang) s2 dt^2.
+
+    ``rows``: summary rows (:func:`summary_row`) of one alpha at ``n_particles``, both
+    force steps (the force integrator only changes kappa' at O(eps^2)) and both
+    splittings.  k2 is dropped (set to 0) unless the time steps leave a degree of freedom
+    with it; s2 enters only with Strang runs.  Returns
+    ``{"coefficients": (k0, k1, k2, s2), "covariance": (4, 4), "chi2_per_dof",
+    "time_steps"}``.
+    """
+    chosen = [row for row in rows if row["n_particles"] == n_particles]
+    lie = sorted({row["time_step"] for row in chosen if _splitting(row) == "lie"})
+    strang = sorted({row["time_step"] for row in chosen if _splitting(row) == "strang"})
+    if len(lie) < 2:
+        raise ValueError(f"need Lie runs at >= 2 time steps with N = {n_particles}, got {lie}")
+    used = [0, 1]
+    if strang:
+        used.append(3)
+    if len(lie) + len(strang) >= len(used) + 2:
+        used.insert(2, 2)
+    design = np.array([_bias_columns(row["time_step"], _splitting(row)) for row in chosen])
+    design = design[:, used]
+    values = np.array([row["kappa_ratio"] for row in chosen])
+    errors = np.array([row["kappa_ratio_err"] for row in chosen])
+    weighted = design / errors[:, None]
+    solution, *_ = np.linalg.lstsq(weighted, values / errors, rcond=None)
+    covariance_used = np.linalg.inv(weighted.T @ weighted)
+    dof = max(len(values) - len(used), 1)
+    chi2 = float(np.sum((weighted @ solution - values / errors) ** 2)) / dof
+    coefficients = np.zeros(4)
+    coefficients[used] = solution
+    covariance = np.zeros((4, 4))
+    covariance[np.ix_(used, used)] = covariance_used
+    return {
+        "coefficients": coefficients,
+        "covariance": covariance,
+        "chi2_per_dof": chi2,
+        "time_steps": {"lie": lie, "strang": strang},
+    }
+
+
+def particle_number_bias(rows, n_reference: int):
+    """Finite-N bias c_N/N from runs at one time step and force step: returns (c_N, error).
+
+    For each run with N != ``n_reference``, the difference to the run with N_reference at
+    the same time step and force step estimates c_N (1/N - 1/N_ref); the weighted mean of
+    those estimates is returned ((0, inf) if there is none).
+    """
+    reference = {
+        (row["time_step"], row["force_step"], _splitting(row)): row
+        for row in rows
+        if row["n_particles"] == n_reference
+    }
+    estimates, errors = [], []
+    for row in rows:
+        base = reference.get((row["time_step"], row["force_step"], _splitting(row)))
+        if base is None or row["n_particles"] == n_reference:
+            continue
+        lever = 1.0 / row["n_particles"] - 1.0 / n_reference
+        estimates.append((row["kappa_ratio"] - base["kappa_ratio"]) / lever)
+        errors.append(np.hypot(row["kappa_ratio_err"], base["kappa_ratio_err"]) / abs(lever))
+    if not estimates:
+        return 0.0, float("inf")
+    weights = 1.0 / np.square(errors)
+    return float(np.sum(weights * estimates) / np.sum(weights)), float(np.sqrt(1 / weights.sum()))
+
+
+def error_budget(rows, n_reference: int, target_errors):
+    """The error-against-run-time study of one alpha.
+
+    Bias model: kappa(dt, N) = k_inf + (Lie) k1 dt + k2 dt^2 or (Strang) s2 dt^2 + c_N / N,
+    with (k0, k1, k2, s2) from :func:`time_step_bias_fit` at N = ``n_reference`` and c_N from
+    :func:`particle_number_bias`, k_inf = k0 - c_N / n_reference.  Relative bias b and
+    its error db per run (setting).
+
+    Statistics: the variance of kappa' per steady particle-tau hardly depends on the time
+    step, so it is pooled over the runs with the same N (weights: realizations - 1); a
+    setting's inefficiency is I = s^2 C, the CPU seconds C it needs for a relative
+    standard error s = 1, from that pooled variance and its own CPU time per steady
+    particle-tau (transient included).  ``inefficiency_measured`` is its own s^2 C.
+    CPU time for a total relative error E (more realizations of the same run):
+    I / (E^2 - (|b| + 2 db)^2), the bias taken at its upper 2-sigma bound, when positive.
+    Returns (per-setting rows, per-target rows, model).
+    """
+    fit = time_step_bias_fit(rows, n_reference)
+    k0, k1, k2, s2 = fit["coefficients"]
+    c_n, c_n_err = particle_number_bias(rows, n_reference)
+    if not np.isfinite(c_n_err):
+        c_n = 0.0
+    k_inf = k0 - c_n / n_reference
+    pooled = {}
+    for n in {row["n_particles"] for row in rows}:
+        same = [row for row in rows if row["n_particles"] == n]
+        weights = np.array([row["realizations"] - 1.0 for row in same])
+        variances = np.array(
+            [
+                (row["kappa_ratio_err"] / row["kappa_ratio"]) ** 2 * row["steady_particle_tau"]
+                for row in same
+            ]
+        )
+        pooled[n] = float(np.sum(weights * variances) / np.sum(weights))
+    settings = []
+    for row in rows:
+        dt, n = row["time_step"], row["n_particles"]
+        gradient = _bias_columns(dt, _splitting(row))
+        dt_part = gradient.copy()
+        dt_part[0] = 0.0
+        bias = float(dt_part @ fit["coefficients"]) + c_n * (1.0 / n - 1.0 / n_reference)
+        bias_err = float(np.sqrt(dt_part @ fit["covariance"] @ dt_part))
+        if np.isfinite(c_n_err) and n != n_reference:
+            bias_err = float(np.hypot(bias_err, c_n_err * abs(1.0 / n - 1.0 / n_reference)))
+        relative_stat = row["kappa_ratio_err"] / row["kappa_ratio"]
+        settings.append(
+            {
+                "setting": row["setting"] or "protocol",
+                "splitting": _splitting(row),
+                "force_step": row["force_step"],
+                "time_step": dt,
+                "n_particles": n,
+                "realizations": row["realizations"],
+                "cpu_seconds": row["cpu_seconds"],
+                "cpu_us_per_particle_tau": 1e6 * row["cpu_seconds"] / row["particle_tau"],
+                "kappa_ratio": row["kappa_ratio"],
+                "kappa_ratio_err": row["kappa_ratio_err"],
+                "model": float(gradient @ fit["coefficients"]) + c_n / n,
+                "relative_stat_err": relative_stat,
+                "relative_bias": bias / k_inf,
+                "relative_bias_err": bias_err / k_inf,
+                "inefficiency": pooled[n] * row["cpu_seconds"] / row["steady_particle_tau"],
+                "inefficiency_measured": relative_stat**2 * row["cpu_seconds"],
+            }
+        )
+
+    def needed_cpu(setting, target):
+        bound = abs(setting["relative_bias"]) + 2.0 * setting["relative_bias_err"]
+        margin = target**2 - bound**2
+        return setting["inefficiency"] / margin if margin > 0 else float("inf")
+
+    targets = []
+    for target in target_errors:
+        costs = [(needed_cpu(setting, target), setting) for setting in settings]
+        cpu, best = min(costs, key=lambda pair: pair[0])
+        found = np.isfinite(cpu)
+        protocol = [c for c, s in costs if s["setting"] == "protocol"]
+        targets.append(
+            {
+                "target_error": target,
+                "cheapest_setting": best["setting"] if found else "",
+                "splitting": best["splitting"] if found else "",
+                "force_step": best["force_step"] if found else "",
+                "time_step": best["time_step"] if found else float("nan"),
+                "n_particles": best["n_particles"] if found else 0,
+                "cpu_seconds_needed": cpu if found else float("nan"),
+                "relative_bias": best["relative_bias"] if found else float("nan"),
+                "relative_bias_err": best["relative_bias_err"] if found else float("nan"),
+                "protocol_cpu_seconds": (
+                    protocol[0] if protocol and np.isfinite(protocol[0]) else float("nan")
+                ),
+            }
+        )
+    model = {
+        "k_inf": k_inf,
+        "k0": k0,
+        "k1": k1,
+        "k2": k2,
+        "s2": s2,
+        "covariance": fit["covariance"],
+        "chi2_per_dof": fit["chi2_per_dof"],
+        "c_n": c_n,
+        "c_n_err": c_n_err,
+        "pooled_variance": pooled,
+    }
+    return settings, targets, model
+
+
+# ------------------------------------------------------------- beyond linear response
+
+
+def linear_response_fit(fields, kappa, kappa_err, max_field: float):
+    """Fit kappa'(eps*) = k0 (1 - C eps*^2) to the fields <= ``max_field``.
+
+    q_x is odd in eps, so kappa' = -q_x/(T eps) is even: the first correction is O(eps*^2).
+    Returns (k0, k0_err, C, C_err).
+    """
+    fields, kappa, kappa_err = (np.asarray(a, dtype=float) for a in (fields, kappa, kappa_err))
+    mask = fields <= max_field
+    if mask.sum() < 2:
+        raise ValueError(f"need >= 2 fields <= {max_field} for the linear-response fit")
+    coefficients, covariance, _ = _weighted_polyfit(
+        fields[mask] ** 2, kappa[mask], kappa_err[mask], 1
+    )
+    k0, slope = coefficients
+    c = -slope / k0
+    jacobian = np.array([slope / k0**2, -1.0 / k0])
+    c_err = float(np.sqrt(jacobian @ covariance @ jacobian))
+    return float(k0), float(np.sqrt(covariance[0, 0])), float(c), c_err

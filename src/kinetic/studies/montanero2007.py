@@ -1,0 +1,278 @@
+"""The montanero2007 study: which DSMC runs, in which batches, and how they combine.
+
+The study needs several families of runs of the forced, thermostatted homogeneous gas
+of :func:`kinetic.dsmc.simulate_homogeneous` (d = 3 inelastic hard spheres, montanero2007
+units: time in τ = λ/v0, field ε* = λ ε, velocities c = V/v0):
+
+``scan``
+    one run per α of the config's ``alphas`` at the protocol's field (Figs 1–7, Table 1);
+``field``
+    the linear-response partner of Fig. 1 (same α, larger ε*);
+``hcs``
+    zero field (the homogeneous cooling state in scaled variables) for the a2 check;
+``error``
+    the error-against-run-time study (settings × α);
+``extreme``
+    fields up to ε* = 0.2 (departure from linear response) and strong dissipation.
+
+Every run is named by a plain string (``alpha030``, ``field_alpha030``,
+``hcs_alpha050``, ``error_<setting>_alpha100``, ``extreme_field200_alpha100``); the
+names are the keys of :func:`run_plan`, so Snakemake wildcards are looked up, never
+parsed.  A run's realizations are split into batches (jobs); realization k always uses
+stream row k of the run's seed, so batching does not change the data.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "PROTOCOL_KEYS",
+    "alpha_key",
+    "batches",
+    "combine",
+    "load_runs",
+    "run_plan",
+    "simulate_batch",
+]
+
+PROTOCOL_KEYS = (
+    "n_particles",
+    "time_step",
+    "force_step",
+    "selection",
+    "splitting",
+    "reduced_field",
+    "duration",
+    "steady_from",
+    "sample_interval",
+    "sample_stride",
+    "realizations",
+    "realizations_per_job",
+    "cx_max",
+    "cx_bins",
+)
+"""Keys of a run's protocol (the config's ``protocol`` section, overridable per family)."""
+
+
+def alpha_key(alpha: float) -> str:
+    """``0.3 -> 'alpha030'``, ``1.0 -> 'alpha100'`` (restitution to two decimals)."""
+    hundredths = round(float(alpha) * 100)
+    if abs(hundredths - float(alpha) * 100) > 1e-6 or not 0 < hundredths <= 100:
+        raise ValueError(f"restitution {alpha!r} must be in (0, 1] with at most two decimals")
+    return f"alpha{hundredths:03d}"
+
+
+def _field_key(reduced_field: float) -> str:
+    thousandths = round(float(reduced_field) * 1000)
+    if abs(thousandths - float(reduced_field) * 1000) > 1e-6:
+        raise ValueError(f"reduced field {reduced_field!r} must have at most three decimals")
+    return f"field{thousandths:03d}"
+
+
+def _run(protocol: Mapping[str, Any], family: str, restitution: float, **overrides) -> dict:
+    run = {**copy.deepcopy(dict(protocol)), **overrides}
+    run["family"] = family
+    run["restitution"] = float(restitution)
+    missing = [key for key in PROTOCOL_KEYS if key not in run]
+    if missing:
+        raise ValueError(f"montanero2007 run of family {family!r} lacks {missing}")
+    return run
+
+
+def run_plan(section: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
+    """Every run of the study: ``{name: parameters}`` from the config section.
+
+    ``section`` is the validated ``config["montanero2007"]`` (see
+    ``workflow/schemas/montanero2007.schema.yaml``).  Each run's parameters hold the
+    protocol keys (:data:`PROTOCOL_KEYS`), ``restitution`` and ``family``.
+    """
+    protocol = section["protocol"]
+    plan: dict[str, dict[str, Any]] = {}
+    for alpha in section["alphas"]:
+        plan[alpha_key(alpha)] = _run(protocol, "scan", alpha)
+    field = section["field_check"]
+    plan[f"field_{alpha_key(field['restitution'])}"] = _run(
+        protocol, "field", field["restitution"], reduced_field=field["reduced_field"]
+    )
+    hcs = section["hcs"]
+    for alpha in hcs["alphas"]:
+        plan[f"hcs_{alpha_key(alpha)}"] = _run(
+            protocol, "hcs", alpha, **{**hcs.get("overrides", {}), "reduced_field": 0.0}
+        )
+    error = section["error_study"]
+    for setting, overrides in error["settings"].items():
+        for alpha in error["alphas"]:
+            plan[f"error_{setting}_{alpha_key(alpha)}"] = _run(
+                protocol,
+                "error",
+                alpha,
+                **{**error.get("overrides", {}), **overrides},
+                setting=setting,
+            )
+    extreme = section["extreme"]
+    for alpha in extreme["alphas"]:
+        for reduced_field in extreme["reduced_fields"]:
+            name = f"extreme_{_field_key(reduced_field)}_{alpha_key(alpha)}"
+            plan[name] = _run(
+                protocol,
+                "extreme",
+                alpha,
+                **{**extreme.get("overrides", {}), "reduced_field": reduced_field},
+            )
+    for alpha in extreme.get("strong_dissipation", []):
+        plan[f"extreme_{alpha_key(alpha)}"] = _run(
+            protocol, "extreme", alpha, **extreme.get("overrides", {})
+        )
+    for name, run in plan.items():
+        _check_run(name, run)
+    _check_references(section)
+    return plan
+
+
+def _check_references(section: Mapping[str, Any]) -> None:
+    """Figures, the error study and the extreme fields reuse scan runs: those must exist."""
+    scan = {alpha_key(alpha) for alpha in section["alphas"]}
+    figures = section["figures"]
+    wanted = {
+        "figures.fig01_alpha": [figures["fig01_alpha"]],
+        "field_check.restitution": [section["field_check"]["restitution"]],
+        "error_study.alphas": section["error_study"]["alphas"],
+        "extreme.alphas": section["extreme"]["alphas"],
+        **{f"figures.{key}": figures[key] for key in figures if key.endswith("_alphas")},
+    }
+    for key, alphas in wanted.items():
+        missing = [alpha for alpha in alphas if alpha_key(alpha) not in scan]
+        if missing:
+            raise ValueError(
+                f"config key montanero2007.{key} names restitution {missing}, which is not in "
+                f"montanero2007.alphas = {list(section['alphas'])} (that key reuses scan runs)"
+            )
+    half = section["protocol"]["cx_bins"] // 2
+    if half % figures["phi_rebin"]:
+        raise ValueError(
+            f"config key montanero2007.figures.phi_rebin = {figures['phi_rebin']} must divide "
+            f"protocol.cx_bins / 2 = {half}"
+        )
+
+
+def _check_run(name: str, run: Mapping[str, Any]) -> None:
+    """Cross-key constraints the schema cannot express; errors name the run and the keys."""
+    windows = run["duration"] / run["sample_interval"]
+    steps = run["sample_interval"] / run["time_step"]
+    for label, ratio, what in (
+        ("duration / sample_interval", windows, "a whole number of windows"),
+        ("sample_interval / time_step", steps, "a whole number of steps per window"),
+    ):
+        if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio) or round(ratio) < 1:
+            raise ValueError(f"montanero2007 run {name}: {label} = {ratio:.6g} must be {what}")
+    if run["sample_stride"] > round(steps):
+        raise ValueError(
+            f"montanero2007 run {name}: sample_stride = {run['sample_stride']} exceeds the "
+            f"{round(steps)} steps of a window"
+        )
+    if not 0 <= run["steady_from"] < run["duration"]:
+        raise ValueError(
+            f"montanero2007 run {name}: steady_from = {run['steady_from']} must lie in "
+            f"[0, duration = {run['duration']})"
+        )
+    if run["realizations"] < 2:
+        raise ValueError(f"montanero2007 run {name}: needs >= 2 realizations for error bars")
+
+
+def batches(run: Mapping[str, Any]) -> list[tuple[int, int]]:
+    """``[(first_realization, count), ...]``: the jobs of one run."""
+    total, per_job = int(run["realizations"]), int(run["realizations_per_job"])
+    return [(first, min(per_job, total - first)) for first in range(0, total, per_job)]
+
+
+def simulate_batch(run: Mapping[str, Any], *, seed: int, first: int, count: int, label: str):
+    """Realizations ``first .. first+count-1`` of one run (an xarray.Dataset).
+
+    The histograms of c_x start at ``steady_from`` rounded up to a window boundary, the
+    same windows the steady-state time averages use.
+    """
+    from kinetic.dsmc import simulate_homogeneous
+
+    histogram_start = (
+        math.ceil(run["steady_from"] / run["sample_interval"] - 1e-9) * run["sample_interval"]
+    )
+    dataset = simulate_homogeneous(
+        n_particles=int(run["n_particles"]),
+        restitution=float(run["restitution"]),
+        duration=float(run["duration"]),
+        time_step=float(run["time_step"]),
+        sample_interval=float(run["sample_interval"]),
+        seed=int(seed),
+        n_realizations=int(count),
+        first_realization=int(first),
+        dimension=3,
+        reduced_field=float(run["reduced_field"]),
+        force_step=str(run["force_step"]),
+        selection=str(run["selection"]),
+        splitting=str(run["splitting"]),
+        sample_stride=int(run["sample_stride"]),
+        histogram_start=float(histogram_start),
+        cx_max=float(run["cx_max"]),
+        n_cx_bins=int(run["cx_bins"]),
+        label=label,
+    )
+    return dataset.assign_attrs(steady_from_tau=float(histogram_start))
+
+
+def combine(datasets: Sequence[Any]):
+    """Concatenate batch datasets of one run along ``realization`` (sorted, no duplicates).
+
+    Variables without a realization dimension (edges, coordinates) must agree; the
+    attributes of the first batch are kept, ``n_realizations`` updated.
+    """
+    import xarray as xr
+
+    if not datasets:
+        raise ValueError("no batch to combine")
+    ordered = sorted(datasets, key=lambda ds: int(ds.realization.values[0]))
+    combined = xr.concat(
+        ordered,
+        dim="realization",
+        data_vars="minimal",
+        coords="minimal",
+        compat="equals",
+        join="exact",
+        combine_attrs="override",
+    )
+    realizations = combined.realization.values
+    if len(np.unique(realizations)) != len(realizations):
+        raise ValueError(f"batches overlap: realizations {sorted(realizations.tolist())}")
+    combined.attrs["n_realizations"] = len(realizations)
+    combined.attrs["first_realization"] = int(realizations.min())
+    if "parameters_json" in combined.attrs:
+        parameters = json.loads(combined.attrs["parameters_json"])
+        parameters.update(
+            n_realizations=len(realizations), first_realization=int(realizations.min())
+        )
+        combined.attrs["parameters_json"] = json.dumps(parameters, sort_keys=True)
+    return combined
+
+
+def load_runs(paths: Sequence[Any]) -> dict[str, Any]:
+    """Read batch files and combine them per run: ``{run name: dataset}``.
+
+    The run of a batch is the ``run`` parameter the workflow stamped into it; runs keep
+    the order of their first batch in ``paths``.
+    """
+    from kinetic import io
+
+    grouped: dict[str, list[Any]] = {}
+    for path in paths:
+        dataset = io.read_dataset(path)
+        name = io.parameters_of(dataset).get("run")
+        if not name:
+            raise ValueError(f"{path} has no 'run' parameter: not written by the workflow")
+        grouped.setdefault(name, []).append(dataset)
+    return {name: combine(datasets) for name, datasets in grouped.items()}

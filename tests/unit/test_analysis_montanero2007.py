@@ -1,0 +1,178 @@
+"""kinetic.analysis.montanero2007: observers against numpy, estimators on a known distribution."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from kinetic.analysis import montanero2007 as analysis
+from kinetic.theory import montanero2007 as theory
+
+B_TRUE = np.array([1.7, -0.35, 0.12])
+
+
+def _phi_full(c):
+    c2 = np.sum(c**2, axis=1)
+    return sum(b * theory.laguerre(k, 1.5, c2) for k, b in enumerate(B_TRUE, start=1))
+
+
+@pytest.fixture(scope="module")
+def weighted_realizations():
+    """Eight 'realizations' of f = f_M (1 + eps c_x Phi(c^2)) as weighted Gaussian samples."""
+    rng = np.random.default_rng(2007)
+    eps, n, edges = 0.05, 200_000, np.linspace(-4.0, 4.0, 161)
+    data = {"eps": eps, "edges": edges, "moments": [], "counts": [], "weights": []}
+    data.update(outside=[], n_samples=[])
+    for _ in range(8):
+        c = rng.normal(scale=np.sqrt(0.5), size=(n, 3))
+        w = 1.0 + eps * c[:, 0] * _phi_full(c)
+        cx = c[:, 0]
+        data["moments"].append(
+            np.concatenate(
+                [
+                    theory.sonine_weights_full(c) @ w / n,
+                    theory.sonine_weights_marginal(cx) @ w / n,
+                    [np.sum(w * cx * np.sum(c**2, axis=1)) / n],
+                ]
+            )
+        )
+        inside = np.abs(cx) < edges[-1]
+        data["counts"].append(np.histogram(cx, edges, weights=w)[0])
+        data["weights"].append(np.histogram(cx, edges, weights=w * cx * (1.5 - cx**2))[0])
+        data["outside"].append(np.sum((w * cx * (1.5 - cx**2))[~inside]))
+        data["n_samples"].append(n)
+    return {key: np.asarray(value) for key, value in data.items()}
+
+
+def test_b_estimates_recover_known_coefficients(weighted_realizations):
+    data = weighted_realizations
+    moments = data["moments"]
+    for route, block in (("full", moments[:, 0:3]), ("marginal", moments[:, 3:6])):
+        mean, sem = analysis.b_estimates(block, data["eps"], route)
+        assert np.all(np.abs(mean - B_TRUE) < 5 * sem), (route, mean, sem)
+    ratio, ratio_sem = analysis.kappa_prime_estimate(moments[:, 6], data["eps"])
+    expected = theory.kappa_prime_ratio_from_b1(B_TRUE[0])
+    assert abs(ratio - expected) < 5 * ratio_sem
+
+
+def test_phi_and_odd_marginal_recover_eq_a10(weighted_realizations):
+    data = weighted_realizations
+    cx2, phi, phi_sem = analysis.phi_estimate(
+        data["counts"], data["n_samples"], data["edges"], data["eps"]
+    )
+    near = cx2 < 6.0
+    exact = theory.phi_sonine(cx2[near], B_TRUE)
+    assert np.all(np.abs(phi[near] - exact) < 5 * phi_sem[near] + 2e-3 * np.abs(exact))
+    centres, g, _, odd, odd_sem = analysis.odd_marginal_estimate(
+        data["counts"], data["n_samples"], data["edges"]
+    )
+    # the even part is the Gaussian marginal pi^(-1/2) exp(-c_x^2), normalised
+    assert np.sum(g * np.diff(data["edges"])) == pytest.approx(1.0, abs=1e-3)
+    positive = centres[centres > 0]
+    odd_exact = (
+        data["eps"] * positive * np.exp(-(positive**2)) * theory.phi_sonine(positive**2, B_TRUE)
+    ) / np.sqrt(np.pi)
+    near = positive < 2.5
+    deviation = np.abs(odd - odd_exact)[near]
+    assert np.all(deviation < 5 * odd_sem[near] + 2e-3 * np.abs(odd_exact[near]))
+
+
+def test_beta1_recovers_eq_4_6(weighted_realizations):
+    data = weighted_realizations
+    counts, n, edges, eps = data["counts"], data["n_samples"], data["edges"], data["eps"]
+    cx2, beta, beta_sem = analysis.beta1_estimate(counts, n, edges, eps)
+    exact = theory.beta1_sonine(cx2, B_TRUE)
+    near = cx2 <= 9.0  # beyond, the rare-event tail of the weighted Gaussian samples
+    # bin-centre quadrature: relative error O(width^2) = O(2.5e-3)
+    assert np.all(np.abs(beta - exact)[near] <= 5 * beta_sem[near] + 3e-3 * np.abs(exact[near]))
+    b1 = theory.b_coefficients(data["moments"][:, 3:6], eps, "marginal")[:, 0]
+    _, ratio, ratio_sem = analysis.beta1_ratio_estimate(counts, n, edges, b1, eps)
+    assert ratio[0] == 0.0
+    deviation = np.abs(ratio - exact / B_TRUE[0])[near]
+    assert np.all(deviation <= 5 * ratio_sem[near] + 3e-3 * np.abs(exact[near]))
+
+
+def test_rebin_keeps_symmetry_and_totals():
+    edges = np.linspace(-4.0, 4.0, 161)
+    counts = np.arange(160.0)[None, :]
+    merged, new_edges = analysis.rebin(counts, edges, 4)
+    assert merged.shape == (1, 40)
+    assert merged.sum() == counts.sum()
+    np.testing.assert_allclose(new_edges, np.linspace(-4.0, 4.0, 41))
+    np.testing.assert_allclose(merged[0, 20], counts[0, 80:84].sum())
+    np.testing.assert_allclose(merged[0, 19], counts[0, 76:80].sum())
+    with pytest.raises(ValueError, match="rebin factor"):
+        analysis.rebin(counts, edges, 3)
+
+
+def test_steady_average_and_errors():
+    times = np.arange(10.0)
+    series = np.tile(times, (3, 1))
+    np.testing.assert_allclose(analysis.steady_average(series, times, 5.0), 7.0)
+    with pytest.raises(ValueError, match="t_start"):
+        analysis.steady_average(series, times, 50.0)
+
+
+def _row(dt, force_step, n, kappa, err, setting, cpu_per_particle_tau):
+    steady = n * 50.0 * 16
+    return {
+        "time_step": dt,
+        "force_step": force_step,
+        "n_particles": n,
+        "kappa_ratio": kappa,
+        "kappa_ratio_err": err,
+        "setting": setting,
+        "realizations": 16,
+        "cpu_seconds": cpu_per_particle_tau * steady * 1.2,
+        "particle_tau": steady * 1.2,
+        "steady_particle_tau": steady,
+    }
+
+
+def test_error_budget_recovers_a_linear_time_step_bias():
+    # kappa(dt) = 1.2 (1 + 0.3 dt) exactly, equal errors: the fit returns k_inf = 1.2
+    steps = [0.003, 0.01, 0.03, 0.1, 0.3]
+    costs = {0.003: 1.3e-6, 0.01: 4.7e-7, 0.03: 2.4e-7, 0.1: 1.9e-7, 0.3: 9e-8}
+    rows = [
+        _row(dt, "euler", 20000, 1.2 * (1 + 0.3 * dt), 0.01, f"s{dt}", costs[dt]) for dt in steps
+    ]
+    rows[0]["setting"] = ""
+    settings, targets, model = analysis.error_budget(rows, 20000, [0.05, 0.01, 0.002])
+    assert model["k_inf"] == pytest.approx(1.2, rel=1e-9)
+    assert model["k1"] == pytest.approx(0.36, rel=1e-6)
+    by_step = {s["time_step"]: s for s in settings}
+    assert by_step[0.1]["relative_bias"] == pytest.approx(0.03, rel=1e-6)
+    assert by_step[0.003]["setting"] == "protocol"
+    # a 5 % target tolerates dt = 0.1 (bias 3 %), a 0.2 % target needs dt <= 0.003
+    chosen = {t["target_error"]: t for t in targets}
+    assert chosen[0.05]["time_step"] >= 0.03
+    assert chosen[0.002]["time_step"] == 0.003
+    assert all(t["cpu_seconds_needed"] > 0 for t in targets)
+
+
+def test_linear_response_fit_recovers_the_eps_squared_law():
+    fields = np.array([0.025, 0.05, 0.1, 0.2])
+    kappa = 1.1 * (1 - 6.0 * fields**2)
+    k0, _, c, _ = analysis.linear_response_fit(fields, kappa, np.full(4, 1e-3), 0.1)
+    assert k0 == pytest.approx(1.1, rel=1e-9)
+    assert c == pytest.approx(6.0, rel=1e-7)
+
+
+def test_error_budget_separates_lie_and_strang_splittings():
+    # Lie: 1.2 (1 + 0.3 dt); Strang: 1.2 (1 + 0.5 dt^2); both share the dt -> 0 limit
+    lie = [
+        _row(dt, "euler", 20000, 1.2 * (1 + 0.3 * dt), 0.01, f"l{dt}", 1e-6)
+        for dt in (0.003, 0.01, 0.03, 0.1)
+    ]
+    strang = [
+        _row(dt, "exact", 20000, 1.2 * (1 + 0.5 * dt**2), 0.01, f"s{dt}", 5e-7)
+        for dt in (0.03, 0.1, 0.3)
+    ]
+    for row in strang:
+        row["splitting"] = "strang"
+    settings, _, model = analysis.error_budget(lie + strang, 20000, [0.01])
+    assert model["k_inf"] == pytest.approx(1.2, rel=1e-9)
+    assert model["s2"] == pytest.approx(0.6, rel=1e-6)
+    by_setting = {s["setting"]: s for s in settings}
+    assert by_setting["s0.3"]["relative_bias"] == pytest.approx(0.045, rel=1e-6)
+    assert by_setting["s0.3"]["splitting"] == "strang"

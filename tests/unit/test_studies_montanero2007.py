@@ -1,0 +1,119 @@
+"""kinetic.studies.montanero2007: run plan from the config, batches, combining batches."""
+
+from __future__ import annotations
+
+import copy
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+
+from kinetic import io
+from kinetic.config import validate_config
+from kinetic.studies import montanero2007 as study
+
+REPOSITORY = Path(__file__).resolve().parents[2]
+SCHEMA = REPOSITORY / "workflow" / "schemas" / "config.schema.yaml"
+
+
+def _section(name="config.yaml"):
+    config = yaml.safe_load((REPOSITORY / "config" / name).read_text())
+    validate_config(config, SCHEMA)
+    return config["montanero2007"]
+
+
+def test_alpha_keys():
+    assert study.alpha_key(0.3) == "alpha030"
+    assert study.alpha_key(1.0) == "alpha100"
+    assert study.alpha_key(0.35) == "alpha035"
+    with pytest.raises(ValueError, match="two decimals"):
+        study.alpha_key(0.333)
+
+
+@pytest.mark.parametrize("name", ["config.yaml", "ci.yaml", "paper.yaml"])
+def test_plan_of_every_shipped_config(name):
+    section = _section(name)
+    plan = study.run_plan(section)
+    for alpha in section["alphas"]:
+        run = plan[study.alpha_key(alpha)]
+        assert run["family"] == "scan"
+        assert run["reduced_field"] == section["protocol"]["reduced_field"]
+    assert all(run["reduced_field"] == 0.0 for run in plan.values() if run["family"] == "hcs")
+    for name_, run in plan.items():
+        assert sum(count for _, count in study.batches(run)) == run["realizations"], name_
+
+
+def test_paper_config_is_the_papers_protocol():
+    protocol = _section("paper.yaml")["protocol"]
+    assert protocol["n_particles"] == 200_000
+    assert protocol["time_step"] == 0.003
+    assert protocol["realizations"] == 200
+    assert protocol["reduced_field"] == 0.025
+    assert protocol["force_step"] == "euler"
+    alphas = _section("paper.yaml")["alphas"]
+    assert min(alphas) == 0.3 and max(alphas) == 1.0
+
+
+def test_batches_cover_realizations_once():
+    run = {"realizations": 10, "realizations_per_job": 4}
+    assert study.batches(run) == [(0, 4), (4, 4), (8, 2)]
+
+
+def test_inconsistent_sections_are_refused_with_the_key():
+    section = copy.deepcopy(_section())
+    section["figures"]["fig05_alphas"] = [0.95]
+    with pytest.raises(ValueError, match=r"figures\.fig05_alphas"):
+        study.run_plan(section)
+    section = copy.deepcopy(_section())
+    section["protocol"]["time_step"] = 0.007
+    with pytest.raises(ValueError, match="sample_interval / time_step"):
+        study.run_plan(section)
+    section = copy.deepcopy(_section())
+    section["protocol"]["steady_from"] = 500
+    with pytest.raises(ValueError, match="steady_from"):
+        study.run_plan(section)
+
+
+def _run():
+    return {
+        "n_particles": 200,
+        "time_step": 0.02,
+        "force_step": "euler",
+        "selection": "ntc",
+        "splitting": "lie",
+        "reduced_field": 0.05,
+        "duration": 2.0,
+        "steady_from": 0.9,
+        "sample_interval": 0.4,
+        "sample_stride": 5,
+        "realizations": 3,
+        "realizations_per_job": 2,
+        "cx_max": 4.0,
+        "cx_bins": 40,
+        "restitution": 0.8,
+        "family": "scan",
+    }
+
+
+def test_batching_does_not_change_the_data(tmp_path):
+    run = _run()
+    whole = study.simulate_batch(run, seed=11, first=0, count=3, label="whole")
+    paths = []
+    for index, (first, count) in enumerate(study.batches(run)):
+        batch = study.simulate_batch(run, seed=11, first=first, count=count, label="part")
+        batch = io.stamp(batch, parameters={**io.parameters_of(batch), "run": "x"}, seed=11)
+        paths.append(io.write_dataset(batch, tmp_path / f"batch{index}.nc"))
+    combined = study.load_runs(paths[::-1])["x"]
+    assert list(combined.realization.values) == [0, 1, 2]
+    np.testing.assert_array_equal(combined["moments"].values, whole["moments"].values)
+    np.testing.assert_array_equal(combined["cx_counts"].values, whole["cx_counts"].values)
+    # the histograms start at the first window boundary at or after steady_from
+    assert combined.attrs["steady_from_tau"] == pytest.approx(1.2)
+    assert io.parameters_of(combined)["n_realizations"] == 3
+
+
+def test_schema_defaults_are_the_default_config():
+    defaults = {"seed": 1}
+    validate_config(defaults, SCHEMA)
+    assert defaults["montanero2007"] == _section("config.yaml")

@@ -1,0 +1,376 @@
+# montanero2007: DSMC of the heat-flux-forced granular gas (kinetic.dsmc), Figs 1-7, Table 1,
+# the error-against-run-time study, the extreme cases and the checks.
+#
+#   results/montanero2007/runs/<run>/batch<k>.nc   one job: a batch of realizations
+#   (readers combine the batches of a run in memory: kinetic.studies.montanero2007.load_runs)
+#   results/montanero2007/figNN.pdf|png, table1.csv|md, error_vs_time.*, extreme.*, checks.*
+#
+# Run names come from kinetic.studies.montanero2007.run_plan(config["montanero2007"]).
+from kinetic.studies.montanero2007 import alpha_key, batches, run_plan
+
+MONTANERO2007_RUNS = run_plan(config["montanero2007"])
+
+for _number in range(1, 8):
+    provide(f"montanero2007/fig0{_number}", *figure_files("montanero2007", f"fig0{_number}"))
+provide("montanero2007/table1", *table_files("montanero2007", "table1"))
+provide(
+    "montanero2007/error_vs_time",
+    *figure_files("montanero2007", "error_vs_time"),
+    *table_files("montanero2007", "error_vs_time"),
+    *table_files("montanero2007", "error_targets"),
+)
+provide(
+    "montanero2007/extreme",
+    *figure_files("montanero2007", "extreme"),
+    *table_files("montanero2007", "extreme"),
+)
+provide("montanero2007/checks", *table_files("montanero2007", "checks"))
+
+
+wildcard_constraints:
+    run="|".join(sorted(MONTANERO2007_RUNS)),
+    batch=r"\d+",
+
+
+# ---------------------------------------------------------------- named helpers
+def montanero2007_run_files(name):
+    """The batch files of one run (all its realizations)."""
+    return [
+        f"results/montanero2007/runs/{name}/batch{index}.nc"
+        for index in range(len(batches(MONTANERO2007_RUNS[name])))
+    ]
+
+
+def montanero2007_runs_of(family):
+    """Batch files of every run of one family, in plan order."""
+    return [
+        path
+        for name, run in MONTANERO2007_RUNS.items()
+        if run["family"] == family
+        for path in montanero2007_run_files(name)
+    ]
+
+
+def montanero2007_scan(alphas):
+    """Batch files of the scan runs at these restitution coefficients."""
+    return [path for alpha in alphas for path in montanero2007_run_files(alpha_key(alpha))]
+
+
+def montanero2007_run_parameters(wildcards):
+    """Parameters of the run named by the wildcard (protocol merged with overrides)."""
+    return MONTANERO2007_RUNS[wildcards.run]
+
+
+def montanero2007_batch(wildcards):
+    """(first realization, count) of one job."""
+    jobs = batches(MONTANERO2007_RUNS[wildcards.run])
+    index = int(wildcards.batch)
+    if index >= len(jobs):
+        raise ValueError(f"run {wildcards.run} has {len(jobs)} batches, not batch{index}")
+    first, count = jobs[index]
+    return {"first": first, "count": count}
+
+
+def montanero2007_seed(wildcards):
+    """One seed per run; realization k uses stream row k, whatever the batching."""
+    return job_seed(f"montanero2007/{wildcards.run}")
+
+
+def montanero2007_section(wildcards):
+    """The validated config section (tolerances, target errors)."""
+    return config["montanero2007"]
+
+
+def montanero2007_figures(wildcards):
+    """Display settings of Figs 5-7 (rebinning, c_x^2 range)."""
+    return config["montanero2007"]["figures"]
+
+
+def montanero2007_field_pair(wildcards):
+    """Fig 1: the scan run and its larger-field partner at the same restitution."""
+    alpha = config["montanero2007"]["figures"]["fig01_alpha"]
+    field = config["montanero2007"]["field_check"]
+    files = montanero2007_scan([alpha])
+    if field["restitution"] == alpha:
+        files += montanero2007_run_files(f"field_{alpha_key(alpha)}")
+    return files
+
+
+def montanero2007_error_inputs(wildcards):
+    """Error study: the paper-protocol scan runs and every error setting."""
+    study = config["montanero2007"]["error_study"]
+    return montanero2007_scan(study["alphas"]) + montanero2007_runs_of("error")
+
+
+def montanero2007_extreme_inputs(wildcards):
+    """Extreme cases: the protocol-field scan runs of extreme.alphas and the extreme runs."""
+    extreme = config["montanero2007"]["extreme"]
+    return montanero2007_scan(extreme["alphas"]) + montanero2007_runs_of("extreme")
+
+
+def montanero2007_check_inputs(wildcards):
+    """Checks: every scan run, the field partner and the HCS runs."""
+    return (
+        montanero2007_runs_of("scan")
+        + montanero2007_runs_of("field")
+        + montanero2007_runs_of("hcs")
+    )
+
+
+def montanero2007_figure_runs(key):
+    """Scan runs listed by the config key figures.<key>."""
+    return montanero2007_scan(config["montanero2007"]["figures"][key])
+
+
+def montanero2007_fig02_runs(wildcards):
+    return montanero2007_figure_runs("fig02_alphas")
+
+
+def montanero2007_fig05_runs(wildcards):
+    return montanero2007_figure_runs("fig05_alphas")
+
+
+def montanero2007_fig06_runs(wildcards):
+    return montanero2007_figure_runs("fig06_alphas")
+
+
+def montanero2007_fig07_runs(wildcards):
+    return montanero2007_figure_runs("fig07_alphas")
+
+
+MONTANERO2007_ANALYSIS_CODE = package_files(
+    "analysis/montanero2007", "theory/montanero2007", "studies/montanero2007"
+)
+"""Package modules every figure and table of montanero2007 computes with."""
+
+
+def montanero2007_scan_runs(wildcards):
+    return montanero2007_runs_of("scan")
+
+
+# ---------------------------------------------------------------- simulation
+rule montanero2007_simulate:
+    input:
+        warm=numba_warm("dsmc"),
+        code=engine_sources("dsmc") + package_files("studies"),
+    output:
+        "results/montanero2007/runs/{run}/batch{batch}.nc",
+    log:
+        "logs/montanero2007/simulate/{run}/batch{batch}.log",
+    benchmark:
+        "logs/benchmarks/montanero2007/simulate/{run}/batch{batch}.tsv"
+    params:
+        run=montanero2007_run_parameters,
+        batch=montanero2007_batch,
+        seed=montanero2007_seed,
+    threads: 1
+    script:
+        "../scripts/montanero2007_simulate.py"
+
+
+# ---------------------------------------------------------------- figures and tables
+rule montanero2007_fig01:
+    input:
+        runs=montanero2007_field_pair,
+        script=figure_script("montanero2007_fig01"),
+        code=MONTANERO2007_ANALYSIS_CODE,
+    output:
+        pdf="results/montanero2007/fig01.pdf",
+        png=report(
+            "results/montanero2007/fig01.png",
+            caption="../report/montanero2007_fig01.rst",
+            category="montanero2007",
+        ),
+    log:
+        "logs/montanero2007/fig01.log",
+    script:
+        "../scripts/montanero2007_fig01.py"
+
+
+rule montanero2007_fig02:
+    input:
+        runs=montanero2007_fig02_runs,
+        script=figure_script("montanero2007_fig02"),
+        code=MONTANERO2007_ANALYSIS_CODE,
+    output:
+        pdf="results/montanero2007/fig02.pdf",
+        png=report(
+            "results/montanero2007/fig02.png",
+            caption="../report/montanero2007_fig02.rst",
+            category="montanero2007",
+        ),
+    log:
+        "logs/montanero2007/fig02.log",
+    script:
+        "../scripts/montanero2007_fig02.py"
+
+
+rule montanero2007_fig03:
+    input:
+        runs=montanero2007_scan_runs,
+        script=figure_script("montanero2007_fig03"),
+        code=MONTANERO2007_ANALYSIS_CODE,
+    output:
+        pdf="results/montanero2007/fig03.pdf",
+        png=report(
+            "results/montanero2007/fig03.png",
+            caption="../report/montanero2007_fig03.rst",
+            category="montanero2007",
+        ),
+    log:
+        "logs/montanero2007/fig03.log",
+    script:
+        "../scripts/montanero2007_fig03.py"
+
+
+rule montanero2007_fig04:
+    input:
+        runs=montanero2007_scan_runs,
+        script=figure_script("montanero2007_fig04"),
+        code=MONTANERO2007_ANALYSIS_CODE,
+    output:
+        pdf="results/montanero2007/fig04.pdf",
+        png=report(
+            "results/montanero2007/fig04.png",
+            caption="../report/montanero2007_fig04.rst",
+            category="montanero2007",
+        ),
+    log:
+        "logs/montanero2007/fig04.log",
+    script:
+        "../scripts/montanero2007_fig04.py"
+
+
+rule montanero2007_fig05:
+    input:
+        runs=montanero2007_fig05_runs,
+        script=figure_script("montanero2007_phi"),
+        code=MONTANERO2007_ANALYSIS_CODE,
+    output:
+        pdf="results/montanero2007/fig05.pdf",
+        png=report(
+            "results/montanero2007/fig05.png",
+            caption="../report/montanero2007_fig05.rst",
+            category="montanero2007",
+        ),
+    log:
+        "logs/montanero2007/fig05.log",
+    params:
+        figures=montanero2007_figures,
+    script:
+        "../scripts/montanero2007_phi.py"
+
+
+rule montanero2007_fig06:
+    input:
+        runs=montanero2007_fig06_runs,
+        script=figure_script("montanero2007_phi"),
+        code=MONTANERO2007_ANALYSIS_CODE,
+    output:
+        pdf="results/montanero2007/fig06.pdf",
+        png=report(
+            "results/montanero2007/fig06.png",
+            caption="../report/montanero2007_fig06.rst",
+            category="montanero2007",
+        ),
+    log:
+        "logs/montanero2007/fig06.log",
+    params:
+        figures=montanero2007_figures,
+    script:
+        "../scripts/montanero2007_phi.py"
+
+
+rule montanero2007_fig07:
+    input:
+        runs=montanero2007_fig07_runs,
+        script=figure_script("montanero2007_fig07"),
+        code=MONTANERO2007_ANALYSIS_CODE,
+    output:
+        pdf="results/montanero2007/fig07.pdf",
+        png=report(
+            "results/montanero2007/fig07.png",
+            caption="../report/montanero2007_fig07.rst",
+            category="montanero2007",
+        ),
+    log:
+        "logs/montanero2007/fig07.log",
+    params:
+        figures=montanero2007_figures,
+    script:
+        "../scripts/montanero2007_fig07.py"
+
+
+rule montanero2007_table1:
+    input:
+        runs=montanero2007_scan_runs,
+        script=figure_script("montanero2007_table1"),
+        code=MONTANERO2007_ANALYSIS_CODE,
+    output:
+        csv="results/montanero2007/table1.csv",
+        md="results/montanero2007/table1.md",
+    log:
+        "logs/montanero2007/table1.log",
+    script:
+        "../scripts/montanero2007_table1.py"
+
+
+rule montanero2007_error_vs_time:
+    input:
+        runs=montanero2007_error_inputs,
+        script=figure_script("montanero2007_error_vs_time"),
+        code=MONTANERO2007_ANALYSIS_CODE,
+    output:
+        pdf="results/montanero2007/error_vs_time.pdf",
+        png=report(
+            "results/montanero2007/error_vs_time.png",
+            caption="../report/montanero2007_error_vs_time.rst",
+            category="montanero2007",
+        ),
+        csv="results/montanero2007/error_vs_time.csv",
+        md="results/montanero2007/error_vs_time.md",
+        targets_csv="results/montanero2007/error_targets.csv",
+        targets_md="results/montanero2007/error_targets.md",
+    log:
+        "logs/montanero2007/error_vs_time.log",
+    params:
+        section=montanero2007_section,
+    script:
+        "../scripts/montanero2007_error_vs_time.py"
+
+
+rule montanero2007_extreme:
+    input:
+        runs=montanero2007_extreme_inputs,
+        script=figure_script("montanero2007_extreme"),
+        code=MONTANERO2007_ANALYSIS_CODE,
+    output:
+        pdf="results/montanero2007/extreme.pdf",
+        png=report(
+            "results/montanero2007/extreme.png",
+            caption="../report/montanero2007_extreme.rst",
+            category="montanero2007",
+        ),
+        csv="results/montanero2007/extreme.csv",
+        md="results/montanero2007/extreme.md",
+    log:
+        "logs/montanero2007/extreme.log",
+    script:
+        "../scripts/montanero2007_extreme.py"
+
+
+rule montanero2007_checks:
+    # Fails (after writing the table to its log) when a check of issue 4 fails.
+    input:
+        runs=montanero2007_check_inputs,
+        script=figure_script("montanero2007_checks"),
+        code=MONTANERO2007_ANALYSIS_CODE,
+    output:
+        csv="results/montanero2007/checks.csv",
+        md="results/montanero2007/checks.md",
+    log:
+        "logs/montanero2007/checks.log",
+    params:
+        section=montanero2007_section,
+    script:
+        "../scripts/montanero2007_checks.py"

@@ -1,0 +1,47 @@
+"""montanero2007 Figs. 5 and 6: phi(c_x^2) (Eq. 4.3) and its truncated Sonine series (4.5)."""
+
+import numpy as np
+
+from kinetic import plotting
+from kinetic.analysis import montanero2007 as analysis
+from kinetic.studies.montanero2007 import load_runs
+from kinetic.workflow_support import start
+
+log = start(snakemake)
+figures = snakemake.params.figures
+runs = list(load_runs(snakemake.input.runs).values())
+fig, axes = plotting.figure(
+    len(runs), 1, sharex=True, figsize=(3.4, 1.8 * len(runs) + 0.5), squeeze=False
+)
+for ax, ds in zip(axes[:, 0], runs, strict=True):
+    summary = analysis.steady_summary_of(ds)
+    curves = analysis.distributions_of(ds, summary, rebin_factor=figures["phi_rebin"])
+    x = curves["phi_cx2"]
+    shown = x <= figures["phi_cx2_max"]
+    plotting.errorbar(
+        ax,
+        x[shown],
+        curves["phi"][shown],
+        curves["phi_err"][shown],
+        marker="o",
+        markersize=2.5,
+        color="k",
+        label=r"DSMC $\varphi$",
+    )
+    dense = np.linspace(0.0, figures["phi_cx2_max"], 400)
+    for p, style in zip(range(1, 4), [":", "-.", "--"], strict=True):
+        ax.plot(
+            dense,
+            analysis.theory.phi_sonine(dense, summary["b_full"][:p]),
+            style,
+            label=rf"$\varphi_{p}$",
+        )
+    ax.axhline(0.0, color="0.6", lw=0.5)
+    alpha = summary["parameters"]["restitution"]
+    ax.text(0.97, 0.92, rf"$\alpha = {alpha:g}$", transform=ax.transAxes, ha="right", va="top")
+    ax.set_ylabel(r"$\varphi(c_x^2)$")
+    log.info("alpha = %g: b' = %s", alpha, np.array2string(summary["b_full"], precision=4))
+axes[0, 0].legend(loc="lower left", fontsize=6)
+axes[-1, 0].set_xlabel(r"$c_x^2$")
+axes[-1, 0].set_xlim(0.0, figures["phi_cx2_max"])
+plotting.save(fig, snakemake.output.pdf)
