@@ -74,28 +74,47 @@ def explain(error: jsonschema.ValidationError) -> str:
 
 
 def compose_schema(path: str | os.PathLike) -> dict[str, Any]:
-    """Load a schema and inline every ``$ref`` to a sibling file, recursively.
+    """Load a schema and inline every ``$ref``, recursively.
 
     Each section's schema lives in its own file. jsonschema validates a referenced file
     with a fresh validator of that file's dialect, which would skip the default-filling
     extension of ``snakemake.utils.validate``; inlining keeps one validator throughout.
+    A reference to a sibling file (``md.schema.yaml``) is replaced by that file's
+    schema; a reference inside a file (``#/$defs/count``) by the node it points to in
+    that same file, so it still resolves once the file is inlined elsewhere.
+    Recursive definitions are not supported (none of the schemas needs one).
     """
     path = Path(path).resolve()
+    document = yaml.safe_load(path.read_text())
 
-    def inline(node: Any) -> Any:
+    def pointer(reference: str) -> Any:
+        node: Any = document
+        for part in reference.removeprefix("#").strip("/").split("/"):
+            if not part:
+                continue
+            part = part.replace("~1", "/").replace("~0", "~")
+            node = node[int(part)] if isinstance(node, list) else node[part]
+        return node
+
+    def inline(node: Any, depth: int = 0) -> Any:
+        if depth > 50:
+            raise ValueError(f"{path}: $ref nesting deeper than 50 (a recursive definition?)")
         if isinstance(node, dict):
-            node = {key: inline(value) for key, value in node.items()}
-            reference = node.pop("$ref", None)
-            if isinstance(reference, str) and not reference.startswith("#"):
-                target = compose_schema(path.parent / reference)
-                target.pop("$schema", None)
+            reference = node.get("$ref")
+            node = {key: inline(value, depth) for key, value in node.items() if key != "$ref"}
+            if isinstance(reference, str):
+                if reference.startswith("#"):
+                    target = inline(pointer(reference), depth + 1)
+                else:
+                    target = compose_schema(path.parent / reference)
+                    target.pop("$schema", None)
                 node = {**target, **node}
             return node
         if isinstance(node, list):
-            return [inline(item) for item in node]
+            return [inline(item, depth) for item in node]
         return node
 
-    return inline(yaml.safe_load(path.read_text()))
+    return inline(document)
 
 
 def validate_config(config: MutableMapping[str, Any], schema: str | os.PathLike = SCHEMA) -> None:

@@ -51,13 +51,18 @@ class Progress:
         self.done = 0.0
         self.start = time.perf_counter()
         self._last = -float("inf")
+        self._finished = False
 
     def update(self, amount: float) -> None:
         """Record ``amount`` more units of work and log a line if one is due."""
         self.done += amount
         now = time.perf_counter()
-        if now - self._last >= self.interval or self.done >= self.total:
+        finished = self.done >= self.total
+        if finished and self._finished:
+            return  # the 100% line is logged once, however often the front reports after it
+        if now - self._last >= self.interval or finished:
             self._last = now
+            self._finished = finished
             elapsed = now - self.start
             fraction = min(self.done / self.total, 1.0)
             eta = elapsed * (1.0 - fraction) / fraction if fraction > 0 else float("inf")

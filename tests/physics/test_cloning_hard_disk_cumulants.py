@@ -1,7 +1,7 @@
 """visco2008 Eq. (50) / Table I: the cumulants <N^p>_c/(ωt) = (-1)^p μ^{(p)}(0) of the
 number of collisions of a hard disk, from a fit of the cloning μ(λ) near λ = 0, agree
 with the first-Sonine values 1, 1.137784, 1.107326 within the error of the fit, and with
-the deterministic solution of Eq. (28) (``kinetic.cloning.reference``).
+the deterministic solution of Eq. (28) (``kinetic.theory.visco2008_exact``).
 
 At the precision reachable here (~0.3% on the second cumulant) the Sonine values and
 the exact ones (1.1410, 1.0995) are indistinguishable; the fit uses both estimators of
@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from kinetic.cloning import simulate
-from kinetic.cloning.reference import reference_solution
+from kinetic.theory.visco2008_exact import reference_solution
 
 SONINE = (
     1.0,

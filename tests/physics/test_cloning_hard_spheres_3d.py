@@ -5,7 +5,7 @@ d = 2 only; Eq. 50 gives the d = 3 Sonine cumulants 1.1344 and 1.1033)."""
 import pytest
 
 from kinetic.cloning import simulate
-from kinetic.cloning.reference import reference_solution
+from kinetic.theory.visco2008_exact import reference_solution
 
 LAMBDAS = [-0.5, 1.0]
 

@@ -4,7 +4,7 @@ What theory guarantees: μ(λ) >= -r(0) = -1/√2 for every λ (no collision dur
 probability ~ e^{-t/√2}), μ decreases with λ and tends to -1/√2, and T(λ) -> 0 (the
 eigenfunction concentrates at v = 0). The first-order term of Eq. (38), +e^{-λ}/√2, does
 not hold: the deterministic solution of Eq. (28) gives μ(4) = -1/√2 to 1e-7 while Eq. (38)
-says -0.6942 (see ``kinetic.cloning.reference``); the Monte Carlo resolves the difference.
+says -0.6942 (see ``kinetic.theory.visco2008_exact``); the Monte Carlo resolves the difference.
 
 Finite population and finite time bias μ low at large λ (the population cannot hold the
 slowest members of the exact eigenfunction): measured -0.001 to -0.003 at λ = 4 and

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from kinetic.cloning import LAMBDA_MIN, extrapolate_population, simulate
-from kinetic.cloning.reference import reference_solution
+from kinetic.theory.visco2008_exact import reference_solution
 
 SIZES = [25, 50, 100]
 

@@ -1,6 +1,6 @@
 """visco2008 Figs. 5, 7, 8 at λ = 0.5 and 1: the cloning μ, T, a2 of hard disks against
 the first-Sonine closure (SPEC §1 reference points), the Gaussian closure (Eq. 43) and
-the deterministic solution of Eq. (28) (``kinetic.cloning.reference``).
+the deterministic solution of Eq. (28) (``kinetic.theory.visco2008_exact``).
 
 The closures are approximations, so the test asserts only what theory guarantees:
 the Monte Carlo agrees with the exact eigenvalue problem within its error bars, and the
@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from kinetic.cloning import simulate
-from kinetic.cloning.reference import reference_solution
+from kinetic.theory.visco2008_exact import reference_solution
 
 # SPEC §1: Appendix E with the sign of (E3) corrected, ω = 1
 SONINE = {

@@ -64,3 +64,31 @@ def test_misspelt_key_is_refused():
     config["visco2008"]["theory"]["rate_pionts"] = 10
     with pytest.raises(ConfigError, match="rate_pionts"):
         validate_config(config, SCHEMA)
+
+
+def test_references_inside_a_section_file_survive_inlining(tmp_path):
+    """A section file's own ``#/$defs/...`` references resolve against that file."""
+    (tmp_path / "section.schema.yaml").write_text(
+        yaml.safe_dump(
+            {
+                "$defs": {"count": {"type": "integer", "minimum": 1, "default": 7}},
+                "type": "object",
+                "default": {},
+                "properties": {"n": {"$ref": "#/$defs/count"}},
+            }
+        )
+    )
+    (tmp_path / "root.schema.yaml").write_text(
+        yaml.safe_dump(
+            {
+                "$schema": "https://json-schema.org/draft/2020-12/schema",
+                "type": "object",
+                "properties": {"section": {"$ref": "section.schema.yaml", "default": {}}},
+            }
+        )
+    )
+    config = {}
+    validate_config(config, tmp_path / "root.schema.yaml")
+    assert config == {"section": {"n": 7}}
+    with pytest.raises(ConfigError, match=r"section\.n"):
+        validate_config({"section": {"n": 0}}, tmp_path / "root.schema.yaml")

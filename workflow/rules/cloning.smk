@@ -103,7 +103,7 @@ rule cloning_aggregate:
 
 rule cloning_reference:
     input:
-        package_files("cloning/reference"),
+        package_files("theory/visco2008_exact"),
     output:
         "results/visco2008/cloning/reference.nc",
     log:

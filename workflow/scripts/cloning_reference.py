@@ -1,7 +1,7 @@
 """Deterministic solution of visco2008 Eq. 28 on a λ grid (rule cloning_reference)."""
 
 from kinetic import io
-from kinetic.cloning.reference import reference_dataset
+from kinetic.theory.visco2008_exact import reference_dataset
 from kinetic.workflow_support import start
 
 log = start(snakemake)
