@@ -6,6 +6,8 @@ VENV ?= .venv
 BIN := $(VENV)/bin
 CORES ?= all
 CONFIG ?= config/config.yaml
+# extra snakemake options, e.g. SNAKEMAKE_ARGS=-n for a dry run
+SNAKEMAKE_ARGS ?=
 
 .PHONY: install figures test lint clean-results
 
@@ -19,7 +21,7 @@ $(VENV)/.installed: environment-pip.txt pyproject.toml
 	touch $@
 
 figures: install
-	$(BIN)/snakemake --cores $(CORES) --configfile $(CONFIG) all
+	$(BIN)/snakemake all --cores $(CORES) --configfile $(CONFIG) $(SNAKEMAKE_ARGS)
 
 lint: install
 	$(BIN)/ruff check src workflow tests
