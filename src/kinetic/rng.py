@@ -25,6 +25,7 @@ from numba import njit
 
 __all__ = [
     "derive_seed",
+    "disk_point",
     "exponential",
     "normal",
     "normal_pair",
@@ -32,6 +33,12 @@ __all__ = [
     "stream_states",
     "uniform",
     "uniform_open",
+    "unit_vector_3d",
+    "xoshiro_exponential",
+    "xoshiro_next",
+    "xoshiro_uniform",
+    "xoshiro_unit_2d",
+    "xoshiro_unit_3d",
 ]
 
 _U64 = np.uint64
@@ -75,13 +82,16 @@ def stream_states(seed: int, n_streams: int) -> np.ndarray:
     return states
 
 
-@njit(inline="always")
-def _next_u64(state):
-    s0 = state[0]
-    s1 = state[1]
-    s2 = state[2]
-    s3 = state[3]
-    result = s0 + s3
+@njit(error_model="numpy")
+def xoshiro_next(s0, s1, s2, s3):
+    """One xoshiro256+ output from a state held in four scalars: ``(x, s0, s1, s2, s3)``.
+
+    The ``xoshiro_*`` draws take and return the state as scalars, for loops that keep it
+    in registers: with a state row in memory, numba cannot prove that the row and the
+    arrays the loop writes do not alias, so every store reloads the state (DSMC's
+    collision loop runs about twice slower that way). Same stream as ``uniform(state)``.
+    """
+    x = s0 + s3
     t = s1 << _SHIFT_17
     s2 ^= s0
     s3 ^= s1
@@ -89,6 +99,59 @@ def _next_u64(state):
     s0 ^= s3
     s2 ^= t
     s3 = (s3 << _SHIFT_45) | (s3 >> _ROT_LEFT)
+    return x, s0, s1, s2, s3
+
+
+@njit(error_model="numpy")
+def xoshiro_uniform(s0, s1, s2, s3):
+    """Uniform float64 in [0, 1) (upper 53 bits), as ``uniform``: ``(u, s0, s1, s2, s3)``."""
+    x, s0, s1, s2, s3 = xoshiro_next(s0, s1, s2, s3)
+    return float(x >> _SHIFT_11) * _TWO_M53, s0, s1, s2, s3
+
+
+@njit(error_model="numpy")
+def xoshiro_exponential(s0, s1, s2, s3):
+    """Exponential variate of unit mean, as ``exponential``: ``(e, s0, s1, s2, s3)``."""
+    x, s0, s1, s2, s3 = xoshiro_next(s0, s1, s2, s3)
+    return -np.log((float(x >> _SHIFT_11) + 1.0) * _TWO_M53), s0, s1, s2, s3
+
+
+@njit(error_model="numpy")
+def xoshiro_unit_3d(s0, s1, s2, s3):
+    """Uniform direction on the sphere (Marsaglia 1972, no trigonometry).
+
+    Returns ``(e0, e1, e2, s0, s1, s2, s3)``.
+    """
+    while True:
+        a, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+        b, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+        x = 2.0 * a - 1.0
+        y = 2.0 * b - 1.0
+        s = x * x + y * y
+        if s < 1.0:
+            f = 2.0 * np.sqrt(1.0 - s)
+            return x * f, y * f, 1.0 - 2.0 * s, s0, s1, s2, s3
+
+
+@njit(error_model="numpy")
+def xoshiro_unit_2d(s0, s1, s2, s3):
+    """Uniform direction on the circle (von Neumann's rejection, no trigonometry).
+
+    Returns ``(e0, e1, s0, s1, s2, s3)``.
+    """
+    while True:
+        a, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+        b, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+        x = 2.0 * a - 1.0
+        y = 2.0 * b - 1.0
+        s = x * x + y * y
+        if 0.0 < s < 1.0:
+            return (x * x - y * y) / s, 2.0 * x * y / s, s0, s1, s2, s3
+
+
+@njit(inline="always")
+def _next_u64(state):
+    result, s0, s1, s2, s3 = xoshiro_next(state[0], state[1], state[2], state[3])
     state[0] = s0
     state[1] = s1
     state[2] = s2
@@ -115,15 +178,30 @@ def exponential(state):
 
 
 @njit(inline="always")
-def normal_pair(state):
-    """Two independent standard normal variates (Marsaglia's polar method)."""
+def disk_point(state):
+    """Uniform point (x, y) in the open unit disk minus its centre, and r2 = x² + y²."""
     while True:
         x = 2.0 * uniform(state) - 1.0
         y = 2.0 * uniform(state) - 1.0
         r2 = x * x + y * y
         if 0.0 < r2 < 1.0:
-            factor = np.sqrt(-2.0 * np.log(r2) / r2)
-            return x * factor, y * factor
+            return x, y, r2
+
+
+@njit(inline="always")
+def normal_pair(state):
+    """Two independent standard normal variates (Marsaglia's polar method)."""
+    x, y, r2 = disk_point(state)
+    factor = np.sqrt(-2.0 * np.log(r2) / r2)
+    return x * factor, y * factor
+
+
+@njit(inline="always")
+def unit_vector_3d(state):
+    """Uniform direction on the sphere (Marsaglia 1972): returns ``(x, y, z)``."""
+    x, y, r2 = disk_point(state)
+    root = 2.0 * np.sqrt(1.0 - r2)
+    return x * root, y * root, 1.0 - 2.0 * r2
 
 
 @njit(inline="always")

@@ -17,16 +17,6 @@ def _gas(d, n, seed=1):
     return velocity, state, bounds
 
 
-def test_scalar_generator_is_the_stream_of_kinetic_rng():
-    state = rng.stream_states(11, 1)[0]
-    reference = state.copy()
-    s = [np.uint64(w) for w in state]
-    for _ in range(100):
-        x, *words = kernels._next(*s)
-        s = [np.uint64(w) for w in words]  # called from Python, numba returns plain ints
-        assert x == rng._next_u64(reference)
-
-
 def test_pair_indices_are_distinct_and_uniform():
     s = [np.uint64(w) for w in rng.stream_states(3, 1)[0]]
     n, draws = 5, 20000

@@ -11,7 +11,60 @@ from kinetic.rng import (
     random_unit_vector,
     stream_states,
     uniform,
+    unit_vector_3d,
+    xoshiro_uniform,
+    xoshiro_unit_2d,
+    xoshiro_unit_3d,
 )
+
+_MASK = (1 << 64) - 1
+
+
+def _xoshiro256plus(words, n):
+    """Blackman and Vigna's reference generator, in Python integers."""
+    s0, s1, s2, s3 = (int(w) for w in words)
+    out = []
+    for _ in range(n):
+        out.append((s0 + s3) & _MASK)
+        t = (s1 << 17) & _MASK
+        s2 ^= s0
+        s3 ^= s1
+        s1 ^= s2
+        s0 ^= s3
+        s2 ^= t
+        s3 = ((s3 << 45) | (s3 >> 19)) & _MASK
+    return out
+
+
+@njit(cache=False)
+def _array_uniforms(state, n):
+    out = np.empty(n)
+    for k in range(n):
+        out[k] = uniform(state)
+    return out
+
+
+@njit(cache=False)
+def _scalar_uniforms(state, n):
+    s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
+    out = np.empty(n)
+    for k in range(n):
+        out[k], s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+    return out
+
+
+@njit(cache=False)
+def _directions(state, n, kind):
+    s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
+    out = np.zeros((n, 3))
+    for k in range(n):
+        if kind == 0:
+            out[k, 0], out[k, 1], s0, s1, s2, s3 = xoshiro_unit_2d(s0, s1, s2, s3)
+        elif kind == 1:
+            out[k, 0], out[k, 1], out[k, 2], s0, s1, s2, s3 = xoshiro_unit_3d(s0, s1, s2, s3)
+        else:
+            out[k, 0], out[k, 1], out[k, 2] = unit_vector_3d(state)
+    return out
 
 
 @njit(cache=False)
@@ -40,6 +93,24 @@ def _mean_direction(state, n, d):
         mean += direction
         norm_error = max(norm_error, abs(np.sum(direction * direction) - 1.0))
     return mean / n, norm_error
+
+
+def test_generator_is_xoshiro256plus_in_both_state_layouts():
+    state = stream_states(11, 1)[0]
+    expected = [(x >> 11) * 2.0**-53 for x in _xoshiro256plus(state, 1000)]
+    assert _array_uniforms(state.copy(), 1000).tolist() == expected
+    assert _scalar_uniforms(state.copy(), 1000).tolist() == expected
+
+
+@pytest.mark.parametrize(("kind", "d"), [(0, 2), (1, 3), (2, 3)])
+def test_rejection_directions_are_unit_and_isotropic(kind, d):
+    n = 40000
+    directions = _directions(stream_states(5, 1)[0].copy(), n, kind)[:, :d]
+    np.testing.assert_allclose(np.sum(directions**2, axis=1), 1.0, atol=1e-12)
+    # each component: mean 0 (sd 1/sqrt(d n)) and second moment 1/d
+    assert np.all(np.abs(directions.mean(axis=0)) < 5.0 / np.sqrt(d * n))
+    second = (directions**2).mean(axis=0)
+    assert np.all(np.abs(second - 1.0 / d) < 5.0 * np.sqrt(2.0 / (d * d * n)))
 
 
 def test_derive_seed_is_stable_and_key_dependent():

@@ -52,7 +52,7 @@ import math
 import numpy as np
 from numba import njit
 
-from kinetic.rng import normal_pair, uniform, uniform_open
+from kinetic.rng import disk_point, normal_pair, uniform, uniform_open, unit_vector_3d
 
 __all__ = [
     "BLOCK_FIELDS",
@@ -110,17 +110,6 @@ def channel_a_rate(d):
 
 
 @njit(inline="always")
-def _disk_point(state):
-    """Uniform point (x, y) in the open unit disk minus the origin, and r2 = x² + y²."""
-    while True:
-        x = 2.0 * uniform(state) - 1.0
-        y = 2.0 * uniform(state) - 1.0
-        r2 = x * x + y * y
-        if 0.0 < r2 < 1.0:
-            return x, y, r2
-
-
-@njit(inline="always")
 def _cached_normal(state, cache):
     """A standard normal variate; the polar method's second variate waits in ``cache``.
 
@@ -133,14 +122,6 @@ def _cached_normal(state, cache):
     cache[0] = 1.0
     cache[1] = z1
     return z0
-
-
-@njit(inline="always")
-def _unit_sphere_point(state):
-    """Uniform direction on S² (Marsaglia 1972): returns (x, y, z)."""
-    x, y, r2 = _disk_point(state)
-    root = 2.0 * math.sqrt(1.0 - r2)
-    return x * root, y * root, 1.0 - 2.0 * r2
 
 
 @njit(inline="always")
@@ -162,7 +143,7 @@ def _hard_sphere_proposal_2d(vx, vy, speed, use_channel_a, state, cache):
         u = _cached_normal(state, cache)
         majorant = a + max(-u, 0.0)
     else:
-        x, y, r2 = _disk_point(state)
+        x, y, r2 = disk_point(state)
         inv = 1.0 / math.sqrt(r2)
         sx = x * inv
         sy = y * inv
@@ -183,7 +164,7 @@ def _hard_sphere_proposal_3d(vx, vy, vz, speed, use_channel_a, state, cache):
     (v̂·σ̂)⁺ (Lambert's law); channel B draws σ̂ uniform and u = -√(-2 ln U).
     Returns ``(accepted, new_vx, new_vy, new_vz)``.
     """
-    wx, wy, wz = _unit_sphere_point(state)
+    wx, wy, wz = unit_vector_3d(state)
     if use_channel_a:
         inv_speed = 1.0 / speed
         px = vx * inv_speed + wx
@@ -222,7 +203,7 @@ def _maxwell_collision(velocity, i, state, cache):
     d = velocity.shape[0]
     u = _cached_normal(state, cache)
     if d == 2:
-        x, y, r2 = _disk_point(state)
+        x, y, r2 = disk_point(state)
         inv = 1.0 / math.sqrt(r2)
         sx = x * inv
         sy = y * inv
@@ -234,7 +215,7 @@ def _maxwell_collision(velocity, i, state, cache):
         velocity[0, i] = vx
         velocity[1, i] = vy
         return vx * vx + vy * vy
-    sx, sy, sz = _unit_sphere_point(state)
+    sx, sy, sz = unit_vector_3d(state)
     vx = velocity[0, i]
     vy = velocity[1, i]
     vz = velocity[2, i]

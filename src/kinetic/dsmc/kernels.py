@@ -52,6 +52,11 @@ import numpy as np
 from numba import njit
 
 from kinetic.rng import normal_pair
+from kinetic.rng import xoshiro_exponential as _exponential
+from kinetic.rng import xoshiro_next as _next
+from kinetic.rng import xoshiro_uniform as _uniform
+from kinetic.rng import xoshiro_unit_2d as _unit_2d
+from kinetic.rng import xoshiro_unit_3d as _unit_3d
 
 __all__ = [
     "BOUND_SAFETY",
@@ -100,11 +105,7 @@ EULER_LIMIT = 0.5
 
 _SHIFT_32 = np.uint64(32)
 _SHIFT_11 = np.uint64(11)
-_SHIFT_17 = np.uint64(17)
-_SHIFT_45 = np.uint64(45)
-_SHIFT_19 = np.uint64(64 - 45)
 _LOW_32 = np.uint64(0xFFFFFFFF)
-_TWO_M53 = 2.0**-53
 
 # ----------------------------------------------------------------------------- helpers
 #
@@ -116,36 +117,7 @@ _TWO_M53 = 2.0**-53
 # caller's ``state`` row at entry, stored back at exit) instead of advancing the array
 # in memory at every draw: numba cannot prove that the state row and the velocities do
 # not alias, so with the array every velocity store forces the state to be reloaded and
-# the loop runs about twice slower. ``_next`` is the generator of kinetic.rng
-# (``_next_u64``) written on scalars; a unit test checks the two give the same stream.
-
-
-@njit(error_model="numpy")
-def _next(s0, s1, s2, s3):
-    """One xoshiro256+ output and the advanced state: ``(x, s0, s1, s2, s3)``."""
-    x = s0 + s3
-    t = s1 << _SHIFT_17
-    s2 ^= s0
-    s3 ^= s1
-    s1 ^= s2
-    s0 ^= s3
-    s2 ^= t
-    s3 = (s3 << _SHIFT_45) | (s3 >> _SHIFT_19)
-    return x, s0, s1, s2, s3
-
-
-@njit(error_model="numpy")
-def _uniform(s0, s1, s2, s3):
-    """Uniform float64 in [0, 1) (upper 53 bits), as ``kinetic.rng.uniform``."""
-    x, s0, s1, s2, s3 = _next(s0, s1, s2, s3)
-    return float(x >> _SHIFT_11) * _TWO_M53, s0, s1, s2, s3
-
-
-@njit(error_model="numpy")
-def _exponential(s0, s1, s2, s3):
-    """Exponential variate of unit mean, as ``kinetic.rng.exponential``."""
-    x, s0, s1, s2, s3 = _next(s0, s1, s2, s3)
-    return -np.log((float(x >> _SHIFT_11) + 1.0) * _TWO_M53), s0, s1, s2, s3
+# the loop runs about twice slower. The scalar draws are kinetic.rng's ``xoshiro_*``.
 
 
 @njit(error_model="numpy")
@@ -163,39 +135,6 @@ def _pair(n, s0, s1, s2, s3):
     if j >= i:
         j += 1
     return i, j, s0, s1, s2, s3
-
-
-@njit(error_model="numpy")
-def _unit_3d(s0, s1, s2, s3):
-    """Uniform direction on the sphere (Marsaglia 1972, no trigonometry).
-
-    Returns ``(e0, e1, e2, s0, s1, s2, s3)``.
-    """
-    while True:
-        a, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
-        b, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
-        x = 2.0 * a - 1.0
-        y = 2.0 * b - 1.0
-        s = x * x + y * y
-        if s < 1.0:
-            f = 2.0 * np.sqrt(1.0 - s)
-            return x * f, y * f, 1.0 - 2.0 * s, s0, s1, s2, s3
-
-
-@njit(error_model="numpy")
-def _unit_2d(s0, s1, s2, s3):
-    """Uniform direction on the circle (von Neumann's rejection, no trigonometry).
-
-    Returns ``(e0, e1, s0, s1, s2, s3)``.
-    """
-    while True:
-        a, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
-        b, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
-        x = 2.0 * a - 1.0
-        y = 2.0 * b - 1.0
-        s = x * x + y * y
-        if 0.0 < s < 1.0:
-            return (x * x - y * y) / s, 2.0 * x * y / s, s0, s1, s2, s3
 
 
 @njit(error_model="numpy")
