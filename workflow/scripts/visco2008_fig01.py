@@ -18,14 +18,13 @@ density = md.attrs["density"]
 fig, ax = plotting.figure()
 inset = plotting.inset(ax)
 for axis, t_max, every in ((ax, 4.0, 2), (inset, float(t_md.max()), 5)):
-    shown = (t_md <= t_max) & (pdf_md > 0)
-    shown[shown] &= np.arange(shown.sum()) % every == 0
-    plotting.errorbar(
+    plotting.density_points(
         axis,
-        t_md[shown],
-        pdf_md[shown],
-        sem_md[shown],
-        marker="o",
+        t_md,
+        pdf_md,
+        sem_md,
+        x_max=t_max,
+        every=every,
         markersize=3,
         label=rf"MD, $\rho\sigma^2 = {density:g}$",
     )

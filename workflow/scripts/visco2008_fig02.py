@@ -1,7 +1,5 @@
 """visco2008 Fig. 2: free-path density P_FPL(x), MD against Eq. 14; inset Eq. 16 tail."""
 
-import numpy as np
-
 from kinetic import io, plotting
 from kinetic.analysis import collision_statistics
 from kinetic.workflow_support import start
@@ -16,14 +14,13 @@ density = md.attrs["density"]
 fig, ax = plotting.figure()
 inset = plotting.inset(ax)
 for axis, x_max, every in ((ax, 4.0, 2), (inset, float(x_md.max()), 5)):
-    shown = (x_md <= x_max) & (pdf_md > 0)
-    shown[shown] &= np.arange(shown.sum()) % every == 0
-    plotting.errorbar(
+    plotting.density_points(
         axis,
-        x_md[shown],
-        pdf_md[shown],
-        sem_md[shown],
-        marker="o",
+        x_md,
+        pdf_md,
+        sem_md,
+        x_max=x_max,
+        every=every,
         markersize=3,
         label=rf"MD, $\rho\sigma^2 = {density:g}$",
     )

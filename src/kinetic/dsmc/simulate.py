@@ -287,17 +287,11 @@ class HomogeneousSettings:
         }
 
     def parameters(self) -> dict[str, Any]:
-        return {
-            "n_particles": self.n_particles,
-            "restitution": self.restitution,
-            "time_step_tau": self.time_step,
-            "dimension": self.dimension,
-            "kernel": self.kernel,
-            "reduced_field": self.reduced_field,
-            "force_step": self.force_step,
-            "selection": self.selection,
-            "splitting": self.splitting,
-        }
+        """The constructor's arguments as dataset attributes (the time step named with
+        its unit)."""
+        parameters = self.parameters_init()
+        parameters["time_step_tau"] = parameters.pop("time_step")
+        return parameters
 
 
 @dataclass

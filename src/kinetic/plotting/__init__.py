@@ -14,12 +14,13 @@ import os
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt
 
-__all__ = ["STYLE", "errorbar", "figure", "inset", "save"]
+__all__ = ["STYLE", "density_points", "errorbar", "figure", "inset", "save"]
 
 STYLE = Path(__file__).with_name("kinetic.mplstyle")
 plt.style.use(STYLE)
@@ -42,6 +43,14 @@ def errorbar(ax, x, y, yerr, *, label=None, marker="o", **kwargs):
     return ax.errorbar(
         x, y, yerr=yerr, fmt=marker, mfc="none", label=label, elinewidth=0.7, **kwargs
     )
+
+
+def density_points(ax, x, density, error, *, x_max, every, **kwargs):
+    """A histogrammed density as error-bar points: bins up to ``x_max`` with a positive
+    value, one in ``every`` of them (so the markers stay apart)."""
+    shown = (x <= x_max) & (density > 0)
+    shown[shown] &= np.arange(shown.sum()) % every == 0
+    return errorbar(ax, x[shown], density[shown], error[shown], **kwargs)
 
 
 def save(fig, pdf_path: str | os.PathLike) -> None:
