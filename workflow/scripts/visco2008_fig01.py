@@ -29,12 +29,14 @@ for axis, t_max, every in ((ax, 4.0, 2), (inset, float(t_md.max()), 5)):
         label=rf"MD, $\rho\sigma^2 = {density:g}$",
     )
     for data in dsmc:
-        keep = data["flight_time"].values <= t_max
-        plotting.errorbar(
+        flight_time = data["flight_time"].values
+        plotting.density_points(
             axis,
-            data["flight_time"].values[keep],
-            data["time_pdf"].values[keep],
-            data["time_pdf_sem"].values[keep],
+            flight_time,
+            data["time_pdf"].values,
+            data["time_pdf_sem"].values,
+            x_max=t_max,
+            every=max(1, int(np.sum(flight_time <= t_max)) // 25),  # about 25 squares
             marker="s",
             markersize=3,
             label="DSMC",
