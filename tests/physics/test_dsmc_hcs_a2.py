@@ -12,18 +12,7 @@ import pytest
 
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import simulate_homogeneous
-
-try:  # the montanero2007 theory module (its own branch); Eq. 2.16 locally until merged
-    from kinetic.theory.montanero2007 import hcs_a2
-except ImportError:  # pragma: no cover - depends on the merge order
-
-    def hcs_a2(alpha, d=3):
-        return (
-            16
-            * (1 - alpha)
-            * (1 - 2 * alpha**2)
-            / (25 + 24 * d - alpha * (57 - 8 * d) - 2 * (1 - alpha) * alpha**2)
-        )
+from kinetic.theory.montanero2007 import hcs_a2
 
 
 @pytest.mark.parametrize("alpha", [0.5, 0.6, 0.8, 0.9, 1.0])

@@ -327,8 +327,23 @@ def members_speed_bounds(velocity, members, start, stop, bounds):
 
 
 @njit(inline="always")
-def _collide_range_loop(
+def _bound_terms(bounds, d):
+    """``(c0, c1, c2, top1, top2)`` of a ``bounds`` row (centre and the two top speeds)."""
+    c2 = bounds[2] if d == 3 else 0.0
+    return bounds[0], bounds[1], c2, bounds[d], bounds[d + 1]
+
+
+@njit(inline="always")
+def _majorant(kernel, pair_coefficient, n_pairs, top1, top2):
+    """``(bound², mean candidate spacing)`` for the relative-speed bound top1 + top2."""
+    bound = (top1 + top2) * BOUND_SAFETY
+    return bound * bound, 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+
+
+@njit(inline="always")
+def _collide_loop(
     velocity,
+    members,
     first,
     last,
     state,
@@ -341,22 +356,18 @@ def _collide_range_loop(
     carry,
     tally,
     d,
+    indexed,
 ):
-    """Body of ``collide_range`` for a literal dimension ``d`` (specialised by inlining)."""
+    """Body of ``collide_range`` (``indexed`` False: particles first..last-1) and of
+    ``collide_members`` (True: particles members[first:last]), for a literal dimension
+    ``d`` and a literal ``indexed`` (both specialised by inlining)."""
     n = last - first
     if n < 2 or duration <= 0.0:
         return
     n_pairs = 0.5 * n * (n - 1.0)
     half = 0.5 * (1.0 + restitution)
-    c0 = bounds[0]
-    c1 = bounds[1]
-    c2 = bounds[2] if d == 3 else 0.0
-    top1 = bounds[d]
-    top2 = bounds[d + 1]
-    bound = (top1 + top2) * BOUND_SAFETY
-    bound_sq = bound * bound
-    rate = _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
-    spacing = 1.0 / rate
+    c0, c1, c2, top1, top2 = _bound_terms(bounds, d)
+    bound_sq, spacing = _majorant(kernel, pair_coefficient, n_pairs, top1, top2)
     budget = duration
     if not poisson:
         budget += carry[0] * spacing
@@ -376,23 +387,24 @@ def _collide_range_loop(
             break
         budget -= step
         candidates += 1
-        i, j, s0, s1, s2, s3 = _pair(n, s0, s1, s2, s3)
-        i += first
-        j += first
+        a, b, s0, s1, s2, s3 = _pair(n, s0, s1, s2, s3)
+        if indexed:
+            i = members[first + a]
+            j = members[first + b]
+        else:
+            i = first + a
+            j = first + b
         code, h0, h1, h2, s0, s1, s2, s3 = _trial(
             velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
         )
         if code == 2:
             tally[TALLY_EXCEEDED] += 1
-            speed_bounds(velocity, first, last, bounds)
-            c0 = bounds[0]
-            c1 = bounds[1]
-            c2 = bounds[2] if d == 3 else 0.0
-            top1 = bounds[d]
-            top2 = bounds[d + 1]
-            bound = (top1 + top2) * BOUND_SAFETY
-            bound_sq = bound * bound
-            spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+            if indexed:
+                members_speed_bounds(velocity, members, first, last, bounds)
+            else:
+                speed_bounds(velocity, first, last, bounds)
+            c0, c1, c2, top1, top2 = _bound_terms(bounds, d)
+            bound_sq, spacing = _majorant(kernel, pair_coefficient, n_pairs, top1, top2)
             continue  # the candidate drawn under the stale bound is dropped
         if code == 0:
             continue
@@ -402,9 +414,7 @@ def _collide_range_loop(
             raised, top1, top2 = _raise(sa, sb, top1, top2)
             if raised:
                 tally[TALLY_RAISED] += 1
-                bound = (top1 + top2) * BOUND_SAFETY
-                bound_sq = bound * bound
-                spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+                bound_sq, spacing = _majorant(kernel, pair_coefficient, n_pairs, top1, top2)
     state[0] = s0
     state[1] = s1
     state[2] = s2
@@ -443,125 +453,17 @@ def collide_range(
     bounds: (d + 2,) float64 from ``speed_bounds`` (kept valid in place).
     tally: (4,) int64 += candidates, accepted, bound raises, stale-bound detections.
     """
+    members = np.empty(0, dtype=np.int64)  # unused: the particles are a range
     if velocity.shape[0] == 3:
-        _collide_range_loop(
-            velocity,
-            first,
-            last,
-            state,
-            kernel,
-            restitution,
-            pair_coefficient,
-            duration,
-            poisson,
-            bounds,
-            carry,
-            tally,
-            3,
-        )
+        _collide_loop(
+            velocity, members, first, last, state, kernel, restitution, pair_coefficient,
+            duration, poisson, bounds, carry, tally, 3, False,
+        )  # fmt: skip
     else:
-        _collide_range_loop(
-            velocity,
-            first,
-            last,
-            state,
-            kernel,
-            restitution,
-            pair_coefficient,
-            duration,
-            poisson,
-            bounds,
-            carry,
-            tally,
-            2,
-        )
-
-
-@njit(inline="always")
-def _collide_members_loop(
-    velocity,
-    members,
-    start,
-    stop,
-    state,
-    kernel,
-    restitution,
-    pair_coefficient,
-    duration,
-    poisson,
-    bounds,
-    carry,
-    tally,
-    d,
-):
-    """Body of ``collide_members`` for a literal dimension ``d`` (specialised by inlining)."""
-    n = stop - start
-    if n < 2 or duration <= 0.0:
-        return
-    n_pairs = 0.5 * n * (n - 1.0)
-    half = 0.5 * (1.0 + restitution)
-    c0 = bounds[0]
-    c1 = bounds[1]
-    c2 = bounds[2] if d == 3 else 0.0
-    top1 = bounds[d]
-    top2 = bounds[d + 1]
-    bound = (top1 + top2) * BOUND_SAFETY
-    bound_sq = bound * bound
-    spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
-    budget = duration
-    if not poisson:
-        budget += carry[0] * spacing
-    s0 = state[0]
-    s1 = state[1]
-    s2 = state[2]
-    s3 = state[3]
-    while True:
-        if poisson:
-            e, s0, s1, s2, s3 = _exponential(s0, s1, s2, s3)
-            step = e * spacing
-        else:
-            step = spacing
-        if step > budget:
-            break
-        budget -= step
-        tally[TALLY_CANDIDATES] += 1
-        a, b, s0, s1, s2, s3 = _pair(n, s0, s1, s2, s3)
-        i = members[start + a]
-        j = members[start + b]
-        code, h0, h1, h2, s0, s1, s2, s3 = _trial(
-            velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
-        )
-        if code == 2:
-            tally[TALLY_EXCEEDED] += 1
-            members_speed_bounds(velocity, members, start, stop, bounds)
-            c0 = bounds[0]
-            c1 = bounds[1]
-            c2 = bounds[2] if d == 3 else 0.0
-            top1 = bounds[d]
-            top2 = bounds[d + 1]
-            bound = (top1 + top2) * BOUND_SAFETY
-            bound_sq = bound * bound
-            spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
-            continue  # the candidate drawn under the stale bound is dropped
-        if code == 0:
-            continue
-        sa, sb = _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2)
-        tally[TALLY_ACCEPTED] += 1
-        if kernel != MAXWELL:
-            raised, top1, top2 = _raise(sa, sb, top1, top2)
-            if raised:
-                tally[TALLY_RAISED] += 1
-                bound = (top1 + top2) * BOUND_SAFETY
-                bound_sq = bound * bound
-                spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
-    state[0] = s0
-    state[1] = s1
-    state[2] = s2
-    state[3] = s3
-    bounds[d] = top1
-    bounds[d + 1] = top2
-    if not poisson:
-        carry[0] = budget / spacing
+        _collide_loop(
+            velocity, members, first, last, state, kernel, restitution, pair_coefficient,
+            duration, poisson, bounds, carry, tally, 2, False,
+        )  # fmt: skip
 
 
 @njit(cache=True, error_model="numpy")
@@ -586,39 +488,15 @@ def collide_members(
     Everything else as in ``collide_range``.
     """
     if velocity.shape[0] == 3:
-        _collide_members_loop(
-            velocity,
-            members,
-            start,
-            stop,
-            state,
-            kernel,
-            restitution,
-            pair_coefficient,
-            duration,
-            poisson,
-            bounds,
-            carry,
-            tally,
-            3,
-        )
+        _collide_loop(
+            velocity, members, start, stop, state, kernel, restitution, pair_coefficient,
+            duration, poisson, bounds, carry, tally, 3, True,
+        )  # fmt: skip
     else:
-        _collide_members_loop(
-            velocity,
-            members,
-            start,
-            stop,
-            state,
-            kernel,
-            restitution,
-            pair_coefficient,
-            duration,
-            poisson,
-            bounds,
-            carry,
-            tally,
-            2,
-        )
+        _collide_loop(
+            velocity, members, start, stop, state, kernel, restitution, pair_coefficient,
+            duration, poisson, bounds, carry, tally, 2, True,
+        )  # fmt: skip
 
 
 @njit(error_model="numpy")
@@ -687,14 +565,8 @@ def _collide_observed_loop(
     half = 0.5 * (1.0 + restitution)
     inverse_time_width = 1.0 / time_bin_width
     inverse_path_width = 1.0 / path_bin_width
-    c0 = bounds[0]
-    c1 = bounds[1]
-    c2 = bounds[2] if d == 3 else 0.0
-    top1 = bounds[d]
-    top2 = bounds[d + 1]
-    bound = (top1 + top2) * BOUND_SAFETY
-    bound_sq = bound * bound
-    spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+    c0, c1, c2, top1, top2 = _bound_terms(bounds, d)
+    bound_sq, spacing = _majorant(kernel, pair_coefficient, n_pairs, top1, top2)
     s0 = state[0]
     s1 = state[1]
     s2 = state[2]
@@ -714,14 +586,8 @@ def _collide_observed_loop(
         if code == 2:
             tally[TALLY_EXCEEDED] += 1
             speed_bounds(velocity, 0, n, bounds)
-            c0 = bounds[0]
-            c1 = bounds[1]
-            c2 = bounds[2] if d == 3 else 0.0
-            top1 = bounds[d]
-            top2 = bounds[d + 1]
-            bound = (top1 + top2) * BOUND_SAFETY
-            bound_sq = bound * bound
-            spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+            c0, c1, c2, top1, top2 = _bound_terms(bounds, d)
+            bound_sq, spacing = _majorant(kernel, pair_coefficient, n_pairs, top1, top2)
             continue  # the candidate drawn under the stale bound is dropped
         if code == 0:
             continue
@@ -757,9 +623,7 @@ def _collide_observed_loop(
             raised, top1, top2 = _raise(sa, sb, top1, top2)
             if raised:
                 tally[TALLY_RAISED] += 1
-                bound = (top1 + top2) * BOUND_SAFETY
-                bound_sq = bound * bound
-                spacing = 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
+                bound_sq, spacing = _majorant(kernel, pair_coefficient, n_pairs, top1, top2)
     state[0] = s0
     state[1] = s1
     state[2] = s2
