@@ -26,6 +26,25 @@ for row in field_rows:
 scan_alphas = {row["alpha"] for row in rows if row["family"] == "scan"}
 
 fig, (left, right) = plotting.figure(1, 2, figsize=(6.8, 2.6))
+
+
+def measured_and_theory(row, alpha):
+    """The columns every table row carries: the run's diagnostics and the theory values."""
+    return {
+        "anisotropy": row["anisotropy"],
+        "anisotropy_err": row["anisotropy_err"],
+        "b1_route_difference": row["b1_route_difference"],
+        "b1_route_difference_err": row["b1_route_difference_err"],
+        "a2": row["a2"],
+        "a2_err": row["a2_err"],
+        "kappa_ratio_sonine": float(theory.kappa_prime_ratio(alpha)),
+        "kappa_ratio_modified_sonine": float(
+            theory.kappa_prime_ratio(alpha, approximation="modified")
+        ),
+        "a2_eq_2_16": float(theory.hcs_a2(alpha)),
+    }
+
+
 table = []
 for alpha in sorted(scan_alphas, reverse=True):
     chosen = sorted(by_alpha[alpha], key=lambda row: row["reduced_field"])
@@ -82,17 +101,7 @@ for alpha in sorted(scan_alphas, reverse=True):
                 "linear_response_kappa_ratio": k0,
                 "relative_departure": deviation,
                 "relative_departure_err": row["kappa_ratio_err"] / k0,
-                "anisotropy": row["anisotropy"],
-                "anisotropy_err": row["anisotropy_err"],
-                "b1_route_difference": row["b1_route_difference"],
-                "b1_route_difference_err": row["b1_route_difference_err"],
-                "a2": row["a2"],
-                "a2_err": row["a2_err"],
-                "kappa_ratio_sonine": float(theory.kappa_prime_ratio(alpha)),
-                "kappa_ratio_modified_sonine": float(
-                    theory.kappa_prime_ratio(alpha, approximation="modified")
-                ),
-                "a2_eq_2_16": float(theory.hcs_a2(alpha)),
+                **measured_and_theory(row, alpha),
             }
         )
 for row in rows:
@@ -105,17 +114,7 @@ for row in rows:
                 "reduced_field": row["reduced_field"],
                 "kappa_ratio": row["kappa_ratio"],
                 "kappa_ratio_err": row["kappa_ratio_err"],
-                "anisotropy": row["anisotropy"],
-                "anisotropy_err": row["anisotropy_err"],
-                "b1_route_difference": row["b1_route_difference"],
-                "b1_route_difference_err": row["b1_route_difference_err"],
-                "a2": row["a2"],
-                "a2_err": row["a2_err"],
-                "kappa_ratio_sonine": float(theory.kappa_prime_ratio(alpha)),
-                "kappa_ratio_modified_sonine": float(
-                    theory.kappa_prime_ratio(alpha, approximation="modified")
-                ),
-                "a2_eq_2_16": float(theory.hcs_a2(alpha)),
+                **measured_and_theory(row, alpha),
             }
         )
 left.set_xlabel(r"$\varepsilon^{*2}$")

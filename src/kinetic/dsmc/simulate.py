@@ -951,28 +951,23 @@ def simulate_free_flights(
     cpu_seconds = np.zeros(n_realizations)
     label = label or f"dsmc free flights d={d} {kernel} N={n_particles}"
     progress = Progress(n_realizations * n_chunks, label=label, unit="chunks")
+
+    def observe(velocity, rng, bounds, begin, length, tally, last_collision, times, paths):
+        """Collisions in [begin, begin + length), recording the flights started in the window."""
+        kernels.collide_observed(
+            velocity, rng, kernel_id, restitution, coefficient, begin, length, bounds, tally,
+            last_collision, 0.0, duration, time_width, times, path_width * free_path_unit, paths,
+        )  # fmt: skip
+
     tiny = np.zeros((d, 2))
     tiny[0] = [1.0, -1.0]
     tiny_bounds = np.empty(d + 2)
     kernels.speed_bounds(tiny, 0, 2, tiny_bounds)
-    kernels.collide_observed(
-        tiny,
-        streams[0].copy(),
-        kernel_id,
-        restitution,
-        coefficient,
-        0.0,
-        1e-3,
-        tiny_bounds,
-        np.zeros(4, dtype=np.int64),
-        np.full(2, -1.0),
-        0.0,
-        1.0,
-        time_width,
-        np.zeros(n_time_bins + 1, dtype=np.int64),
-        path_width,
+    observe(
+        tiny, streams[0].copy(), tiny_bounds, 0.0, 1e-3, np.zeros(4, dtype=np.int64),
+        np.full(2, -1.0), np.zeros(n_time_bins + 1, dtype=np.int64),
         np.zeros(n_path_bins + 1, dtype=np.int64),
-    )  # compile outside the timers (a no-op once cached)
+    )  # fmt: skip  # compile outside the timers (a no-op once cached)
     for r in range(n_realizations):
         rng = streams[r].copy()
         velocity = np.empty((d, n_particles))
@@ -980,51 +975,18 @@ def simulate_free_flights(
         bounds = np.empty(d + 2)
         kernels.speed_bounds(velocity, 0, n_particles, bounds)
         last_collision = np.full(n_particles, -1.0)
+        run_state = (tallies[r], last_collision, time_counts[r], path_counts[r])
         start = time.process_time()
         for c in range(n_chunks):
             begin = c * total_time / n_chunks
             if begin < duration <= (c + 1) * total_time / n_chunks:
                 # split the chunk at the end of the window to count its collisions
-                kernels.collide_observed(
-                    velocity,
-                    rng,
-                    kernel_id,
-                    restitution,
-                    coefficient,
-                    begin,
-                    duration - begin,
-                    bounds,
-                    tallies[r],
-                    last_collision,
-                    0.0,
-                    duration,
-                    time_width,
-                    time_counts[r],
-                    path_width * free_path_unit,
-                    path_counts[r],
-                )
+                observe(velocity, rng, bounds, begin, duration - begin, *run_state)
                 collisions_in_window[r] = tallies[r, kernels.TALLY_ACCEPTED]
                 begin, length = duration, (c + 1) * total_time / n_chunks - duration
             else:
                 length = total_time / n_chunks
-            kernels.collide_observed(
-                velocity,
-                rng,
-                kernel_id,
-                restitution,
-                coefficient,
-                begin,
-                length,
-                bounds,
-                tallies[r],
-                last_collision,
-                0.0,
-                duration,
-                time_width,
-                time_counts[r],
-                path_width * free_path_unit,
-                path_counts[r],
-            )
+            observe(velocity, rng, bounds, begin, length, *run_state)
             progress.update(1)
         cpu_seconds[r] = time.process_time() - start
         if tallies[r, kernels.TALLY_EXCEEDED]:
