@@ -295,9 +295,13 @@ class HardSphereSystem:
             while cell_capacity < cell_occupancy + 6.0 * math.sqrt(cell_occupancy) + 6.0:
                 cell_capacity *= 2
         self._allocate_rows(cell_capacity)
-        leaves = 1 << max(1, (n - 1).bit_length())
-        self.tree_time = np.full(2 * leaves, np.inf)
-        self.tree_index = np.zeros(2 * leaves, dtype=np.int32)
+        # event calendar: see kinetic.edmd.kernels (N buckets + the overflow list)
+        self.links = _aligned_zeros((n, 4), np.int32)
+        self.heads = np.full(n + 1, -1, dtype=np.int32)
+        self.heap_time = np.full(n, np.inf)
+        self.heap_index = np.zeros(n, dtype=np.int32)
+        self.calendar = np.array([0.0, 1.0])
+        self.cursor = np.zeros(2, dtype=np.int64)
         self.last_collision = np.full(n, -np.inf)
         self.streak = np.zeros(n, dtype=np.int32)
         self.label = np.arange(n, dtype=np.int64)  # original particle number of slot i
@@ -445,8 +449,7 @@ class HardSphereSystem:
                 self.ints,
                 self.members,
                 self.occupancy,
-                self.tree_time,
-                self.tree_index,
+                *self._calendar_arrays(),
                 self.last_collision,
                 self.streak,
                 self.label,
@@ -506,6 +509,17 @@ class HardSphereSystem:
         self.members = np.zeros((self.n_cells, int(capacity)), dtype=np.int32)
         self.scratch = np.zeros(self.n_particles + int(capacity), dtype=np.int64)
 
+    def _calendar_arrays(self) -> tuple[np.ndarray, ...]:
+        """The event calendar's arrays in the order the kernels take them."""
+        return (
+            self.links,
+            self.heads,
+            self.heap_time,
+            self.heap_index,
+            self.calendar,
+            self.cursor,
+        )
+
     def _relink(self) -> None:
         """Refill the cell rows from the cell coordinates, growing them if needed."""
         while not k.relink_cells(self.ints, self.members, self.occupancy, self.grid):
@@ -522,8 +536,7 @@ class HardSphereSystem:
             self.occupancy,
             self.geometry,
             self.grid,
-            self.tree_time,
-            self.tree_index,
+            *self._calendar_arrays(),
             self.counters_array,
             self.scratch,
             self.images,
@@ -561,7 +574,7 @@ class HardSphereSystem:
         k.rebase(
             t,
             self.phase,
-            self.tree_time,
+            *self._calendar_arrays(),
             self.last_collision,
             observers.window_end,
             observers.sample_times,
@@ -632,9 +645,10 @@ class HardSphereSystem:
 
 
 def _aligned_zeros(shape, dtype=np.float64, alignment: int = 64) -> np.ndarray:
-    """Zeroed 8-byte-item array whose data starts on an ``alignment``-byte boundary (one
-    particle row of 8 items is then one cache line)."""
+    """Zeroed array whose data starts on an ``alignment``-byte boundary (a particle row of
+    64 bytes is then one cache line)."""
     count = int(np.prod(shape))
-    raw = np.zeros(count + alignment // 8, dtype=dtype)
-    offset = (-raw.ctypes.data % alignment) // 8
+    size = np.dtype(dtype).itemsize
+    raw = np.zeros(count + alignment // size, dtype=dtype)
+    offset = (-raw.ctypes.data % alignment) // size
     return raw[offset : offset + count].reshape(shape)
