@@ -41,7 +41,7 @@ def assert_every_particle_once(phase, links, heads, heap_time, heap_index, calen
             assert links[i, kernels.L_PLACE] == bucket
             assert links[i, kernels.L_PREV] == previous
             assert bucket > cursor[0]  # the current and earlier buckets are poured out
-            q = (min(phase[i, 6], phase[i, 7]) - calendar[0]) / calendar[1]
+            q = (min(phase[i, 6], phase[i, 7]) - calendar[0]) * calendar[1]
             assert q >= bucket if bucket == n_buckets else bucket <= q < bucket + 1
             previous = i
             i = links[i, kernels.L_NEXT]

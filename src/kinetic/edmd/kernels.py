@@ -112,7 +112,8 @@ I_DIM = 3
 I_WALL = 4
 I_STREAK = 7
 I_RESCALE = 8
-N_GRID = 9
+I_PREFETCH = 9
+N_GRID = 10
 
 STALL_LIMIT = 100_000
 # columns of ``links`` (the event calendar's per-particle entries)
@@ -122,7 +123,7 @@ L_PLACE = 2  # bucket of the particle's event (B: overflow list; PLACE_HEAP: cur
 L_HEAP = 3  # position in the current bucket's heap
 PLACE_HEAP = -1
 #: mean number of events per calendar bucket (sets the bucket width)
-EVENTS_PER_BUCKET = 2.0
+EVENTS_PER_BUCKET = 4.0
 #: buckets between the one being opened and the one whose particle rows are prefetched
 PREFETCH_BUCKETS = 2
 #: entries copied unconditionally from each cell row by the neighbour scan (≤ row capacity)
@@ -229,7 +230,7 @@ def calendar_insert(i, key, links, heads, heap_time, heap_index, calendar, curso
     """Schedule particle i's next event at time ``key``: into the heap if it falls in the
     current bucket (or before it, by round-off), else at the head of its bucket's list, or
     of the overflow list beyond the calendar's horizon (``key`` = +inf included)."""
-    q = (key - calendar[0]) / calendar[1]
+    q = (key - calendar[0]) * calendar[1]
     if q < cursor[0] + 1:
         size = cursor[1]
         cursor[1] = size + 1
@@ -305,7 +306,7 @@ def calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor)
     else:
         origin = 0.0
     calendar[0] = origin
-    calendar[1] = width
+    calendar[1] = 1.0 / width
     cursor[0] = 0
     cursor[1] = 0
     for bucket in range(heads.shape[0]):
@@ -347,6 +348,8 @@ def calendar_next(
             links[j, L_PLACE] = PLACE_HEAP
             heap_sift_up(heap_time, heap_index, links, size, event_key(phase, j), j)
             j = following
+        if grid[I_PREFETCH] == 0:
+            continue
         ahead = current + PREFETCH_BUCKETS
         if ahead < n_buckets:
             j = heads[ahead]

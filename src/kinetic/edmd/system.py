@@ -47,6 +47,11 @@ SORT_MIN_PARTICLES = 2**62
 SORT_EVERY_PER_PARTICLE = 2
 
 
+#: systems of at least that many particles prefetch the rows of the coming events (their
+#: rows outgrow the L2 cache; for smaller ones the prefetch is pure overhead)
+PREFETCH_MIN_PARTICLES = 10_000
+
+
 class InelasticCollapseError(RuntimeError):
     """Inelastic collapse: a particle collided more than ``collapse_streak`` times in a row
     with less than ``collapse_time`` between collisions (or the clock stalled).
@@ -277,6 +282,7 @@ class HardSphereSystem:
         self.grid[k.I_WALL : k.I_WALL + dimension] = walls
         self.grid[k.I_STREAK] = int(collapse_streak)
         self.grid[k.I_RESCALE] = int(rescale_every)
+        self.grid[k.I_PREFETCH] = int(n_particles >= PREFETCH_MIN_PARTICLES)
         self.geometry = np.zeros(k.N_GEOMETRY)
         self.geometry[k.G_L : k.G_L + 3] = length3
         self.geometry[k.G_W : k.G_W + 3] = length3 / counts
