@@ -38,12 +38,11 @@ CLOSE_PACKING = {2: math.pi / (2 * math.sqrt(3)), 3: math.pi / (3 * math.sqrt(2)
 #: ``python -m kinetic.bench edmd``: fewer cells cost crossings, more particles per cell cost
 #: pair tests; 27 neighbour cells in d = 3 against 9 in d = 2)
 DEFAULT_CELL_OCCUPANCY = {2: 2.0, 3: 0.7}
-#: systems of at least that many particles can be re-sorted in memory by cell every
-#: SORT_EVERY_PER_PARTICLE * N collisions (see HardSphereSystem.sort_particles). Off by
-#: default: measured on the benchmark machine it did not pay (N = 1e4 fits the 2 MB L2;
-#: at N = 1e5 the cost is dominated by the event tree and the re-prediction after sorting
-#: ate the gain).
-SORT_MIN_PARTICLES = 2**62
+#: systems of at least that many particles are re-sorted in memory along the Z-order curve
+#: of their cells every SORT_EVERY_PER_PARTICLE * N collisions (see
+#: HardSphereSystem.sort_particles): the rows a neighbour scan reads then lie close
+#: together in memory (fewer cache and TLB misses once the rows outgrow the caches)
+SORT_MIN_PARTICLES = 50_000
 SORT_EVERY_PER_PARTICLE = 2
 
 
@@ -550,27 +549,30 @@ class HardSphereSystem:
         self.counters_array[k.COUNT_PAIR_TESTS] = tests
 
     def sort_particles(self, observers: Observers | None = None) -> None:
-        """Renumber the memory slots in cell order (x fastest), so that particles close in
-        space are close in memory, then predict every event anew.
+        """Renumber the memory slots along the Z-order (Morton) curve of the particles'
+        cells, so that particles close in space are close in memory.
 
-        Particle identities are kept in ``label`` (read-outs are in label order); the
-        per-particle arrays of ``observers`` are permuted along.
+        A pure permutation: every state row moves with its particle, the predicted partners
+        are renumbered and the calendar rebuilt, so the dynamics (the collision sequence)
+        is unchanged. Particle identities are kept in ``label`` (read-outs are in label
+        order); the per-particle arrays of ``observers`` are permuted along.
         """
         n = self.n_particles
-        cell = self.ints[:, 5:8]
-        flat = (cell[:, 2] * self.grid[1] + cell[:, 1]) * self.grid[0] + cell[:, 0]
-        order = np.argsort(flat, kind="stable")
+        order = np.argsort(morton_code(self.ints[:, 5:8]), kind="stable")
+        new_slot = np.empty(n, dtype=np.int64)
+        new_slot[order] = np.arange(n)
         for array in (self.phase, self.ints, self.last_collision, self.streak, self.label):
             array[:] = array[order]
+        partner = self.ints[:, 0]
+        partner[:] = np.where(partner >= 0, new_slot[partner], -1)
         for obs in {
             id(self._idle_observers): self._idle_observers,
             id(observers): observers,
         }.values():
             if obs is not None and obs.window_count.shape[0] == n:
                 obs.window_count[:] = obs.window_count[order]
-        self.ints[:, 3] = 0  # stamps: every prediction is made anew below
         self._relink()
-        self._predict_all(float(self.clock[0]))
+        k.calendar_build(self.phase, *self._calendar_arrays())
         self._since_sort = 0
 
     def _rebase(self, observers: Observers) -> None:
@@ -648,6 +650,16 @@ class HardSphereSystem:
     @property
     def cells_per_side(self) -> np.ndarray:
         return self.grid[: self.dimension].copy()
+
+
+def morton_code(cells: np.ndarray) -> np.ndarray:
+    """Z-order index of integer cell coordinates (M, 3) (bits of the three axes interleaved,
+    x lowest; coordinates below 2^21)."""
+    code = np.zeros(cells.shape[0], dtype=np.int64)
+    for bit in range(21):
+        for axis in range(3):
+            code |= ((cells[:, axis].astype(np.int64) >> bit) & 1) << (3 * bit + axis)
+    return code
 
 
 def _aligned_zeros(shape, dtype=np.float64, alignment: int = 64) -> np.ndarray:
