@@ -57,12 +57,13 @@ def test_next_is_the_earliest_after_random_updates():
     phase[:, 7] = np.inf
     ints = np.zeros((n, 8), dtype=np.int64)  # cells and partners: only prefetched
     members = np.zeros((1, 16), dtype=np.int32)
+    occupancy = np.zeros(1, dtype=np.int32)
     grid = np.ones(kernels.N_GRID, dtype=np.int64)
     kernels.calendar_build(*state)
     assert_every_particle_once(*state)
     now = 0.0
     for step in range(3000):
-        i = kernels.calendar_next(phase, ints, members, grid, *state[1:])
+        i = kernels.calendar_next(phase, ints, members, occupancy, grid, *state[1:])
         keys = np.minimum(phase[:, 6], phase[:, 7])
         if not np.isfinite(keys).any():
             assert i == -1

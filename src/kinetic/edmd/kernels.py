@@ -112,7 +112,7 @@ I_DIM = 3
 I_WALL = 4
 I_STREAK = 7
 I_RESCALE = 8
-I_PREFETCH = 9
+I_PREFETCH = 9  # 0: no prefetching, 1: rows and cells of coming events, 2: and candidates
 N_GRID = 10
 
 STALL_LIMIT = 100_000
@@ -124,8 +124,6 @@ L_HEAP = 3  # position in the current bucket's heap
 PLACE_HEAP = -1
 #: mean number of events per calendar bucket (sets the bucket width)
 EVENTS_PER_BUCKET = 4.0
-#: buckets between the one being opened and the one whose particle rows are prefetched
-PREFETCH_BUCKETS = 2
 #: entries copied unconditionally from each cell row by the neighbour scan (≤ row capacity)
 GATHER_HEAD = 4
 
@@ -319,17 +317,75 @@ def calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def prefetch_ahead(current, phase, ints, members, occupancy, grid, links, heads):
+    """Prefetch, in stages, what the events of the coming buckets will read: the rows
+    (``phase``, ``ints``) of the particles of bucket ``current`` + 3; the cell rows around
+    those of bucket + 2 and their partners' rows; and at level ``grid[I_PREFETCH]`` = 2
+    the rows of the particles listed in the cells around those of bucket + 1 (the
+    candidates of their neighbour scans: many prefetches, worth it only when most of them
+    would miss the L3 cache). The cells are those the event's scan will visit: all
+    neighbours, or the layer beyond the destination cell of a crossing.
+    Each stage reads only what an earlier stage prefetched. Cells are taken without
+    periodic wrapping (a hint: the rare misses at the box edges cost nothing else)."""
+    n_buckets = heads.shape[0] - 1
+    n_cells = members.shape[0]
+    dim = grid[I_DIM]
+    layer = grid[0] * grid[1]
+    if current + 3 < n_buckets:
+        j = heads[current + 3]
+        while j >= 0:
+            prefetch_row(phase, j)
+            prefetch_row(ints, j)
+            j = links[j, L_NEXT]
+    for stage in range(2, 0 if grid[I_PREFETCH] == 2 else 1, -1):
+        if current + stage >= n_buckets:
+            continue
+        j = heads[current + stage]
+        while j >= 0:
+            flat = cell_flat(ints[j, 5], ints[j, 6], ints[j, 7], grid)
+            if stage == 2:
+                partner = ints[j, 0]
+                if partner >= 0:
+                    prefetch_row(phase, partner)
+            # the cells the event's scan will visit: all neighbours, or for a crossing
+            # the layer beyond the destination cell
+            lo0, hi0, lo1, hi1 = -1, 1, -1, 1
+            lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
+            if phase[j, 7] <= phase[j, 6]:
+                code = ints[j, 2]
+                offset = 2 if (code & 1) == 1 else -2
+                axis = code >> 1
+                if axis == 0:
+                    lo0, hi0 = offset, offset
+                elif axis == 1:
+                    lo1, hi1 = offset, offset
+                else:
+                    lo2, hi2 = offset, offset
+            for o2 in range(lo2, hi2 + 1):
+                for o1 in range(lo1, hi1 + 1):
+                    for o0 in range(lo0, hi0 + 1):
+                        cell = flat + o0 + o1 * grid[0] + o2 * layer
+                        if cell < 0 or cell >= n_cells:
+                            continue
+                        if stage == 2:
+                            prefetch_row(members, cell)
+                        else:
+                            for q in range(occupancy[cell]):
+                                prefetch_row(phase, members[cell, q])
+            j = links[j, L_NEXT]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def calendar_next(
-    phase, ints, members, grid, links, heads, heap_time, heap_index, calendar, cursor
+    phase, ints, members, occupancy, grid, links, heads, heap_time, heap_index, calendar, cursor
 ):
     """The particle whose event comes next (the top of the current bucket's heap), −1 if
     no event is finite. Moves on to the next non-empty bucket when the heap is empty,
     pouring its list into the heap; past the last bucket every event waits in the overflow
     list, and the calendar is rebuilt from there.
 
-    On opening bucket b, the rows (``phase``, ``ints``) of the particles of bucket
-    b + PREFETCH_BUCKETS, and the cell rows and partner rows of those of bucket b + 1, are
-    prefetched: their events come a few events later, when the loads have completed.
+    On opening a bucket, large systems (``grid[I_PREFETCH]``) prefetch what the events of
+    the next three buckets will read (``prefetch_ahead``).
     """
     n_buckets = heads.shape[0] - 1
     while cursor[1] == 0:
@@ -348,23 +404,8 @@ def calendar_next(
             links[j, L_PLACE] = PLACE_HEAP
             heap_sift_up(heap_time, heap_index, links, size, event_key(phase, j), j)
             j = following
-        if grid[I_PREFETCH] == 0:
-            continue
-        ahead = current + PREFETCH_BUCKETS
-        if ahead < n_buckets:
-            j = heads[ahead]
-            while j >= 0:
-                prefetch_row(phase, j)
-                prefetch_row(ints, j)
-                j = links[j, L_NEXT]
-        if current + 1 < n_buckets:
-            j = heads[current + 1]
-            while j >= 0:
-                prefetch_row(members, cell_flat(ints[j, 5], ints[j, 6], ints[j, 7], grid))
-                partner = ints[j, 0]
-                if partner >= 0:
-                    prefetch_row(phase, partner)
-                j = links[j, L_NEXT]
+        if grid[I_PREFETCH] > 0:
+            prefetch_ahead(current, phase, ints, members, occupancy, grid, links, heads)
     return heap_index[0]
 
 
@@ -845,7 +886,17 @@ def advance(
             next_window = window_end[w]
     while True:
         i = calendar_next(
-            phase, ints, members, grid, links, heads, heap_time, heap_index, calendar, cursor
+            phase,
+            ints,
+            members,
+            occupancy,
+            grid,
+            links,
+            heads,
+            heap_time,
+            heap_index,
+            calendar,
+            cursor,
         )
         if i < 0:
             clock[0] = t_stop
