@@ -10,7 +10,9 @@ times in the units those and the velocities imply.
 State (N particles, every array preallocated, row/index i = memory slot of a particle)
 --------------------------------------------------------------------------------------
 Everything an event of particle i touches lives in two 64-byte rows (two cache lines), so
-that a large system pays two cache misses per event rather than one per array.
+that a large system pays two cache misses per event rather than one per array. Systems of
+N ≥ ``system.SORT_MIN_PARTICLES`` are re-sorted in memory along the Z-order curve of the
+cells now and then (``label`` keeps each slot's particle identity).
 
 ``phase``   (N, 8) float64: columns 0..2 the *false position* x0 = x(t) − v t of the
             current flight (the position at time t is ``x0 + v t`` without touching the
@@ -24,12 +26,22 @@ that a large system pays two cache misses per event rather than one per array.
             velocity changes: collisions and wall bounces), 4 i's position in its cell row,
             5..7 its cell coordinates (z = 0 in d = 2).
 ``members`` (n_cells, C) int32, ``occupancy`` (n_cells,) int32: the particles of each
-            cell are ``members[c, :occupancy[c]]``; rows have a fixed capacity C, grown by
-            the front when a crossing finds its destination full (``STATUS_CELL_FULL``).
-``tree_time`` (2M,) float64, ``tree_index`` (2M,) int32: complete binary tournament tree
-            over M = 2^ceil(log2 N) leaves; leaf M + i holds min(phase[i, 6], phase[i, 7]);
-            every inner node the earliest of its two children (ties go to the left), so
-            node 1 is the next event of the whole system.
+            cell are ``members[c, :occupancy[c]]``; rows have a fixed capacity C (16 by
+            default: one cache line), grown by the front when a crossing finds its
+            destination full (``STATUS_CELL_FULL``).
+``links`` (N, 4) int32, ``heads`` (B + 1,) int32, ``heap_time`` (N,) float64,
+``heap_index`` (N,) int32, ``calendar`` float64 [origin, 1/width], ``cursor`` int64
+            [current bucket, heap size]: the event calendar (Paul 2007, J. Comput. Phys.
+            221, 615), the queue of the N events min(phase[i, 6], phase[i, 7]). Bucket b of
+            B = N covers the times origin + [b, b + 1) · width (width ≈ EVENTS_PER_BUCKET
+            mean intervals between events) in an unsorted doubly linked list (``heads[b]``
+            the first particle, ``links[i]`` = next, previous, bucket of i, heap position);
+            list B is the overflow beyond the horizon. The current bucket is poured into a
+            binary heap ordered by (time, particle), whose top is the next event; when the
+            last bucket is done every event is in the overflow list and the calendar is
+            rebuilt from there (also after a velocity rescaling, a rebase of the clock and
+            a re-sorting). Every particle is in exactly one place: the heap or one list.
+            Opening a bucket prefetches the memory of the events a few buckets ahead.
 ``last_collision`` (N,) float64: time of i's last pair collision (−inf before the first).
 ``streak``  (N,) int32: consecutive pair collisions of i separated by less than the
             collapse time (inelastic collapse detector).
@@ -40,10 +52,11 @@ Parameters
             box lengths, cell widths (L_k / n_k, each ≥ σ), diameter, restitution, the
             contact duration of the TC model (pairs in which a particle collided less than
             that time before collide elastically; 0 disables it) and the collapse time.
-``grid``    int64 [n0, n1, n2, d, wall0, wall1, wall2, collapse_streak, rescale_every]:
-            cells per side (n2 = 1 in d = 2), dimension, hard wall (1) or periodic (0) per
-            axis, the streak length that declares inelastic collapse, and the number of
-            collisions between two velocity rescalings (0: no thermostat).
+``grid``    int64 [n0, n1, n2, d, wall0, wall1, wall2, collapse_streak, rescale_every,
+            prefetch]: cells per side (n2 = 1 in d = 2), dimension, hard wall (1) or
+            periodic (0) per axis, the streak length that declares inelastic collapse, the
+            number of collisions between two velocity rescalings (0: no thermostat), and
+            the prefetch level (0 none, 1 rows and cells, 2 also the scans' candidates).
 
 Events
 ------
@@ -54,7 +67,7 @@ otherwise i's collisions are predicted anew (an *invalid* event). Round-off over
 handled deterministically: an approaching pair found at distance < σ collides at once, a
 receding overlapping pair is ignored (it separates). Collisions with velocity rescaling:
 the rescaling by s at time t maps every pending event time t_e to t + (t_e − t)/s, an
-order-preserving map, so no prediction is redone.
+order-preserving map, so no prediction is redone (the calendar is rebuilt).
 
 Observers fed by each collision (when ``observing`` is 1)
 ---------------------------------------------------------
