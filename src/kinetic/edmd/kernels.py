@@ -10,7 +10,9 @@ times in the units those and the velocities imply.
 State (N particles, every array preallocated, row/index i = memory slot of a particle)
 --------------------------------------------------------------------------------------
 Everything an event of particle i touches lives in two 64-byte rows (two cache lines), so
-that a large system pays two cache misses per event rather than one per array.
+that a large system pays two cache misses per event rather than one per array. Systems of
+N ≥ ``system.SORT_MIN_PARTICLES`` are re-sorted in memory along the Z-order curve of the
+cells now and then (``label`` keeps each slot's particle identity).
 
 ``phase``   (N, 8) float64: columns 0..2 the *false position* x0 = x(t) − v t of the
             current flight (the position at time t is ``x0 + v t`` without touching the
@@ -24,12 +26,22 @@ that a large system pays two cache misses per event rather than one per array.
             velocity changes: collisions and wall bounces), 4 i's position in its cell row,
             5..7 its cell coordinates (z = 0 in d = 2).
 ``members`` (n_cells, C) int32, ``occupancy`` (n_cells,) int32: the particles of each
-            cell are ``members[c, :occupancy[c]]``; rows have a fixed capacity C, grown by
-            the front when a crossing finds its destination full (``STATUS_CELL_FULL``).
-``tree_time`` (2M,) float64, ``tree_index`` (2M,) int32: complete binary tournament tree
-            over M = 2^ceil(log2 N) leaves; leaf M + i holds min(phase[i, 6], phase[i, 7]);
-            every inner node the earliest of its two children (ties go to the left), so
-            node 1 is the next event of the whole system.
+            cell are ``members[c, :occupancy[c]]``; rows have a fixed capacity C (16 by
+            default: one cache line), grown by the front when a crossing finds its
+            destination full (``STATUS_CELL_FULL``).
+``links`` (N, 4) int32, ``heads`` (B + 1,) int32, ``heap_time`` (N,) float64,
+``heap_index`` (N,) int32, ``calendar`` float64 [origin, 1/width], ``cursor`` int64
+            [current bucket, heap size]: the event calendar (Paul 2007, J. Comput. Phys.
+            221, 615), the queue of the N events min(phase[i, 6], phase[i, 7]). Bucket b of
+            B = N covers the times origin + [b, b + 1) · width (width ≈ EVENTS_PER_BUCKET
+            mean intervals between events) in an unsorted doubly linked list (``heads[b]``
+            the first particle, ``links[i]`` = next, previous, bucket of i, heap position);
+            list B is the overflow beyond the horizon. The current bucket is poured into a
+            binary heap ordered by (time, particle), whose top is the next event; when the
+            last bucket is done every event is in the overflow list and the calendar is
+            rebuilt from there (also after a velocity rescaling, a rebase of the clock and
+            a re-sorting). Every particle is in exactly one place: the heap or one list.
+            Opening a bucket prefetches the memory of the events a few buckets ahead.
 ``last_collision`` (N,) float64: time of i's last pair collision (−inf before the first).
 ``streak``  (N,) int32: consecutive pair collisions of i separated by less than the
             collapse time (inelastic collapse detector).
@@ -40,10 +52,11 @@ Parameters
             box lengths, cell widths (L_k / n_k, each ≥ σ), diameter, restitution, the
             contact duration of the TC model (pairs in which a particle collided less than
             that time before collide elastically; 0 disables it) and the collapse time.
-``grid``    int64 [n0, n1, n2, d, wall0, wall1, wall2, collapse_streak, rescale_every]:
-            cells per side (n2 = 1 in d = 2), dimension, hard wall (1) or periodic (0) per
-            axis, the streak length that declares inelastic collapse, and the number of
-            collisions between two velocity rescalings (0: no thermostat).
+``grid``    int64 [n0, n1, n2, d, wall0, wall1, wall2, collapse_streak, rescale_every,
+            prefetch]: cells per side (n2 = 1 in d = 2), dimension, hard wall (1) or
+            periodic (0) per axis, the streak length that declares inelastic collapse, the
+            number of collisions between two velocity rescalings (0: no thermostat), and
+            the prefetch level (0 none, 1 rows and cells, 2 also the scans' candidates).
 
 Events
 ------
@@ -54,7 +67,7 @@ otherwise i's collisions are predicted anew (an *invalid* event). Round-off over
 handled deterministically: an approaching pair found at distance < σ collides at once, a
 receding overlapping pair is ignored (it separates). Collisions with velocity rescaling:
 the rescaling by s at time t maps every pending event time t_e to t + (t_e − t)/s, an
-order-preserving map, so no prediction is redone.
+order-preserving map, so no prediction is redone (the calendar is rebuilt).
 
 Observers fed by each collision (when ``observing`` is 1)
 ---------------------------------------------------------
@@ -66,7 +79,10 @@ temperature and collision count at requested times.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from llvmlite import ir
+from numba import njit, types
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 from kinetic.rng import normal_pair, uniform
 
@@ -109,60 +125,301 @@ I_DIM = 3
 I_WALL = 4
 I_STREAK = 7
 I_RESCALE = 8
-N_GRID = 9
+I_PREFETCH = 9  # 0: no prefetching, 1: rows and cells of coming events, 2: and candidates
+N_GRID = 10
 
 STALL_LIMIT = 100_000
+# columns of ``links`` (the event calendar's per-particle entries)
+L_NEXT = 0  # next particle in the same bucket list (−1: last)
+L_PREV = 1  # previous particle in the same bucket list (−1: first)
+L_PLACE = 2  # bucket of the particle's event (B: overflow list; PLACE_HEAP: current heap)
+L_HEAP = 3  # position in the current bucket's heap
+PLACE_HEAP = -1
+#: mean number of events per calendar bucket (sets the bucket width)
+EVENTS_PER_BUCKET = 4.0
 #: entries copied unconditionally from each cell row by the neighbour scan (≤ row capacity)
 GATHER_HEAD = 4
 
 
-# ----------------------------------------------------------------------------- tree
+# ----------------------------------------------------------------------------- prefetch
 
 
-@njit(cache=True, error_model="numpy")
-def tree_build(tree_time, tree_index, keys):
-    """Fill the tournament tree from ``keys`` (N,) float64; padding leaves hold +inf.
+@intrinsic
+def prefetch_row(typingctx, array, row):
+    """Hint the processor to load the first cache line of ``array[row]`` (a C-contiguous
+    2-D array) into every cache level; no effect on the program's results. Emits LLVM's
+    ``llvm.prefetch`` (read, high locality, data cache)."""
+    if not (isinstance(array, types.Array) and array.ndim == 2 and isinstance(row, types.Integer)):
+        return None
 
-    ``tree_time``/``tree_index`` have length 2M; leaf M + i stands for particle i.
-    """
-    m = tree_time.shape[0] // 2
-    for leaf in range(m):
-        tree_index[m + leaf] = leaf
-        tree_time[m + leaf] = keys[leaf] if leaf < keys.shape[0] else np.inf
-    for node in range(m - 1, 0, -1):
-        left = 2 * node
-        right = left + 1
-        if tree_time[right] < tree_time[left]:
-            tree_time[node] = tree_time[right]
-            tree_index[node] = tree_index[right]
-        else:
-            tree_time[node] = tree_time[left]
-            tree_index[node] = tree_index[left]
+    def codegen(context, builder, signature, args):
+        array_type, row_type = signature.args
+        view = context.make_array(array_type)(context, builder, args[0])
+        index = context.cast(builder, args[1], row_type, types.intp)
+        pointer = cgutils.get_item_pointer2(
+            context,
+            builder,
+            view.data,
+            cgutils.unpack_tuple(builder, view.shape),
+            cgutils.unpack_tuple(builder, view.strides),
+            array_type.layout,
+            [index, context.get_constant(types.intp, 0)],
+            wraparound=False,
+            boundscheck=False,
+        )
+        byte_pointer = ir.IntType(8).as_pointer()
+        i32 = ir.IntType(32)
+        function = cgutils.get_or_insert_function(
+            builder.module,
+            ir.FunctionType(ir.VoidType(), [byte_pointer, i32, i32, i32]),
+            "llvm.prefetch.p0",
+        )
+        builder.call(function, [builder.bitcast(pointer, byte_pointer), i32(0), i32(3), i32(1)])
+        return context.get_dummy_value()
+
+    return types.void(array, row), codegen
+
+
+# ----------------------------------------------------------------------------- calendar
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def tree_update(tree_time, tree_index, i, key):
-    """Set particle i's key and restore the tournament on the path to the root.
+def event_key(phase, i):
+    """Time of particle i's next event: its earliest pair collision or crossing."""
+    return min(phase[i, 6], phase[i, 7])
 
-    Stops early once an ancestor's winner is another particle that still beats ``key``
-    (nothing above can change then).
+
+@njit(cache=True, error_model="numpy", inline="always")
+def heap_sift_up(heap_time, heap_index, links, position, key, i):
+    """Place entry (key, i) at ``position`` of the current-bucket heap or above it.
+
+    Entries are ordered by (time, particle) so that equal times resolve deterministically.
     """
-    m = tree_time.shape[0] // 2
-    node = m + i
-    tree_time[node] = key
-    while node > 1:
-        parent = node >> 1
-        if tree_index[parent] != i and tree_time[parent] <= key:
+    while position > 0:
+        parent = (position - 1) >> 1
+        parent_time = heap_time[parent]
+        parent_index = heap_index[parent]
+        if parent_time < key or (parent_time == key and parent_index < i):
+            break
+        heap_time[position] = parent_time
+        heap_index[position] = parent_index
+        links[parent_index, L_HEAP] = position
+        position = parent
+    heap_time[position] = key
+    heap_index[position] = i
+    links[i, L_HEAP] = position
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def heap_sift_down(heap_time, heap_index, links, position, size, key, i):
+    """Place entry (key, i) at ``position`` of the heap (of ``size`` entries) or below it."""
+    while True:
+        child = 2 * position + 1
+        if child >= size:
+            break
+        other = child + 1
+        if other < size and (
+            heap_time[other] < heap_time[child]
+            or (heap_time[other] == heap_time[child] and heap_index[other] < heap_index[child])
+        ):
+            child = other
+        child_time = heap_time[child]
+        child_index = heap_index[child]
+        if key < child_time or (key == child_time and i < child_index):
+            break
+        heap_time[position] = child_time
+        heap_index[position] = child_index
+        links[child_index, L_HEAP] = position
+        position = child
+    heap_time[position] = key
+    heap_index[position] = i
+    links[i, L_HEAP] = position
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def calendar_insert(i, key, links, heads, heap_time, heap_index, calendar, cursor):
+    """Schedule particle i's next event at time ``key``: into the heap if it falls in the
+    current bucket (or before it, by round-off), else at the head of its bucket's list, or
+    of the overflow list beyond the calendar's horizon (``key`` = +inf included)."""
+    q = (key - calendar[0]) * calendar[1]
+    if q < cursor[0] + 1:
+        size = cursor[1]
+        cursor[1] = size + 1
+        links[i, L_PLACE] = PLACE_HEAP
+        heap_sift_up(heap_time, heap_index, links, size, key, i)
+        return
+    n_buckets = heads.shape[0] - 1
+    bucket = int(q) if q < n_buckets else n_buckets
+    head = heads[bucket]
+    links[i, L_NEXT] = head
+    links[i, L_PREV] = -1
+    links[i, L_PLACE] = bucket
+    if head >= 0:
+        links[head, L_PREV] = i
+    heads[bucket] = i
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def calendar_remove(i, links, heads, heap_time, heap_index, cursor):
+    """Take particle i's event out of the calendar (out of the heap or its list)."""
+    place = links[i, L_PLACE]
+    if place == PLACE_HEAP:
+        size = cursor[1] - 1
+        cursor[1] = size
+        position = links[i, L_HEAP]
+        if position == size:
             return
-        left = parent << 1
-        right = left + 1
-        if tree_time[right] < tree_time[left]:
-            tree_time[parent] = tree_time[right]
-            tree_index[parent] = tree_index[right]
+        key = heap_time[size]
+        moved = heap_index[size]
+        parent = (position - 1) >> 1
+        if position > 0 and (
+            key < heap_time[parent] or (key == heap_time[parent] and moved < heap_index[parent])
+        ):
+            heap_sift_up(heap_time, heap_index, links, position, key, moved)
         else:
-            tree_time[parent] = tree_time[left]
-            tree_index[parent] = tree_index[left]
-        node = parent
+            heap_sift_down(heap_time, heap_index, links, position, size, key, moved)
+        return
+    following = links[i, L_NEXT]
+    previous = links[i, L_PREV]
+    if previous >= 0:
+        links[previous, L_NEXT] = following
+    else:
+        heads[place] = following
+    if following >= 0:
+        links[following, L_PREV] = previous
+
+
+@njit(cache=True, error_model="numpy")
+def calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor):
+    """(Re)build the calendar from every particle's event time ``event_key``.
+
+    The origin is the earliest finite event time, the bucket width ``EVENTS_PER_BUCKET``
+    times the mean event time after the origin divided by N (about that many events per
+    bucket), so the B buckets reach about B/N · EVENTS_PER_BUCKET mean event times ahead.
+    Returns the number of finite event times (0: nothing will ever happen).
+    """
+    n = phase.shape[0]
+    origin = np.inf
+    total = 0.0
+    finite = 0
+    for i in range(n):
+        key = event_key(phase, i)
+        if key < np.inf:
+            finite += 1
+            total += key
+            if key < origin:
+                origin = key
+    width = 1.0
+    if finite > 0:
+        mean_ahead = total / finite - origin
+        if mean_ahead > 0.0:
+            width = EVENTS_PER_BUCKET * mean_ahead / n
+    else:
+        origin = 0.0
+    calendar[0] = origin
+    calendar[1] = 1.0 / width
+    cursor[0] = 0
+    cursor[1] = 0
+    for bucket in range(heads.shape[0]):
+        heads[bucket] = -1
+    for i in range(n):
+        calendar_insert(
+            i, event_key(phase, i), links, heads, heap_time, heap_index, calendar, cursor
+        )
+    return finite
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def prefetch_ahead(current, phase, ints, members, occupancy, grid, links, heads):
+    """Prefetch, in stages, what the events of the coming buckets will read: the rows
+    (``phase``, ``ints``) of the particles of bucket ``current`` + 3; the cell rows around
+    those of bucket + 2 and their partners' rows; and at level ``grid[I_PREFETCH]`` = 2
+    the rows of the particles listed in the cells around those of bucket + 1 (the
+    candidates of their neighbour scans: many prefetches, worth it only when most of them
+    would miss the L3 cache). The cells are those the event's scan will visit: all
+    neighbours, or the layer beyond the destination cell of a crossing.
+    Each stage reads only what an earlier stage prefetched. Cells are taken without
+    periodic wrapping (a hint: the rare misses at the box edges cost nothing else)."""
+    n_buckets = heads.shape[0] - 1
+    n_cells = members.shape[0]
+    dim = grid[I_DIM]
+    layer = grid[0] * grid[1]
+    if current + 3 < n_buckets:
+        j = heads[current + 3]
+        while j >= 0:
+            prefetch_row(phase, j)
+            prefetch_row(ints, j)
+            j = links[j, L_NEXT]
+    for stage in range(2, 0 if grid[I_PREFETCH] == 2 else 1, -1):
+        if current + stage >= n_buckets:
+            continue
+        j = heads[current + stage]
+        while j >= 0:
+            flat = cell_flat(ints[j, 5], ints[j, 6], ints[j, 7], grid)
+            if stage == 2:
+                partner = ints[j, 0]
+                if partner >= 0:
+                    prefetch_row(phase, partner)
+            # the cells the event's scan will visit: all neighbours, or for a crossing
+            # the layer beyond the destination cell
+            lo0, hi0, lo1, hi1 = -1, 1, -1, 1
+            lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
+            if phase[j, 7] <= phase[j, 6]:
+                code = ints[j, 2]
+                offset = 2 if (code & 1) == 1 else -2
+                axis = code >> 1
+                if axis == 0:
+                    lo0, hi0 = offset, offset
+                elif axis == 1:
+                    lo1, hi1 = offset, offset
+                else:
+                    lo2, hi2 = offset, offset
+            for o2 in range(lo2, hi2 + 1):
+                for o1 in range(lo1, hi1 + 1):
+                    for o0 in range(lo0, hi0 + 1):
+                        cell = flat + o0 + o1 * grid[0] + o2 * layer
+                        if cell < 0 or cell >= n_cells:
+                            continue
+                        if stage == 2:
+                            prefetch_row(members, cell)
+                        else:
+                            for q in range(occupancy[cell]):
+                                prefetch_row(phase, members[cell, q])
+            j = links[j, L_NEXT]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def calendar_next(
+    phase, ints, members, occupancy, grid, links, heads, heap_time, heap_index, calendar, cursor
+):
+    """The particle whose event comes next (the top of the current bucket's heap), −1 if
+    no event is finite. Moves on to the next non-empty bucket when the heap is empty,
+    pouring its list into the heap; past the last bucket every event waits in the overflow
+    list, and the calendar is rebuilt from there.
+
+    On opening a bucket, large systems (``grid[I_PREFETCH]``) prefetch what the events of
+    the next three buckets will read (``prefetch_ahead``).
+    """
+    n_buckets = heads.shape[0] - 1
+    while cursor[1] == 0:
+        current = cursor[0] + 1
+        if current >= n_buckets:
+            if calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor) == 0:
+                return -1
+            continue
+        cursor[0] = current
+        j = heads[current]
+        heads[current] = -1
+        while j >= 0:
+            following = links[j, L_NEXT]
+            size = cursor[1]
+            cursor[1] = size + 1
+            links[j, L_PLACE] = PLACE_HEAP
+            heap_sift_up(heap_time, heap_index, links, size, event_key(phase, j), j)
+            j = following
+        if grid[I_PREFETCH] > 0:
+            prefetch_ahead(current, phase, ints, members, occupancy, grid, links, heads)
+    return heap_index[0]
 
 
 # ----------------------------------------------------------------------------- geometry
@@ -500,11 +757,12 @@ def observe_flight(
 
 
 @njit(cache=True, error_model="numpy")
-def rescale_velocities(t, target_temperature, phase, tree_time, dim):
+def rescale_velocities(t, target_temperature, phase, dim):
     """Thermostat: scale every velocity by s = sqrt(T_target / T) at time t.
 
     Positions are continuous (x0 ← x0 + v t (1 − s)); every pending event time maps to
-    t + (t_e − t)/s, which keeps the tree's order, so no prediction is redone.
+    t + (t_e − t)/s, an order-preserving map, so no prediction is redone (the caller
+    rebuilds the calendar, whose buckets do change).
     """
     n = phase.shape[0]
     current = temperature(phase, dim)
@@ -520,9 +778,6 @@ def rescale_velocities(t, target_temperature, phase, tree_time, dim):
             phase[i, 6] = t + (phase[i, 6] - t) * inverse
         if phase[i, 7] < np.inf:
             phase[i, 7] = t + (phase[i, 7] - t) * inverse
-    for node in range(1, tree_time.shape[0]):
-        if tree_time[node] < np.inf:
-            tree_time[node] = t + (tree_time[node] - t) * inverse
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -586,8 +841,12 @@ def advance(
     ints,
     members,
     occupancy,
-    tree_time,
-    tree_index,
+    links,
+    heads,
+    heap_time,
+    heap_index,
+    calendar,
+    cursor,
     last_collision,
     streak,
     label,
@@ -639,11 +898,23 @@ def advance(
         if window_end[w] < next_window:
             next_window = window_end[w]
     while True:
-        i = tree_index[1]
-        t_event = tree_time[1]
-        if t_event == np.inf:
+        i = calendar_next(
+            phase,
+            ints,
+            members,
+            occupancy,
+            grid,
+            links,
+            heads,
+            heap_time,
+            heap_index,
+            calendar,
+            cursor,
+        )
+        if i < 0:
             clock[0] = t_stop
             return STATUS_NO_EVENTS
+        t_event = heap_time[0]
         # scheduled observations that come before the event
         while next_window < t_event and next_window <= t_stop:
             next_window = np.inf
@@ -822,7 +1093,10 @@ def advance(
                 # never schedule in the past (round-off right after a crossing)
                 phase[p, 7] = tc if tc > t else t
                 ints[p, 2] = new_code
-            tree_update(tree_time, tree_index, p, min(phase[p, 6], phase[p, 7]))
+            calendar_remove(p, links, heads, heap_time, heap_index, cursor)
+            calendar_insert(
+                p, event_key(phase, p), links, heads, heap_time, heap_index, calendar, cursor
+            )
 
         if collided:
             if streak_limit > 0 and (streak[i] > streak_limit or streak[j] > streak_limit):
@@ -831,7 +1105,8 @@ def advance(
                 clock[0] = t
                 return STATUS_COLLAPSE
             if rescale_every > 0 and counters[COUNT_COLLISIONS] % rescale_every == 0:
-                rescale_velocities(t, target_temperature, phase, tree_time, dim)
+                rescale_velocities(t, target_temperature, phase, dim)
+                calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor)
                 counters[COUNT_RESCALES] += 1
             if collisions_done >= max_collisions:
                 clock[0] = t
@@ -998,15 +1273,18 @@ def predict_all(
     occupancy,
     geometry,
     grid,
-    tree_time,
-    tree_index,
+    links,
+    heads,
+    heap_time,
+    heap_index,
+    calendar,
+    cursor,
     counters,
     scratch,
     images,
 ):
-    """Predict every particle's events from time t and rebuild the tree."""
+    """Predict every particle's events from time t and rebuild the calendar."""
     n = phase.shape[0]
-    keys = np.empty(n)
     for i in range(n):
         predict(
             i,
@@ -1021,22 +1299,27 @@ def predict_all(
             scratch,
             images,
         )
-        keys[i] = min(phase[i, 6], phase[i, 7])
-    tree_build(tree_time, tree_index, keys)
+    calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor)
 
 
 @njit(cache=True, error_model="numpy")
 def rebase(
     t,
     phase,
-    tree_time,
+    links,
+    heads,
+    heap_time,
+    heap_index,
+    calendar,
+    cursor,
     last_collision,
     window_end,
     sample_times,
     record_time,
 ):
     """Move the time origin to t (every stored time −= t, x0 += v t), to keep round-off
-    small in long runs. Positions and the order of events are unchanged."""
+    small in long runs, and rebuild the calendar on the new clock. Positions and the order
+    of events are unchanged."""
     n = phase.shape[0]
     for i in range(n):
         for k in range(3):
@@ -1044,8 +1327,7 @@ def rebase(
         phase[i, 6] -= t
         phase[i, 7] -= t
         last_collision[i] -= t
-    for node in range(tree_time.shape[0]):
-        tree_time[node] -= t
+    calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor)
     for w in range(window_end.shape[0]):
         window_end[w] -= t
     for s in range(sample_times.shape[0]):

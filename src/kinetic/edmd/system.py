@@ -38,13 +38,19 @@ CLOSE_PACKING = {2: math.pi / (2 * math.sqrt(3)), 3: math.pi / (3 * math.sqrt(2)
 #: ``python -m kinetic.bench edmd``: fewer cells cost crossings, more particles per cell cost
 #: pair tests; 27 neighbour cells in d = 3 against 9 in d = 2)
 DEFAULT_CELL_OCCUPANCY = {2: 2.0, 3: 0.7}
-#: systems of at least that many particles can be re-sorted in memory by cell every
-#: SORT_EVERY_PER_PARTICLE * N collisions (see HardSphereSystem.sort_particles). Off by
-#: default: measured on the benchmark machine it did not pay (N = 1e4 fits the 2 MB L2;
-#: at N = 1e5 the cost is dominated by the event tree and the re-prediction after sorting
-#: ate the gain).
-SORT_MIN_PARTICLES = 2**62
+#: systems of at least that many particles are re-sorted in memory along the Z-order curve
+#: of their cells every SORT_EVERY_PER_PARTICLE * N collisions (see
+#: HardSphereSystem.sort_particles): the rows a neighbour scan reads then lie close
+#: together in memory (fewer cache and TLB misses once the rows outgrow the caches)
+SORT_MIN_PARTICLES = 50_000
 SORT_EVERY_PER_PARTICLE = 2
+
+
+#: systems of at least that many particles prefetch the rows and cells of the coming
+#: events (their rows outgrow the L2 cache; for smaller ones the prefetch is pure overhead;
+#: see kernels.prefetch_ahead), from the second size on also the rows of the neighbour
+#: scans' candidates (at N = 1e4 that cost 40%, at N = 1e5 it saved 20%)
+PREFETCH_MIN_PARTICLES = (10_000, 50_000)
 
 
 class InelasticCollapseError(RuntimeError):
@@ -277,6 +283,7 @@ class HardSphereSystem:
         self.grid[k.I_WALL : k.I_WALL + dimension] = walls
         self.grid[k.I_STREAK] = int(collapse_streak)
         self.grid[k.I_RESCALE] = int(rescale_every)
+        self.grid[k.I_PREFETCH] = sum(n_particles >= size for size in PREFETCH_MIN_PARTICLES)
         self.geometry = np.zeros(k.N_GEOMETRY)
         self.geometry[k.G_L : k.G_L + 3] = length3
         self.geometry[k.G_W : k.G_W + 3] = length3 / counts
@@ -291,13 +298,19 @@ class HardSphereSystem:
         self.n_cells = int(np.prod(counts))
         self.occupancy = np.zeros(self.n_cells, dtype=np.int32)
         if cell_capacity is None:
-            cell_capacity = 8
-            while cell_capacity < cell_occupancy + 6.0 * math.sqrt(cell_occupancy) + 6.0:
+            # 16 int32 slots: one cache line per row; P(a cell holds more) < 1e-9 at the
+            # default occupancies (a full row is grown by ``run``)
+            cell_capacity = 16
+            while cell_capacity < cell_occupancy + 7.0 * math.sqrt(cell_occupancy):
                 cell_capacity *= 2
         self._allocate_rows(cell_capacity)
-        leaves = 1 << max(1, (n - 1).bit_length())
-        self.tree_time = np.full(2 * leaves, np.inf)
-        self.tree_index = np.zeros(2 * leaves, dtype=np.int32)
+        # event calendar: see kinetic.edmd.kernels (N buckets + the overflow list)
+        self.links = _aligned_zeros((n, 4), np.int32)
+        self.heads = np.full(n + 1, -1, dtype=np.int32)
+        self.heap_time = np.full(n, np.inf)
+        self.heap_index = np.zeros(n, dtype=np.int32)
+        self.calendar = np.array([0.0, 1.0])
+        self.cursor = np.zeros(2, dtype=np.int64)
         self.last_collision = np.full(n, -np.inf)
         self.streak = np.zeros(n, dtype=np.int32)
         self.label = np.arange(n, dtype=np.int64)  # original particle number of slot i
@@ -445,8 +458,7 @@ class HardSphereSystem:
                 self.ints,
                 self.members,
                 self.occupancy,
-                self.tree_time,
-                self.tree_index,
+                *self._calendar_arrays(),
                 self.last_collision,
                 self.streak,
                 self.label,
@@ -506,6 +518,17 @@ class HardSphereSystem:
         self.members = np.zeros((self.n_cells, int(capacity)), dtype=np.int32)
         self.scratch = np.zeros(self.n_particles + int(capacity), dtype=np.int64)
 
+    def _calendar_arrays(self) -> tuple[np.ndarray, ...]:
+        """The event calendar's arrays in the order the kernels take them."""
+        return (
+            self.links,
+            self.heads,
+            self.heap_time,
+            self.heap_index,
+            self.calendar,
+            self.cursor,
+        )
+
     def _relink(self) -> None:
         """Refill the cell rows from the cell coordinates, growing them if needed."""
         while not k.relink_cells(self.ints, self.members, self.occupancy, self.grid):
@@ -522,8 +545,7 @@ class HardSphereSystem:
             self.occupancy,
             self.geometry,
             self.grid,
-            self.tree_time,
-            self.tree_index,
+            *self._calendar_arrays(),
             self.counters_array,
             self.scratch,
             self.images,
@@ -531,27 +553,30 @@ class HardSphereSystem:
         self.counters_array[k.COUNT_PAIR_TESTS] = tests
 
     def sort_particles(self, observers: Observers | None = None) -> None:
-        """Renumber the memory slots in cell order (x fastest), so that particles close in
-        space are close in memory, then predict every event anew.
+        """Renumber the memory slots along the Z-order (Morton) curve of the particles'
+        cells, so that particles close in space are close in memory.
 
-        Particle identities are kept in ``label`` (read-outs are in label order); the
-        per-particle arrays of ``observers`` are permuted along.
+        A pure permutation: every state row moves with its particle, the predicted partners
+        are renumbered and the calendar rebuilt, so the dynamics (the collision sequence)
+        is unchanged. Particle identities are kept in ``label`` (read-outs are in label
+        order); the per-particle arrays of ``observers`` are permuted along.
         """
         n = self.n_particles
-        cell = self.ints[:, 5:8]
-        flat = (cell[:, 2] * self.grid[1] + cell[:, 1]) * self.grid[0] + cell[:, 0]
-        order = np.argsort(flat, kind="stable")
+        order = np.argsort(morton_code(self.ints[:, 5:8]), kind="stable")
+        new_slot = np.empty(n, dtype=np.int64)
+        new_slot[order] = np.arange(n)
         for array in (self.phase, self.ints, self.last_collision, self.streak, self.label):
             array[:] = array[order]
+        partner = self.ints[:, 0]
+        partner[:] = np.where(partner >= 0, new_slot[partner], -1)
         for obs in {
             id(self._idle_observers): self._idle_observers,
             id(observers): observers,
         }.values():
             if obs is not None and obs.window_count.shape[0] == n:
                 obs.window_count[:] = obs.window_count[order]
-        self.ints[:, 3] = 0  # stamps: every prediction is made anew below
         self._relink()
-        self._predict_all(float(self.clock[0]))
+        k.calendar_build(self.phase, *self._calendar_arrays())
         self._since_sort = 0
 
     def _rebase(self, observers: Observers) -> None:
@@ -561,7 +586,7 @@ class HardSphereSystem:
         k.rebase(
             t,
             self.phase,
-            self.tree_time,
+            *self._calendar_arrays(),
             self.last_collision,
             observers.window_end,
             observers.sample_times,
@@ -631,10 +656,21 @@ class HardSphereSystem:
         return self.grid[: self.dimension].copy()
 
 
+def morton_code(cells: np.ndarray) -> np.ndarray:
+    """Z-order index of integer cell coordinates (M, 3) (bits of the three axes interleaved,
+    x lowest; coordinates below 2^21)."""
+    code = np.zeros(cells.shape[0], dtype=np.int64)
+    for bit in range(21):
+        for axis in range(3):
+            code |= ((cells[:, axis].astype(np.int64) >> bit) & 1) << (3 * bit + axis)
+    return code
+
+
 def _aligned_zeros(shape, dtype=np.float64, alignment: int = 64) -> np.ndarray:
-    """Zeroed 8-byte-item array whose data starts on an ``alignment``-byte boundary (one
-    particle row of 8 items is then one cache line)."""
+    """Zeroed array whose data starts on an ``alignment``-byte boundary (a particle row of
+    64 bytes is then one cache line)."""
     count = int(np.prod(shape))
-    raw = np.zeros(count + alignment // 8, dtype=dtype)
-    offset = (-raw.ctypes.data % alignment) // 8
+    size = np.dtype(dtype).itemsize
+    raw = np.zeros(count + alignment // size, dtype=dtype)
+    offset = (-raw.ctypes.data % alignment) // size
     return raw[offset : offset + count].reshape(shape)
