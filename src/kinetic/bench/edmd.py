@@ -4,8 +4,8 @@ Collisions per CPU-second (process time, compile time excluded, median of repeat
 event mix per collision (cell crossings, stale predictions, pair tests) for hard disks at
 N = 1e3, 1e4, 1e5 and ρσ² = 1e-2, 1e-3, and hard spheres at packing fraction 0.01; the
 numba compile time (cold cache) and the cache load time; and micro-benchmarks that bound
-the cost per collision from below (one pair test in a long loop, one update of the event
-tree, one dependent random memory access at the working-set size), so the report says how
+the cost per collision from below (one pair test in a long loop, one event of the calendar
+queue, one dependent random memory access at the working-set size), so the report says how
 far the engine is from the arithmetic and memory-latency bounds.
 """
 
