@@ -77,8 +77,7 @@ def test_next_is_the_earliest_after_random_updates():
         for p in {i, int(rng.integers(n))} if step % 3 else {i}:
             u = rng.random()
             phase[p, 6] = np.inf if u < 0.1 else now + (0.0 if u < 0.15 else rng.exponential())
-            kernels.calendar_remove(p, links, heads, heap_time, heap_index, cursor)
-            kernels.calendar_insert(
+            kernels.calendar_reschedule(
                 p,
                 min(phase[p, 6], phase[p, 7]),
                 links,

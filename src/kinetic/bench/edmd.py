@@ -107,8 +107,7 @@ def _calendar_updates(phase, ints, members, occupancy, grid, calendar_arrays, in
             cursor,
         )
         phase[i, 6] = heap_time[0] + increments[r % increments.shape[0]]
-        kernels.calendar_remove(i, links, heads, heap_time, heap_index, cursor)
-        kernels.calendar_insert(
+        kernels.calendar_reschedule(
             i, phase[i, 6], links, heads, heap_time, heap_index, calendar, cursor
         )
     return heap_time[0]

@@ -190,6 +190,12 @@ def event_key(phase, i):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def earlier(time_a, index_a, time_b, index_b):
+    """Order of the calendar's entries: by time, equal times by particle (deterministic)."""
+    return time_a < time_b or (time_a == time_b and index_a < index_b)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def heap_sift_up(heap_time, heap_index, links, position, key, i):
     """Place entry (key, i) at ``position`` of the current-bucket heap or above it.
 
@@ -199,7 +205,7 @@ def heap_sift_up(heap_time, heap_index, links, position, key, i):
         parent = (position - 1) >> 1
         parent_time = heap_time[parent]
         parent_index = heap_index[parent]
-        if parent_time < key or (parent_time == key and parent_index < i):
+        if earlier(parent_time, parent_index, key, i):
             break
         heap_time[position] = parent_time
         heap_index[position] = parent_index
@@ -218,14 +224,13 @@ def heap_sift_down(heap_time, heap_index, links, position, size, key, i):
         if child >= size:
             break
         other = child + 1
-        if other < size and (
-            heap_time[other] < heap_time[child]
-            or (heap_time[other] == heap_time[child] and heap_index[other] < heap_index[child])
+        if other < size and earlier(
+            heap_time[other], heap_index[other], heap_time[child], heap_index[child]
         ):
             child = other
         child_time = heap_time[child]
         child_index = heap_index[child]
-        if key < child_time or (key == child_time and i < child_index):
+        if earlier(key, i, child_time, child_index):
             break
         heap_time[position] = child_time
         heap_index[position] = child_index
@@ -272,9 +277,7 @@ def calendar_remove(i, links, heads, heap_time, heap_index, cursor):
         key = heap_time[size]
         moved = heap_index[size]
         parent = (position - 1) >> 1
-        if position > 0 and (
-            key < heap_time[parent] or (key == heap_time[parent] and moved < heap_index[parent])
-        ):
+        if position > 0 and earlier(key, moved, heap_time[parent], heap_index[parent]):
             heap_sift_up(heap_time, heap_index, links, position, key, moved)
         else:
             heap_sift_down(heap_time, heap_index, links, position, size, key, moved)
@@ -287,6 +290,13 @@ def calendar_remove(i, links, heads, heap_time, heap_index, cursor):
         heads[place] = following
     if following >= 0:
         links[following, L_PREV] = previous
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def calendar_reschedule(i, key, links, heads, heap_time, heap_index, calendar, cursor):
+    """Move particle i's event to the new time ``key``."""
+    calendar_remove(i, links, heads, heap_time, heap_index, cursor)
+    calendar_insert(i, key, links, heads, heap_time, heap_index, calendar, cursor)
 
 
 @njit(cache=True, error_model="numpy")
@@ -1093,8 +1103,7 @@ def advance(
                 # never schedule in the past (round-off right after a crossing)
                 phase[p, 7] = tc if tc > t else t
                 ints[p, 2] = new_code
-            calendar_remove(p, links, heads, heap_time, heap_index, cursor)
-            calendar_insert(
+            calendar_reschedule(
                 p, event_key(phase, p), links, heads, heap_time, heap_index, calendar, cursor
             )
 
