@@ -63,7 +63,7 @@ def test_next_is_the_earliest_after_random_updates():
     assert_every_particle_once(*state)
     now = 0.0
     for step in range(3000):
-        i = kernels.calendar_next(phase, ints, members, occupancy, grid, *state[1:])
+        i = kernels.calendar_next(phase, ints, members, occupancy, np.zeros(n), grid, *state[1:])
         keys = np.minimum(phase[:, 6], phase[:, 7])
         if not np.isfinite(keys).any():
             assert i == -1

@@ -90,7 +90,9 @@ def _pair_test_loop(phase, candidates, repeats):
 
 
 @njit(cache=True, error_model="numpy")
-def _calendar_updates(phase, ints, members, occupancy, grid, calendar_arrays, increments, repeats):
+def _calendar_updates(
+    phase, ints, members, occupancy, last_collision, grid, calendar_arrays, increments, repeats
+):
     links, heads, heap_time, heap_index, calendar, cursor = calendar_arrays
     for r in range(repeats):
         i = kernels.calendar_next(
@@ -98,6 +100,7 @@ def _calendar_updates(phase, ints, members, occupancy, grid, calendar_arrays, in
             ints,
             members,
             occupancy,
+            last_collision,
             grid,
             links,
             heads,
@@ -160,6 +163,7 @@ def _micro(n_particles: int, rng: np.random.Generator) -> dict[str, float]:
         np.zeros((n_particles, 8), dtype=np.int64),
         np.zeros((1, 16), dtype=np.int32),
         np.zeros(1, dtype=np.int32),
+        np.zeros(n_particles),
         _queue_grid(),
         calendar_arrays,
     )

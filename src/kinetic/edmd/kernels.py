@@ -146,16 +146,20 @@ GATHER_HEAD = 4
 
 @intrinsic
 def prefetch_row(typingctx, array, row):
-    """Hint the processor to load the first cache line of ``array[row]`` (a C-contiguous
-    2-D array) into every cache level; no effect on the program's results. Emits LLVM's
-    ``llvm.prefetch`` (read, high locality, data cache)."""
-    if not (isinstance(array, types.Array) and array.ndim == 2 and isinstance(row, types.Integer)):
+    """Hint the processor to load the cache line of ``array[row]`` (a C-contiguous 1-D
+    array) or the first cache line of row ``row`` (2-D) into every cache level; no effect
+    on the program's results. Emits LLVM's ``llvm.prefetch`` (read, high locality, data
+    cache)."""
+    if not (
+        isinstance(array, types.Array) and array.ndim in (1, 2) and isinstance(row, types.Integer)
+    ):
         return None
 
     def codegen(context, builder, signature, args):
         array_type, row_type = signature.args
         view = context.make_array(array_type)(context, builder, args[0])
         index = context.cast(builder, args[1], row_type, types.intp)
+        indices = [index] + [context.get_constant(types.intp, 0)] * (array_type.ndim - 1)
         pointer = cgutils.get_item_pointer2(
             context,
             builder,
@@ -163,7 +167,7 @@ def prefetch_row(typingctx, array, row):
             cgutils.unpack_tuple(builder, view.shape),
             cgutils.unpack_tuple(builder, view.strides),
             array_type.layout,
-            [index, context.get_constant(types.intp, 0)],
+            indices,
             wraparound=False,
             boundscheck=False,
         )
@@ -184,9 +188,16 @@ def prefetch_row(typingctx, array, row):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def smaller(a, b):
+    """The smaller of two floats as one select instruction (numba compiles the builtin
+    ``min`` of two floats to a function call, with its NaN handling)."""
+    return a if a < b else b
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def event_key(phase, i):
     """Time of particle i's next event: its earliest pair collision or crossing."""
-    return min(phase[i, 6], phase[i, 7])
+    return smaller(phase[i, 6], phase[i, 7])
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -340,14 +351,16 @@ def calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def prefetch_ahead(current, phase, ints, members, occupancy, grid, links, heads):
+def prefetch_ahead(current, phase, ints, members, occupancy, last_collision, grid, links, heads):
     """Prefetch, in stages, what the events of the coming buckets will read: the rows
-    (``phase``, ``ints``) of the particles of bucket ``current`` + 3; the cell rows around
-    those of bucket + 2 and their partners' rows; and at level ``grid[I_PREFETCH]`` = 2
-    the rows of the particles listed in the cells around those of bucket + 1 (the
-    candidates of their neighbour scans: many prefetches, worth it only when most of them
-    would miss the L3 cache). The cells are those the event's scan will visit: all
-    neighbours, or the layer beyond the destination cell of a crossing.
+    (``phase``, ``ints``) of the particles of bucket ``current`` + 3; for those of bucket
+    + 2 the cell rows and occupancies their scans will visit and, for a pair event, the
+    partner's rows and both ``last_collision`` entries; and at level ``grid[I_PREFETCH]``
+    = 2, for bucket + 1, the rows of the particles listed in those cells (the candidates
+    of the neighbour scans: many prefetches, worth it only when most of them would miss
+    the L3 cache) and, for a crossing, the row of the member its cell removal moves.
+    The cells of a pair event are all neighbours; those of a crossing are its own cell,
+    the destination and the layer beyond the destination (candidates: that layer only).
     Each stage reads only what an earlier stage prefetched. Cells are taken without
     periodic wrapping (a hint: the rare misses at the box edges cost nothing else)."""
     n_buckets = heads.shape[0] - 1
@@ -366,24 +379,34 @@ def prefetch_ahead(current, phase, ints, members, occupancy, grid, links, heads)
         j = heads[current + stage]
         while j >= 0:
             flat = cell_flat(ints[j, 5], ints[j, 6], ints[j, 7], grid)
-            if stage == 2:
-                partner = ints[j, 0]
-                if partner >= 0:
-                    prefetch_row(phase, partner)
-            # the cells the event's scan will visit: all neighbours, or for a crossing
-            # the layer beyond the destination cell
             lo0, hi0, lo1, hi1 = -1, 1, -1, 1
             lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
             if phase[j, 7] <= phase[j, 6]:
                 code = ints[j, 2]
-                offset = 2 if (code & 1) == 1 else -2
-                axis = code >> 1
-                if axis == 0:
-                    lo0, hi0 = offset, offset
-                elif axis == 1:
-                    lo1, hi1 = offset, offset
+                step = 1 if (code & 1) == 1 else -1
+                stride = 1 if code >> 1 == 0 else (grid[0] if code >> 1 == 1 else layer)
+                if stage == 2:
+                    # the own and the destination cell (removal and insertion)
+                    for cell in (flat, flat + step * stride):
+                        if 0 <= cell < n_cells:
+                            prefetch_row(members, cell)
+                            prefetch_row(occupancy, cell)
+                elif occupancy[flat] > 0:
+                    prefetch_row(ints, members[flat, occupancy[flat] - 1])
+                # then the layer beyond the destination
+                if code >> 1 == 0:
+                    lo0, hi0 = 2 * step, 2 * step
+                elif code >> 1 == 1:
+                    lo1, hi1 = 2 * step, 2 * step
                 else:
-                    lo2, hi2 = offset, offset
+                    lo2, hi2 = 2 * step, 2 * step
+            elif stage == 2:
+                partner = ints[j, 0]
+                if partner >= 0:
+                    prefetch_row(phase, partner)
+                    prefetch_row(ints, partner)
+                    prefetch_row(last_collision, partner)
+                    prefetch_row(last_collision, j)
             for o2 in range(lo2, hi2 + 1):
                 for o1 in range(lo1, hi1 + 1):
                     for o0 in range(lo0, hi0 + 1):
@@ -392,6 +415,7 @@ def prefetch_ahead(current, phase, ints, members, occupancy, grid, links, heads)
                             continue
                         if stage == 2:
                             prefetch_row(members, cell)
+                            prefetch_row(occupancy, cell)
                         else:
                             for q in range(occupancy[cell]):
                                 prefetch_row(phase, members[cell, q])
@@ -400,7 +424,18 @@ def prefetch_ahead(current, phase, ints, members, occupancy, grid, links, heads)
 
 @njit(cache=True, error_model="numpy", inline="always")
 def calendar_next(
-    phase, ints, members, occupancy, grid, links, heads, heap_time, heap_index, calendar, cursor
+    phase,
+    ints,
+    members,
+    occupancy,
+    last_collision,
+    grid,
+    links,
+    heads,
+    heap_time,
+    heap_index,
+    calendar,
+    cursor,
 ):
     """The particle whose event comes next (the top of the current bucket's heap), −1 if
     no event is finite. Moves on to the next non-empty bucket when the heap is empty,
@@ -428,7 +463,9 @@ def calendar_next(
             heap_sift_up(heap_time, heap_index, links, size, event_key(phase, j), j)
             j = following
         if grid[I_PREFETCH] > 0:
-            prefetch_ahead(current, phase, ints, members, occupancy, grid, links, heads)
+            prefetch_ahead(
+                current, phase, ints, members, occupancy, last_collision, grid, links, heads
+            )
     return heap_index[0]
 
 
@@ -494,7 +531,7 @@ def pair_time(xi, yi, zi, ui, vi, wi, phase, j, sx, sy, sz, t, sigma2, dim):
     # one branch on min(disc, −b) > 0, i.e. disc > 0 (impact parameter below σ) and b < 0
     # (approaching): rarely true, so well predicted; a separate test of b < 0, a coin flip,
     # would cost a branch misprediction every other pair
-    if min(disc, -b) > 0.0:
+    if smaller(disc, -b) > 0.0:
         dt = c / (np.sqrt(disc) - b)
         if dt < 0.0:
             dt = 0.0
@@ -913,6 +950,7 @@ def advance(
             ints,
             members,
             occupancy,
+            last_collision,
             grid,
             links,
             heads,
