@@ -19,19 +19,24 @@ cells now and then (``label`` keeps each slot's particle identity).
             particle between its events), 3..5 the velocity (z = 0 in d = 2), 6 the time of
             i's earliest predicted pair collision, 7 the time i next leaves its cell (or
             touches a wall).
-``ints``    (N, 8) int64: 0 the predicted partner j (−1: none), 1 the value of j's stamp
-            when the prediction was made (lazy invalidation: the prediction is valid iff
-            j's stamp has not changed since), 2 the face of the next crossing
-            (2 k + 1 upwards along axis k, 2 k downwards), 3 the stamp of i (number of its
-            velocity changes: collisions and wall bounces), 4 i's position in its cell row,
-            5..7 its cell coordinates (z = 0 in d = 2).
+``ints``    (N, 8) int64: 0 the predicted partner j (−1: none), 1 the number of the
+            event at which the prediction was made, 2 the face of the next crossing
+            (2 k + 1 upwards along axis k, 2 k downwards), 3 the number of the event at
+            which i's velocity last changed (collision or wall bounce; 0 before the first),
+            4 i's position in its cell row, 5..7 its cell coordinates (z = 0 in d = 2).
+            Lazy invalidation: i's pair prediction is valid iff ``ints[j, 3] <=
+            ints[i, 1]`` (j has not changed velocity since; within one event every
+            velocity change precedes every prediction). Event numbers, unlike counts of
+            j's changes, need nothing of j's row when the prediction is made (a cache miss
+            per prediction in large systems).
 ``members`` (n_cells, C) int32, ``occupancy`` (n_cells,) int32: the particles of each
             cell are ``members[c, :occupancy[c]]``; rows have a fixed capacity C (16 by
             default: one cache line), grown by the front when a crossing finds its
             destination full (``STATUS_CELL_FULL``).
 ``links`` (N, 4) int32, ``heads`` (B + 1,) int32, ``heap_time`` (N,) float64,
 ``heap_index`` (N,) int32, ``calendar`` float64 [origin, 1/width], ``cursor`` int64
-            [current bucket, heap size]: the event calendar (Paul 2007, J. Comput. Phys.
+            [current bucket, heap size, walk cursors of the prefetch pipeline (see
+            ``prefetch_ahead``; none: no pipeline)]: the event calendar (Paul 2007, J. Comput. Phys.
             221, 615), the queue of the N events min(phase[i, 6], phase[i, 7]). Bucket b of
             B = N covers the times origin + [b, b + 1) · width (width ≈ EVENTS_PER_BUCKET
             mean intervals between events) in an unsorted doubly linked list (``heads[b]``
@@ -62,10 +67,11 @@ Events
 ------
 A *crossing* moves i to the next cell (wrapping x0 by the box length on periodic faces)
 and tests i only against the layer of cells that just became adjacent; a *wall* event
-reflects the normal velocity; a *collision* is executed if the partner's stamp is unchanged,
-otherwise i's collisions are predicted anew (an *invalid* event). Round-off overlaps are
-handled deterministically: an approaching pair found at distance < σ collides at once, a
-receding overlapping pair is ignored (it separates). Collisions with velocity rescaling:
+reflects the normal velocity; a *collision* is executed if the partner's velocity has not
+changed since the prediction, otherwise i's collisions are predicted anew (an *invalid*
+event). Round-off overlaps are handled deterministically: an approaching pair found at
+distance < σ collides at once, a receding overlapping pair is ignored (it separates).
+Collisions with velocity rescaling:
 the rescaling by s at time t maps every pending event time t_e to t + (t_e − t)/s, an
 order-preserving map, so no prediction is redone (the calendar is rebuilt).
 
@@ -137,6 +143,10 @@ L_HEAP = 3  # position in the current bucket's heap
 PLACE_HEAP = -1
 #: mean number of events per calendar bucket (sets the bucket width)
 EVENTS_PER_BUCKET = 4.0
+#: bucket lists walked side by side by the prefetch pipeline (``prefetch_ahead``)
+PREFETCH_WALKS = 6
+#: most particles the prefetch pipeline follows at the end of one list walk
+WALK_LIMIT = 64
 #: entries copied unconditionally from each cell row by the neighbour scan (≤ row capacity)
 GATHER_HEAD = 4
 
@@ -341,6 +351,8 @@ def calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor)
     calendar[1] = 1.0 / width
     cursor[0] = 0
     cursor[1] = 0
+    for slot in range(2, cursor.shape[0]):
+        cursor[slot] = -1
     for bucket in range(heads.shape[0]):
         heads[bucket] = -1
     for i in range(n):
@@ -351,28 +363,78 @@ def calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def prefetch_ahead(current, phase, ints, members, occupancy, last_collision, grid, links, heads):
+def prefetch_particle(j, phase, ints, links):
+    """Prefetch the rows of particle j (phase, ints and its calendar links)."""
+    prefetch_row(phase, j)
+    prefetch_row(ints, j)
+    prefetch_row(links, j)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def prefetch_ahead(
+    current, phase, ints, members, occupancy, last_collision, grid, links, heads, cursor
+):
     """Prefetch, in stages, what the events of the coming buckets will read: the rows
-    (``phase``, ``ints``) of the particles of bucket ``current`` + 3; for those of bucket
-    + 2 the cell rows and occupancies their scans will visit and, for a pair event, the
-    partner's rows and both ``last_collision`` entries; and at level ``grid[I_PREFETCH]``
-    = 2, for bucket + 1, the rows of the particles listed in those cells (the candidates
-    of the neighbour scans: many prefetches, worth it only when most of them would miss
-    the L3 cache) and, for a crossing, the row of the member its cell removal moves.
-    The cells of a pair event are all neighbours; those of a crossing are its own cell,
-    the destination and the layer beyond the destination (candidates: that layer only).
-    Each stage reads only what an earlier stage prefetched. Cells are taken without
-    periodic wrapping (a hint: the rare misses at the box edges cost nothing else)."""
+    (``phase``, ``ints``, ``links``) of the particles of bucket ``current`` + 3; for those
+    of bucket + 2 the cell rows and occupancies their scans will visit and, for a pair
+    event, the partner's rows and both ``last_collision`` entries; and at level
+    ``grid[I_PREFETCH]`` = 2, for bucket + 1, the rows of the particles listed in those
+    cells (the candidates of the neighbour scans: many prefetches, worth it only when most
+    of them would miss the L3 cache) and, for a crossing, the row of the member its cell
+    removal moves. The cells of a pair event are all neighbours; those of a crossing are
+    its own cell, the destination and the layer beyond the destination (candidates: that
+    layer only). Each stage reads only what an earlier stage prefetched. Cells are taken
+    without periodic wrapping (a hint: the rare misses at the box edges cost nothing else).
+
+    The first stage walks bucket lists, a chain of dependent loads (one cache miss per
+    particle in a large system). With R = ``cursor.shape[0]`` − 2 > 0 the lists of buckets
+    + 3 … + 2 + R are walked side by side, one particle per list and bucket opening
+    (``cursor[2 + b % R]`` is the particle reached in bucket b's list): each step reads a
+    ``links`` row prefetched one opening earlier, and the R steps are independent. A list
+    still unfinished at + 3 (longer than R) is walked to its end then. Lists change
+    meanwhile (a walk may miss new entries or stray into another list): only the hints
+    suffer, every index read is a particle or −1.
+    """
     n_buckets = heads.shape[0] - 1
     n_cells = members.shape[0]
     dim = grid[I_DIM]
     layer = grid[0] * grid[1]
-    if current + 3 < n_buckets:
-        j = heads[current + 3]
-        while j >= 0:
-            prefetch_row(phase, j)
-            prefetch_row(ints, j)
-            j = links[j, L_NEXT]
+    depth = cursor.shape[0] - 2
+    if depth == 0:
+        if current + 3 < n_buckets:
+            j = heads[current + 3]
+            while j >= 0:
+                prefetch_particle(j, phase, ints, links)
+                j = links[j, L_NEXT]
+    else:
+        for offset in range(3, 3 + depth):
+            bucket = current + offset
+            slot = 2 + bucket % depth
+            if offset == 2 + depth:
+                # a new walk: the list head
+                j = heads[bucket] if bucket < n_buckets else -1
+                if j >= 0:
+                    prefetch_particle(j, phase, ints, links)
+                cursor[slot] = j
+                continue
+            j = cursor[slot]
+            if j >= 0:
+                j = links[j, L_NEXT]
+            if offset > 3:
+                if j >= 0:
+                    prefetch_particle(j, phase, ints, links)
+                    cursor[slot] = j
+                # else: the walk ended; cursor[slot] keeps the list's last particle
+                # (its successor is −1) or −1
+            else:
+                # the rest of the list (bounded: a walk that strayed follows stale links
+                # of particles now in the heap)
+                for _ in range(WALK_LIMIT):
+                    if j < 0:
+                        break
+                    prefetch_particle(j, phase, ints, links)
+                    j = links[j, L_NEXT]
+                cursor[slot] = -1
     for stage in range(2, 0 if grid[I_PREFETCH] == 2 else 1, -1):
         if current + stage >= n_buckets:
             continue
@@ -464,7 +526,16 @@ def calendar_next(
             j = following
         if grid[I_PREFETCH] > 0:
             prefetch_ahead(
-                current, phase, ints, members, occupancy, last_collision, grid, links, heads
+                current,
+                phase,
+                ints,
+                members,
+                occupancy,
+                last_collision,
+                grid,
+                links,
+                heads,
+                cursor,
             )
     return heap_index[0]
 
@@ -733,7 +804,7 @@ def predict(
     counters[COUNT_PAIR_TESTS] += tests
     phase[i, 6] = best_t
     ints[i, 0] = best_j
-    ints[i, 1] = ints[best_j, 3] if best_j >= 0 else -1
+    ints[i, 1] = counters[COUNT_EVENTS]
     tc, code = next_crossing(i, phase, ints, geometry, grid)
     # never schedule in the past (round-off right after a crossing)
     phase[i, 7] = tc if tc > t else t
@@ -987,7 +1058,8 @@ def advance(
             clock[0] = t
             return STATUS_EVENT_LIMIT
         events_done += 1
-        counters[COUNT_EVENTS] += 1
+        event_number = counters[COUNT_EVENTS] + 1
+        counters[COUNT_EVENTS] = event_number
         if t_event == t:
             counters[COUNT_STALL] += 1
             if counters[COUNT_STALL] > STALL_LIMIT:
@@ -1026,7 +1098,7 @@ def advance(
                 wall_statistics[code, 2] += 1.0 / speed
                 phase[i, k] += 2.0 * velocity * t
                 phase[i, 3 + k] = -velocity
-                ints[i, 3] += 1
+                ints[i, 3] = event_number
                 counters[COUNT_WALL_HITS] += 1
             else:
                 # arithmetic rather than a branch on the direction (a coin flip)
@@ -1057,7 +1129,7 @@ def advance(
                 axis = k
         else:
             j = ints[i, 0]
-            if ints[i, 1] != ints[j, 3]:
+            if ints[j, 3] > ints[i, 1]:
                 # ------------------------------------------------------ stale prediction
                 counters[COUNT_INVALID] += 1
                 new_crossing = False
@@ -1070,8 +1142,8 @@ def advance(
                 gn, alpha_used = collide(i, j, t, phase, geometry, grid, last_collision)
                 if alpha_used < 1.0:
                     counters[COUNT_INELASTIC] += 1
-                ints[i, 3] += 1
-                ints[j, 3] += 1
+                ints[i, 3] = event_number
+                ints[j, 3] = event_number
                 if observing:
                     observe_flight(
                         i,
@@ -1135,7 +1207,7 @@ def advance(
             if axis < 0 or best_t < phase[p, 6]:
                 phase[p, 6] = best_t
                 ints[p, 0] = best_j
-                ints[p, 1] = ints[best_j, 3] if best_j >= 0 else -1
+                ints[p, 1] = event_number
             if new_crossing:
                 tc, new_code = next_crossing(p, phase, ints, geometry, grid)
                 # never schedule in the past (round-off right after a crossing)

@@ -310,7 +310,10 @@ class HardSphereSystem:
         self.heap_time = np.full(n, np.inf)
         self.heap_index = np.zeros(n, dtype=np.int32)
         self.calendar = np.array([0.0, 1.0])
-        self.cursor = np.zeros(2, dtype=np.int64)
+        # current bucket, heap size, walk cursors of the prefetch pipeline (large systems)
+        walks = k.PREFETCH_WALKS if self.grid[k.I_PREFETCH] > 0 else 0
+        self.cursor = np.full(2 + walks, -1, dtype=np.int64)
+        self.cursor[:2] = 0
         self.last_collision = np.full(n, -np.inf)
         self.streak = np.zeros(n, dtype=np.int32)
         self.label = np.arange(n, dtype=np.int64)  # original particle number of slot i
