@@ -263,19 +263,29 @@ def heap_sift_down(heap_time, heap_index, links, position, size, key, i):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def calendar_insert(i, key, links, heads, heap_time, heap_index, calendar, cursor):
-    """Schedule particle i's next event at time ``key``: into the heap if it falls in the
-    current bucket (or before it, by round-off), else at the head of its bucket's list, or
-    of the overflow list beyond the calendar's horizon (``key`` = +inf included)."""
+def calendar_place(key, heads, calendar, cursor):
+    """Where an event at time ``key`` goes: −1 (``PLACE_HEAP``) into the current bucket's
+    heap if it falls in that bucket (or before it, by round-off), else the list of its
+    bucket, or the overflow list B beyond the calendar's horizon (``key`` = +inf
+    included)."""
     q = (key - calendar[0]) * calendar[1]
     if q < cursor[0] + 1:
+        return PLACE_HEAP
+    n_buckets = heads.shape[0] - 1
+    return int(q) if q < n_buckets else n_buckets
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def calendar_insert(i, key, links, heads, heap_time, heap_index, calendar, cursor):
+    """Schedule particle i's next event at time ``key`` (see ``calendar_place``), in a list
+    at its head."""
+    bucket = calendar_place(key, heads, calendar, cursor)
+    if bucket == PLACE_HEAP:
         size = cursor[1]
         cursor[1] = size + 1
         links[i, L_PLACE] = PLACE_HEAP
         heap_sift_up(heap_time, heap_index, links, size, key, i)
         return
-    n_buckets = heads.shape[0] - 1
-    bucket = int(q) if q < n_buckets else n_buckets
     head = heads[bucket]
     links[i, L_NEXT] = head
     links[i, L_PREV] = -1
@@ -1187,6 +1197,19 @@ def advance(
         # -------------------------------------------------------------- re-predictions
         for q in range(2 if second >= 0 else 1):
             p = i if q == 0 else second
+            if new_crossing:
+                tc, new_code = next_crossing(p, phase, ints, geometry, grid)
+                # never schedule in the past (round-off right after a crossing)
+                phase[p, 7] = tc if tc > t else t
+                ints[p, 2] = new_code
+                if grid[I_PREFETCH] > 0:
+                    # the list head that the rescheduling below reads, if the crossing
+                    # stays the next event (mostly): the scan hides the miss
+                    bucket = calendar_place(
+                        phase[p, 7] if axis < 0 else event_key(phase, p), heads, calendar, cursor
+                    )
+                    if bucket != PLACE_HEAP:
+                        prefetch_row(heads, bucket)
             best_t, best_j, tests = scan_neighbours(
                 p,
                 t,
@@ -1208,11 +1231,6 @@ def advance(
                 phase[p, 6] = best_t
                 ints[p, 0] = best_j
                 ints[p, 1] = event_number
-            if new_crossing:
-                tc, new_code = next_crossing(p, phase, ints, geometry, grid)
-                # never schedule in the past (round-off right after a crossing)
-                phase[p, 7] = tc if tc > t else t
-                ints[p, 2] = new_code
             calendar_reschedule(
                 p, event_key(phase, p), links, heads, heap_time, heap_index, calendar, cursor
             )
