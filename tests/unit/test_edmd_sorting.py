@@ -4,7 +4,7 @@ run."""
 
 import numpy as np
 
-from kinetic.edmd import HardSphereSystem, Observers
+from kinetic.edmd import HardSphereSystem, Observers, kernels
 from kinetic.edmd.system import morton_code
 
 
@@ -55,3 +55,24 @@ def test_sorted_run_has_the_same_collisions_and_observations():
 def test_morton_code_interleaves_the_axes():
     cells = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0], [2, 0, 0], [0, 0, 1]])
     np.testing.assert_array_equal(morton_code(cells), [0, 1, 2, 3, 8, 4])
+
+
+def test_prefetching_does_not_change_the_dynamics():
+    """The prefetch pipeline (bucket-list walks, cells, candidates) only hints the caches:
+    the same collisions at the same times with it as without it, in a periodic and a
+    walled box."""
+    for walls in (False, True):
+        runs = []
+        for prefetch in (0, 2):
+            system = HardSphereSystem(
+                n_particles=1500, density=0.03, seed=9, walls=walls, prefetch=prefetch
+            )
+            observers = Observers.create(system.n_particles, record_capacity=20_000)
+            observers.start(system)
+            system.run(collisions=20_000, observers=observers)
+            runs.append((system, observers.collision_records(system)))
+        (plain, a), (hinted, b) = runs
+        assert hinted.grid[kernels.I_PREFETCH] == 2 and hinted.cursor.shape[0] > 2
+        np.testing.assert_array_equal(a["pair"], b["pair"])
+        np.testing.assert_array_equal(a["time"], b["time"])
+        assert plain.counters() == hinted.counters()

@@ -24,6 +24,7 @@ from kinetic.edmd import HardSphereSystem, simulate
         ({"temperature": 0.0}, "temperature must be finite and > 0"),
         ({"contact_time": -1.0}, "contact_time must be finite and >= 0"),
         ({"density": None, "box": [2.5, 100.0]}, "a periodic axis needs at least 3"),
+        ({"prefetch": 3}, "prefetch must be 0, 1 or 2, got 3"),
     ],
 )
 def test_bad_parameters_are_refused(options, message):

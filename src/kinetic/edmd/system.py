@@ -170,6 +170,9 @@ class HardSphereSystem:
         default ``DEFAULT_CELL_OCCUPANCY[dimension]``.
     cell_capacity : initial slots per cell row (default from the occupancy); rows double
         whenever one overflows, so this only matters for speed (and tests).
+    prefetch : 0 none, 1 the rows and cells of the coming events, 2 also the neighbour
+        scans' candidates (see ``kernels.prefetch_ahead``); default by N
+        (``PREFETCH_MIN_PARTICLES``). Hints only: the dynamics do not depend on it.
     """
 
     def __init__(
@@ -193,6 +196,7 @@ class HardSphereSystem:
         stream: np.ndarray | None = None,
         cell_occupancy: float | None = None,
         cell_capacity: int | None = None,
+        prefetch: int | None = None,
     ):
         # ----------------------------------------------------------- validation
         if isinstance(n_particles, bool) or not isinstance(n_particles, int | np.integer):
@@ -206,6 +210,10 @@ class HardSphereSystem:
         if cell_occupancy is None and dimension in DEFAULT_CELL_OCCUPANCY:
             cell_occupancy = DEFAULT_CELL_OCCUPANCY[dimension]
         cell_occupancy = _finite_positive("cell_occupancy", cell_occupancy)
+        if prefetch is None:
+            prefetch = sum(n_particles >= size for size in PREFETCH_MIN_PARTICLES)
+        if prefetch not in (0, 1, 2):
+            raise ValueError(f"prefetch must be 0, 1 or 2, got {prefetch!r}")
         restitution = float(restitution)
         if not (math.isfinite(restitution) and 0.0 < restitution <= 1.0):
             raise ValueError(f"restitution must be in (0, 1], got {restitution}")
@@ -283,7 +291,7 @@ class HardSphereSystem:
         self.grid[k.I_WALL : k.I_WALL + dimension] = walls
         self.grid[k.I_STREAK] = int(collapse_streak)
         self.grid[k.I_RESCALE] = int(rescale_every)
-        self.grid[k.I_PREFETCH] = sum(n_particles >= size for size in PREFETCH_MIN_PARTICLES)
+        self.grid[k.I_PREFETCH] = prefetch
         self.geometry = np.zeros(k.N_GEOMETRY)
         self.geometry[k.G_L : k.G_L + 3] = length3
         self.geometry[k.G_W : k.G_W + 3] = length3 / counts
