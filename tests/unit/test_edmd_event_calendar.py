@@ -12,7 +12,7 @@ def _calendar(n, n_buckets):
     heap_time = np.full(n, np.inf)
     heap_index = np.zeros(n, dtype=np.int32)
     calendar = np.array([0.0, 1.0])
-    cursor = np.zeros(2, dtype=np.int64)
+    cursor = np.zeros(kernels.N_CURSOR, dtype=np.int64)  # with the prefetch pipeline
     return phase, links, heads, heap_time, heap_index, calendar, cursor
 
 

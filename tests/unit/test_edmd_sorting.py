@@ -72,7 +72,7 @@ def test_prefetching_does_not_change_the_dynamics():
             system.run(collisions=20_000, observers=observers)
             runs.append((system, observers.collision_records(system)))
         (plain, a), (hinted, b) = runs
-        assert hinted.grid[kernels.I_PREFETCH] == 2 and hinted.cursor.shape[0] > 2
+        assert hinted.grid[kernels.I_PREFETCH] == 2
         np.testing.assert_array_equal(a["pair"], b["pair"])
         np.testing.assert_array_equal(a["time"], b["time"])
         assert plain.counters() == hinted.counters()

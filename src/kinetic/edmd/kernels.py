@@ -35,8 +35,9 @@ cells now and then (``label`` keeps each slot's particle identity).
             destination full (``STATUS_CELL_FULL``).
 ``links`` (N, 4) int32, ``heads`` (B + 1,) int32, ``heap_time`` (N,) float64,
 ``heap_index`` (N,) int32, ``calendar`` float64 [origin, 1/width], ``cursor`` int64
-            [current bucket, heap size, walk cursors of the prefetch pipeline (see
-            ``prefetch_ahead``; none: no pipeline)]: the event calendar (Paul 2007, J. Comput. Phys.
+            [current bucket, heap size, then the prefetch pipeline's list positions (see
+            ``prefetch_ahead``; ``N_CURSOR`` entries in all, 2 disable the pipeline)]:
+            the event calendar (Paul 2007, J. Comput. Phys.
             221, 615), the queue of the N events min(phase[i, 6], phase[i, 7]). Bucket b of
             B = N covers the times origin + [b, b + 1) · width (width ≈ EVENTS_PER_BUCKET
             mean intervals between events) in an unsorted doubly linked list (``heads[b]``
@@ -145,8 +146,15 @@ PLACE_HEAP = -1
 EVENTS_PER_BUCKET = 4.0
 #: bucket lists walked side by side by the prefetch pipeline (``prefetch_ahead``)
 PREFETCH_WALKS = 6
-#: most particles the prefetch pipeline follows at the end of one list walk
+#: most particles the prefetch pipeline follows in one go along a list
 WALK_LIMIT = 64
+# entries of ``cursor``: the calendar's, then the prefetch pipeline's
+C_BUCKET = 0  # current bucket
+C_HEAP = 1  # heap size
+C_STAGE2 = 2  # next particle of stage 2 (−1: none)
+C_STAGE1 = 3  # next particle of stage 1
+C_WALKS = 4  # PREFETCH_WALKS list walks of stage 3
+N_CURSOR = C_WALKS + PREFETCH_WALKS
 #: entries copied unconditionally from each cell row by the neighbour scan (≤ row capacity)
 GATHER_HEAD = 4
 
@@ -381,117 +389,140 @@ def prefetch_particle(j, phase, ints, links):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def prefetch_ahead(
-    current, phase, ints, members, occupancy, last_collision, grid, links, heads, cursor
-):
-    """Prefetch, in stages, what the events of the coming buckets will read: the rows
-    (``phase``, ``ints``, ``links``) of the particles of bucket ``current`` + 3; for those
-    of bucket + 2 the cell rows and occupancies their scans will visit and, for a pair
-    event, the partner's rows and both ``last_collision`` entries; and at level
-    ``grid[I_PREFETCH]`` = 2, for bucket + 1, the rows of the particles listed in those
-    cells (the candidates of the neighbour scans: many prefetches, worth it only when most
-    of them would miss the L3 cache) and, for a crossing, the row of the member its cell
-    removal moves. The cells of a pair event are all neighbours; those of a crossing are
-    its own cell, the destination and the layer beyond the destination (candidates: that
-    layer only). Each stage reads only what an earlier stage prefetched. Cells are taken
-    without periodic wrapping (a hint: the rare misses at the box edges cost nothing else).
+def prefetch_scan(j, stage, phase, ints, members, occupancy, last_collision, grid):
+    """Prefetch for particle j's coming event, stage 2 or 1 (see ``prefetch_ahead``).
 
-    The first stage walks bucket lists, a chain of dependent loads (one cache miss per
-    particle in a large system). With R = ``cursor.shape[0]`` − 2 > 0 the lists of buckets
-    + 3 … + 2 + R are walked side by side, one particle per list and bucket opening
-    (``cursor[2 + b % R]`` is the particle reached in bucket b's list): each step reads a
-    ``links`` row prefetched one opening earlier, and the R steps are independent. A list
-    still unfinished at + 3 (longer than R) is walked to its end then. Lists change
-    meanwhile (a walk may miss new entries or stray into another list): only the hints
-    suffer, every index read is a particle or −1.
-    """
-    n_buckets = heads.shape[0] - 1
+    Stage 2: the cell rows and occupancies its scan will visit and, for a pair event, the
+    partner's rows and both ``last_collision`` entries. Stage 1: the rows of the particles
+    listed in those cells (the candidates of the scan) and, for a crossing, the row of the
+    member its cell removal moves. The cells of a pair event are all neighbours; those of
+    a crossing its own cell, the destination and the layer beyond the destination
+    (candidates: that layer only). Cells are taken without periodic wrapping (a hint: the
+    rare misses at the box edges cost nothing else)."""
     n_cells = members.shape[0]
     dim = grid[I_DIM]
     layer = grid[0] * grid[1]
-    depth = cursor.shape[0] - 2
-    if depth == 0:
-        if current + 3 < n_buckets:
-            j = heads[current + 3]
-            while j >= 0:
+    flat = cell_flat(ints[j, 5], ints[j, 6], ints[j, 7], grid)
+    lo0, hi0, lo1, hi1 = -1, 1, -1, 1
+    lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
+    if phase[j, 7] <= phase[j, 6]:
+        code = ints[j, 2]
+        step = 1 if (code & 1) == 1 else -1
+        stride = 1 if code >> 1 == 0 else (grid[0] if code >> 1 == 1 else layer)
+        if stage == 2:
+            # the own and the destination cell (removal and insertion)
+            for cell in (flat, flat + step * stride):
+                if 0 <= cell < n_cells:
+                    prefetch_row(members, cell)
+                    prefetch_row(occupancy, cell)
+        elif occupancy[flat] > 0:
+            prefetch_row(ints, members[flat, occupancy[flat] - 1])
+        # then the layer beyond the destination
+        if code >> 1 == 0:
+            lo0, hi0 = 2 * step, 2 * step
+        elif code >> 1 == 1:
+            lo1, hi1 = 2 * step, 2 * step
+        else:
+            lo2, hi2 = 2 * step, 2 * step
+    elif stage == 2:
+        partner = ints[j, 0]
+        if partner >= 0:
+            prefetch_row(phase, partner)
+            prefetch_row(ints, partner)
+            prefetch_row(last_collision, partner)
+            prefetch_row(last_collision, j)
+    for o2 in range(lo2, hi2 + 1):
+        for o1 in range(lo1, hi1 + 1):
+            for o0 in range(lo0, hi0 + 1):
+                cell = flat + o0 + o1 * grid[0] + o2 * layer
+                if cell < 0 or cell >= n_cells:
+                    continue
+                if stage == 2:
+                    prefetch_row(members, cell)
+                    prefetch_row(occupancy, cell)
+                else:
+                    for q in range(occupancy[cell]):
+                        prefetch_row(phase, members[cell, q])
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def prefetch_step(phase, ints, members, occupancy, last_collision, grid, links, cursor):
+    """One step of stages 2 and 1 of the prefetch pipeline (``prefetch_ahead``): the next
+    particle of each stage's list. Called once per event, so that the prefetches are spread
+    over the events rather than issued in bursts that fill the processor's miss buffers
+    and stall it."""
+    j = cursor[C_STAGE2]
+    if j >= 0:
+        prefetch_scan(j, 2, phase, ints, members, occupancy, last_collision, grid)
+        cursor[C_STAGE2] = links[j, L_NEXT]
+    j = cursor[C_STAGE1]
+    if j >= 0:
+        if grid[I_PREFETCH] == 2:
+            prefetch_scan(j, 1, phase, ints, members, occupancy, last_collision, grid)
+        cursor[C_STAGE1] = links[j, L_NEXT]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def prefetch_ahead(
+    current, phase, ints, members, occupancy, last_collision, grid, links, heads, cursor
+):
+    """Prefetch, in stages, what the events of the coming buckets will read, on opening
+    bucket ``current``. Stage 3: the rows (``phase``, ``ints``, ``links``) of the
+    particles of bucket + 3; stage 2 (``prefetch_scan``): for those of bucket + 2, the
+    cells their scans will visit and a pair event's partner; stage 1 (at level
+    ``grid[I_PREFETCH]`` = 2): for those of bucket + 1, the candidates of their scans
+    (many prefetches, worth it only when most of them would miss the L3 cache). Each stage
+    reads only what an earlier stage prefetched.
+
+    Stages 2 and 1 walk their lists one particle per event (``prefetch_step``,
+    ``cursor[C_STAGE2]``, ``cursor[C_STAGE1]``); what a bucket's events left over is done
+    here, before the stages move on to the next lists. Stage 3 walks the lists of buckets
+    + 3 … + 2 + R (R = ``PREFETCH_WALKS``) side by side, one particle per list and
+    opening (``cursor[C_WALKS + b % R]`` is the particle reached in bucket b's list):
+    each step reads a ``links`` row prefetched one opening earlier, and the R steps are
+    independent, where walking one list is a chain of dependent misses. A list still
+    unfinished at + 3 (longer than R) is walked to its end then. Lists change meanwhile
+    (a walk may miss new entries or stray into another list, or into the heap's stale
+    links): only the hints suffer, every index read is a particle or −1, and walks are
+    bounded by ``WALK_LIMIT``.
+    """
+    n_buckets = heads.shape[0] - 1
+    for stage, slot in ((1, C_STAGE1), (2, C_STAGE2)):
+        j = cursor[slot]
+        for _ in range(WALK_LIMIT):
+            if j < 0:
+                break
+            if stage == 2 or grid[I_PREFETCH] == 2:
+                prefetch_scan(j, stage, phase, ints, members, occupancy, last_collision, grid)
+            j = links[j, L_NEXT]
+    cursor[C_STAGE1] = heads[current + 1] if current + 1 < n_buckets else -1
+    cursor[C_STAGE2] = heads[current + 2] if current + 2 < n_buckets else -1
+    for offset in range(3, 3 + PREFETCH_WALKS):
+        bucket = current + offset
+        slot = C_WALKS + bucket % PREFETCH_WALKS
+        if offset == 2 + PREFETCH_WALKS:
+            # a new walk: the list head
+            j = heads[bucket] if bucket < n_buckets else -1
+            if j >= 0:
+                prefetch_particle(j, phase, ints, links)
+            cursor[slot] = j
+            continue
+        j = cursor[slot]
+        if j >= 0:
+            j = links[j, L_NEXT]
+        if offset > 3:
+            if j >= 0:
+                prefetch_particle(j, phase, ints, links)
+                cursor[slot] = j
+            # else: the walk ended; cursor[slot] keeps the list's last particle (its
+            # successor is −1) or −1
+        else:
+            for _ in range(WALK_LIMIT):
+                if j < 0:
+                    break
                 prefetch_particle(j, phase, ints, links)
                 j = links[j, L_NEXT]
-    else:
-        for offset in range(3, 3 + depth):
-            bucket = current + offset
-            slot = 2 + bucket % depth
-            if offset == 2 + depth:
-                # a new walk: the list head
-                j = heads[bucket] if bucket < n_buckets else -1
-                if j >= 0:
-                    prefetch_particle(j, phase, ints, links)
-                cursor[slot] = j
-                continue
-            j = cursor[slot]
-            if j >= 0:
-                j = links[j, L_NEXT]
-            if offset > 3:
-                if j >= 0:
-                    prefetch_particle(j, phase, ints, links)
-                    cursor[slot] = j
-                # else: the walk ended; cursor[slot] keeps the list's last particle
-                # (its successor is −1) or −1
-            else:
-                # the rest of the list (bounded: a walk that strayed follows stale links
-                # of particles now in the heap)
-                for _ in range(WALK_LIMIT):
-                    if j < 0:
-                        break
-                    prefetch_particle(j, phase, ints, links)
-                    j = links[j, L_NEXT]
-                cursor[slot] = -1
-    for stage in range(2, 0 if grid[I_PREFETCH] == 2 else 1, -1):
-        if current + stage >= n_buckets:
-            continue
-        j = heads[current + stage]
-        while j >= 0:
-            flat = cell_flat(ints[j, 5], ints[j, 6], ints[j, 7], grid)
-            lo0, hi0, lo1, hi1 = -1, 1, -1, 1
-            lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
-            if phase[j, 7] <= phase[j, 6]:
-                code = ints[j, 2]
-                step = 1 if (code & 1) == 1 else -1
-                stride = 1 if code >> 1 == 0 else (grid[0] if code >> 1 == 1 else layer)
-                if stage == 2:
-                    # the own and the destination cell (removal and insertion)
-                    for cell in (flat, flat + step * stride):
-                        if 0 <= cell < n_cells:
-                            prefetch_row(members, cell)
-                            prefetch_row(occupancy, cell)
-                elif occupancy[flat] > 0:
-                    prefetch_row(ints, members[flat, occupancy[flat] - 1])
-                # then the layer beyond the destination
-                if code >> 1 == 0:
-                    lo0, hi0 = 2 * step, 2 * step
-                elif code >> 1 == 1:
-                    lo1, hi1 = 2 * step, 2 * step
-                else:
-                    lo2, hi2 = 2 * step, 2 * step
-            elif stage == 2:
-                partner = ints[j, 0]
-                if partner >= 0:
-                    prefetch_row(phase, partner)
-                    prefetch_row(ints, partner)
-                    prefetch_row(last_collision, partner)
-                    prefetch_row(last_collision, j)
-            for o2 in range(lo2, hi2 + 1):
-                for o1 in range(lo1, hi1 + 1):
-                    for o0 in range(lo0, hi0 + 1):
-                        cell = flat + o0 + o1 * grid[0] + o2 * layer
-                        if cell < 0 or cell >= n_cells:
-                            continue
-                        if stage == 2:
-                            prefetch_row(members, cell)
-                            prefetch_row(occupancy, cell)
-                        else:
-                            for q in range(occupancy[cell]):
-                                prefetch_row(phase, members[cell, q])
-            j = links[j, L_NEXT]
+            cursor[slot] = -1
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -534,7 +565,7 @@ def calendar_next(
             links[j, L_PLACE] = PLACE_HEAP
             heap_sift_up(heap_time, heap_index, links, size, event_key(phase, j), j)
             j = following
-        if grid[I_PREFETCH] > 0:
+        if grid[I_PREFETCH] > 0 and cursor.shape[0] >= N_CURSOR:
             prefetch_ahead(
                 current,
                 phase,
@@ -1043,6 +1074,8 @@ def advance(
         if i < 0:
             clock[0] = t_stop
             return STATUS_NO_EVENTS
+        if grid[I_PREFETCH] > 0 and cursor.shape[0] >= N_CURSOR:
+            prefetch_step(phase, ints, members, occupancy, last_collision, grid, links, cursor)
         t_event = heap_time[0]
         # scheduled observations that come before the event
         while next_window < t_event and next_window <= t_stop:

@@ -318,9 +318,8 @@ class HardSphereSystem:
         self.heap_time = np.full(n, np.inf)
         self.heap_index = np.zeros(n, dtype=np.int32)
         self.calendar = np.array([0.0, 1.0])
-        # current bucket, heap size, walk cursors of the prefetch pipeline (large systems)
-        walks = k.PREFETCH_WALKS if self.grid[k.I_PREFETCH] > 0 else 0
-        self.cursor = np.full(2 + walks, -1, dtype=np.int64)
+        # current bucket, heap size, list positions of the prefetch pipeline
+        self.cursor = np.full(k.N_CURSOR, -1, dtype=np.int64)
         self.cursor[:2] = 0
         self.last_collision = np.full(n, -np.inf)
         self.streak = np.zeros(n, dtype=np.int32)
