@@ -49,8 +49,9 @@ SORT_EVERY_PER_PARTICLE = 2
 #: systems of at least that many particles prefetch the rows and cells of the coming
 #: events (their rows outgrow the L2 cache; for smaller ones the prefetch is pure overhead;
 #: see kernels.prefetch_ahead), from the second size on also the rows of the neighbour
-#: scans' candidates (at N = 1e4 that cost 40%, at N = 1e5 it saved 20%)
-PREFETCH_MIN_PARTICLES = (10_000, 50_000)
+#: scans' candidates (2D, ρσ² = 1e-2, speeds of levels 2/1/0 in one process relative to
+#: level 1: N = 2e4 0.87/1/0.96, N = 3e4 1.2/1/0.8, N = 1e5 1.5/1/0.67)
+PREFETCH_MIN_PARTICLES = (10_000, 30_000)
 
 
 class InelasticCollapseError(RuntimeError):
