@@ -1043,6 +1043,7 @@ def advance(
     normal relative speed).
     """
     dim = grid[I_DIM]
+    pipeline = grid[I_PREFETCH] > 0 and cursor.shape[0] >= N_CURSOR
     streak_limit = grid[I_STREAK]
     rescale_every = grid[I_RESCALE]
     collapse_time = geometry[G_COLLAPSE_TIME]
@@ -1074,7 +1075,7 @@ def advance(
         if i < 0:
             clock[0] = t_stop
             return STATUS_NO_EVENTS
-        if grid[I_PREFETCH] > 0 and cursor.shape[0] >= N_CURSOR:
+        if pipeline:
             prefetch_step(phase, ints, members, occupancy, last_collision, grid, links, cursor)
         t_event = heap_time[0]
         # scheduled observations that come before the event
@@ -1235,7 +1236,7 @@ def advance(
                 # never schedule in the past (round-off right after a crossing)
                 phase[p, 7] = tc if tc > t else t
                 ints[p, 2] = new_code
-                if grid[I_PREFETCH] > 0:
+                if pipeline:
                     # the list head that the rescheduling below reads, if the crossing
                     # stays the next event (mostly): the scan hides the miss
                     bucket = calendar_place(
