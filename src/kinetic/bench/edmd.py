@@ -248,7 +248,11 @@ def _compile_times() -> dict[str, float]:
 def _bounds(case: dict[str, Any], micro: dict[str, float]) -> dict[str, float]:
     """Lower bounds of the cost per collision from the micro-benchmarks.
 
-    arithmetic: every pair test at its long-loop cost plus one calendar event per event;
+    arithmetic: every pair test at its long-loop cost. The calendar micro-benchmark
+    (``queue_event_ns``, 150-210 ns per event on the development machine) is reported but
+    left out: it exceeds what the calendar can cost inside the engine (counted in, this
+    "bound" came out above the measured cost in three of the nine cases, by up to 1/0.69),
+    for a reason not yet found;
     memory latency: about 3 cache lines that miss per event (the particle's two rows and
     its calendar entry) plus one per pair test, at the dependent-access latency of the
     working set (≈ the L1/L2 hit latency for small N, DRAM for N = 1e5). Prefetching
@@ -259,10 +263,7 @@ def _bounds(case: dict[str, Any], micro: dict[str, float]) -> dict[str, float]:
     candidate's row, per cell visited its row and occupancy. A crossing visits
     3^(d−1) + 2 cells, every other event and the partner of a collision 3^d.
     """
-    arithmetic = (
-        case["pair_tests_per_collision"] * micro["pair_test_ns"]
-        + case["events_per_collision"] * micro["queue_event_ns"]
-    )
+    arithmetic = case["pair_tests_per_collision"] * micro["pair_test_ns"]
     memory = (3 * case["events_per_collision"] + case["pair_tests_per_collision"]) * micro[
         "random_access_ns"
     ]
