@@ -251,9 +251,9 @@ def _bounds(case: dict[str, Any], micro: dict[str, float]) -> dict[str, float]:
     arithmetic: every pair test at its long-loop cost. The calendar micro-benchmark
     (``queue_event_ns``, 150-210 ns per event on the development machine) is reported but
     left out: compiled on its own, the calendar's inlined functions keep numba's reference
-    counting of their array arguments (63 atomic increments in the loop's code, 80 % of
-    its profile), which ``advance`` is free of (counted in, this "bound" came out above the
-    measured cost in three of the nine cases);
+    counting of their array arguments (63 increment calls in the compiled loop, 80 % of
+    its sampled time in them), where ``advance`` spends 97 % of its time in its own code
+    (counted in, this "bound" came out above the measured cost in three of nine cases);
     memory latency: about 3 cache lines that miss per event (the particle's two rows and
     its calendar entry) plus one per pair test, at the dependent-access latency of the
     working set (≈ the L1/L2 hit latency for small N, DRAM for N = 1e5). Prefetching
