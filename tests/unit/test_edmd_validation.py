@@ -25,6 +25,8 @@ from kinetic.edmd import HardSphereSystem, simulate
         ({"contact_time": -1.0}, "contact_time must be finite and >= 0"),
         ({"density": None, "box": [2.5, 100.0]}, "a periodic axis needs at least 3"),
         ({"prefetch": 3}, "prefetch must be 0, 1 or 2, got 3"),
+        ({"sort_every": -1}, r"sort_every must be >= 0 \(0: never\), got -1"),
+        ({"sort_every": 2.5}, "sort_every must be an integer, got 2.5"),
     ],
 )
 def test_bad_parameters_are_refused(options, message):

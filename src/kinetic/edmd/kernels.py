@@ -10,9 +10,9 @@ times in the units those and the velocities imply.
 State (N particles, every array preallocated, row/index i = memory slot of a particle)
 --------------------------------------------------------------------------------------
 Everything an event of particle i touches lives in two 64-byte rows (two cache lines), so
-that a large system pays two cache misses per event rather than one per array. Systems of
-N ≥ ``system.SORT_MIN_PARTICLES`` are re-sorted in memory along the Z-order curve of the
-cells now and then (``label`` keeps each slot's particle identity).
+that a large system pays two cache misses per event rather than one per array. Systems
+can be re-sorted in memory along the Z-order curve of the cells now and then (``label``
+keeps each slot's particle identity; ``HardSphereSystem(sort_every=...)``).
 
 ``phase``   (N, 8) float64: columns 0..2 the *false position* x0 = x(t) − v t of the
             current flight (the position at time t is ``x0 + v t`` without touching the
