@@ -169,6 +169,8 @@ class HardSphereSystem:
         every that many collisions (``sort_particles``; 0, the default: never). With the
         prefetch pipeline it no longer pays: every 2 N collisions cost 8 % at N = 1e5 and
         11 % at 5e4 (2D, ρσ² = 1e-2; 5 % at 1e-3, 2 % in 3D), measured in one process.
+        The dynamics stay the same, but runs split at the re-sorts, and each kernel call
+        rebases the clock: round-off then differs from a run without re-sorting.
     prefetch : 0 none, 1 the rows and cells of the coming events, 2 also the neighbour
         scans' candidates (see ``kernels.prefetch_ahead``); default by N
         (``PREFETCH_MIN_PARTICLES``). Hints only: the dynamics do not depend on it.
