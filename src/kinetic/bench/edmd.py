@@ -66,10 +66,7 @@ def _cases(specs: list[tuple[int, int, float]], repeats: int) -> list[dict[str, 
     ):
         after = system.counters()
         done = after["collisions"] - before["collisions"]
-
-        def per_collision(key: str, after=after, before=before, done=done) -> float:
-            return (after[key] - before[key]) / done
-
+        per_collision = {key: (after[key] - before[key]) / done for key in after}
         rate = statistics.median(cpu)
         cases.append(
             {
@@ -82,10 +79,10 @@ def _cases(specs: list[tuple[int, int, float]], repeats: int) -> list[dict[str, 
                 "collisions_per_wall_second": statistics.median(wall),
                 "ns_per_collision": 1e9 / rate,
                 "repeat_rates": cpu,
-                "crossings_per_collision": per_collision("crossings"),
-                "stale_predictions_per_collision": per_collision("invalid_events"),
-                "events_per_collision": per_collision("events"),
-                "pair_tests_per_collision": per_collision("pair_tests"),
+                "crossings_per_collision": per_collision["crossings"],
+                "stale_predictions_per_collision": per_collision["invalid_events"],
+                "events_per_collision": per_collision["events"],
+                "pair_tests_per_collision": per_collision["pair_tests"],
                 "energy_drift": abs(system.kinetic_temperature() - 1.0),
             }
         )

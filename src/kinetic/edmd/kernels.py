@@ -458,8 +458,7 @@ def prefetch_step(phase, ints, members, occupancy, last_collision, grid, links, 
         cursor[C_STAGE2] = links[j, L_NEXT]
     j = cursor[C_STAGE1]
     if j >= 0:
-        if grid[I_PREFETCH] == 2:
-            prefetch_scan(j, 1, phase, ints, members, occupancy, last_collision, grid)
+        prefetch_scan(j, 1, phase, ints, members, occupancy, last_collision, grid)
         cursor[C_STAGE1] = links[j, L_NEXT]
 
 
@@ -476,12 +475,13 @@ def prefetch_ahead(
     reads only what an earlier stage prefetched.
 
     Stages 2 and 1 walk their lists one particle per event (``prefetch_step``,
-    ``cursor[C_STAGE2]``, ``cursor[C_STAGE1]``); what a bucket's events left over is done
-    here, before the stages move on to the next lists. Stage 3 walks the lists of buckets
-    + 3 … + 2 + R (R = ``PREFETCH_WALKS``) side by side, one particle per list and
-    opening (``cursor[C_WALKS + b % R]`` is the particle reached in bucket b's list):
-    each step reads a ``links`` row prefetched one opening earlier, and the R steps are
-    independent, where walking one list is a chain of dependent misses. A list still
+    ``cursor[C_STAGE2]``, ``cursor[C_STAGE1]``, the latter −1 below level 2); what a
+    bucket's events left over is done here, before the stages move on to the next lists.
+    Stage 3 walks the lists of buckets + 3 … + 2 + R (R = ``PREFETCH_WALKS``) side by
+    side, one particle per list and opening (``cursor[C_WALKS + b % R]`` is the particle
+    reached in bucket b's list): each step reads a ``links`` row prefetched one opening
+    earlier, and the R steps are independent, where walking one list is a chain of
+    dependent misses. A list still
     unfinished at + 3 (longer than R) is walked to its end then. Lists change meanwhile
     (a walk may miss new entries or stray into another list, or into the heap's stale
     links): only the hints suffer, every index read is a particle or −1, and walks are
@@ -493,10 +493,10 @@ def prefetch_ahead(
         for _ in range(WALK_LIMIT):
             if j < 0:
                 break
-            if stage == 2 or grid[I_PREFETCH] == 2:
-                prefetch_scan(j, stage, phase, ints, members, occupancy, last_collision, grid)
+            prefetch_scan(j, stage, phase, ints, members, occupancy, last_collision, grid)
             j = links[j, L_NEXT]
-    cursor[C_STAGE1] = heads[current + 1] if current + 1 < n_buckets else -1
+    candidates = grid[I_PREFETCH] == 2
+    cursor[C_STAGE1] = heads[current + 1] if candidates and current + 1 < n_buckets else -1
     cursor[C_STAGE2] = heads[current + 2] if current + 2 < n_buckets else -1
     for offset in range(3, 3 + PREFETCH_WALKS):
         bucket = current + offset
