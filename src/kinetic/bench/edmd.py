@@ -7,7 +7,8 @@ numba compile time (cold cache) and the cache load time; and micro-benchmarks th
 the cost per collision from below (one pair test in a long loop, one event of the calendar
 queue, one dependent random memory access and one prefetched random cache line at the
 working-set size), so the report says how far the engine is from the arithmetic,
-memory-latency and memory-throughput bounds.
+memory-latency and memory-throughput bounds; and the latency of dependent random accesses
+against the working-set size (0.25-64 MiB), which shows the cache the process gets.
 """
 
 from __future__ import annotations
@@ -224,6 +225,28 @@ def _micro(n_particles: int, rng: np.random.Generator) -> dict[str, float]:
     }
 
 
+#: working sets (MiB) of the dependent-access latency curve
+LATENCY_CURVE_MIB = (0.25, 0.5, 1, 2, 4, 8, 16, 32, 64)
+
+
+def _latency_curve(rng: np.random.Generator) -> dict[str, float]:
+    """ns per dependent random access (a pointer chase through one random cycle over all
+    cache lines) against the working-set size in MiB: where the curve jumps is the cache
+    this process effectively gets on the (shared) machine, whatever the CPU advertises."""
+    curve = {}
+    for mib in LATENCY_CURVE_MIB:
+        lines = int(mib * 2**20) // 64
+        order = rng.permutation(lines) * 8  # first word of each line
+        successor = np.zeros(lines * 8, dtype=np.int64)
+        successor[order] = np.roll(order, -1)
+        _pointer_chase(successor, 10)
+        steps = 1_000_000
+        begin = time.process_time()
+        _pointer_chase(successor, steps)
+        curve[f"{mib:g}"] = (time.process_time() - begin) / steps * 1e9
+    return curve
+
+
 def _compile_times() -> dict[str, float]:
     """Wall time of ``kinetic.edmd.warmup()`` in a fresh process with an empty numba cache
     (compilation) and again with that cache filled (loading)."""
@@ -339,5 +362,6 @@ def run(quick: bool) -> dict[str, Any]:
         },
         "compile": _compile_times(),
         "micro_benchmarks": {str(n): values for n, values in micro.items()},
+        "latency_ns_by_working_set_mib": _latency_curve(rng),
         "cases": cases,
     }
