@@ -24,6 +24,7 @@ include: "workflow/rules/visco2008_cloning.smk"
 include: "workflow/rules/dsmc.smk"
 include: "workflow/rules/visco2008_dsmc.smk"
 include: "workflow/rules/montanero2007.smk"
+include: "workflow/rules/krauth2025.smk"
 include: "workflow/rules/targets.smk"
 
 

@@ -37,7 +37,7 @@ rule montanero2007:
 
 
 rule krauth2025:
-    # no krauth2025 artefact is implemented yet: this target builds nothing
+    # so far the clothes-pins of section 4.4.1 (Figs 4.10, 4.11, 4.13 and their table)
     input:
         krauth2025_artefacts,
 

@@ -1,0 +1,244 @@
+"""Direct and Markov-chain samplers of krauth2025 (§4.4.1: random clothes-pins).
+
+Fronts that validate their arguments, run the numba kernels of
+``kinetic.samplers.kernels`` in independent seeded batches and return an
+``xarray.Dataset`` (conventions of ``kinetic.io``) whose densities carry the standard
+error of the batch means:
+
+- ``sample_line``: pin-centre density n(x) = N π(x) of N pins on a washing line [0, L],
+  by naive-pin (Alg. 4.6) or direct-pin (Alg. 4.7);
+- ``sample_ring``: density of the other pins at forward distance r from a pin, N pins on
+  a ring of circumference L, by local Markov-chain moves (independent chains);
+- ``pin_snapshots``: a few direct-pin configurations (krauth2025 Fig. 4.10).
+
+Lengths are in units of the pin width 2σ if σ = 1/2 (the configs' choice).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import xarray as xr
+
+from kinetic import io
+from kinetic.progress import Progress
+from kinetic.rng import stream_states
+from kinetic.samplers import kernels
+from kinetic.theory.krauth2025 import check_pins
+
+__all__ = [
+    "MAX_NAIVE_STARTS",
+    "naive_acceptance",
+    "pin_snapshots",
+    "sample_line",
+    "sample_ring",
+    "warmup",
+]
+
+#: most configurations naive-pin may be expected to start in one call (about an hour)
+MAX_NAIVE_STARTS = 1e10
+
+
+def _positive_int(name: str, value, minimum: int = 1) -> int:
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return int(value)
+
+
+def naive_acceptance(n_pins: int, length: float, sigma: float) -> float:
+    """Probability that a naive-pin configuration gets through: Z_{N,L} / (L − 2σ)^N."""
+    return ((length - 2 * n_pins * sigma) / (length - 2 * sigma)) ** n_pins
+
+
+def sample_line(
+    method: str,
+    *,
+    n_pins: int,
+    length: float,
+    sigma: float,
+    samples: int,
+    batches: int,
+    bins: int,
+    seed: int,
+) -> xr.Dataset:
+    """Pin-centre density on [σ, L − σ] from ``batches`` independent batches of
+    ``samples`` configurations each (``method`` 'naive' or 'direct').
+
+    Returns ``density`` (pins per unit length, the mean of the batches), its standard
+    error ``density_sem``, the per-batch ``counts`` and, for naive-pin, the configurations
+    ``started`` per batch (their accepted fraction estimates Z_{N,L}/(L − 2σ)^N).
+    """
+    if method not in ("naive", "direct"):
+        raise ValueError(f"method must be 'naive' or 'direct', got {method!r}")
+    check_pins(n_pins, length, sigma)
+    samples = _positive_int("samples", samples)
+    batches = _positive_int("batches", batches, 2)
+    bins = _positive_int("bins", bins)
+    if method == "naive":
+        expected = samples * batches / naive_acceptance(n_pins, length, sigma)
+        if expected > MAX_NAIVE_STARTS:
+            raise ValueError(
+                f"naive-pin would start about {expected:.2g} configurations for "
+                f"{samples * batches} samples of {n_pins} pins on length {length} (acceptance "
+                f"{naive_acceptance(n_pins, length, sigma):.2g}); use direct-pin, fewer "
+                f"samples or a longer line"
+            )
+    lower, upper = sigma, length - sigma
+    states = stream_states(seed, batches)
+    counts = np.zeros((batches, bins), dtype=np.int64)
+    started = np.zeros(batches, dtype=np.int64)
+    positions = np.zeros(n_pins)
+    cpu = np.zeros(batches)
+    progress = Progress(batches, label=f"{method}-pin N={n_pins} L={length:g}", unit="batches")
+    for b in range(batches):
+        begin = time.process_time()
+        arguments = (n_pins, length, sigma, samples, states[b], positions, counts[b], lower, upper)
+        if method == "naive":
+            started[b] = kernels.naive_pin(*arguments)[0]
+        else:
+            kernels.direct_pin(*arguments)
+            started[b] = samples
+        cpu[b] = time.process_time() - begin
+        progress.update(1)
+    width = (upper - lower) / bins
+    per_batch = counts / (samples * width)
+    edges = np.linspace(lower, upper, bins + 1)
+    data = {
+        "density": ("x", per_batch.mean(axis=0), "1/length", "pin centres per unit length"),
+        "density_sem": (
+            "x",
+            per_batch.std(axis=0, ddof=1) / math.sqrt(batches),
+            "1/length",
+            "standard error of the density (batch means)",
+        ),
+        "counts": (("batch", "x"), counts, "1", "pin centres counted per bin and batch"),
+        "started": ("batch", started, "1", "configurations started (naive-pin: incl. rejected)"),
+        "cpu_seconds": ("batch", cpu, "s", "CPU time per batch"),
+        "bin_edges": ("edge", edges, "length", "bin edges"),
+    }
+    coords = {
+        "x": ("x", 0.5 * (edges[1:] + edges[:-1]), "length", "pin centre (bin middle)"),
+        "batch": ("batch", np.arange(batches), "1", "independent batch"),
+        "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
+    }
+    parameters = {
+        "method": method,
+        "n_pins": n_pins,
+        "length": float(length),
+        "sigma": float(sigma),
+        "samples": samples,
+        "batches": batches,
+        "bins": bins,
+    }
+    return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
+
+
+def sample_ring(
+    *,
+    n_pins: int,
+    length: float,
+    sigma: float,
+    step: float,
+    sweeps: int,
+    burn_in: int,
+    chains: int,
+    bins: int,
+    seed: int,
+) -> xr.Dataset:
+    """Pair density on a ring from ``chains`` independent Markov chains.
+
+    Each chain starts from equally spaced pins, runs ``burn_in`` sweeps (N attempted moves
+    of a uniform step in [−δ, δ], δ = ``step``), then ``sweeps`` sweeps after each of which
+    it records every forward pair distance. Returns ``pair_density`` (other pins per unit
+    length at distance r from a pin, integrating to N − 1; the mean of the chains), its
+    standard error ``pair_density_sem`` and the chains' ``acceptance``.
+    """
+    check_pins(n_pins, length, sigma)
+    if n_pins < 2:
+        raise ValueError("a pair density needs n_pins >= 2")
+    if not (math.isfinite(step) and 0 < step <= length / 2):
+        raise ValueError(f"step must be in (0, length/2], got {step!r}")
+    sweeps = _positive_int("sweeps", sweeps)
+    burn_in = _positive_int("burn_in", burn_in, 0)
+    chains = _positive_int("chains", chains, 2)
+    bins = _positive_int("bins", bins)
+    states = stream_states(seed, chains)
+    counts = np.zeros((chains, bins), dtype=np.int64)
+    acceptance = np.zeros(chains)
+    cpu = np.zeros(chains)
+    progress = Progress(chains, label=f"ring N={n_pins} L={length:g}", unit="chains")
+    for c in range(chains):
+        positions = np.arange(n_pins) * (length / n_pins)
+        begin = time.process_time()
+        accepted = kernels.ring_markov(
+            n_pins, length, sigma, step, sweeps, burn_in, states[c], positions, counts[c]
+        )
+        cpu[c] = time.process_time() - begin
+        acceptance[c] = accepted / ((sweeps + burn_in) * n_pins)
+        progress.update(1)
+    width = length / bins
+    per_chain = counts / (sweeps * n_pins * width)
+    edges = np.linspace(0.0, length, bins + 1)
+    data = {
+        "pair_density": (
+            "r",
+            per_chain.mean(axis=0),
+            "1/length",
+            "other pins per unit length at forward distance r from a pin",
+        ),
+        "pair_density_sem": (
+            "r",
+            per_chain.std(axis=0, ddof=1) / math.sqrt(chains),
+            "1/length",
+            "standard error of the pair density (independent chains)",
+        ),
+        "acceptance": ("chain", acceptance, "1", "accepted fraction of the moves"),
+        "cpu_seconds": ("chain", cpu, "s", "CPU time per chain"),
+        "bin_edges": ("edge", edges, "length", "bin edges"),
+    }
+    coords = {
+        "r": ("r", 0.5 * (edges[1:] + edges[:-1]), "length", "forward distance (bin middle)"),
+        "chain": ("chain", np.arange(chains), "1", "independent chain"),
+        "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
+    }
+    parameters = {
+        "method": "markov",
+        "n_pins": n_pins,
+        "length": float(length),
+        "sigma": float(sigma),
+        "step": float(step),
+        "sweeps": sweeps,
+        "burn_in": burn_in,
+        "chains": chains,
+        "bins": bins,
+    }
+    return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
+
+
+def pin_snapshots(*, n_pins: int, length: float, sigma: float, count: int, seed: int) -> xr.Dataset:
+    """``count`` independent direct-pin configurations (pin centres, increasing)."""
+    check_pins(n_pins, length, sigma)
+    count = _positive_int("count", count)
+    state = stream_states(seed, 1)[0]
+    positions = np.zeros((count, n_pins))
+    for s in range(count):
+        kernels.direct_pin_configuration(n_pins, length, sigma, state, positions[s])
+    data = {"position": (("snapshot", "pin"), positions, "length", "pin centre")}
+    coords = {
+        "snapshot": ("snapshot", np.arange(count), "1", "configuration"),
+        "pin": ("pin", np.arange(n_pins), "1", "pin, from the left"),
+    }
+    parameters = {"n_pins": n_pins, "length": float(length), "sigma": float(sigma)}
+    return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
+
+
+def warmup() -> None:
+    """Compile every kernel with the argument types production uses (numba cache=True)."""
+    sample_line("direct", n_pins=2, length=4.0, sigma=0.5, samples=2, batches=2, bins=4, seed=0)
+    sample_line("naive", n_pins=2, length=4.0, sigma=0.5, samples=2, batches=2, bins=4, seed=0)
+    sample_ring(
+        n_pins=2, length=4.0, sigma=0.5, step=0.5, sweeps=2, burn_in=1, chains=2, bins=4, seed=0
+    )
+    pin_snapshots(n_pins=2, length=4.0, sigma=0.5, count=1, seed=0)

@@ -1,0 +1,144 @@
+"""Numba kernels of the clothes-pin samplers of krauth2025 §4.4.1 (hard rods of width 2σ).
+
+Arrays only; every kernel takes one xoshiro256+ state row (``kinetic.rng``) and advances
+it in place, and adds its samples to a histogram (counts per bin of equal width on
+[lower, upper)), so nothing but the histogram and a few counts leaves the kernel.
+
+- ``naive_pin``: Alg. 4.6, N uniform centres in [σ, L − σ] drawn one after the other,
+  the whole configuration thrown away ("tabula rasa") as soon as a pin overlaps an
+  earlier one. Returns the numbers of configurations started (the fraction that gets
+  through is Z_{N,L} / (L − 2σ)^N exactly) and of uniforms drawn.
+- ``direct_pin``: Alg. 4.7, N uniform numbers in [0, L − 2Nσ], sorted, then the k-th
+  (k = 1..N) shifted by (2k − 1)σ.
+- ``ring_markov``: local Metropolis moves of N pins on a ring of circumference L (a pin
+  moves by a uniform step in [−δ, δ] unless it would overlap another); after each sweep of
+  N attempts, every forward pair distance (x_j − x_i) mod L, j ≠ i, goes to the histogram.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from kinetic.rng import uniform, xoshiro_uniform
+
+__all__ = ["direct_pin", "naive_pin", "ring_markov"]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _add(histogram, value, lower, scale):
+    """Count ``value`` in its bin (bins of width 1/scale from ``lower``); ignore values
+    outside the histogram."""
+    position = (value - lower) * scale
+    if 0.0 <= position < histogram.shape[0]:
+        histogram[int(position)] += 1
+
+
+@njit(cache=True, error_model="numpy")
+def naive_pin(n, length, sigma, samples, state, positions, histogram, lower, upper):
+    """Add ``samples`` accepted naive-pin configurations to ``histogram`` (pin centres);
+    ``positions`` is work space of length ≥ n. Returns the number of configurations
+    started (accepted ones included) and of uniforms drawn."""
+    scale = histogram.shape[0] / (upper - lower)
+    span = length - 2.0 * sigma
+    width2 = 2.0 * sigma
+    started = 0
+    draws = 0
+    for _ in range(samples):
+        while True:
+            started += 1
+            legal = True
+            for k in range(n):
+                draws += 1
+                x = sigma + span * uniform(state)
+                for m in range(k):
+                    if abs(x - positions[m]) < width2:
+                        legal = False
+                        break
+                if not legal:
+                    break
+                positions[k] = x
+            if legal:
+                break
+        for k in range(n):
+            _add(histogram, positions[k], lower, scale)
+    return started, draws
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _direct_configuration(n, free, sigma, positions, s0, s1, s2, s3):
+    """One direct-pin configuration in ``positions[:n]`` (increasing) from the generator
+    state held in scalars; returns the advanced state."""
+    for k in range(n):
+        u, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+        y = free * u
+        # insertion sort: n is small and the draws arrive one by one
+        m = k
+        while m > 0 and positions[m - 1] > y:
+            positions[m] = positions[m - 1]
+            m -= 1
+        positions[m] = y
+    for k in range(n):
+        positions[k] += (2 * k + 1) * sigma
+    return s0, s1, s2, s3
+
+
+@njit(cache=True, error_model="numpy")
+def direct_pin_configuration(n, length, sigma, state, positions):
+    """One direct-pin configuration in ``positions[:n]``, in increasing order."""
+    state[0], state[1], state[2], state[3] = _direct_configuration(
+        n, length - 2.0 * n * sigma, sigma, positions, state[0], state[1], state[2], state[3]
+    )
+
+
+@njit(cache=True, error_model="numpy")
+def direct_pin(n, length, sigma, samples, state, positions, histogram, lower, upper):
+    """Add ``samples`` direct-pin configurations to ``histogram`` (pin centres). The
+    generator state stays in registers through the loop (``kinetic.rng.xoshiro_next``)."""
+    scale = histogram.shape[0] / (upper - lower)
+    free = length - 2.0 * n * sigma
+    s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
+    for _ in range(samples):
+        s0, s1, s2, s3 = _direct_configuration(n, free, sigma, positions, s0, s1, s2, s3)
+        for k in range(n):
+            _add(histogram, positions[k], lower, scale)
+    state[0], state[1], state[2], state[3] = s0, s1, s2, s3
+
+
+@njit(cache=True, error_model="numpy")
+def ring_markov(n, length, sigma, step, sweeps, burn_in, state, positions, histogram):
+    """Run ``burn_in`` then ``sweeps`` sweeps of N attempted moves from the legal
+    configuration ``positions[:n]`` (centres in [0, L), updated in place); after each of
+    the ``sweeps`` sweeps add the n(n − 1) forward pair distances to ``histogram`` (bins
+    on [0, L)). Returns the number of accepted moves."""
+    scale = histogram.shape[0] / length
+    width2 = 2.0 * sigma
+    accepted = 0
+    for sweep in range(burn_in + sweeps):
+        for _ in range(n):
+            i = int(uniform(state) * n)
+            x = positions[i] + step * (2.0 * uniform(state) - 1.0)
+            x -= length * np.floor(x / length)
+            if x >= length:  # round-off of the wrap
+                x = 0.0
+            legal = True
+            for j in range(n):
+                if j != i:
+                    d = abs(x - positions[j])
+                    if d > length - d:
+                        d = length - d
+                    if d < width2:
+                        legal = False
+                        break
+            if legal:
+                positions[i] = x
+                accepted += 1
+        if sweep >= burn_in:
+            for i in range(n):
+                for j in range(n):
+                    if j != i:
+                        d = positions[j] - positions[i]
+                        if d < 0.0:
+                            d += length
+                        _add(histogram, d, 0.0, scale)
+    return accepted

@@ -1,0 +1,143 @@
+"""Clothes-pin samplers (krauth2025 §4.4.1) against the exact densities of Eqs. (4.6, 4.7).
+
+Each test runs fixed seeds; the tolerances are the samples' own standard errors (from
+the spread of independent batches or chains): every bin within 4.5 standard errors
+(about 1 chance in 10^4 per bin at random), the mean squared z-score of all bins below
+the value that a 5 % tail of its distribution allows.
+"""
+
+import numpy as np
+import pytest
+
+from kinetic.samplers import kernels, naive_acceptance, pin_snapshots, sample_line, sample_ring
+from kinetic.theory import krauth2025 as theory
+
+
+def _z_scores(measured, error, exact):
+    """z-scores of the bins that hold samples (an empty bin has no error bar)."""
+    filled = error > 0
+    return (measured[filled] - exact[filled]) / error[filled]
+
+
+def _check(z, batches):
+    assert np.abs(z).max() < 4.5
+    # with B batches the z-scores follow Student's t with B − 1 degrees of freedom: mean
+    # square (B − 1)/(B − 3); bins are nearly independent on the line
+    assert np.mean(z**2) < 1.6 * (batches - 1) / (batches - 3)
+
+
+@pytest.mark.parametrize(
+    ("method", "length", "samples"),
+    [("direct", 20.0, 50_000), ("naive", 40.0, 500), ("direct", 40.0, 50_000)],
+)
+def test_line_density_matches_eq_4_7(method, length, samples):
+    n, sigma, batches = 15, 0.5, 16
+    data = sample_line(
+        method,
+        n_pins=n,
+        length=length,
+        sigma=sigma,
+        samples=samples,
+        batches=batches,
+        bins=78,
+        seed=11,
+    )
+    exact = theory.bin_average(
+        lambda x: n * theory.pin_density(x, n, length, sigma), data.bin_edges.values
+    )
+    _check(_z_scores(data.density.values, data.density_sem.values, exact), batches)
+    # every configuration puts its N pins inside [σ, L − σ]
+    assert int(data.counts.sum()) == n * samples * batches
+
+
+def test_naive_acceptance_is_the_ratio_of_partition_functions():
+    """Tabula-rasa rejection keeps a started configuration with probability
+    Z_{N,L}/(L − 2σ)^N (Eq. 4.6): the counted fraction agrees within 4 standard errors."""
+    n, length, sigma, samples, batches = 10, 25.0, 0.5, 2000, 16
+    data = sample_line(
+        "naive",
+        n_pins=n,
+        length=length,
+        sigma=sigma,
+        samples=samples,
+        batches=batches,
+        bins=10,
+        seed=5,
+    )
+    per_batch = samples / data.started.values
+    mean, error = per_batch.mean(), per_batch.std(ddof=1) / np.sqrt(batches)
+    expected = theory.partition_function(n, length, sigma) / (length - 2 * sigma) ** n
+    assert expected == pytest.approx(naive_acceptance(n, length, sigma))
+    assert abs(mean - expected) < 4 * error
+    assert error < 0.05 * expected  # the test has power
+
+
+def test_ring_pair_density_matches_the_mapping():
+    n, length, sigma, chains = 15, 20.0, 0.5, 16
+    data = sample_ring(
+        n_pins=n,
+        length=length,
+        sigma=sigma,
+        step=0.5,
+        sweeps=5000,
+        burn_in=500,
+        chains=chains,
+        bins=80,
+        seed=3,
+    )
+    exact = theory.bin_average(
+        lambda r: theory.ring_pair_density(r, n, length, sigma), data.bin_edges.values
+    )
+    z = _z_scores(data.pair_density.values, data.pair_density_sem.values, exact)
+    # one chain's fluctuations move neighbouring bins together: max |z| only, and the
+    # empty bins (r < 2σ, r > L − 2σ) are exactly empty
+    assert np.abs(z).max() < 4.5
+    empty = (data.r.values < 2 * sigma) | (data.r.values > length - 2 * sigma)
+    assert np.all(data.pair_density.values[empty] == 0)
+    assert 0.2 < float(data.acceptance.mean()) < 0.9
+
+
+def test_direct_pin_configurations_are_legal_and_reproducible():
+    a = pin_snapshots(n_pins=15, length=20.0, sigma=0.5, count=200, seed=9).position.values
+    b = pin_snapshots(n_pins=15, length=20.0, sigma=0.5, count=200, seed=9).position.values
+    np.testing.assert_array_equal(a, b)
+    assert np.all(np.diff(a, axis=1) >= 1.0 - 1e-12)  # no overlap (width 2σ = 1)
+    assert a.min() >= 0.5 and a.max() <= 19.5
+
+
+def test_markov_moves_never_create_an_overlap():
+    n, length, sigma = 12, 14.0, 0.5
+    positions = np.arange(n) * (length / n)
+    state = np.array([1, 2, 3, 4], dtype=np.uint64)
+    histogram = np.zeros(10, dtype=np.int64)
+    kernels.ring_markov(n, length, sigma, 0.7, 2000, 0, state, positions, histogram)
+    ordered = np.sort(positions)
+    gaps = np.diff(np.append(ordered, ordered[0] + length))
+    assert gaps.min() >= 2 * sigma - 1e-12
+    assert np.all((positions >= 0) & (positions < length))
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"method": "naive", "length": 20.0, "samples": 10_000}, "naive-pin would start"),
+        ({"method": "direct", "length": 7.0}, "cannot hold"),
+        ({"method": "direct", "batches": 1}, "batches"),
+        ({"method": "direct", "samples": -5}, "samples"),
+        ({"method": "rejection"}, "method"),
+    ],
+)
+def test_bad_line_arguments_fail_before_sampling(kwargs, message):
+    arguments = {
+        "n_pins": 15,
+        "length": 20.0,
+        "sigma": 0.5,
+        "samples": 10,
+        "batches": 4,
+        "bins": 10,
+        "seed": 1,
+    }
+    arguments.update(kwargs)
+    method = arguments.pop("method")
+    with pytest.raises(ValueError, match=message):
+        sample_line(method, **arguments)

@@ -1,0 +1,214 @@
+# krauth2025 §4.4.1, random clothes-pins: Fig 4.10 (direct-pin configurations), Fig 4.11
+# (pin density on a washing line: naive-pin and direct-pin against Eq. 4.7), Fig 4.13 (pins
+# on a ring: pair density from Markov chains against the ring-to-line mapping) and the
+# table of wall and bulk densities. Each sampling job writes one netCDF file holding its
+# histograms, their standard errors and the exact densities; figures only read them.
+
+provide("krauth2025/fig04_10", *figure_files("krauth2025", "fig04_10"))
+provide("krauth2025/fig04_11", *figure_files("krauth2025", "fig04_11"))
+provide("krauth2025/fig04_13", *figure_files("krauth2025", "fig04_13"))
+provide("krauth2025/pins_table", *table_files("krauth2025", "pins_table"))
+
+# the line samples of Fig 4.11 and the table: (method, length key of config pins)
+KRAUTH2025_LINE_RUNS = [("direct", "length"), ("naive", "naive_length"), ("direct", "naive_length")]
+
+
+def krauth2025_pins():
+    return config["krauth2025"]["pins"]
+
+
+def krauth2025_line_files():
+    pins = krauth2025_pins()
+    return [
+        f"results/krauth2025/pins/{method}_L{pins[key]:g}.nc"
+        for method, key in KRAUTH2025_LINE_RUNS
+    ]
+
+
+def krauth2025_line_job(wildcards):
+    """Keyword arguments of kinetic.samplers.sample_line for one line file."""
+    pins = krauth2025_pins()
+    length = float(wildcards.length)
+    known = {(m, float(pins[key])) for m, key in KRAUTH2025_LINE_RUNS}
+    if (wildcards.method, length) not in known:
+        raise ValueError(
+            f"no krauth2025 pin run {wildcards.method} at length {length}: the config asks "
+            f"for {sorted(known)}"
+        )
+    return {
+        "method": wildcards.method,
+        "n_pins": pins["n_pins"],
+        "length": length,
+        "sigma": pins["sigma"],
+        "samples": pins[f"{wildcards.method}_samples"],
+        "batches": pins["batches"],
+        "bins": max(1, round((length - 2 * pins["sigma"]) / pins["bin_width"])),
+        "seed": job_seed(f"krauth2025/pins/{wildcards.method}_L{wildcards.length}"),
+    }
+
+
+def krauth2025_ring_job(wildcards):
+    ring = config["krauth2025"]["ring"]
+    keys = ("n_pins", "length", "sigma", "step", "sweeps", "burn_in", "chains")
+    job = {key: ring[key] for key in keys}
+    job["bins"] = max(1, round(ring["length"] / ring["bin_width"]))
+    job["seed"] = job_seed("krauth2025/pins/ring")
+    return job
+
+
+def krauth2025_snapshots_job(wildcards):
+    pins = krauth2025_pins()
+    return {
+        "n_pins": pins["n_pins"],
+        "length": pins["length"],
+        "sigma": pins["sigma"],
+        "count": pins["snapshots"],
+        "seed": job_seed("krauth2025/pins/snapshots"),
+    }
+
+
+def krauth2025_check_config():
+    """Stop before any job on values the schema cannot judge alone: lines and rings too
+    short for their pins, or a naive-pin run that would take forever."""
+    from kinetic.samplers import MAX_NAIVE_STARTS, naive_acceptance
+    from kinetic.theory.krauth2025 import check_pins
+
+    pins, ring = krauth2025_pins(), config["krauth2025"]["ring"]
+    try:
+        for key in ("length", "naive_length"):
+            check_pins(pins["n_pins"], pins[key], pins["sigma"])
+        check_pins(ring["n_pins"], ring["length"], ring["sigma"])
+    except ValueError as error:
+        raise WorkflowError(f"config krauth2025: {error}") from None
+    if ring["step"] > ring["length"] / 2:
+        raise WorkflowError(
+            f"config krauth2025.ring.step = {ring['step']} exceeds half the ring length"
+        )
+    starts = (
+        pins["naive_samples"]
+        * pins["batches"]
+        / naive_acceptance(pins["n_pins"], pins["naive_length"], pins["sigma"])
+    )
+    if starts > MAX_NAIVE_STARTS:
+        raise WorkflowError(
+            f"config krauth2025.pins: naive-pin on naive_length = {pins['naive_length']} "
+            f"would start about {starts:.2g} configurations; lengthen the line or lower "
+            f"naive_samples"
+        )
+
+
+krauth2025_check_config()
+KRAUTH2025_SOURCES = engine_sources("samplers") + package_files("theory/krauth2025")
+
+
+rule krauth2025_line:
+    input:
+        sources=KRAUTH2025_SOURCES,
+        warm=numba_warm("samplers"),
+    output:
+        "results/krauth2025/pins/{method}_L{length}.nc",
+    log:
+        "logs/krauth2025/pins/{method}_L{length}.log",
+    benchmark:
+        "logs/benchmarks/krauth2025/pins/{method}_L{length}.tsv"
+    params:
+        job=krauth2025_line_job,
+    wildcard_constraints:
+        method="naive|direct",
+        length="[0-9.]+",
+    script:
+        "../scripts/krauth2025_line.py"
+
+
+rule krauth2025_ring:
+    input:
+        sources=KRAUTH2025_SOURCES,
+        warm=numba_warm("samplers"),
+    output:
+        "results/krauth2025/pins/ring.nc",
+    log:
+        "logs/krauth2025/pins/ring.log",
+    benchmark:
+        "logs/benchmarks/krauth2025/pins/ring.tsv"
+    params:
+        job=krauth2025_ring_job,
+    script:
+        "../scripts/krauth2025_ring.py"
+
+
+rule krauth2025_snapshots:
+    input:
+        sources=KRAUTH2025_SOURCES,
+        warm=numba_warm("samplers"),
+    output:
+        "results/krauth2025/pins/snapshots.nc",
+    log:
+        "logs/krauth2025/pins/snapshots.log",
+    params:
+        job=krauth2025_snapshots_job,
+    script:
+        "../scripts/krauth2025_snapshots.py"
+
+
+rule krauth2025_fig04_10:
+    input:
+        snapshots="results/krauth2025/pins/snapshots.nc",
+        script=figure_script("krauth2025_fig04_10"),
+    output:
+        pdf="results/krauth2025/fig04_10.pdf",
+        png=report(
+            "results/krauth2025/fig04_10.png",
+            caption="../report/krauth2025_fig04_10.rst",
+            category="krauth2025",
+        ),
+    log:
+        "logs/krauth2025/fig04_10.log",
+    script:
+        "../scripts/krauth2025_fig04_10.py"
+
+
+rule krauth2025_fig04_11:
+    input:
+        lines=krauth2025_line_files(),
+        script=figure_script("krauth2025_fig04_11"),
+    output:
+        pdf="results/krauth2025/fig04_11.pdf",
+        png=report(
+            "results/krauth2025/fig04_11.png",
+            caption="../report/krauth2025_fig04_11.rst",
+            category="krauth2025",
+        ),
+    log:
+        "logs/krauth2025/fig04_11.log",
+    script:
+        "../scripts/krauth2025_fig04_11.py"
+
+
+rule krauth2025_fig04_13:
+    input:
+        ring="results/krauth2025/pins/ring.nc",
+        script=figure_script("krauth2025_fig04_13"),
+    output:
+        pdf="results/krauth2025/fig04_13.pdf",
+        png=report(
+            "results/krauth2025/fig04_13.png",
+            caption="../report/krauth2025_fig04_13.rst",
+            category="krauth2025",
+        ),
+    log:
+        "logs/krauth2025/fig04_13.log",
+    script:
+        "../scripts/krauth2025_fig04_13.py"
+
+
+rule krauth2025_pins_table:
+    input:
+        lines=krauth2025_line_files(),
+        script=figure_script("krauth2025_pins_table"),
+    output:
+        csv="results/krauth2025/pins_table.csv",
+        md="results/krauth2025/pins_table.md",
+    log:
+        "logs/krauth2025/pins_table.log",
+    script:
+        "../scripts/krauth2025_pins_table.py"

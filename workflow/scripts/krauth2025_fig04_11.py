@@ -1,0 +1,37 @@
+"""krauth2025 Fig. 4.11: density of clothes-pins along the washing line, sampled by
+direct-pin (Alg. 4.7) and naive-pin (Alg. 4.6) with standard errors, against Eq. (4.7).
+Left: the line of the figure (wall density about four times the bulk), where naive-pin
+would need ~1e9 tries per configuration; right: a longer line where both samplers run."""
+
+from kinetic import io, plotting
+from kinetic.workflow_support import start
+
+start(snakemake)
+runs = [io.read_dataset(path) for path in snakemake.input.lines]
+lengths = sorted({float(run.attrs["length"]) for run in runs})
+style = {"direct": ("o", "direct-pin"), "naive": ("s", "naive-pin")}
+
+fig, axes = plotting.figure(1, len(lengths), figsize=(6.4, 2.6), sharey=False)
+axes = list(axes) if len(lengths) > 1 else [axes]
+for ax, length in zip(axes, lengths, strict=True):
+    here = [run for run in runs if float(run.attrs["length"]) == length]
+    first = here[0]
+    ax.plot(first["x_curve"], first["density_curve"], "-", color="k", lw=0.8, label="Eq. (4.7)")
+    for offset, run in enumerate(here):
+        marker, label = style[run.attrs["method"]]
+        every = max(1, run.sizes["x"] // 60)
+        shown = slice(offset * every // 2, None, every)
+        plotting.errorbar(
+            ax,
+            run["x"].values[shown],
+            run["density"].values[shown],
+            run["density_sem"].values[shown],
+            marker=marker,
+            ms=2.5,
+            label=label,
+        )
+    ax.set_xlabel("$x$")
+    ax.set_ylabel(r"density of pins $N\pi(x)$")
+    ax.set_title(f"$N = {first.attrs['n_pins']}$, $L = {length:g}$", fontsize=8)
+    ax.legend(fontsize=6, loc="upper center")
+plotting.save(fig, snakemake.output.pdf)

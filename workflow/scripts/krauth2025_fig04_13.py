@@ -1,0 +1,37 @@
+"""krauth2025 Fig. 4.13: pins on a ring. Density of the other pins at forward distance r
+from a pin, from independent Markov chains (local moves; standard errors across chains),
+against the mapping of a pair on the ring onto one pin on a washing line of length
+L − 2σ (Eq. 4.7): the pins attract each other as the posts attract them."""
+
+from kinetic import io, plotting
+from kinetic.workflow_support import start
+
+start(snakemake)
+data = io.read_dataset(snakemake.input.ring)
+attrs = data.attrs
+fig, ax = plotting.figure()
+ax.plot(
+    data["r_curve"],
+    data["pair_density_curve"],
+    "-",
+    color="k",
+    lw=0.8,
+    label=r"$(N-1)\,\pi_{N-1,\,L-2\sigma}(r-\sigma)$",
+)
+every = max(1, data.sizes["r"] // 60)
+plotting.errorbar(
+    ax,
+    data["r"].values[::every],
+    data["pair_density"].values[::every],
+    data["pair_density_sem"].values[::every],
+    ms=2.5,
+    label=f"Markov chains ({int(attrs['chains'])})",
+)
+ax.set_xlabel("forward distance $r$ on the ring")
+ax.set_ylabel("density of the other pins")
+ax.set_title(
+    f"$N = {int(attrs['n_pins'])}$ pins on a ring of length $L = {float(attrs['length']):g}$",
+    fontsize=8,
+)
+ax.legend(fontsize=6, loc="upper center")
+plotting.save(fig, snakemake.output.pdf)
