@@ -212,3 +212,204 @@ rule krauth2025_pins_table:
         "logs/krauth2025/pins_table.log",
     script:
         "../scripts/krauth2025_pins_table.py"
+
+
+# ------------------------------------------------------------------ hard disks in a box
+# Fig 4.1 (event-disks snapshots), the chaos of section 4.1.2, Figs 4.5/4.6 (y-density by
+# Eq. 4.3 and from snapshots, against direct-disks and markov-disks: the equal-probability
+# check) and the pressure table of section 4.4.3 (Eqs. 4.9, 4.10, 4.13, 4.14).
+
+provide("krauth2025/fig04_01", *figure_files("krauth2025", "fig04_01"))
+provide("krauth2025/chaos", *figure_files("krauth2025", "chaos"))
+provide("krauth2025/fig04_06", *figure_files("krauth2025", "fig04_06"))
+provide("krauth2025/pressure_table", *table_files("krauth2025", "pressure_table"))
+
+
+def krauth2025_disks():
+    return config["krauth2025"]["disks"]
+
+
+def krauth2025_disk_bins():
+    disks = krauth2025_disks()
+    return max(1, round((disks["box"][1] - 2 * disks["sigma"]) / disks["bin_width"]))
+
+
+def krauth2025_md_job(wildcards):
+    disks = krauth2025_disks()
+    return {
+        "n_disks": disks["n_disks"],
+        "sigma": disks["sigma"],
+        "box": disks["box"],
+        "duration": disks["md_duration"],
+        "snapshot_interval": disks["snapshot_interval"],
+        "bins": krauth2025_disk_bins(),
+        "realizations": disks["realizations"],
+        "seed": job_seed("krauth2025/disks/md"),
+    }
+
+
+def krauth2025_sampler_job(wildcards):
+    disks = krauth2025_disks()
+    markov = wildcards.method == "markov"
+    return {
+        "method": wildcards.method,
+        "n_disks": disks["n_disks"],
+        "sigma": disks["sigma"],
+        "box": disks["box"],
+        "samples": disks["markov_sweeps" if markov else "direct_samples"],
+        "batches": disks["batches"],
+        "bins": krauth2025_disk_bins(),
+        "step": disks["markov_step"],
+        "burn_in": disks["burn_in"],
+        "seed": job_seed(f"krauth2025/disks/{wildcards.method}"),
+    }
+
+
+def krauth2025_chaos_job(wildcards):
+    disks = krauth2025_disks()
+    return {
+        "n_disks": disks["n_disks"],
+        "sigma": disks["sigma"],
+        "box": disks["box"],
+        "events": max(disks["chaos_events"], disks["snapshot_events"]),
+        "seed": job_seed("krauth2025/disks/chaos"),
+    }
+
+
+def krauth2025_check_disks():
+    """Stop before any job on a box that cannot hold the disks."""
+    from kinetic.samplers import disk_configuration
+    from kinetic.rng import stream_states
+
+    disks = krauth2025_disks()
+    try:
+        disk_configuration(
+            disks["n_disks"],
+            disks["sigma"],
+            disks["box"],
+            state=stream_states(0, 1)[0],
+            max_starts=10**6,
+        )
+    except ValueError as error:
+        raise WorkflowError(f"config krauth2025.disks: {error}") from None
+
+
+krauth2025_check_disks()
+KRAUTH2025_DISK_SOURCES = engine_sources("edmd") + package_files("samplers")
+
+
+rule krauth2025_md:
+    input:
+        sources=KRAUTH2025_DISK_SOURCES,
+        warm=[numba_warm("edmd"), numba_warm("samplers")],
+    output:
+        "results/krauth2025/disks/md.nc",
+    log:
+        "logs/krauth2025/disks/md.log",
+    benchmark:
+        "logs/benchmarks/krauth2025/disks/md.tsv"
+    params:
+        job=krauth2025_md_job,
+    script:
+        "../scripts/krauth2025_md.py"
+
+
+rule krauth2025_disk_sampler:
+    input:
+        sources=engine_sources("samplers"),
+        warm=numba_warm("samplers"),
+    output:
+        "results/krauth2025/disks/{method}.nc",
+    log:
+        "logs/krauth2025/disks/{method}.log",
+    benchmark:
+        "logs/benchmarks/krauth2025/disks/{method}.tsv"
+    params:
+        job=krauth2025_sampler_job,
+    wildcard_constraints:
+        method="direct|markov",
+    script:
+        "../scripts/krauth2025_disk_sampler.py"
+
+
+rule krauth2025_chaos_run:
+    input:
+        sources=KRAUTH2025_DISK_SOURCES,
+        warm=[numba_warm("edmd"), numba_warm("samplers")],
+    output:
+        "results/krauth2025/disks/chaos.nc",
+    log:
+        "logs/krauth2025/disks/chaos.log",
+    params:
+        job=krauth2025_chaos_job,
+    script:
+        "../scripts/krauth2025_chaos_run.py"
+
+
+rule krauth2025_fig04_01:
+    input:
+        chaos="results/krauth2025/disks/chaos.nc",
+        script=figure_script("krauth2025_fig04_01"),
+    output:
+        pdf="results/krauth2025/fig04_01.pdf",
+        png=report(
+            "results/krauth2025/fig04_01.png",
+            caption="../report/krauth2025_fig04_01.rst",
+            category="krauth2025",
+        ),
+    log:
+        "logs/krauth2025/fig04_01.log",
+    params:
+        panels=lambda wildcards: krauth2025_disks()["snapshot_events"],
+    script:
+        "../scripts/krauth2025_fig04_01.py"
+
+
+rule krauth2025_chaos:
+    input:
+        chaos="results/krauth2025/disks/chaos.nc",
+        script=figure_script("krauth2025_chaos"),
+    output:
+        pdf="results/krauth2025/chaos.pdf",
+        png=report(
+            "results/krauth2025/chaos.png",
+            caption="../report/krauth2025_chaos.rst",
+            category="krauth2025",
+        ),
+    log:
+        "logs/krauth2025/chaos.log",
+    script:
+        "../scripts/krauth2025_chaos.py"
+
+
+rule krauth2025_fig04_06:
+    input:
+        md="results/krauth2025/disks/md.nc",
+        direct="results/krauth2025/disks/direct.nc",
+        markov="results/krauth2025/disks/markov.nc",
+        script=figure_script("krauth2025_fig04_06"),
+    output:
+        pdf="results/krauth2025/fig04_06.pdf",
+        png=report(
+            "results/krauth2025/fig04_06.png",
+            caption="../report/krauth2025_fig04_06.rst",
+            category="krauth2025",
+        ),
+    log:
+        "logs/krauth2025/fig04_06.log",
+    script:
+        "../scripts/krauth2025_fig04_06.py"
+
+
+rule krauth2025_pressure_table:
+    input:
+        md="results/krauth2025/disks/md.nc",
+        direct="results/krauth2025/disks/direct.nc",
+        script=figure_script("krauth2025_pressure_table"),
+    output:
+        csv="results/krauth2025/pressure_table.csv",
+        md="results/krauth2025/pressure_table.md",
+    log:
+        "logs/krauth2025/pressure_table.log",
+    script:
+        "../scripts/krauth2025_pressure_table.py"

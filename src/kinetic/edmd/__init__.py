@@ -8,6 +8,8 @@
 - ``warmup``: compile (or load from numba's cache) every kernel with production types.
 """
 
+import numpy as np
+
 from kinetic.edmd.observers import Observers
 from kinetic.edmd.simulate import simulate
 from kinetic.edmd.system import HardSphereSystem, InelasticCollapseError
@@ -44,3 +46,41 @@ def warmup() -> None:
         system.run(until=system.time + 1.0)
         system.min_distance()
         system.kinetic_temperature()
+    _warm_naive()
+
+
+def _warm_naive() -> None:
+    """Compile event-disks (``kinetic.edmd.naive``) for float64 and float32 arrays, without
+    the direct-disks start of ``kinetic.edmd.disks`` (compiled by ``kinetic.samplers``)."""
+    from kinetic.edmd import naive
+
+    for dtype in (np.float64, np.float32):
+        x = np.array([[0.3, 0.3], [0.7, 0.7]], dtype=dtype)
+        v = np.array([[1.0, 0.5], [-0.5, -1.0]], dtype=dtype)
+        pairs = np.zeros((3, 2), dtype=np.int64)
+        naive.trajectory(
+            x,
+            v,
+            dtype(0.1),
+            np.ones(2, dtype=dtype),
+            3,
+            np.zeros(3, dtype=dtype),
+            pairs,
+            np.zeros((3, 2, 2), dtype=dtype),
+        )
+    x = np.array([[0.3, 0.3], [0.7, 0.7]])
+    v = np.array([[1.0, 0.5], [-0.5, -1.0]])
+    naive.observe(
+        x,
+        v,
+        0.1,
+        np.ones(2),
+        2.0,
+        0.5,
+        np.zeros(4),
+        np.zeros(4),
+        0.1,
+        0.9,
+        np.zeros((4, 3)),
+        np.zeros(3),
+    )

@@ -9,7 +9,10 @@ error of the batch means:
   by naive-pin (Alg. 4.6) or direct-pin (Alg. 4.7);
 - ``sample_ring``: density of the other pins at forward distance r from a pin, N pins on
   a ring of circumference L, by local Markov-chain moves (independent chains);
-- ``pin_snapshots``: a few direct-pin configurations (krauth2025 Fig. 4.10).
+- ``pin_snapshots``: a few direct-pin configurations (krauth2025 Fig. 4.10);
+- ``sample_disks``: projected density η(y) of N hard disks in a box with walls (§4.3),
+  by direct-disks (Alg. 4.4) or markov-disks (Alg. 4.5);
+- ``disk_configuration``: one direct-disks configuration (the start of an MD run).
 
 Lengths are in units of the pin width 2σ if σ = 1/2 (the configs' choice).
 """
@@ -30,8 +33,10 @@ from kinetic.theory.krauth2025 import check_pins
 
 __all__ = [
     "MAX_NAIVE_STARTS",
+    "disk_configuration",
     "naive_acceptance",
     "pin_snapshots",
+    "sample_disks",
     "sample_line",
     "sample_ring",
     "warmup",
@@ -234,6 +239,138 @@ def pin_snapshots(*, n_pins: int, length: float, sigma: float, count: int, seed:
     return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
 
 
+def _check_disks(n_disks: int, sigma: float, box) -> tuple[float, float]:
+    n_disks = _positive_int("n_disks", n_disks)
+    if not (math.isfinite(sigma) and sigma > 0):
+        raise ValueError(f"sigma (disk radius) must be finite and > 0, got {sigma!r}")
+    box_x, box_y = (float(side) for side in box)
+    if not (math.isfinite(box_x) and math.isfinite(box_y) and min(box_x, box_y) > 2 * sigma):
+        raise ValueError(f"box {box!r} cannot hold a disk of radius {sigma}")
+    if n_disks * math.pi * sigma**2 > 0.9 * box_x * box_y:
+        raise ValueError(
+            f"{n_disks} disks of radius {sigma} cover more than 90 % of the box {box!r}"
+        )
+    return box_x, box_y
+
+
+def disk_configuration(
+    n_disks: int, sigma: float, box=(1.0, 1.0), *, state: np.ndarray, max_starts: int = 10**8
+) -> np.ndarray:
+    """(N, 2) centres of one direct-disks configuration drawn with the stream ``state``;
+    ``ValueError`` if ``max_starts`` tries do not produce one (too dense for Alg. 4.4)."""
+    box_x, box_y = _check_disks(n_disks, sigma, box)
+    positions = np.zeros((n_disks, 2))
+    if (
+        kernels.direct_disks_configuration(
+            n_disks, sigma, box_x, box_y, state, positions, max_starts
+        )
+        < 0
+    ):
+        raise ValueError(
+            f"direct-disks found no legal configuration of {n_disks} disks of radius "
+            f"{sigma} in {max_starts} tries: too dense for tabula-rasa sampling"
+        )
+    return positions
+
+
+def sample_disks(
+    method: str,
+    *,
+    n_disks: int,
+    sigma: float,
+    box=(1.0, 1.0),
+    samples: int,
+    batches: int,
+    bins: int,
+    seed: int,
+    step: float = 0.1,
+    burn_in: int = 1000,
+) -> xr.Dataset:
+    """Projected density η(y) (disk centres per unit length of y, summed over x) of N
+    disks of radius σ in a box with walls, on [σ, L_y − σ], from ``batches`` independent
+    batches: ``samples`` direct-disks configurations (``method`` 'direct') or ``samples``
+    recorded sweeps of one markov-disks chain (``method`` 'markov', moves uniform in
+    [−step, step]², after ``burn_in`` sweeps from a direct-disks start)."""
+    if method not in ("direct", "markov"):
+        raise ValueError(f"method must be 'direct' or 'markov', got {method!r}")
+    box_x, box_y = _check_disks(n_disks, sigma, box)
+    samples = _positive_int("samples", samples)
+    batches = _positive_int("batches", batches, 2)
+    bins = _positive_int("bins", bins)
+    burn_in = _positive_int("burn_in", burn_in, 0)
+    if method == "markov" and not (math.isfinite(step) and 0 < step <= min(box_x, box_y)):
+        raise ValueError(f"step must be in (0, box side], got {step!r}")
+    lower, upper = sigma, box_y - sigma
+    states = stream_states(seed, batches)
+    counts = np.zeros((batches, bins), dtype=np.int64)
+    started = np.zeros(batches, dtype=np.int64)
+    cpu = np.zeros(batches)
+    progress = Progress(batches, label=f"{method}-disks N={n_disks}", unit="batches")
+    for b in range(batches):
+        begin = time.process_time()
+        positions = disk_configuration(n_disks, sigma, (box_x, box_y), state=states[b])
+        if method == "direct":
+            started[b] = kernels.direct_disks(
+                n_disks, sigma, box_x, box_y, samples, states[b], positions, counts[b], lower, upper
+            )
+        else:
+            started[b] = kernels.markov_disks(
+                n_disks,
+                sigma,
+                box_x,
+                box_y,
+                step,
+                samples,
+                burn_in,
+                states[b],
+                positions,
+                counts[b],
+                lower,
+                upper,
+            )
+        cpu[b] = time.process_time() - begin
+        progress.update(1)
+    width = (upper - lower) / bins
+    per_batch = counts / (samples * width)
+    edges = np.linspace(lower, upper, bins + 1)
+    data = {
+        "density": ("y", per_batch.mean(axis=0), "1/length", "disk centres per unit length of y"),
+        "density_sem": (
+            "y",
+            per_batch.std(axis=0, ddof=1) / math.sqrt(batches),
+            "1/length",
+            "standard error of the density (independent batches)",
+        ),
+        "counts": (("batch", "y"), counts, "1", "disk centres counted per bin and batch"),
+        "work": (
+            "batch",
+            started,
+            "1",
+            "configurations started (direct) or moves accepted (markov)",
+        ),
+        "cpu_seconds": ("batch", cpu, "s", "CPU time per batch"),
+        "bin_edges": ("edge", edges, "length", "bin edges"),
+    }
+    coords = {
+        "y": ("y", 0.5 * (edges[1:] + edges[:-1]), "length", "disk centre y (bin middle)"),
+        "batch": ("batch", np.arange(batches), "1", "independent batch"),
+        "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
+    }
+    parameters = {
+        "method": method,
+        "n_disks": n_disks,
+        "sigma": float(sigma),
+        "box_x": box_x,
+        "box_y": box_y,
+        "samples": samples,
+        "batches": batches,
+        "bins": bins,
+        "step": float(step),
+        "burn_in": burn_in,
+    }
+    return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
+
+
 def warmup() -> None:
     """Compile every kernel with the argument types production uses (numba cache=True)."""
     sample_line("direct", n_pins=2, length=4.0, sigma=0.5, samples=2, batches=2, bins=4, seed=0)
@@ -242,3 +379,5 @@ def warmup() -> None:
         n_pins=2, length=4.0, sigma=0.5, step=0.5, sweeps=2, burn_in=1, chains=2, bins=4, seed=0
     )
     pin_snapshots(n_pins=2, length=4.0, sigma=0.5, count=1, seed=0)
+    for method in ("direct", "markov"):
+        sample_disks(method, n_disks=2, sigma=0.1, samples=2, batches=2, bins=4, seed=0)

@@ -142,3 +142,90 @@ def ring_markov(n, length, sigma, step, sweeps, burn_in, state, positions, histo
                             d += length
                         _add(histogram, d, 0.0, scale)
     return accepted
+
+
+# ----------------------------------------------------------------------------- hard disks
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _disk_fits(x, y, k, positions, sigma):
+    """True if a disk at (x, y) overlaps none of disks 0..k−1 of ``positions``."""
+    reach2 = 4.0 * sigma * sigma
+    for m in range(k):
+        dx = x - positions[m, 0]
+        dy = y - positions[m, 1]
+        if dx * dx + dy * dy < reach2:
+            return False
+    return True
+
+
+@njit(cache=True, error_model="numpy")
+def direct_disks_configuration(n, sigma, box_x, box_y, state, positions, max_starts):
+    """One direct-disks configuration (Alg. 4.4: uniform centres in [σ, L − σ]², the whole
+    configuration restarted at the first overlap) in ``positions[:n]``. Returns the number
+    of configurations started, or −1 if ``max_starts`` were not enough."""
+    for started in range(1, max_starts + 1):
+        legal = True
+        for k in range(n):
+            x = sigma + (box_x - 2.0 * sigma) * uniform(state)
+            y = sigma + (box_y - 2.0 * sigma) * uniform(state)
+            if not _disk_fits(x, y, k, positions, sigma):
+                legal = False
+                break
+            positions[k, 0] = x
+            positions[k, 1] = y
+        if legal:
+            return started
+    return -1
+
+
+@njit(cache=True, error_model="numpy")
+def direct_disks(n, sigma, box_x, box_y, samples, state, positions, histogram, lower, upper):
+    """Add the y of every disk of ``samples`` direct-disks configurations to
+    ``histogram``. Returns the configurations started (−1: one needed more than 10^9)."""
+    scale = histogram.shape[0] / (upper - lower)
+    started = 0
+    for _ in range(samples):
+        tries = direct_disks_configuration(n, sigma, box_x, box_y, state, positions, 10**9)
+        if tries < 0:
+            return -1
+        started += tries
+        for k in range(n):
+            _add(histogram, positions[k, 1], lower, scale)
+    return started
+
+
+@njit(cache=True, error_model="numpy")
+def markov_disks(
+    n, sigma, box_x, box_y, step, sweeps, burn_in, state, positions, histogram, lower, upper
+):
+    """Alg. 4.5 from the legal configuration ``positions[:n]`` (updated in place): a random
+    disk tries a displacement uniform in [−δ, δ]², refused if it leaves [σ, L − σ]² or
+    overlaps another disk. After each sweep (n attempts) past ``burn_in``, the y of every
+    disk goes to ``histogram``. Returns the accepted moves."""
+    scale = histogram.shape[0] / (upper - lower)
+    reach2 = 4.0 * sigma * sigma
+    accepted = 0
+    for sweep in range(burn_in + sweeps):
+        for _ in range(n):
+            k = int(uniform(state) * n)
+            x = positions[k, 0] + step * (2.0 * uniform(state) - 1.0)
+            y = positions[k, 1] + step * (2.0 * uniform(state) - 1.0)
+            if x < sigma or x > box_x - sigma or y < sigma or y > box_y - sigma:
+                continue
+            legal = True
+            for m in range(n):
+                if m != k:
+                    dx = x - positions[m, 0]
+                    dy = y - positions[m, 1]
+                    if dx * dx + dy * dy < reach2:
+                        legal = False
+                        break
+            if legal:
+                positions[k, 0] = x
+                positions[k, 1] = y
+                accepted += 1
+        if sweep >= burn_in:
+            for k in range(n):
+                _add(histogram, positions[k, 1], lower, scale)
+    return accepted

@@ -1,0 +1,216 @@
+"""Front of ``kinetic.edmd.naive`` (event-disks, krauth2025 §4.1 and §4.4.3): a few hard
+disks in a box with walls.
+
+- ``simulate_box``: independent realizations (direct-disks start, Gaussian velocities
+  scaled to Σ v² = 2N, i.e. k_B T = 1 with m = 1) run for a fixed time; returns the
+  y-density by Eq. (4.3) and from stroboscopic snapshots, the wall hits per face with
+  Σ|v⊥| and Σ 1/|v⊥|, and the pair collisions with Σ|Δv⊥| and Σ 1/|Δv⊥|, per realization;
+- ``chaos``: the same initial state run in float32 and float64 (and in float64 from a
+  state one unit in the last place away), event by event (§4.1.2);
+- ``initial_state``: the start of realization r of a seed.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import xarray as xr
+
+from kinetic import io
+from kinetic.edmd import naive
+from kinetic.progress import Progress
+from kinetic.rng import stream_states
+from kinetic.samplers import disk_configuration
+
+__all__ = ["chaos", "initial_state", "simulate_box"]
+
+
+def initial_state(n_disks: int, sigma: float, box, seed: int, realization: int):
+    """Positions (direct-disks, stream ``realization`` of ``seed``) and velocities
+    (Gaussian from the same seed, scaled to Σ v² = 2N) of one realization."""
+    state = stream_states(seed, realization + 1)[realization]
+    positions = disk_configuration(n_disks, sigma, box, state=state)
+    rng = np.random.default_rng([int(seed), int(realization)])
+    velocities = rng.standard_normal((n_disks, 2))
+    velocities *= math.sqrt(2 * n_disks / np.sum(velocities**2))
+    return positions, velocities
+
+
+def _positive(name: str, value: float) -> float:
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    return float(value)
+
+
+def simulate_box(
+    *,
+    n_disks: int,
+    sigma: float,
+    box=(1.0, 1.0),
+    duration: float,
+    snapshot_interval: float,
+    bins: int,
+    realizations: int,
+    seed: int,
+) -> xr.Dataset:
+    """Run ``realizations`` independent systems for ``duration`` each (see the module
+    docstring). Densities are disk centres per unit length of y on [σ, L_y − σ]."""
+    duration = _positive("duration", duration)
+    snapshot_interval = _positive("snapshot_interval", snapshot_interval)
+    if snapshot_interval > duration:
+        raise ValueError("snapshot_interval must not exceed duration")
+    if isinstance(bins, bool) or not isinstance(bins, int) or bins < 1:
+        raise ValueError(f"bins must be an integer >= 1, got {bins!r}")
+    if isinstance(realizations, bool) or not isinstance(realizations, int) or realizations < 2:
+        raise ValueError(f"realizations must be an integer >= 2, got {realizations!r}")
+    box = np.array([float(side) for side in box])
+    # validates N, σ and the box, and fails before any run if no start can be drawn
+    starts = [initial_state(n_disks, sigma, box, seed, r) for r in range(realizations)]
+    lower, upper = sigma, box[1] - sigma
+    occupancy = np.zeros((realizations, bins))
+    snapshots = np.zeros((realizations, bins))
+    walls = np.zeros((realizations, 4, 3))
+    pairs = np.zeros((realizations, 3))
+    events = np.zeros(realizations, dtype=np.int64)
+    radius2 = np.zeros(realizations)
+    cpu = np.zeros(realizations)
+    progress = Progress(realizations, label=f"event-disks N={n_disks}", unit="realizations")
+    for r, (x, v) in enumerate(starts):
+        radius2[r] = np.sum(v**2)
+        begin = time.process_time()
+        events[r] = naive.observe(
+            x,
+            v,
+            float(sigma),
+            box,
+            duration,
+            snapshot_interval,
+            occupancy[r],
+            snapshots[r],
+            lower,
+            upper,
+            walls[r],
+            pairs[r],
+        )
+        cpu[r] = time.process_time() - begin
+        progress.update(1)
+    width = (upper - lower) / bins
+    n_snapshots = math.floor(duration / snapshot_interval - 0.5) + 1
+    edges = np.linspace(lower, upper, bins + 1)
+    data = {
+        "density_trajectory": (
+            ("realization", "y"),
+            occupancy / (duration * width),
+            "1/length",
+            "y-density by Eq. 4.3 (time spent per bin over T and the bin width)",
+        ),
+        "density_snapshots": (
+            ("realization", "y"),
+            snapshots / (n_snapshots * width),
+            "1/length",
+            "y-density of stroboscopic snapshots",
+        ),
+        "wall_statistics": (
+            ("realization", "face", "statistic"),
+            walls,
+            "1",
+            "wall hits per face: count, sum |v_perp|, sum 1/|v_perp|",
+        ),
+        "pair_statistics": (
+            ("realization", "statistic"),
+            pairs,
+            "1",
+            "pair collisions: count, sum |dv_perp|, sum 1/|dv_perp|",
+        ),
+        "events": ("realization", events, "1", "events (pair and wall collisions)"),
+        "radius_squared": ("realization", radius2, "length^2/time^2", "R^2 = sum of v^2"),
+        "cpu_seconds": ("realization", cpu, "s", "CPU time per realization"),
+        "bin_edges": ("edge", edges, "length", "bin edges"),
+    }
+    coords = {
+        "y": ("y", 0.5 * (edges[1:] + edges[:-1]), "length", "disk centre y (bin middle)"),
+        "realization": ("realization", np.arange(realizations), "1", "independent run"),
+        "face": ("face", ["x=0", "x=Lx", "y=0", "y=Ly"], "1", "wall"),
+        "statistic": ("statistic", ["count", "sum", "sum_inverse"], "1", "accumulated sum"),
+        "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
+    }
+    parameters = {
+        "n_disks": int(n_disks),
+        "sigma": float(sigma),
+        "box_x": float(box[0]),
+        "box_y": float(box[1]),
+        "duration": duration,
+        "snapshot_interval": snapshot_interval,
+        "bins": bins,
+        "realizations": realizations,
+        "snapshot_count": n_snapshots,
+    }
+    return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
+
+
+def chaos(*, n_disks: int, sigma: float, box=(1.0, 1.0), events: int, seed: int) -> xr.Dataset:
+    """One initial state (realization 0 of ``seed``, rounded to float32 so that every run
+    starts from exactly the same numbers) run for ``events`` events in float64, in
+    float32, and in float64 from positions moved by one unit in the last place."""
+    if isinstance(events, bool) or not isinstance(events, int) or events < 1:
+        raise ValueError(f"events must be an integer >= 1, got {events!r}")
+    x, v = initial_state(n_disks, sigma, box, seed, 0)
+    x = x.astype(np.float32).astype(np.float64)
+    v = v.astype(np.float32).astype(np.float64)
+    runs = {
+        "float64": (x.copy(), v.copy(), np.float64),
+        "float32": (x.astype(np.float32), v.astype(np.float32), np.float32),
+        "float64_ulp": (np.nextafter(x, np.inf), v.copy(), np.float64),
+    }
+    times = np.zeros((len(runs), events))
+    pairs = np.zeros((len(runs), events, 2), dtype=np.int64)
+    positions = np.zeros((len(runs), events, n_disks, 2))
+    for index, (xr_, vr, dtype) in enumerate(runs.values()):
+        event_time = np.zeros(events, dtype=dtype)
+        event_positions = np.zeros((events, n_disks, 2), dtype=dtype)
+        naive.trajectory(
+            xr_,
+            vr,
+            dtype(sigma),
+            np.asarray(box, dtype=dtype),
+            events,
+            event_time,
+            pairs[index],
+            event_positions,
+        )
+        times[index] = event_time
+        positions[index] = event_positions
+    data = {
+        "event_time": (("precision", "event"), times, "time", "time of the event"),
+        "event_pair": (
+            ("precision", "event", "member"),
+            pairs,
+            "1",
+            "disks of the event (second member -1 - face for a wall)",
+        ),
+        "positions": (
+            ("precision", "event", "disk", "axis"),
+            positions,
+            "length",
+            "positions right after the event",
+        ),
+        "initial_positions": (("disk", "axis"), x, "length", "common initial positions"),
+        "initial_velocities": (
+            ("disk", "axis"),
+            v,
+            "length/time",
+            "common initial velocities",
+        ),
+    }
+    coords = {
+        "precision": ("precision", list(runs), "1", "arithmetic of the run"),
+        "event": ("event", np.arange(1, events + 1), "1", "event number"),
+        "member": ("member", [0, 1], "1", "first or second member"),
+        "disk": ("disk", np.arange(n_disks), "1", "disk"),
+        "axis": ("axis", ["x", "y"], "1", "coordinate"),
+    }
+    parameters = {"n_disks": int(n_disks), "sigma": float(sigma), "events": events}
+    parameters.update({"box_x": float(box[0]), "box_y": float(box[1])})
+    return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
