@@ -1,0 +1,192 @@
+"""Four hard disks in a box with walls (krauth2025 §4.1-4.4.3): event-disks against the
+cell/calendar engine, equal probability (MD against direct-disks and markov-disks), the
+pressure estimators and the finite-N averages of Eqs. (4.13, 4.14).
+
+Fixed seeds; tolerances are 4.5 standard errors of the runs themselves (spread of
+independent realizations or batches), combined when two estimates are compared.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from kinetic.edmd import HardSphereSystem, Observers, naive
+from kinetic.edmd.disks import chaos, initial_state, simulate_box
+from kinetic.samplers import sample_disks
+from kinetic.theory import krauth2025 as theory
+
+N, SIGMA = 4, 0.15
+
+
+@pytest.fixture(scope="module")
+def md():
+    return simulate_box(
+        n_disks=N,
+        sigma=SIGMA,
+        duration=4000.0,
+        snapshot_interval=0.5,
+        bins=35,
+        realizations=12,
+        seed=21,
+    )
+
+
+@pytest.fixture(scope="module")
+def direct():
+    return sample_disks(
+        "direct", n_disks=N, sigma=SIGMA, samples=40_000, batches=12, bins=35, seed=22
+    )
+
+
+def _mean_sem(values):
+    values = np.asarray(values, dtype=float)
+    return values.mean(), values.std(ddof=1) / math.sqrt(values.size)
+
+
+def test_event_disks_follows_the_cell_engine_event_by_event():
+    """The naive O(N²) loop and kinetic.edmd (cells, calendar, false positions) give the
+    same pair collisions at the same times from the same state (until chaos amplifies
+    their different round-off: 30 pair collisions, about 100 events)."""
+    x, v = initial_state(N, SIGMA, (1.0, 1.0), seed=5, realization=0)
+    events = 200
+    times = np.zeros(events)
+    pairs = np.zeros((events, 2), dtype=np.int64)
+    naive.trajectory(
+        x.copy(), v.copy(), SIGMA, np.ones(2), events, times, pairs, np.zeros((events, N, 2))
+    )
+    is_pair = pairs[:, 1] >= 0
+    system = HardSphereSystem(
+        n_particles=N, box=[1.0, 1.0], diameter=2 * SIGMA, walls=True, positions=x, velocities=v
+    )
+    observers = Observers.create(N, record_capacity=64)
+    observers.start(system)
+    system.run(collisions=30, observers=observers)
+    recorded = observers.record_time[:30] + system.time_origin  # records follow the clock
+    np.testing.assert_allclose(recorded, times[is_pair][:30], rtol=1e-8)
+    np.testing.assert_array_equal(
+        np.sort(observers.record_pair[:30], axis=1), np.sort(pairs[is_pair][:30], axis=1)
+    )
+
+
+def test_event_disks_conserves_energy_and_never_overlaps():
+    x, v = initial_state(N, SIGMA, (1.0, 1.0), seed=6, realization=0)
+    energy = np.sum(v**2)
+    events = 20_000
+    positions = np.zeros((events, N, 2))
+    naive.trajectory(
+        x,
+        v,
+        SIGMA,
+        np.ones(2),
+        events,
+        np.zeros(events),
+        np.zeros((events, 2), np.int64),
+        positions,
+    )
+    assert np.sum(v**2) == pytest.approx(energy, rel=1e-12)
+    assert positions.min() >= SIGMA - 1e-12 and positions.max() <= 1 - SIGMA + 1e-12
+    gaps = np.linalg.norm(positions[:, :, None, :] - positions[:, None, :, :], axis=-1)
+    gaps[:, np.arange(N), np.arange(N)] = np.inf
+    assert gaps.min() >= 2 * SIGMA * (1 - 1e-9)
+
+
+def test_molecular_dynamics_samples_the_equal_probability_distribution(md, direct):
+    """Eq. (4.3) along the trajectories, the stroboscopic snapshots, direct-disks and
+    markov-disks give the same y-density (it is not flat)."""
+    markov = sample_disks(
+        "markov", n_disks=N, sigma=SIGMA, samples=40_000, batches=12, bins=35, seed=23
+    )
+    reference, reference_sem = direct["density"].values, direct["density_sem"].values
+    for name in ("density_trajectory", "density_snapshots"):
+        values = md[name].values
+        value = values.mean(axis=0)
+        sem = values.std(axis=0, ddof=1) / math.sqrt(values.shape[0])
+        z = (value - reference) / np.hypot(sem, reference_sem)
+        assert np.abs(z).max() < 4.5, name
+    z = (markov["density"].values - reference) / np.hypot(
+        markov["density_sem"].values, reference_sem
+    )
+    assert np.abs(z).max() < 4.5
+    assert reference[0] > 2 * reference[reference.size // 2 - 3]  # the walls attract
+
+
+def test_pressure_estimators_agree_with_the_contact_density(md, direct):
+    """Wall rift (4.9a), kinematic (4.10a) and the contact density βP = η(σ)/L_x (from
+    direct-disks, extrapolated to the wall) agree."""
+    walls = md["wall_statistics"].values
+    duration = float(md.attrs["duration"])
+    rift = walls[:, :, 2].sum(axis=1) / (2 * duration)  # (Σ 2/|v⊥|)/(2 L τ) over 4 walls / 2
+    kinematic = (2 * N / md["radius_squared"].values) * walls[:, :, 1].sum(axis=1) / (2 * duration)
+    width = float(direct["bin_edges"][1] - direct["bin_edges"][0])
+    contact = [
+        theory.wall_value(direct["bin_edges"].values, row / (40_000 * width))
+        for row in direct["counts"].values
+    ]
+    estimates = [_mean_sem(values) for values in (rift, kinematic, contact)]
+    for (a, sa), (b, sb) in (
+        (estimates[0], estimates[2]),
+        (estimates[1], estimates[2]),
+        (estimates[0], estimates[1]),
+    ):
+        assert abs(a - b) < 4.5 * math.hypot(sa, sb)
+    assert estimates[2][1] < 0.01 * estimates[2][0]  # the comparison has power
+
+
+def test_finite_n_averages_of_eqs_4_13_and_4_14(md):
+    """Flux-weighted averages over wall and pair collisions against the sphere Σv² = R²;
+    the printed (4.14a) is twice the measured value (its √(2π) should read √(π/2))."""
+    radius = float(np.sqrt(md["radius_squared"].values).mean())
+    walls = md["wall_statistics"].values
+    pairs = md["pair_statistics"].values
+    wall = theory.wall_speed_averages(N, radius)
+    pair = theory.pair_speed_averages(N, radius)
+    checks = [
+        (walls[:, :, 2].sum(1) / walls[:, :, 0].sum(1), wall["inverse"]),
+        (walls[:, :, 1].sum(1) / walls[:, :, 0].sum(1), wall["mean"]),
+        (pairs[:, 2] / pairs[:, 0], pair["inverse"]),
+        (pairs[:, 1] / pairs[:, 0], pair["mean"]),
+    ]
+    for values, expected in checks:
+        value, sem = _mean_sem(values)
+        assert abs(value - expected) < 4.5 * sem
+    value, sem = _mean_sem(pairs[:, 2] / pairs[:, 0])
+    assert abs(value - pair["inverse_printed"]) > 100 * sem
+
+
+def test_chaos_precisions_part_and_float64_is_deterministic():
+    a = chaos(n_disks=N, sigma=SIGMA, events=120, seed=4)
+    b = chaos(n_disks=N, sigma=SIGMA, events=120, seed=4)
+    np.testing.assert_array_equal(a["positions"].values, b["positions"].values)
+    reference = a["positions"].sel(precision="float64").values
+    gap32 = np.abs(a["positions"].sel(precision="float32").values - reference).max(axis=(1, 2))
+    gap_ulp = np.abs(a["positions"].sel(precision="float64_ulp").values - reference).max(
+        axis=(1, 2)
+    )
+    assert gap32[0] < 1e-5 and gap_ulp[0] < 1e-14  # same start, up to the precision
+    assert gap32[-1] > 1e3 * gap32[0] and gap_ulp[-1] > 1e3 * max(gap_ulp[0], 1e-16)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"n_disks": 40}, "cover more than 90"),
+        ({"sigma": -0.1}, "sigma"),
+        ({"realizations": 1}, "realizations"),
+        ({"snapshot_interval": 5000.0}, "snapshot_interval"),
+        ({"duration": float("nan")}, "duration"),
+    ],
+)
+def test_bad_box_arguments_fail_before_running(kwargs, message):
+    arguments = {
+        "n_disks": N,
+        "sigma": SIGMA,
+        "duration": 100.0,
+        "snapshot_interval": 0.5,
+        "bins": 10,
+        "realizations": 2,
+        "seed": 1,
+    }
+    arguments.update(kwargs)
+    with pytest.raises(ValueError, match=message):
+        simulate_box(**arguments)
