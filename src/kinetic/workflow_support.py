@@ -15,7 +15,7 @@ import logging
 import sys
 from typing import Any
 
-__all__ = ["start"]
+__all__ = ["start", "write_output"]
 
 
 def start(snakemake: Any) -> logging.Logger:
@@ -44,3 +44,14 @@ def start(snakemake: Any) -> logging.Logger:
         pass
     logger.info("rule %s: output %s", snakemake.rule, list(snakemake.output))
     return logger
+
+
+def write_output(snakemake: Any, dataset: Any, seed: int) -> None:
+    """Stamp ``dataset`` with its stored parameters, ``seed`` and the workflow config, and
+    write it (atomically) to the job's first output."""
+    from kinetic import io
+
+    dataset = io.stamp(
+        dataset, parameters=io.parameters_of(dataset), seed=seed, config=snakemake.config
+    )
+    io.write_dataset(dataset, snakemake.output[0])

@@ -1,13 +1,11 @@
 """One initial state of event-disks in float64, float32 and float64 one ulp away (rule
 krauth2025_chaos_run), event by event: krauth2025 Fig. 4.1 and section 4.1.2."""
 
-from kinetic import io
 from kinetic.edmd.disks import chaos
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 job = dict(snakemake.params.job)
 data = chaos(**job)
-data = io.stamp(data, parameters=io.parameters_of(data), seed=job["seed"], config=snakemake.config)
-io.write_dataset(data, snakemake.output[0])
+write_output(snakemake, data, job["seed"])
 log.info("wrote %s: %d events per precision", snakemake.output[0], job["events"])

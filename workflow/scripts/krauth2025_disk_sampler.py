@@ -1,13 +1,11 @@
 """direct-disks or markov-disks for krauth2025's equal-probability check (rule
 krauth2025_disk_sampler): the projected density of N disks in the box along y."""
 
-from kinetic import io
 from kinetic.samplers import sample_disks
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 job = dict(snakemake.params.job)
 data = sample_disks(**job)
-data = io.stamp(data, parameters=io.parameters_of(data), seed=job["seed"], config=snakemake.config)
-io.write_dataset(data, snakemake.output[0])
+write_output(snakemake, data, job["seed"])
 log.info("wrote %s in %.1f CPU s", snakemake.output[0], float(data.cpu_seconds.sum()))

@@ -7,7 +7,7 @@ import numpy as np
 from kinetic import io
 from kinetic.samplers import naive_acceptance, sample_line
 from kinetic.theory import krauth2025
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 job = dict(snakemake.params.job)
@@ -41,13 +41,8 @@ extra = io.make_dataset(
         "x_curve": ("x_curve", curve, "length", "pin centre"),
     },
 )
-data = io.stamp(
-    data.merge(extra, combine_attrs="override"),
-    parameters=io.parameters_of(data),
-    seed=job["seed"],
-    config=snakemake.config,
-)
-io.write_dataset(data, snakemake.output[0])
+data = data.merge(extra, combine_attrs="override")
+write_output(snakemake, data, job["seed"])
 log.info(
     "wrote %s: %d configurations (%d started) in %.1f CPU s",
     snakemake.output[0],

@@ -1,15 +1,13 @@
 """event-disks runs of krauth2025 (rule krauth2025_md): independent realizations of N
 disks in a box with walls -> y-densities, wall and pair collision statistics."""
 
-from kinetic import io
 from kinetic.edmd.disks import simulate_box
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 job = dict(snakemake.params.job)
 data = simulate_box(**job)
-data = io.stamp(data, parameters=io.parameters_of(data), seed=job["seed"], config=snakemake.config)
-io.write_dataset(data, snakemake.output[0])
+write_output(snakemake, data, job["seed"])
 log.info(
     "wrote %s: %d events in %.1f CPU s",
     snakemake.output[0],

@@ -7,7 +7,7 @@ import numpy as np
 from kinetic import io
 from kinetic.samplers import sample_ring
 from kinetic.theory import krauth2025
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 job = dict(snakemake.params.job)
@@ -40,13 +40,8 @@ extra = io.make_dataset(
         "r_curve": ("r_curve", curve, "length", "forward distance"),
     },
 )
-data = io.stamp(
-    data.merge(extra, combine_attrs="override"),
-    parameters=io.parameters_of(data),
-    seed=job["seed"],
-    config=snakemake.config,
-)
-io.write_dataset(data, snakemake.output[0])
+data = data.merge(extra, combine_attrs="override")
+write_output(snakemake, data, job["seed"])
 log.info(
     "wrote %s: %d chains, acceptance %.3f, %.1f CPU s",
     snakemake.output[0],

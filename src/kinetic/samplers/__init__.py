@@ -57,6 +57,49 @@ def naive_acceptance(n_pins: int, length: float, sigma: float) -> float:
     return ((length - 2 * n_pins * sigma) / (length - 2 * sigma)) ** n_pins
 
 
+def _density_dataset(
+    counts: np.ndarray,
+    per_sample: float,
+    lower: float,
+    upper: float,
+    *,
+    name: str,
+    axis: str,
+    group: str,
+    what: str,
+    extra: dict,
+    parameters: dict,
+    seed: int,
+) -> xr.Dataset:
+    """Dataset of a histogrammed density from independent groups (batches or chains):
+    ``counts`` (groups, bins) on [lower, upper), each group of ``per_sample`` samples
+    times its members; ``name`` (per unit length, mean of the groups) and ``name_sem``
+    (standard error from their spread), the counts, the bin edges and ``extra``
+    variables (on the group dimension)."""
+    groups, bins = counts.shape
+    width = (upper - lower) / bins
+    per_group = counts / (per_sample * width)
+    edges = np.linspace(lower, upper, bins + 1)
+    data = {
+        name: (axis, per_group.mean(axis=0), "1/length", what),
+        f"{name}_sem": (
+            axis,
+            per_group.std(axis=0, ddof=1) / math.sqrt(groups),
+            "1/length",
+            f"standard error of the {name.replace('_', ' ')} (independent {group}s)",
+        ),
+        "counts": ((group, axis), counts, "1", f"samples counted per bin and {group}"),
+        "bin_edges": ("edge", edges, "length", "bin edges"),
+        **extra,
+    }
+    coords = {
+        axis: (axis, 0.5 * (edges[1:] + edges[:-1]), "length", f"{axis} (bin middle)"),
+        group: (group, np.arange(groups), "1", f"independent {group}"),
+        "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
+    }
+    return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
+
+
 def sample_line(
     method: str,
     *,
@@ -107,27 +150,6 @@ def sample_line(
             started[b] = samples
         cpu[b] = time.process_time() - begin
         progress.update(1)
-    width = (upper - lower) / bins
-    per_batch = counts / (samples * width)
-    edges = np.linspace(lower, upper, bins + 1)
-    data = {
-        "density": ("x", per_batch.mean(axis=0), "1/length", "pin centres per unit length"),
-        "density_sem": (
-            "x",
-            per_batch.std(axis=0, ddof=1) / math.sqrt(batches),
-            "1/length",
-            "standard error of the density (batch means)",
-        ),
-        "counts": (("batch", "x"), counts, "1", "pin centres counted per bin and batch"),
-        "started": ("batch", started, "1", "configurations started (naive-pin: incl. rejected)"),
-        "cpu_seconds": ("batch", cpu, "s", "CPU time per batch"),
-        "bin_edges": ("edge", edges, "length", "bin edges"),
-    }
-    coords = {
-        "x": ("x", 0.5 * (edges[1:] + edges[:-1]), "length", "pin centre (bin middle)"),
-        "batch": ("batch", np.arange(batches), "1", "independent batch"),
-        "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
-    }
     parameters = {
         "method": method,
         "n_pins": n_pins,
@@ -137,7 +159,23 @@ def sample_line(
         "batches": batches,
         "bins": bins,
     }
-    return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
+    extra = {
+        "started": ("batch", started, "1", "configurations started (naive-pin: incl. rejected)"),
+        "cpu_seconds": ("batch", cpu, "s", "CPU time per batch"),
+    }
+    return _density_dataset(
+        counts,
+        samples,
+        lower,
+        upper,
+        name="density",
+        axis="x",
+        group="batch",
+        what="pin centres per unit length",
+        extra=extra,
+        parameters=parameters,
+        seed=seed,
+    )
 
 
 def sample_ring(
@@ -183,31 +221,6 @@ def sample_ring(
         cpu[c] = time.process_time() - begin
         acceptance[c] = accepted / ((sweeps + burn_in) * n_pins)
         progress.update(1)
-    width = length / bins
-    per_chain = counts / (sweeps * n_pins * width)
-    edges = np.linspace(0.0, length, bins + 1)
-    data = {
-        "pair_density": (
-            "r",
-            per_chain.mean(axis=0),
-            "1/length",
-            "other pins per unit length at forward distance r from a pin",
-        ),
-        "pair_density_sem": (
-            "r",
-            per_chain.std(axis=0, ddof=1) / math.sqrt(chains),
-            "1/length",
-            "standard error of the pair density (independent chains)",
-        ),
-        "acceptance": ("chain", acceptance, "1", "accepted fraction of the moves"),
-        "cpu_seconds": ("chain", cpu, "s", "CPU time per chain"),
-        "bin_edges": ("edge", edges, "length", "bin edges"),
-    }
-    coords = {
-        "r": ("r", 0.5 * (edges[1:] + edges[:-1]), "length", "forward distance (bin middle)"),
-        "chain": ("chain", np.arange(chains), "1", "independent chain"),
-        "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
-    }
     parameters = {
         "method": "markov",
         "n_pins": n_pins,
@@ -219,7 +232,23 @@ def sample_ring(
         "chains": chains,
         "bins": bins,
     }
-    return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
+    extra = {
+        "acceptance": ("chain", acceptance, "1", "accepted fraction of the moves"),
+        "cpu_seconds": ("chain", cpu, "s", "CPU time per chain"),
+    }
+    return _density_dataset(
+        counts,
+        sweeps * n_pins,
+        0.0,
+        length,
+        name="pair_density",
+        axis="r",
+        group="chain",
+        what="other pins per unit length at forward distance r from a pin",
+        extra=extra,
+        parameters=parameters,
+        seed=seed,
+    )
 
 
 def pin_snapshots(*, n_pins: int, length: float, sigma: float, count: int, seed: int) -> xr.Dataset:
@@ -330,32 +359,6 @@ def sample_disks(
             )
         cpu[b] = time.process_time() - begin
         progress.update(1)
-    width = (upper - lower) / bins
-    per_batch = counts / (samples * width)
-    edges = np.linspace(lower, upper, bins + 1)
-    data = {
-        "density": ("y", per_batch.mean(axis=0), "1/length", "disk centres per unit length of y"),
-        "density_sem": (
-            "y",
-            per_batch.std(axis=0, ddof=1) / math.sqrt(batches),
-            "1/length",
-            "standard error of the density (independent batches)",
-        ),
-        "counts": (("batch", "y"), counts, "1", "disk centres counted per bin and batch"),
-        "work": (
-            "batch",
-            started,
-            "1",
-            "configurations started (direct) or moves accepted (markov)",
-        ),
-        "cpu_seconds": ("batch", cpu, "s", "CPU time per batch"),
-        "bin_edges": ("edge", edges, "length", "bin edges"),
-    }
-    coords = {
-        "y": ("y", 0.5 * (edges[1:] + edges[:-1]), "length", "disk centre y (bin middle)"),
-        "batch": ("batch", np.arange(batches), "1", "independent batch"),
-        "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
-    }
     parameters = {
         "method": method,
         "n_disks": n_disks,
@@ -368,7 +371,28 @@ def sample_disks(
         "step": float(step),
         "burn_in": burn_in,
     }
-    return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
+    extra = {
+        "work": (
+            "batch",
+            started,
+            "1",
+            "configurations started (direct) or moves accepted (markov)",
+        ),
+        "cpu_seconds": ("batch", cpu, "s", "CPU time per batch"),
+    }
+    return _density_dataset(
+        counts,
+        samples,
+        lower,
+        upper,
+        name="density",
+        axis="y",
+        group="batch",
+        what="disk centres per unit length of y",
+        extra=extra,
+        parameters=parameters,
+        seed=seed,
+    )
 
 
 def warmup() -> None:
