@@ -86,7 +86,7 @@ def _density_dataset(
             axis,
             per_group.std(axis=0, ddof=1) / math.sqrt(groups),
             "1/length",
-            f"standard error of the {name.replace('_', ' ')} (independent {group}s)",
+            f"standard error of the {name.replace('_', ' ')} (spread of the {group} means)",
         ),
         "counts": ((group, axis), counts, "1", f"samples counted per bin and {group}"),
         "bin_edges": ("edge", edges, "length", "bin edges"),
