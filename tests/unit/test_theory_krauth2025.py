@@ -78,3 +78,38 @@ def test_ring_pair_density():
 def test_bad_arguments_are_refused(n, length, sigma, message):
     with pytest.raises(ValueError, match=message):
         theory.pin_density(1.0, n, length, sigma)
+
+
+@pytest.mark.parametrize("n", [1, 4, 20])
+def test_eqs_4_13_and_4_14_against_sampled_velocities(n):
+    """Velocities uniform on the sphere Σ v² = R² in 2N dimensions (normalised Gaussians);
+    averages over wall collisions weigh a component by its flux |v_x|, over pair
+    collisions the relative normal velocity (here along x: v_x of disk 1 minus v_x of
+    disk 2) by its flux. Each average within 4.5 standard errors of the formulas; the
+    printed (4.14a) is far off."""
+    rng = np.random.default_rng(41)
+    radius = 2.5
+    samples = 400_000
+    v = rng.standard_normal((samples, 2 * n))
+    v *= radius / np.linalg.norm(v, axis=1, keepdims=True)
+
+    def weighted(values, weights):
+        ratio = values * weights
+        mean = ratio.mean() / weights.mean()
+        # delta method for the ratio of means
+        error = np.std(ratio - mean * weights, ddof=1) / (weights.mean() * np.sqrt(samples))
+        return mean, error
+
+    component = np.abs(v[:, 0])
+    wall = theory.wall_speed_averages(n, radius)
+    for values, expected in ((1 / component, wall["inverse"]), (component, wall["mean"])):
+        mean, error = weighted(values, component)
+        assert abs(mean - expected) < 4.5 * error
+    if n >= 2:
+        relative = np.abs(v[:, 0] - v[:, 2])  # Δv⊥ along x of disks 1 and 2
+        pair = theory.pair_speed_averages(n, radius)
+        for values, expected in ((1 / relative, pair["inverse"]), (relative, pair["mean"])):
+            mean, error = weighted(values, relative)
+            assert abs(mean - expected) < 4.5 * error
+        mean, error = weighted(1 / relative, relative)
+        assert abs(mean - pair["inverse_printed"]) > 50 * error
