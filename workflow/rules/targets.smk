@@ -37,7 +37,7 @@ rule montanero2007:
 
 
 rule krauth2025:
-    # so far the clothes-pins of section 4.4.1 (Figs 4.10, 4.11, 4.13 and their table)
+    # Figs 4.1, 4.6, 4.10, 4.11, 4.13, the chaos figure, the pin and pressure tables
     input:
         krauth2025_artefacts,
 

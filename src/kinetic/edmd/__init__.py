@@ -6,6 +6,10 @@
 - ``simulate``: the equilibrium protocol of visco2008 (independent realizations ->
   ``xarray.Dataset``);
 - ``warmup``: compile (or load from numba's cache) every kernel with production types.
+
+Beside them, for a few disks in a box with walls (krauth2025): ``kinetic.edmd.naive``,
+the lecture's O(N²)-per-event event-disks in float32 or float64, and its front
+``kinetic.edmd.disks`` (observed runs, the chaos comparison).
 """
 
 import numpy as np
