@@ -141,3 +141,30 @@ def test_bad_line_arguments_fail_before_sampling(kwargs, message):
     method = arguments.pop("method")
     with pytest.raises(ValueError, match=message):
         sample_line(method, **arguments)
+
+
+def test_fronts_compile_one_signature_per_kernel():
+    """Integers from a YAML config (length: 20) and floats reach the kernels as the same
+    types, so the kernels warmed once before parallel jobs are the ones the jobs run
+    (a job compiling a new signature into the shared numba cache could corrupt it)."""
+    for length, sigma in ((20, 1), (20.0, 0.5)):
+        sample_line(
+            "direct", n_pins=3, length=length, sigma=sigma, samples=2, batches=2, bins=4, seed=0
+        )
+        sample_line(
+            "naive", n_pins=3, length=length, sigma=sigma, samples=2, batches=2, bins=4, seed=0
+        )
+        sample_ring(
+            n_pins=3,
+            length=length,
+            sigma=sigma,
+            step=1,
+            sweeps=2,
+            burn_in=0,
+            chains=2,
+            bins=4,
+            seed=0,
+        )
+        pin_snapshots(n_pins=3, length=length, sigma=sigma, count=1, seed=0)
+    for name in ("direct_pin", "naive_pin", "ring_markov", "direct_pin_configuration"):
+        assert len(getattr(kernels, name).signatures) == 1, name

@@ -121,6 +121,7 @@ def sample_line(
     if method not in ("naive", "direct"):
         raise ValueError(f"method must be 'naive' or 'direct', got {method!r}")
     check_pins(n_pins, length, sigma)
+    n_pins, length, sigma = int(n_pins), float(length), float(sigma)  # the compiled types
     samples = _positive_int("samples", samples)
     batches = _positive_int("batches", batches, 2)
     bins = _positive_int("bins", bins)
@@ -203,6 +204,7 @@ def sample_ring(
         raise ValueError("a pair density needs n_pins >= 2")
     if not (math.isfinite(step) and 0 < step <= length / 2):
         raise ValueError(f"step must be in (0, length/2], got {step!r}")
+    n_pins, length, sigma, step = int(n_pins), float(length), float(sigma), float(step)
     sweeps = _positive_int("sweeps", sweeps)
     burn_in = _positive_int("burn_in", burn_in, 0)
     chains = _positive_int("chains", chains, 2)
@@ -254,6 +256,7 @@ def sample_ring(
 def pin_snapshots(*, n_pins: int, length: float, sigma: float, count: int, seed: int) -> xr.Dataset:
     """``count`` independent direct-pin configurations (pin centres, increasing)."""
     check_pins(n_pins, length, sigma)
+    n_pins, length, sigma = int(n_pins), float(length), float(sigma)
     count = _positive_int("count", count)
     state = stream_states(seed, 1)[0]
     positions = np.zeros((count, n_pins))
@@ -288,6 +291,7 @@ def disk_configuration(
     """(N, 2) centres of one direct-disks configuration drawn with the stream ``state``;
     ``ValueError`` if ``max_starts`` tries do not produce one (too dense for Alg. 4.4)."""
     box_x, box_y = _check_disks(n_disks, sigma, box)
+    n_disks, sigma = int(n_disks), float(sigma)
     positions = np.zeros((n_disks, 2))
     if (
         kernels.direct_disks_configuration(
@@ -323,6 +327,7 @@ def sample_disks(
     if method not in ("direct", "markov"):
         raise ValueError(f"method must be 'direct' or 'markov', got {method!r}")
     box_x, box_y = _check_disks(n_disks, sigma, box)
+    n_disks, sigma, step = int(n_disks), float(sigma), float(step)
     samples = _positive_int("samples", samples)
     batches = _positive_int("batches", batches, 2)
     bins = _positive_int("bins", bins)
