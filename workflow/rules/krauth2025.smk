@@ -413,3 +413,33 @@ rule krauth2025_pressure_table:
         "logs/krauth2025/pressure_table.log",
     script:
         "../scripts/krauth2025_pressure_table.py"
+
+
+provide(
+    "krauth2025/error_vs_time",
+    *figure_files("krauth2025", "error_vs_time"),
+    *table_files("krauth2025", "error_vs_time"),
+)
+
+
+rule krauth2025_error_vs_time:
+    input:
+        lines=krauth2025_line_files(),
+        ring="results/krauth2025/pins/ring.nc",
+        md="results/krauth2025/disks/md.nc",
+        direct="results/krauth2025/disks/direct.nc",
+        markov="results/krauth2025/disks/markov.nc",
+        script=figure_script("krauth2025_error_vs_time"),
+    output:
+        pdf="results/krauth2025/error_vs_time.pdf",
+        png=report(
+            "results/krauth2025/error_vs_time.png",
+            caption="../report/krauth2025_error_vs_time.rst",
+            category="krauth2025",
+        ),
+        csv="results/krauth2025/error_vs_time.csv",
+        md="results/krauth2025/error_vs_time.md",
+    log:
+        "logs/krauth2025/error_vs_time.log",
+    script:
+        "../scripts/krauth2025_error_vs_time.py"

@@ -37,7 +37,7 @@ rule montanero2007:
 
 
 rule krauth2025:
-    # Figs 4.1, 4.6, 4.10, 4.11, 4.13, the chaos figure, the pin and pressure tables
+    # Figs 4.1, 4.6, 4.10, 4.11, 4.13, chaos, the pin, pressure and error-vs-time tables
     input:
         krauth2025_artefacts,
 

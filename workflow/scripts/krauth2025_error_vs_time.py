@@ -1,0 +1,141 @@
+"""krauth2025 error against CPU time, for every method of the document (rule
+krauth2025_error_vs_time), from the runs the figures use: for each method a headline
+quantity is measured once per independent batch (realization, chain); the standard error
+of the first k batches is drawn against their summed CPU time (points), with the
+1/√(CPU time) law through the full run (line). The table gives, per method, the total CPU
+time, the standard error, the error at one CPU-second (σ √t) and the CPU time a relative
+error of 0.1 % would take, so a user can pick the cheapest method and run length. All the
+methods are unbiased here (no time step, exact event times): the error is statistical."""
+
+import math
+
+import numpy as np
+import pandas as pd
+from matplotlib import colormaps
+
+from kinetic import io, plotting
+from kinetic.theory import krauth2025 as theory
+from kinetic.workflow_support import start
+
+start(snakemake)
+
+
+def middle(data, name, axis):
+    """Per-group mean of a histogrammed density over the middle fifth of its range."""
+    centres = data[axis].values
+    span = data["bin_edges"].values[[0, -1]]
+    inside = np.abs(centres - span.mean()) < 0.1 * (span[1] - span[0])
+    counts = data["counts"].values[:, inside]
+    width = float(data["bin_edges"][1] - data["bin_edges"][0])
+    return counts.mean(axis=1) / (per_sample(data) * width)
+
+
+def per_sample(data):
+    attrs = data.attrs
+    if "sweeps" in attrs:  # ring chains: every pin is a sample
+        return int(attrs["sweeps"]) * int(attrs["n_pins"])
+    return int(attrs["samples"])
+
+
+def contact(data):
+    """Per-batch contact density η(σ)/L_x of a disk sampler (βP)."""
+    width = float(data["bin_edges"][1] - data["bin_edges"][0])
+    return np.array(
+        [
+            theory.wall_value(data["bin_edges"].values, row / (per_sample(data) * width))
+            / float(data.attrs["box_x"])
+            for row in data["counts"].values
+        ]
+    )
+
+
+series = []
+for path in snakemake.input.lines:
+    data = io.read_dataset(path)
+    method = f"{data.attrs['method']}-pin, L = {float(data.attrs['length']):g}"
+    series.append(
+        (method, "bulk pin density", middle(data, "density", "x"), data["cpu_seconds"].values)
+    )
+ring = io.read_dataset(snakemake.input.ring)
+series.append(
+    (
+        "ring Markov chain",
+        "pair density, middle fifth",
+        middle(ring, "pair_density", "r"),
+        ring["cpu_seconds"].values,
+    )
+)
+for name in ("direct", "markov"):
+    data = io.read_dataset(getattr(snakemake.input, name))
+    series.append(
+        (f"{name}-disks", "beta P (contact density)", contact(data), data["cpu_seconds"].values)
+    )
+md = io.read_dataset(snakemake.input.md)
+walls = md["wall_statistics"].values
+duration = float(md.attrs["duration"])
+beta = 2 * int(md.attrs["n_disks"]) / md["radius_squared"].values
+box_x, box_y = float(md.attrs["box_x"]), float(md.attrs["box_y"])
+length = 2 * (box_x + box_y)  # all four walls (square box: P_x = P_y)
+cpu_md = md["cpu_seconds"].values
+series.append(
+    (
+        "event-disks, wall rift (4.9a)",
+        "beta P",
+        walls[:, :, 2].sum(1) * 2 / (length * duration),
+        cpu_md,
+    )
+)
+series.append(
+    (
+        "event-disks, kinematic (4.10a)",
+        "beta P",
+        beta * walls[:, :, 1].sum(1) * 2 / (length * duration),
+        cpu_md,
+    )
+)
+series.append(
+    (
+        "event-disks, contact density (Eq. 4.3)",
+        "beta P",
+        np.array(
+            [
+                theory.wall_value(md["bin_edges"].values, row) / box_x
+                for row in md["density_trajectory"].values
+            ]
+        ),
+        cpu_md,
+    )
+)
+
+rows = []
+fig, ax = plotting.figure(figsize=(6.4, 3.4))
+colours = colormaps["tab10"].colors
+for index, (method, quantity, values, cpu) in enumerate(series):
+    groups = values.size
+    k = np.arange(2, groups + 1)
+    errors = np.array([values[:m].std(ddof=1) / math.sqrt(m) for m in k])
+    times = np.cumsum(cpu)[1:]
+    mean = values.mean()
+    relative = errors / abs(mean)
+    colour = colours[index % len(colours)]
+    ax.loglog(times, relative, "os^v"[index % 4], ms=2.5, mfc="none", color=colour, label=method)
+    merit = relative[-1] * math.sqrt(times[-1])
+    line = np.geomspace(times[0], times[-1] * 10, 20)
+    ax.loglog(line, merit / np.sqrt(line), "-", lw=0.6, color=colour)
+    rows.append(
+        {
+            "method": method,
+            "quantity": quantity,
+            "value": mean,
+            "groups": groups,
+            "cpu_seconds": float(times[-1]),
+            "sem": errors[-1],
+            "relative_error_at_1_cpu_second": merit,
+            "cpu_seconds_for_0.1_percent": (merit / 1e-3) ** 2,
+        }
+    )
+ax.set_xlabel("CPU time (s)")
+ax.set_ylabel("relative standard error")
+ax.legend(fontsize=5.5, loc="upper left", bbox_to_anchor=(1.02, 1.0))
+plotting.save(fig, snakemake.output.pdf)
+io.write_table(pd.DataFrame(rows), snakemake.output.csv, snakemake.output.md, float_format=".4g")
