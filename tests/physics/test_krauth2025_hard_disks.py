@@ -11,6 +11,8 @@ import math
 import numpy as np
 import pytest
 
+from kinetic.analysis.krauth2025 import contact_pressure, wall_pressures
+from kinetic.analysis.statistics import mean_and_sem
 from kinetic.edmd import HardSphereSystem, Observers, naive
 from kinetic.edmd.disks import chaos, initial_state, simulate_box
 from kinetic.samplers import sample_disks
@@ -37,11 +39,6 @@ def direct():
     return sample_disks(
         "direct", n_disks=N, sigma=SIGMA, samples=40_000, batches=12, bins=35, seed=22
     )
-
-
-def _mean_sem(values):
-    values = np.asarray(values, dtype=float)
-    return values.mean(), values.std(ddof=1) / math.sqrt(values.size)
 
 
 def test_event_disks_follows_the_cell_engine_event_by_event():
@@ -99,9 +96,7 @@ def test_molecular_dynamics_samples_the_equal_probability_distribution(md, direc
     )
     reference, reference_sem = direct["density"].values, direct["density_sem"].values
     for name in ("density_trajectory", "density_snapshots"):
-        values = md[name].values
-        value = values.mean(axis=0)
-        sem = values.std(axis=0, ddof=1) / math.sqrt(values.shape[0])
+        value, sem = mean_and_sem(md[name].values)
         z = (value - reference) / np.hypot(sem, reference_sem)
         assert np.abs(z).max() < 4.5, name
     z = (markov["density"].values - reference) / np.hypot(
@@ -114,16 +109,11 @@ def test_molecular_dynamics_samples_the_equal_probability_distribution(md, direc
 def test_pressure_estimators_agree_with_the_contact_density(md, direct):
     """Wall rift (4.9a), kinematic (4.10a) and the contact density βP = η(σ)/L_x (from
     direct-disks, extrapolated to the wall) agree."""
+    rift, kinematic = wall_pressures(md, "all")
+    # by hand for the unit box: (Σ 2/|v⊥|)/(2 L τ) with 2 L = 4 the length of all walls
     walls = md["wall_statistics"].values
-    duration = float(md.attrs["duration"])
-    rift = walls[:, :, 2].sum(axis=1) / (2 * duration)  # (Σ 2/|v⊥|)/(2 L τ) over 4 walls / 2
-    kinematic = (2 * N / md["radius_squared"].values) * walls[:, :, 1].sum(axis=1) / (2 * duration)
-    width = float(direct["bin_edges"][1] - direct["bin_edges"][0])
-    contact = [
-        theory.wall_value(direct["bin_edges"].values, row / (40_000 * width))
-        for row in direct["counts"].values
-    ]
-    estimates = [_mean_sem(values) for values in (rift, kinematic, contact)]
+    np.testing.assert_allclose(rift, walls[:, :, 2].sum(axis=1) / (2 * float(md.attrs["duration"])))
+    estimates = [mean_and_sem(values) for values in (rift, kinematic, contact_pressure(direct))]
     for (a, sa), (b, sb) in (
         (estimates[0], estimates[2]),
         (estimates[1], estimates[2]),
@@ -148,9 +138,9 @@ def test_finite_n_averages_of_eqs_4_13_and_4_14(md):
         (pairs[:, 1] / pairs[:, 0], pair["mean"]),
     ]
     for values, expected in checks:
-        value, sem = _mean_sem(values)
+        value, sem = mean_and_sem(values)
         assert abs(value - expected) < 4.5 * sem
-    value, sem = _mean_sem(pairs[:, 2] / pairs[:, 0])
+    value, sem = mean_and_sem(pairs[:, 2] / pairs[:, 0])
     assert abs(value - pair["inverse_printed"]) > 100 * sem
 
 

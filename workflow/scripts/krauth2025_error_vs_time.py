@@ -14,7 +14,8 @@ import pandas as pd
 from matplotlib import colormaps
 
 from kinetic import io, plotting
-from kinetic.theory import krauth2025 as theory
+from kinetic.analysis.krauth2025 import contact_pressure, wall_pressures
+from kinetic.analysis.statistics import mean_and_sem
 from kinetic.workflow_support import start
 
 start(snakemake)
@@ -37,18 +38,6 @@ def per_sample(data):
     return int(attrs["samples"])
 
 
-def contact(data):
-    """Per-batch contact density η(σ)/L_x of a disk sampler (βP)."""
-    width = float(data["bin_edges"][1] - data["bin_edges"][0])
-    return np.array(
-        [
-            theory.wall_value(data["bin_edges"].values, row / (per_sample(data) * width))
-            / float(data.attrs["box_x"])
-            for row in data["counts"].values
-        ]
-    )
-
-
 series = []
 for path in snakemake.input.lines:
     data = io.read_dataset(path)
@@ -68,44 +57,21 @@ series.append(
 for name in ("direct", "markov"):
     data = io.read_dataset(getattr(snakemake.input, name))
     series.append(
-        (f"{name}-disks", "beta P (contact density)", contact(data), data["cpu_seconds"].values)
+        (
+            f"{name}-disks",
+            "beta P (contact density)",
+            contact_pressure(data),
+            data["cpu_seconds"].values,
+        )
     )
 md = io.read_dataset(snakemake.input.md)
-walls = md["wall_statistics"].values
-duration = float(md.attrs["duration"])
-beta = 2 * int(md.attrs["n_disks"]) / md["radius_squared"].values
-box_x, box_y = float(md.attrs["box_x"]), float(md.attrs["box_y"])
-length = 2 * (box_x + box_y)  # all four walls (square box: P_x = P_y)
+rift, kinematic = wall_pressures(md, "all")  # square box: P_x = P_y, all four walls
 cpu_md = md["cpu_seconds"].values
-series.append(
-    (
-        "event-disks, wall rift (4.9a)",
-        "beta P",
-        walls[:, :, 2].sum(1) * 2 / (length * duration),
-        cpu_md,
-    )
-)
-series.append(
-    (
-        "event-disks, kinematic (4.10a)",
-        "beta P",
-        beta * walls[:, :, 1].sum(1) * 2 / (length * duration),
-        cpu_md,
-    )
-)
-series.append(
-    (
-        "event-disks, contact density (Eq. 4.3)",
-        "beta P",
-        np.array(
-            [
-                theory.wall_value(md["bin_edges"].values, row) / box_x
-                for row in md["density_trajectory"].values
-            ]
-        ),
-        cpu_md,
-    )
-)
+series += [
+    ("event-disks, wall rift (4.9a)", "beta P", rift, cpu_md),
+    ("event-disks, kinematic (4.10a)", "beta P", kinematic, cpu_md),
+    ("event-disks, contact density (Eq. 4.3)", "beta P", contact_pressure(md), cpu_md),
+]
 
 rows = []
 fig, ax = plotting.figure(figsize=(6.4, 3.4))
@@ -113,7 +79,7 @@ colours = colormaps["tab10"].colors
 for index, (method, quantity, values, cpu) in enumerate(series):
     groups = values.size
     k = np.arange(2, groups + 1)
-    errors = np.array([values[:m].std(ddof=1) / math.sqrt(m) for m in k])
+    errors = np.array([mean_and_sem(values[:m])[1] for m in k])
     times = np.cumsum(cpu)[1:]
     mean = values.mean()
     relative = errors / abs(mean)

@@ -4,9 +4,8 @@ four disks in a box, from event-disks trajectories (Eq. 4.3: time spent per bin,
 against direct-disks (Alg. 4.4) and markov-disks (Alg. 4.5); standard errors across
 independent realizations or batches. It is not flat: the walls attract the disks."""
 
-import math
-
 from kinetic import io, plotting
+from kinetic.analysis.statistics import mean_and_sem
 from kinetic.workflow_support import start
 
 start(snakemake)
@@ -20,8 +19,7 @@ series = [
 fig, ax = plotting.figure()
 for offset, (name, data, label, marker) in enumerate(series):
     if "realization" in data[name].dims:
-        values = data[name].mean("realization").values
-        error = data[name].std("realization", ddof=1).values / math.sqrt(data.sizes["realization"])
+        values, error = mean_and_sem(data[name].values)  # over the realizations
     else:
         values, error = data[name].values, data[f"{name}_sem"].values
     y = data["y"].values

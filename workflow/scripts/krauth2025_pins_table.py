@@ -11,15 +11,10 @@ import numpy as np
 import pandas as pd
 
 from kinetic import io
+from kinetic.analysis.statistics import mean_and_sem
 from kinetic.workflow_support import start
 
 start(snakemake)
-
-
-def mean_sem(values):
-    values = np.asarray(values, dtype=float)
-    return values.mean(), values.std(ddof=1) / math.sqrt(values.size)
-
 
 rows = []
 for path in snakemake.input.lines:
@@ -32,8 +27,8 @@ for path in snakemake.input.lines:
     middle = np.abs(x - 0.5 * length) < 0.1 * length
     wall_b = per_batch[:, walls].mean(axis=1)
     bulk_b = per_batch[:, middle].mean(axis=1)
-    wall, wall_sem = mean_sem(wall_b)
-    bulk, bulk_sem = mean_sem(bulk_b)
+    wall, wall_sem = mean_and_sem(wall_b)
+    bulk, bulk_sem = mean_and_sem(bulk_b)
     ratio = wall / bulk
     n_batches = wall_b.size
     covariance = np.cov(wall_b, bulk_b)[0, 1] / n_batches
@@ -42,7 +37,7 @@ for path in snakemake.input.lines:
     )
     exact = run["density_exact"].values
     naive = run.attrs["method"] == "naive"
-    acceptance, acceptance_sem = mean_sem(samples / run["started"].values)
+    acceptance, acceptance_sem = mean_and_sem(samples / run["started"].values)
     curve = run["density_curve"].values
     at_post = curve[0] / np.interp(0.5 * length, run["x_curve"].values, curve)
     rows.append(

@@ -14,50 +14,29 @@ import numpy as np
 import pandas as pd
 
 from kinetic import io
+from kinetic.analysis.krauth2025 import contact_pressure, wall_pressures
+from kinetic.analysis.statistics import mean_and_sem
 from kinetic.theory import krauth2025 as theory
 from kinetic.workflow_support import start
 
 start(snakemake)
 md = io.read_dataset(snakemake.input.md)
-direct = io.read_dataset(snakemake.input.direct)
 n = int(md.attrs["n_disks"])
-duration = float(md.attrs["duration"])
-box_x, box_y = float(md.attrs["box_x"]), float(md.attrs["box_y"])
 walls = md["wall_statistics"].values  # (realization, face, [count, sum, sum_inverse])
 pairs = md["pair_statistics"].values
-radius = np.sqrt(md["radius_squared"].values)
-beta = 2 * n / radius**2  # k_B T = R²/(2N), m = 1
-edges = md["bin_edges"].values
-
-
-def mean_sem(values):
-    values = np.asarray(values, dtype=float)
-    return values.mean(), values.std(ddof=1) / math.sqrt(values.size)
-
-
-def rift(faces, length):
-    return walls[:, faces, 2].sum(axis=1) * 2 / (2 * length * duration)
-
-
-def kinematic(faces, length):
-    return beta * walls[:, faces, 1].sum(axis=1) * 2 / (2 * length * duration)
-
-
-contact_md = [theory.wall_value(edges, row) / box_x for row in md["density_trajectory"].values]
-samples = int(direct.attrs["samples"])
-width = float(edges[1] - edges[0])
-contact_direct = [
-    theory.wall_value(direct["bin_edges"].values, row / (samples * width)) / box_x
-    for row in direct["counts"].values
-]
-thermodynamic, thermodynamic_sem = mean_sem(contact_direct)
-wall_exact = theory.wall_speed_averages(n, float(radius.mean()))
-pair_exact = theory.pair_speed_averages(n, float(radius.mean()))
+radius = float(np.sqrt(md["radius_squared"].values).mean())
+rift_x, kinematic_x = wall_pressures(md, "x")
+rift_y, kinematic_y = wall_pressures(md, "y")
+thermodynamic, thermodynamic_sem = mean_and_sem(
+    contact_pressure(io.read_dataset(snakemake.input.direct))
+)
+wall_exact = theory.wall_speed_averages(n, radius)
+pair_exact = theory.pair_speed_averages(n, radius)
 rows = []
 
 
 def row(quantity, equation, values, reference, source, reference_sem=0.0, printed=math.nan):
-    value, sem = mean_sem(values)
+    value, sem = mean_and_sem(values)
     rows.append(
         {
             "quantity": quantity,
@@ -74,12 +53,12 @@ def row(quantity, equation, values, reference, source, reference_sem=0.0, printe
 
 
 contact = "contact density from direct-disks"
-row("beta P_x, wall rift", "4.9a", rift([0, 1], box_y), thermodynamic, contact, thermodynamic_sem)
-row("beta P_y, wall rift", "4.9a", rift([2, 3], box_x), thermodynamic, contact, thermodynamic_sem)
+row("beta P_x, wall rift", "4.9a", rift_x, thermodynamic, contact, thermodynamic_sem)
+row("beta P_y, wall rift", "4.9a", rift_y, thermodynamic, contact, thermodynamic_sem)
 row(
     "beta P_x, kinematic",
     "4.10a",
-    kinematic([0, 1], box_y),
+    kinematic_x,
     thermodynamic,
     contact,
     thermodynamic_sem,
@@ -87,7 +66,7 @@ row(
 row(
     "beta P_y, kinematic",
     "4.10a",
-    kinematic([2, 3], box_x),
+    kinematic_y,
     thermodynamic,
     contact,
     thermodynamic_sem,
@@ -95,7 +74,7 @@ row(
 row(
     "beta P, contact density (MD, Eq. 4.3)",
     "4.8",
-    contact_md,
+    contact_pressure(md),
     thermodynamic,
     contact,
     thermodynamic_sem,

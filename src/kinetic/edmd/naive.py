@@ -30,7 +30,6 @@ from numba import njit
 
 __all__ = ["observe", "trajectory"]
 
-EVENT_WALL = -1  # second member of an event's pair: a wall collision
 
 
 @njit(cache=True, error_model="numpy", inline="always")

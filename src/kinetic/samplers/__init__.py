@@ -26,6 +26,7 @@ import numpy as np
 import xarray as xr
 
 from kinetic import io
+from kinetic.analysis.statistics import mean_and_sem
 from kinetic.progress import Progress
 from kinetic.rng import stream_states
 from kinetic.samplers import kernels
@@ -78,13 +79,13 @@ def _density_dataset(
     variables (on the group dimension)."""
     groups, bins = counts.shape
     width = (upper - lower) / bins
-    per_group = counts / (per_sample * width)
+    mean, sem = mean_and_sem(counts / (per_sample * width))
     edges = np.linspace(lower, upper, bins + 1)
     data = {
-        name: (axis, per_group.mean(axis=0), "1/length", what),
+        name: (axis, mean, "1/length", what),
         f"{name}_sem": (
             axis,
-            per_group.std(axis=0, ddof=1) / math.sqrt(groups),
+            sem,
             "1/length",
             f"standard error of the {name.replace('_', ' ')} (spread of the {group} means)",
         ),
@@ -354,48 +355,36 @@ def sample_disks(
     started = np.zeros(batches, dtype=np.int64)
     cpu = np.zeros(batches)
     progress = Progress(batches, label=f"{method}-disks N={n_disks}", unit="batches")
+
+    def run(count, burn, state, positions, histogram):
+        """``count`` samples (recorded sweeps) into ``histogram``: configurations started or
+        moves accepted."""
+        if method == "direct":
+            return kernels.direct_disks(
+                n_disks, sigma, box_x, box_y, count, state, positions, histogram, lower, upper
+            )
+        return kernels.markov_disks(
+            n_disks,
+            sigma,
+            box_x,
+            box_y,
+            step,
+            count,
+            burn,
+            state,
+            positions,
+            histogram,
+            lower,
+            upper,
+        )
+
     for b in range(batches):
-        # the start and the loading of the compiled kernels stay out of the CPU time
+        # the start and the loading of the compiled kernel stay out of the CPU time
         positions = disk_configuration(n_disks, sigma, (box_x, box_y), state=states[b])
         if b == 0:
-            scratch = states[0].copy()
-            kernels.direct_disks(
-                n_disks, sigma, box_x, box_y, 0, scratch, positions.copy(), counts[0], lower, upper
-            )
-            kernels.markov_disks(
-                n_disks,
-                sigma,
-                box_x,
-                box_y,
-                step,
-                0,
-                0,
-                scratch,
-                positions.copy(),
-                counts[0],
-                lower,
-                upper,
-            )
+            run(0, 0, states[0].copy(), positions.copy(), counts[0])
         begin = time.process_time()
-        if method == "direct":
-            started[b] = kernels.direct_disks(
-                n_disks, sigma, box_x, box_y, samples, states[b], positions, counts[b], lower, upper
-            )
-        else:
-            started[b] = kernels.markov_disks(
-                n_disks,
-                sigma,
-                box_x,
-                box_y,
-                step,
-                samples,
-                burn_in,
-                states[b],
-                positions,
-                counts[b],
-                lower,
-                upper,
-            )
+        started[b] = run(samples, burn_in, states[b], positions, counts[b])
         cpu[b] = time.process_time() - begin
         progress.update(1)
     parameters = {

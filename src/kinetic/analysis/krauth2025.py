@@ -1,0 +1,47 @@
+"""Pressure of hard disks in a box with walls from the krauth2025 runs (§4.4.3).
+
+Per independent realization (or batch), from the datasets of ``kinetic.edmd.disks`` and
+``kinetic.samplers.sample_disks``:
+
+- ``wall_pressures``: βP by the wall rift, Eq. (4.9a), (1/(2 L τ)) Σ 2/|v⊥| over the hits
+  of the chosen walls of total length 2L, and by the kinematic estimator, Eq. (4.10a)
+  times β = 2N/R² (m = 1), (β/(2 L τ)) Σ 2|v⊥|;
+- ``contact_pressure``: the thermodynamic βP_y = contact density, the projected density
+  η(y) at the wall (extrapolated from the first bins, ``theory.krauth2025.wall_value``)
+  over the wall length L_x.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from kinetic.theory.krauth2025 import wall_value
+
+__all__ = ["FACES", "contact_pressure", "wall_pressures"]
+
+#: faces of ``wall_statistics``: the x walls (length L_y each), the y walls (L_x each)
+FACES = {"x": [0, 1], "y": [2, 3], "all": [0, 1, 2, 3]}
+
+
+def wall_pressures(md: xr.Dataset, faces: str) -> tuple[np.ndarray, np.ndarray]:
+    """(wall rift, kinematic) βP per realization from the hits on ``faces`` ('x', 'y' or
+    'all': in a square box P_x = P_y, so all four walls estimate the same pressure)."""
+    box_x, box_y = float(md.attrs["box_x"]), float(md.attrs["box_y"])
+    wall_length = {"x": 2 * box_y, "y": 2 * box_x, "all": 2 * (box_x + box_y)}[faces]
+    hits = md["wall_statistics"].values[:, FACES[faces], :].sum(axis=1)
+    norm = 2 / (wall_length * float(md.attrs["duration"]))
+    beta = 2 * int(md.attrs["n_disks"]) / md["radius_squared"].values
+    return hits[:, 2] * norm, beta * hits[:, 1] * norm
+
+
+def contact_pressure(data: xr.Dataset) -> np.ndarray:
+    """βP = η(σ)/L_x per realization (MD: its Eq. 4.3 density) or per batch (a sampler:
+    its counts)."""
+    edges = data["bin_edges"].values
+    if "density_trajectory" in data:
+        densities = data["density_trajectory"].values
+    else:
+        width = float(edges[1] - edges[0])
+        densities = data["counts"].values / (int(data.attrs["samples"]) * width)
+    return np.array([wall_value(edges, row) for row in densities]) / float(data.attrs["box_x"])
