@@ -31,7 +31,6 @@ from numba import njit
 __all__ = ["observe", "trajectory"]
 
 
-
 @njit(cache=True, error_model="numpy", inline="always")
 def _next_event(x, v, sigma, box):
     """(dt, k, l) of the earliest event from now: a pair (k, l) or a wall (k, −1 − face).
