@@ -25,6 +25,8 @@ include: "workflow/rules/dsmc.smk"
 include: "workflow/rules/visco2008_dsmc.smk"
 include: "workflow/rules/montanero2007.smk"
 include: "workflow/rules/krauth2025.smk"
+include: "workflow/rules/costantini2010/simulate.smk"
+include: "workflow/rules/costantini2010/figures.smk"
 include: "workflow/rules/targets.smk"
 
 

@@ -43,6 +43,6 @@ rule krauth2025:
 
 
 rule costantini2010:
-    # no costantini2010 artefact is implemented yet: this target builds nothing
+    # Figs 1-7, Table 1, error against CPU time, DSMC convergence
     input:
         costantini2010_artefacts,

@@ -1,0 +1,441 @@
+"""costantini2010: the transverse-mode autocorrelation, its tail fit, ν*, ν̄* and ζ*.
+
+Input: the "cooling modes" dataset of ``kinetic.dsmc.simulate_cooling_modes`` or
+``kinetic.edmd.simulate_cooling_modes`` (one run, its realizations concatenated), with
+``mode_real``/``mode_imag``/``mode_norm`` (realization, time, mode), ``temperature`` and
+``dissipated_energy`` (realization, time), in engine units (m = σ = T0 = 1).
+
+Definitions (fixed so that methods compare):
+
+- C(τ) = <Re w⊥(τ0 + τ) w⊥*(τ0)> / <Σ_j w_{j,y}²>, averaged over time origins τ0 in the
+  steady state (after ``transient``), over both modes (w_y e^{ikx} and its x <-> y twin)
+  and over realizations. Each realization's steady series is cut into
+  ``blocks_per_realization`` blocks; C is computed in each block (origins and lags inside
+  the block) and the blocks are the independent samples of every error bar (jackknife).
+- Units: ℓ = 1/(nσ), v_s = √(2T_s/m) with T_s the measured steady temperature,
+  k* = kℓ = 2π/√(N nσ²); times τ* = τ v_s/ℓ.
+- τ_c and the amplitude A from a weighted straight-line fit of ln C on the tail, from
+  ``fit_start`` (coloured noise bends C at short times) to the first lag where C falls
+  below ``fit_stop`` C(0); ν* = (1/τ_c* + ζ*/2)/k*² (Eq. 10) and ν̄* = A/(τ_c* k*²)
+  (Eq. 11, the fitted tail amplitude; ``nu_bar_star_c0`` uses the measured C(0) instead).
+- ζ* measured from the energy dissipated by collisions: ζ = <dissipated energy per
+  particle per unit τ>/<T> (the kinetic energy per particle is T in d = 2), ζ* = ζℓ/v_s.
+  ``zeta_star_balance`` = 2ω0 ℓ/v_s is the steady-state balance ζ(T_s) = 2ω0.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from kinetic import io
+from kinetic.theory import costantini2010 as theory
+
+__all__ = [
+    "analyse_run",
+    "block_correlations",
+    "extrapolate_inverse_n",
+    "fit_tail",
+    "jackknife",
+]
+
+
+def block_correlations(
+    modes: np.ndarray, norms: np.ndarray, *, n_lags: int, blocks_per_realization: int
+) -> np.ndarray:
+    """C in each block: (R · B, n_lags) from complex ``modes`` (R, S, M) and ``norms``
+    (R, S, M) (M modes averaged). Lags are in samples; a block needs at least 2 n_lags
+    samples."""
+    n_realizations, n_samples, _ = modes.shape
+    length = n_samples // blocks_per_realization
+    if length < 2 * n_lags:
+        raise ValueError(
+            f"blocks of {length} samples are too short for {n_lags} lags: lower "
+            "blocks_per_realization or max_lag, or lengthen the runs"
+        )
+    usable = length * blocks_per_realization
+    shape = (n_realizations * blocks_per_realization, length, modes.shape[2])
+    blocks = modes[:, :usable].reshape(shape)
+    block_norms = norms[:, :usable].reshape(shape).mean(axis=(1, 2))
+    size = 1 << (2 * length - 1).bit_length()
+    spectrum = np.fft.fft(blocks, n=size, axis=1)
+    products = np.fft.ifft(spectrum * np.conj(spectrum), axis=1)[:, :n_lags].real
+    origins = (length - np.arange(n_lags))[None, :]
+    return products.mean(axis=2) / origins / block_norms[:, None]
+
+
+def jackknife(values: np.ndarray, statistic) -> tuple[Any, Any]:
+    """``statistic`` of the mean over the first axis of ``values`` and its jackknife error.
+
+    ``statistic`` maps a mean (``values.shape[1:]``) to a float array; returns
+    (estimate, standard error) as arrays of the statistic's shape.
+    """
+    values = np.asarray(values, dtype=float)
+    count = values.shape[0]
+    if count < 2:
+        raise ValueError(f"a jackknife needs at least 2 blocks, got {count}")
+    estimate = np.asarray(statistic(values.mean(axis=0)), dtype=float)
+    total = values.sum(axis=0)
+    leave_one_out = np.array(
+        [statistic((total - values[i]) / (count - 1)) for i in range(count)], dtype=float
+    )
+    spread = leave_one_out - leave_one_out.mean(axis=0)
+    error = np.sqrt((count - 1) / count * np.sum(spread**2, axis=0))
+    return estimate, error
+
+
+def fit_window(correlation: np.ndarray, lags: np.ndarray, start: float, stop: float) -> slice:
+    """Lag indices of the tail fit: from the first lag >= ``start`` up to (excluding) the
+    first lag after it where C < ``stop`` · C(0) or C <= 0; at least three lags."""
+    first = int(np.searchsorted(lags, start))
+    below = np.flatnonzero(
+        (correlation[first:] < stop * correlation[0]) | (correlation[first:] <= 0.0)
+    )
+    last = first + (int(below[0]) if below.size else correlation.size - first)
+    if last - first < 3:
+        raise ValueError(
+            f"the tail fit window [{start:g}, C = {stop:g} C(0)] holds {last - first} lags: "
+            "sample more often, start the fit earlier or lower fit_stop"
+        )
+    return slice(first, last)
+
+
+def fit_tail(lags: np.ndarray, correlation: np.ndarray, error: np.ndarray) -> np.ndarray:
+    """[τ_c, A, χ²/dof] of ln C = ln A − τ/τ_c by weighted least squares (weights from
+    ``error``, the standard errors of C). Lags where C <= 0 (possible in a jackknife
+    sample at the end of the window) are left out."""
+    positive = correlation > 0
+    lags, correlation, error = lags[positive], correlation[positive], error[positive]
+    if lags.size < 2:
+        return np.array([np.nan, np.nan, np.nan])
+    y = np.log(correlation)
+    weight = (correlation / error) ** 2
+    design = np.stack([np.ones_like(lags), lags], axis=1)
+    root = np.sqrt(weight)[:, None]
+    coefficients, *_ = np.linalg.lstsq(design * root, y * root[:, 0], rcond=None)
+    residual = y - design @ coefficients
+    dof = max(lags.size - 2, 1)
+    chi2 = float(np.sum(weight * residual**2)) / dof
+    slope = coefficients[1]
+    tau_c = -1.0 / slope if slope < 0 else np.inf
+    return np.array([tau_c, math.exp(coefficients[0]), chi2])
+
+
+def extrapolate_inverse_n(
+    n_particles: Sequence[float], values: Sequence[float], errors: Sequence[float]
+) -> dict[str, float]:
+    """Weighted straight line y = a + b/N: ``intercept`` (the 1/N -> 0 value), ``slope``,
+    their standard errors, ``chi2`` and ``dof``. NaN where fewer than two N exist; with
+    two the line is exact (dof 0, chi2 NaN)."""
+    x = 1.0 / np.asarray(n_particles, dtype=float)
+    y = np.asarray(values, dtype=float)
+    sigma = np.asarray(errors, dtype=float)
+    nan = {key: math.nan for key in ("intercept", "intercept_err", "slope", "slope_err", "chi2")}
+    if x.size < 2 or np.unique(x).size < 2:
+        return nan | {"dof": 0}
+    weight = 1.0 / sigma**2
+    design = np.stack([np.ones_like(x), x], axis=1)
+    covariance = np.linalg.inv(design.T @ (design * weight[:, None]))
+    coefficients = covariance @ design.T @ (weight * y)
+    dof = x.size - 2
+    chi2 = float(np.sum(weight * (y - design @ coefficients) ** 2)) if dof > 0 else math.nan
+    return {
+        "intercept": float(coefficients[0]),
+        "intercept_err": float(math.sqrt(covariance[0, 0])),
+        "slope": float(coefficients[1]),
+        "slope_err": float(math.sqrt(covariance[1, 1])),
+        "chi2": chi2,
+        "dof": dof,
+    }
+
+
+def _steady(dataset: xr.Dataset, transient: float) -> xr.Dataset:
+    steady = dataset.sel(time=dataset.time >= transient)
+    if steady.sizes["time"] == 0:
+        raise ValueError(f"no sample after the transient {transient:g} (engine time units)")
+    return steady
+
+
+def analyse_run(
+    dataset: xr.Dataset,
+    *,
+    transient: float,
+    max_lag: float,
+    blocks_per_realization: int,
+    fit_start: float,
+    fit_stop: float,
+    error_subsets: int = 6,
+) -> xr.Dataset:
+    """Everything the figures and the table need from one run.
+
+    ``transient``: engine time discarded before C(τ) and the steady averages;
+    ``max_lag``, ``fit_start``: in ℓ/v_s; ``fit_stop``: fraction of C(0) ending the fit.
+    Returns a dataset with C(τ*) and its error (``lag`` in ℓ/v_s), the mean temperature
+    against τ over the whole run (``time`` in ℓ/v_s, for Fig 1), and the scalars τ_c, A,
+    ν*, ν̄*, their ratio, ζ* (measured and balance), T_s, each with its error, the fit
+    window, the collision and momentum diagnostics, and the error of ν* and ν̄* against
+    CPU time (the first 1/k of the blocks of every realization, k = 1 .. ``error_subsets``).
+    """
+    parameters = io.parameters_of(dataset)
+    density, n_particles = parameters["density"], parameters["n_particles"]
+    interval = parameters["sample_interval"]
+    steady = _steady(dataset, transient)
+    temperature_s = float(steady.temperature.mean())
+    to_reduced = density * math.sqrt(2.0 * temperature_s)  # engine time -> ℓ/v_s
+    k_star = theory.reduced_wavenumber(n_particles, density)
+    n_lags = max(3, int(round(max_lag / (interval * to_reduced))) + 1)
+    lags = np.arange(n_lags) * interval * to_reduced
+
+    modes = (steady.mode_real + 1j * steady.mode_imag).transpose("realization", "time", "mode")
+    norms = steady.mode_norm.transpose("realization", "time", "mode").values
+    correlations = block_correlations(
+        modes.values, norms, n_lags=n_lags, blocks_per_realization=blocks_per_realization
+    )
+    n_blocks = correlations.shape[0]
+    # per-block temperature and dissipation rate (same cut as the correlations)
+    length = steady.sizes["time"] // blocks_per_realization
+    usable = length * blocks_per_realization
+
+    def per_block(variable: xr.DataArray) -> np.ndarray:
+        values = variable.transpose("realization", "time").values[:, :usable]
+        return values.reshape(n_blocks, length).mean(axis=1)
+
+    temperatures = per_block(steady.temperature)
+    dissipation = per_block(steady.dissipated_energy) / interval
+    samples = np.column_stack([correlations, temperatures, dissipation])
+    mean_correlation = correlations.mean(axis=0)
+    correlation_sem = correlations.std(axis=0, ddof=1) / math.sqrt(n_blocks)
+    window = fit_window(mean_correlation, lags, fit_start, fit_stop)
+
+    def statistic(mean: np.ndarray) -> np.ndarray:
+        correlation, temperature, rate = mean[:n_lags], mean[n_lags], mean[n_lags + 1]
+        tau_c, amplitude, chi2 = fit_tail(
+            lags[window], correlation[window], correlation_sem[window]
+        )
+        zeta_star = rate / temperature / to_reduced
+        nu_star = theory.nu_star_from_fit(tau_c, zeta_star, k_star)
+        nu_bar_star = theory.nu_bar_star_from_fit(amplitude, tau_c, k_star)
+        nu_bar_c0 = theory.nu_bar_star_from_fit(correlation[0], tau_c, k_star)
+        return np.array(
+            [
+                tau_c,
+                amplitude,
+                nu_star,
+                nu_bar_star,
+                nu_bar_star / nu_star,
+                zeta_star,
+                nu_bar_c0,
+                correlation[0],
+                temperature,
+                chi2,
+            ]
+        )
+
+    names = [
+        "tau_c",
+        "amplitude",
+        "nu_star",
+        "nu_bar_star",
+        "ratio",
+        "zeta_star",
+        "nu_bar_star_c0",
+        "correlation_zero",
+        "temperature_s",
+        "fit_chi2",
+    ]
+    estimate, error = jackknife(samples, statistic)
+
+    # error against CPU time: the first 1/k of every realization's blocks
+    cpu_total = float(dataset.cpu_seconds.sum())
+    fractions, cpu, nu_err, nu_bar_err = [], [], [], []
+    for k in range(1, error_subsets + 1):
+        kept = blocks_per_realization // k
+        if kept < 1 or kept * steady.sizes["realization"] < 2:
+            break
+        rows = np.concatenate(
+            [
+                np.arange(r * blocks_per_realization, r * blocks_per_realization + kept)
+                for r in range(steady.sizes["realization"])
+            ]
+        )
+        try:
+            _, subset_error = jackknife(samples[rows], statistic)
+        except ValueError:
+            break
+        fraction = kept / blocks_per_realization
+        fractions.append(fraction)
+        cpu.append(cpu_total * fraction)
+        nu_err.append(subset_error[2])
+        nu_bar_err.append(subset_error[3])
+
+    time_reduced = dataset.time.values * density * math.sqrt(2.0 * temperature_s)
+    temperature_mean = dataset.temperature.mean("realization").values
+    n_real = dataset.sizes["realization"]
+    temperature_sem = (
+        dataset.temperature.std("realization", ddof=1).values / math.sqrt(n_real)
+        if n_real > 1
+        else np.full(dataset.sizes["time"], np.nan)
+    )
+    units = {
+        "tau_c": ("l/v_s", "correlation time of the transverse mode (tail fit)"),
+        "amplitude": ("1", "tail amplitude A of C (fit extrapolated to lag 0)"),
+        "nu_star": ("1", "reduced kinematic viscosity nu* (Eq. 10)"),
+        "nu_bar_star": ("1", "reduced noise viscosity nu_bar* (Eq. 11, tail amplitude)"),
+        "ratio": ("1", "nu_bar*/nu*"),
+        "zeta_star": ("1", "reduced cooling rate zeta* (measured dissipation)"),
+        "nu_bar_star_c0": ("1", "nu_bar* from the measured C(0) instead of the tail amplitude"),
+        "correlation_zero": ("1", "measured C(0)"),
+        "temperature_s": ("T0", "steady temperature T_s"),
+        "fit_chi2": ("1", "chi2 per degree of freedom of the tail fit"),
+    }
+    data_vars: dict[str, Any] = {
+        "correlation": ("lag", mean_correlation, "1", "C(tau), transverse-mode autocorrelation"),
+        "correlation_sem": ("lag", correlation_sem, "1", "standard error of C (blocks)"),
+        "temperature": ("time", temperature_mean, "T0", "granular temperature (mean)"),
+        "temperature_sem": ("time", temperature_sem, "T0", "standard error over realizations"),
+        "error_cpu_seconds": ("subset", cpu, "s", "CPU time of the blocks used"),
+        "error_nu_star": ("subset", nu_err, "1", "jackknife error of nu* from those blocks"),
+        "error_nu_bar_star": ("subset", nu_bar_err, "1", "same for nu_bar*"),
+    }
+    for index, name in enumerate(names):
+        unit, long_name = units[name]
+        data_vars[name] = ((), estimate[index], unit, long_name)
+        data_vars[f"{name}_err"] = ((), error[index], unit, f"jackknife error of {name}")
+    balance = 2.0 * parameters["drag_rate"] / to_reduced
+    data_vars["zeta_star_balance"] = ((), balance, "1", "2 omega0 l/v_s (steady balance)")
+    data_vars["k_star"] = ((), k_star, "1", "reduced wavenumber k l = 2 pi / sqrt(N n sigma^2)")
+    data_vars["fit_start"] = ((), lags[window.start], "l/v_s", "first lag of the tail fit")
+    data_vars["fit_stop"] = ((), lags[window.stop - 1], "l/v_s", "last lag of the tail fit")
+    data_vars["blocks"] = ((), n_blocks, "1", "independent blocks behind the error bars")
+    data_vars["collisions"] = ((), int(dataset.collisions.sum()), "1", "collisions, all runs")
+    data_vars["cpu_seconds"] = ((), cpu_total, "s", "process CPU time, all realizations")
+    data_vars["max_momentum"] = (
+        (),
+        float(np.abs(dataset.momentum).max()),
+        "1",
+        "largest |total momentum| / (N_sim sqrt(T)) sampled",
+    )
+    if "repeated_collisions" in dataset:
+        fraction = float(dataset.repeated_collisions.sum()) / max(
+            1, int(dataset.collisions.sum())
+        )
+        data_vars["repeated_fraction"] = (
+            (),
+            fraction,
+            "1",
+            "fraction of collisions repeating the partners' previous pair",
+        )
+    return io.make_dataset(
+        data_vars,
+        coords={
+            "lag": ("lag", lags, "l/v_s", "lag of C"),
+            "time": ("time", time_reduced, "l/v_s", "rescaled time tau"),
+            "subset": ("subset", fractions, "1", "fraction of each realization's blocks used"),
+        },
+        attrs={"transient": transient, "max_lag": max_lag, "fit_stop_fraction": fit_stop},
+    )
+
+
+TABLE_COLUMNS = [
+    "method",
+    "alpha",
+    "n_particles",
+    "fictive_factor",
+    "tau_c",
+    "tau_c_err",
+    "amplitude",
+    "amplitude_err",
+    "nu_star",
+    "nu_star_err",
+    "nu_bar_star",
+    "nu_bar_star_err",
+    "ratio",
+    "ratio_err",
+    "zeta_star",
+    "zeta_star_err",
+]
+"""Columns of Table 1 (``results/costantini2010/table1.csv``)."""
+
+EXTRAPOLATED = ("nu_star", "nu_bar_star", "ratio", "zeta_star")
+"""Quantities extrapolated linearly in 1/N (τ_c and the amplitude diverge as N -> ∞)."""
+
+
+def method_of(result: xr.Dataset) -> str:
+    """``md``, ``dsmc`` (inhomogeneous) or ``dsmc_homogeneous`` (one collision cell)."""
+    if result.attrs["engine"] == "md":
+        return "md"
+    return "dsmc_homogeneous" if int(result.attrs["cells_per_side"]) == 1 else "dsmc"
+
+
+def summary_row(result: xr.Dataset) -> dict[str, Any]:
+    """One simulated row of Table 1 from a run aggregate (``analyse_run`` + parameters)."""
+    method = method_of(result)
+    row: dict[str, Any] = {
+        "method": method,
+        "alpha": float(result.attrs["restitution"]),
+        "n_particles": int(result.attrs["n_particles"]),
+        "fictive_factor": int(result.attrs["fictive_factor"]) if method != "md" else None,
+    }
+    for name in ("tau_c", "amplitude", "nu_star", "nu_bar_star", "ratio", "zeta_star"):
+        row[name] = float(result[name])
+        row[f"{name}_err"] = float(result[f"{name}_err"])
+    return row
+
+
+def theory_rows(alphas: Sequence[float], n_particles: Sequence[int], density: float) -> list:
+    """Table 1's theory rows (first Sonine, white noise): one per (α, N) with τ_c and the
+    amplitude of Eq. 9, and one per α with the N-independent ν*, ν̄*, ratio, ζ*."""
+    rows = []
+    for alpha in alphas:
+        common = {
+            "method": "theory",
+            "alpha": float(alpha),
+            "fictive_factor": None,
+            "nu_star": float(theory.nu_star(alpha)),
+            "nu_bar_star": float(theory.nu_bar_star_white(alpha)),
+            "ratio": float(theory.fdr_ratio_white(alpha)),
+            "zeta_star": float(theory.zeta_star(alpha)),
+        }
+        for n in n_particles:
+            rows.append(
+                common
+                | {
+                    "n_particles": int(n),
+                    "tau_c": float(theory.correlation_time(alpha, n, density)),
+                    "amplitude": float(theory.correlation_amplitude(alpha, n, density)),
+                }
+            )
+        rows.append(common | {"n_particles": None})
+    return rows
+
+
+def extrapolated_rows(rows: Sequence[dict[str, Any]]) -> tuple[list, list]:
+    """The 1/N -> 0 rows (n_particles empty) of every (method, α, Λ) measured at two or
+    more N, and the fits behind them (one record per quantity: intercept, slope, χ², dof)."""
+    groups: dict[tuple, list] = {}
+    for row in rows:
+        if row["method"] != "theory" and row["n_particles"] is not None:
+            groups.setdefault((row["method"], row["alpha"], row["fictive_factor"]), []).append(row)
+    table, fits = [], []
+    for (method, alpha, factor), members in sorted(groups.items(), key=lambda item: str(item[0])):
+        if len({member["n_particles"] for member in members}) < 2:
+            continue
+        row = {"method": method, "alpha": alpha, "n_particles": None, "fictive_factor": factor}
+        for name in EXTRAPOLATED:
+            fit = extrapolate_inverse_n(
+                [m["n_particles"] for m in members],
+                [m[name] for m in members],
+                [m[f"{name}_err"] for m in members],
+            )
+            row[name], row[f"{name}_err"] = fit["intercept"], fit["intercept_err"]
+            fits.append(
+                {"method": method, "alpha": alpha, "fictive_factor": factor, "quantity": name}
+                | fit
+                | {"n_values": len(members)}
+            )
+        table.append(row)
+    return table, fits

@@ -1,0 +1,140 @@
+"""kinetic.analysis.costantini2010 on synthetic modes whose autocorrelation is known.
+
+Each mode is a complex Ornstein-Uhlenbeck process z with <z(t+s) z*(t)> = V e^{-s/τ_c}, so
+C(τ) = (V/norm) e^{-τ/τ_c} exactly; the analysis must recover τ_c and the amplitude within
+its own error bars, and those error bars must be honest over independent data sets.
+"""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from kinetic import io
+from kinetic.analysis import costantini2010 as analysis
+from kinetic.theory import costantini2010 as theory
+
+DENSITY = 0.005
+N_PARTICLES = 1000
+TO_REDUCED = DENSITY * math.sqrt(2.0)  # engine time -> l/v_s at T_s = 1
+
+
+def synthetic_run(seed, *, tau_c=1.0, amplitude=1.3, samples=12000, realizations=4, zeta=0.0):
+    """Modes with C = amplitude e^{-τ/τ_c} (τ in l/v_s); temperature 1; dissipation
+    zeta * T per unit engine time."""
+    rng = np.random.default_rng(seed)
+    interval = 0.1 / TO_REDUCED  # 0.1 l/v_s between samples
+    decay = math.exp(-interval * TO_REDUCED / tau_c)
+    norm = 500.0
+    variance = amplitude * norm
+    z = np.empty((realizations, samples, 2), dtype=complex)
+    z[:, 0] = (rng.normal(size=(realizations, 2)) + 1j * rng.normal(size=(realizations, 2))) * (
+        math.sqrt(variance / 2)
+    )
+    kick = math.sqrt(variance * (1 - decay**2) / 2)
+    noise = rng.normal(size=(realizations, samples, 2, 2)) * kick
+    for t in range(1, samples):
+        z[:, t] = decay * z[:, t - 1] + noise[:, t, :, 0] + 1j * noise[:, t, :, 1]
+    time = np.arange(samples) * interval
+    shape3 = ("realization", "time", "mode")
+    dataset = io.make_dataset(
+        {
+            "mode_real": (shape3, z.real, "1", "real part"),
+            "mode_imag": (shape3, z.imag, "1", "imaginary part"),
+            "mode_norm": (shape3, np.full(z.shape, norm), "1", "norm"),
+            "temperature": (("realization", "time"), np.ones(z.shape[:2]), "T0", "T"),
+            "dissipated_energy": (
+                ("realization", "time"),
+                np.full(z.shape[:2], zeta * interval),
+                "T0",
+                "dissipated energy per particle",
+            ),
+            "momentum": (("realization", "time", "axis"), np.zeros((*z.shape[:2], 2)), "1", "p"),
+            "collisions": ("realization", np.full(realizations, 1000), "1", "collisions"),
+            "cpu_seconds": ("realization", np.full(realizations, 2.0), "s", "CPU time"),
+        },
+        coords={
+            "realization": ("realization", np.arange(realizations), "1", "realization"),
+            "time": ("time", time, "1", "tau"),
+            "mode": ("mode", ["wy_kx", "wx_ky"], "1", "mode"),
+            "axis": ("axis", ["x", "y"], "1", "axis"),
+        },
+    )
+    parameters = {
+        "density": DENSITY,
+        "n_particles": N_PARTICLES,
+        "sample_interval": interval,
+        "drag_rate": zeta / 2,
+        "engine": "md",
+    }
+    return dataset.assign_attrs(parameters_json=json.dumps(parameters))
+
+
+def analyse(dataset, **overrides):
+    settings = {
+        "transient": 0.0,
+        "max_lag": 4.0,
+        "blocks_per_realization": 8,
+        "fit_start": 0.3,
+        "fit_stop": 0.1,
+    } | overrides
+    return analysis.analyse_run(dataset, **settings)
+
+
+def test_recovers_the_correlation_time_amplitude_and_viscosities():
+    result = analyse(synthetic_run(1))
+    assert abs(float(result.tau_c) - 1.0) < 4 * float(result.tau_c_err)
+    assert abs(float(result.amplitude) - 1.3) < 4 * float(result.amplitude_err)
+    assert float(result.tau_c_err) < 0.1  # the data determine τ_c to a few per cent
+    k_star = theory.reduced_wavenumber(N_PARTICLES, DENSITY)
+    # ζ* = 0: ν* = 1/(τ_c k*²), ν̄* = A/(τ_c k*²)
+    assert float(result.nu_star) == pytest.approx(1.0 / (float(result.tau_c) * k_star**2))
+    assert float(result.ratio) == pytest.approx(float(result.amplitude), rel=1e-12)
+    np.testing.assert_allclose(result.correlation[0], 1.3, atol=5 * float(result.correlation_sem[0]))
+
+
+def test_measured_cooling_rate_in_reduced_units():
+    zeta = 0.01  # per engine time unit
+    result = analyse(synthetic_run(2, zeta=zeta))
+    assert float(result.zeta_star) == pytest.approx(zeta / TO_REDUCED, rel=1e-12)
+    assert float(result.zeta_star_balance) == pytest.approx(zeta / TO_REDUCED, rel=1e-12)
+
+
+def test_jackknife_errors_are_honest_over_independent_data_sets():
+    z_scores = []
+    for seed in range(12):
+        result = analyse(synthetic_run(100 + seed, samples=6000, realizations=2))
+        z_scores.append((float(result.tau_c) - 1.0) / float(result.tau_c_err))
+    spread = np.std(z_scores, ddof=1)
+    # for 12 normal z-scores the sample standard deviation lies in [0.55, 1.45] with
+    # probability > 99 %; a bias of one error bar would show in the mean
+    assert 0.5 < spread < 1.6
+    assert abs(np.mean(z_scores)) < 3.0 * spread / math.sqrt(len(z_scores)) + 0.5
+
+
+def test_error_against_cpu_time_falls_with_more_blocks():
+    result = analyse(synthetic_run(3, samples=8000, realizations=8))
+    errors = result.error_nu_star.values
+    cpu = result.error_cpu_seconds.values
+    assert cpu[0] == pytest.approx(16.0)  # all blocks: 8 realizations x 2 s
+    assert cpu[-1] == pytest.approx(2.0)  # one block of eight per realization
+    # 64 blocks against 8: the error should grow about sqrt(8) = 2.8 times
+    assert errors[-1] > 1.5 * errors[0]
+
+
+def test_too_short_blocks_are_refused_with_advice():
+    with pytest.raises(ValueError, match="too short"):
+        analyse(synthetic_run(4, samples=200))
+
+
+def test_extrapolation_in_inverse_n_is_exact_on_a_line_and_reports_chi2():
+    n = np.array([1000, 2000, 3000])
+    fit = analysis.extrapolate_inverse_n(n, 0.2 + 50.0 / n, [0.001] * 3)
+    assert fit["intercept"] == pytest.approx(0.2)
+    assert fit["slope"] == pytest.approx(50.0)
+    assert fit["chi2"] == pytest.approx(0.0, abs=1e-12)
+    assert fit["dof"] == 1
+    shifted = analysis.extrapolate_inverse_n(n, 0.2 + 50.0 / n + [0, 0.002, 0], [0.001] * 3)
+    assert shifted["chi2"] > 1.0
+    assert math.isnan(analysis.extrapolate_inverse_n([1000], [0.2], [0.01])["intercept"])

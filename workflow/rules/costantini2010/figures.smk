@@ -1,0 +1,201 @@
+# costantini2010: figures and tables, from the run aggregates of simulate.smk only.
+#   fig01  T(tau) for several cell sizes and Lambda against MD and T_s, with the
+#          recollision diagnostic           fig02  C(tau): homogeneous vs inhomogeneous DSMC vs MD
+#   fig03  C(tau) for each N                fig04/05  nu*, nu_bar* against 1/N (table1 fits)
+#   fig06  nu*, nu_bar* against alpha       fig07  nu_bar*/nu* against alpha
+#   table1 one row per (method, alpha, N, Lambda), the 1/N -> 0 rows and theory
+#   error_vs_time  error of nu*, nu_bar* against CPU time; convergence  DSMC cell side and step
+
+for name in ("fig01", "fig02", "fig03", "fig04", "fig05", "fig06", "fig07"):
+    provide(f"costantini2010/{name}", *figure_files("costantini2010", name))
+for name in ("error_vs_time", "convergence"):
+    provide(
+        f"costantini2010/{name}",
+        *figure_files("costantini2010", name),
+        f"results/costantini2010/{name}.csv",
+    )
+provide(
+    "costantini2010/table1",
+    *table_files("costantini2010", "table1"),
+    "results/costantini2010/extrapolation.csv",
+)
+
+COSTANTINI2010_ANALYSIS_CODE = package_files(
+    "analysis/costantini2010", "theory/costantini2010", "studies/costantini2010", "plotting"
+)
+"""Package modules every figure and table of costantini2010 computes with."""
+
+
+def costantini2010_files(runs):
+    return [costantini2010_run_file(run) for run in runs]
+
+
+def costantini2010_figure_inputs(wildcards):
+    """Figs 1 and 2: the runs at the figure's (N, alpha)."""
+    return costantini2010_files(costantini2010_study.figure_runs(config["costantini2010"]))
+
+
+def costantini2010_fig02_inputs(wildcards):
+    """Fig 2: the figure runs without the fine cells."""
+    return costantini2010_files(costantini2010_study.correlation_runs(config["costantini2010"]))
+
+
+def costantini2010_fig03_inputs(wildcards):
+    """Fig 3: the grid runs at the figure's alpha, every N."""
+    study = config["costantini2010"]
+    alpha = study["figures"]["restitution"]
+    return costantini2010_files(
+        run for run in costantini2010_study.grid_runs(study) if run.restitution == alpha
+    )
+
+
+def costantini2010_table_inputs(wildcards):
+    """Table 1: every grid run, and the figure runs with the production cells."""
+    return costantini2010_files(costantini2010_study.table_runs(config["costantini2010"]))
+
+
+def costantini2010_error_inputs(wildcards):
+    """Error against CPU time: DSMC and MD at the figure's N and error_restitution."""
+    study = config["costantini2010"]
+    n, alpha = study["figures"]["particles"], study["error_restitution"]
+    return costantini2010_files(
+        run
+        for run in costantini2010_study.grid_runs(study)
+        if run.restitution == alpha and run.n_particles == n
+    )
+
+
+def costantini2010_convergence_inputs(wildcards):
+    return costantini2010_files(costantini2010_study.convergence_runs(config["costantini2010"]))
+
+
+def costantini2010_settings(wildcards):
+    """The validated config section (density, figure choices)."""
+    return config["costantini2010"]
+
+
+def costantini2010_caption(name):
+    return f"../../report/costantini2010_{name}.rst"
+
+
+rule costantini2010_fig01:
+    input:
+        runs=costantini2010_figure_inputs,
+        script=figure_script("costantini2010_fig01"),
+        code=COSTANTINI2010_ANALYSIS_CODE,
+    output:
+        pdf="results/costantini2010/fig01.pdf",
+        png=report("results/costantini2010/fig01.png", caption=costantini2010_caption("fig01"), category="costantini2010"),
+    log:
+        "logs/costantini2010/fig01.log",
+    params:
+        study=costantini2010_settings,
+    script:
+        "../../scripts/costantini2010_fig01.py"
+
+
+rule costantini2010_fig02:
+    input:
+        runs=costantini2010_fig02_inputs,
+        script=figure_script("costantini2010_fig02"),
+        code=COSTANTINI2010_ANALYSIS_CODE,
+    output:
+        pdf="results/costantini2010/fig02.pdf",
+        png=report("results/costantini2010/fig02.png", caption=costantini2010_caption("fig02"), category="costantini2010"),
+    log:
+        "logs/costantini2010/fig02.log",
+    params:
+        study=costantini2010_settings,
+    script:
+        "../../scripts/costantini2010_fig02.py"
+
+
+rule costantini2010_fig03:
+    input:
+        runs=costantini2010_fig03_inputs,
+        script=figure_script("costantini2010_fig03"),
+        code=COSTANTINI2010_ANALYSIS_CODE,
+    output:
+        pdf="results/costantini2010/fig03.pdf",
+        png=report("results/costantini2010/fig03.png", caption=costantini2010_caption("fig03"), category="costantini2010"),
+    log:
+        "logs/costantini2010/fig03.log",
+    params:
+        study=costantini2010_settings,
+    script:
+        "../../scripts/costantini2010_fig03.py"
+
+
+rule costantini2010_table1:
+    input:
+        runs=costantini2010_table_inputs,
+        script=figure_script("costantini2010_table1"),
+        code=COSTANTINI2010_ANALYSIS_CODE,
+    output:
+        csv="results/costantini2010/table1.csv",
+        md="results/costantini2010/table1.md",
+        fits="results/costantini2010/extrapolation.csv",
+    log:
+        "logs/costantini2010/table1.log",
+    params:
+        study=costantini2010_settings,
+    script:
+        "../../scripts/costantini2010_table1.py"
+
+
+rule costantini2010_fig04_to_fig07:
+    # Figs 4-7 draw Table 1 (itself computed from the run aggregates) and the theory
+    input:
+        table="results/costantini2010/table1.csv",
+        fits="results/costantini2010/extrapolation.csv",
+        script=figure_script("costantini2010_transport"),
+        code=COSTANTINI2010_ANALYSIS_CODE,
+    output:
+        fig04="results/costantini2010/fig04.pdf",
+        fig05="results/costantini2010/fig05.pdf",
+        fig06="results/costantini2010/fig06.pdf",
+        fig07="results/costantini2010/fig07.pdf",
+        png04=report("results/costantini2010/fig04.png", caption=costantini2010_caption("fig04"), category="costantini2010"),
+        png05=report("results/costantini2010/fig05.png", caption=costantini2010_caption("fig05"), category="costantini2010"),
+        png06=report("results/costantini2010/fig06.png", caption=costantini2010_caption("fig06"), category="costantini2010"),
+        png07=report("results/costantini2010/fig07.png", caption=costantini2010_caption("fig07"), category="costantini2010"),
+    log:
+        "logs/costantini2010/fig04_to_fig07.log",
+    params:
+        study=costantini2010_settings,
+    script:
+        "../../scripts/costantini2010_transport.py"
+
+
+rule costantini2010_error_vs_time:
+    input:
+        runs=costantini2010_error_inputs,
+        script=figure_script("costantini2010_error_vs_time"),
+        code=COSTANTINI2010_ANALYSIS_CODE,
+    output:
+        pdf="results/costantini2010/error_vs_time.pdf",
+        png=report("results/costantini2010/error_vs_time.png", caption=costantini2010_caption("error_vs_time"), category="costantini2010"),
+        csv="results/costantini2010/error_vs_time.csv",
+    log:
+        "logs/costantini2010/error_vs_time.log",
+    params:
+        study=costantini2010_settings,
+    script:
+        "../../scripts/costantini2010_error_vs_time.py"
+
+
+rule costantini2010_convergence:
+    input:
+        runs=costantini2010_convergence_inputs,
+        script=figure_script("costantini2010_convergence"),
+        code=COSTANTINI2010_ANALYSIS_CODE,
+    output:
+        pdf="results/costantini2010/convergence.pdf",
+        png=report("results/costantini2010/convergence.png", caption=costantini2010_caption("convergence"), category="costantini2010"),
+        csv="results/costantini2010/convergence.csv",
+    log:
+        "logs/costantini2010/convergence.log",
+    params:
+        study=costantini2010_settings,
+    script:
+        "../../scripts/costantini2010_convergence.py"

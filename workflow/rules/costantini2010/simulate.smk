@@ -1,0 +1,131 @@
+# costantini2010: runs of the cooling gas in the stationary representation, by inhomogeneous
+# DSMC (kinetic.dsmc.simulate_cooling_modes) and MD (kinetic.edmd.simulate_cooling_modes).
+# Every run is cut into jobs of realizations (kinetic.batches); one aggregate per run joins
+# them and computes C(tau), the tail fit, nu*, nu_bar*, zeta* and T(tau)
+# (kinetic.analysis.costantini2010). Run names are the keys of
+# kinetic.studies.costantini2010.runs(config): wildcards are looked up, never parsed.
+from kinetic import batches
+from kinetic.studies import costantini2010 as costantini2010_study
+
+COSTANTINI2010_PACKAGES = {"dsmc": "dsmc", "md": "edmd"}
+"""Package of each engine wildcard."""
+
+try:
+    costantini2010_study.check(config["costantini2010"])
+except ValueError as error:
+    raise WorkflowError(f"config section costantini2010: {error}") from None
+
+
+def costantini2010_runs():
+    """Every run of the study by name."""
+    return costantini2010_study.runs(config["costantini2010"])
+
+
+def costantini2010_run(wildcards):
+    """The run named by the {run} wildcard, checked against the {engine} wildcard."""
+    run = costantini2010_runs().get(wildcards.run)
+    if run is None or run.engine != wildcards.engine:
+        raise WorkflowError(f"the config asks for no costantini2010 {wildcards.engine} run {wildcards.run!r}")
+    return run
+
+
+def costantini2010_run_file(run):
+    """The aggregate of one run."""
+    return f"results/costantini2010/{run.engine}/{run.name}.nc"
+
+
+def costantini2010_batch_files(wildcards):
+    """Input of the aggregate: every job's file of the run."""
+    run = costantini2010_run(wildcards)
+    return [
+        f"results/costantini2010/{run.engine}/{run.name}/{batches.batch_name(job.index)}.nc"
+        for job in costantini2010_study.jobs(config["costantini2010"])
+    ]
+
+
+def costantini2010_job(wildcards):
+    """Keyword arguments of simulate_cooling_modes for one job."""
+    study = config["costantini2010"]
+    run = costantini2010_run(wildcards)
+    plan = {batches.batch_name(job.index): job for job in costantini2010_study.jobs(study)}
+    job = plan.get(f"batch{wildcards.batch}")
+    if job is None:
+        raise WorkflowError(f"costantini2010 run {run.name} has no job batch{wildcards.batch}")
+    return run.engine_arguments(study) | {
+        "seed": job_seed(f"costantini2010/{run.engine}/{run.name}"),
+        "first_realization": job.first_realization,
+        "n_realizations": job.n_realizations,
+        "label": f"costantini2010 {run.engine} {run.name} batch{wildcards.batch}",
+    }
+
+
+def costantini2010_analysis(wildcards):
+    """Settings of kinetic.analysis.costantini2010.analyse_run, in engine time units where
+    the analysis wants them (the transient)."""
+    study = config["costantini2010"]
+    return {
+        "transient": study["transient"] * costantini2010_study.mean_free_time(study["density"]),
+        "max_lag": study["max_lag"],
+        "blocks_per_realization": study["blocks_per_realization"],
+        "fit_start": study["fit_start"],
+        "fit_stop": study["fit_stop"],
+    }
+
+
+rule costantini2010_simulate_dsmc:
+    input:
+        warm=numba_warm("dsmc"),
+        code=engine_sources("dsmc") + package_files("studies/costantini2010", "batches"),
+    output:
+        "results/costantini2010/{engine}/{run}/batch{batch}.nc",
+    log:
+        "logs/costantini2010/{engine}/{run}/batch{batch}.log",
+    benchmark:
+        "logs/benchmarks/costantini2010/{engine}/{run}/batch{batch}.tsv"
+    params:
+        job=costantini2010_job,
+    threads: 1
+    wildcard_constraints:
+        engine="dsmc",
+        run="[^/]+",
+        batch="[0-9]{4}",
+    script:
+        "../../scripts/costantini2010_simulate.py"
+
+
+rule costantini2010_simulate_md:
+    input:
+        warm=numba_warm("edmd"),
+        code=engine_sources("edmd") + package_files("studies/costantini2010", "batches"),
+    output:
+        "results/costantini2010/{engine}/{run}/batch{batch}.nc",
+    log:
+        "logs/costantini2010/{engine}/{run}/batch{batch}.log",
+    benchmark:
+        "logs/benchmarks/costantini2010/{engine}/{run}/batch{batch}.tsv"
+    params:
+        job=costantini2010_job,
+    threads: 1
+    wildcard_constraints:
+        engine="md",
+        run="[^/]+",
+        batch="[0-9]{4}",
+    script:
+        "../../scripts/costantini2010_simulate.py"
+
+
+rule costantini2010_aggregate_run:
+    input:
+        batches=costantini2010_batch_files,
+        code=package_files("analysis/costantini2010", "theory/costantini2010", "batches"),
+    output:
+        "results/costantini2010/{engine}/{run}.nc",
+    log:
+        "logs/costantini2010/{engine}/{run}.log",
+    params:
+        analysis=costantini2010_analysis,
+    wildcard_constraints:
+        engine="dsmc|md",
+        run="[^/]+",
+    script:
+        "../../scripts/costantini2010_aggregate.py"

@@ -1,0 +1,23 @@
+"""Join the jobs of one costantini2010 run and analyse it: C(tau), tail fit, nu*, nu_bar*."""
+
+from kinetic import batches, io
+from kinetic.analysis.costantini2010 import analyse_run
+from kinetic.workflow_support import start, write_output
+
+log = start(snakemake)
+paths = list(snakemake.input.batches)
+run = batches.combine([io.read_dataset(path) for path in paths], names=paths)
+result = analyse_run(run, **snakemake.params.analysis)
+result = result.assign_attrs(parameters_json=run.attrs["parameters_json"])
+write_output(snakemake, result, int(run.attrs["seed"]))
+log.info(
+    "%s: tau_c = %.4g +- %.2g, nu* = %.4g +- %.2g, nu_bar* = %.4g +- %.2g, T_s = %.4f",
+    snakemake.wildcards.run,
+    float(result.tau_c),
+    float(result.tau_c_err),
+    float(result.nu_star),
+    float(result.nu_star_err),
+    float(result.nu_bar_star),
+    float(result.nu_bar_star_err),
+    float(result.temperature_s),
+)

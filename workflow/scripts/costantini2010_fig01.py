@@ -1,0 +1,44 @@
+"""costantini2010 Fig. 1: granular temperature against rescaled time for several cell sizes
+and Lambda, against MD and the expected T_s; right: the recollision diagnostic."""
+
+import numpy as np
+
+from kinetic import io, plotting
+from kinetic.analysis.costantini2010 import method_of
+from kinetic.plotting.costantini2010 import METHOD_STYLE, run_label
+from kinetic.workflow_support import start
+
+log = start(snakemake)
+results = [io.read_dataset(path) for path in snakemake.input.runs]
+fig, (ax, chaos) = plotting.figure(1, 2, figsize=(7.0, 2.8), width_ratios=[2, 1])
+dsmc_colors = iter(plotting.plt.cm.viridis(np.linspace(0.0, 0.9, len(results))))
+for result in results:
+    method = method_of(result)
+    color = METHOD_STYLE[method]["color"] if method != "dsmc" else next(dsmc_colors)
+    style = "-" if method == "md" else ("--" if method == "dsmc_homogeneous" else "-")
+    ax.plot(result.time, result.temperature, style, color=color, lw=0.8, label=run_label(result))
+    log.info(
+        "%s: T_s = %.4f +- %.4f, repeated collisions %.4f",
+        run_label(result),
+        float(result.temperature_s),
+        float(result.temperature_s_err),
+        float(result.get("repeated_fraction", np.nan)),
+    )
+    if method != "md":
+        per_cell = float(result.attrs["n_particles"]) / float(result.attrs["cells_per_side"]) ** 2
+        chaos.plot(
+            per_cell,
+            float(result.repeated_fraction),
+            METHOD_STYLE[method]["marker"],
+            color=color,
+            mfc="none",
+        )
+ax.axhline(1.0, color=METHOD_STYLE["theory"]["color"], lw=0.8, ls=":", label=r"expected $T_s$")
+ax.set_xlabel(r"$\tau\, v_s/\ell$")
+ax.set_ylabel(r"$T/T_0$")
+ax.legend(fontsize=6, loc="best", ncols=2)
+chaos.set_xscale("log")
+chaos.set_yscale("log")
+chaos.set_xlabel("real particles per cell")
+chaos.set_ylabel("fraction of repeated collisions")
+plotting.save(fig, snakemake.output.pdf)

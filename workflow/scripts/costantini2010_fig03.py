@@ -1,0 +1,19 @@
+"""costantini2010 Fig. 3: C(tau) for each N at the figure's alpha (DSMC with fixed Lambda and
+cell side, and MD), with the first-Sonine prediction (Eq. 9) for each N."""
+
+from kinetic import io, plotting
+from kinetic.plotting.costantini2010 import correlation_panel
+from kinetic.workflow_support import start
+
+log = start(snakemake)
+study = snakemake.params.study
+results = [io.read_dataset(path) for path in snakemake.input.runs]
+sizes = sorted({int(result.attrs["n_particles"]) for result in results})
+fig, axes = plotting.figure(1, len(sizes), figsize=(2.6 * len(sizes), 2.6), sharey=True)
+for ax, n in zip(axes if len(sizes) > 1 else [axes], sizes, strict=True):
+    correlation_panel(
+        ax, [r for r in results if int(r.attrs["n_particles"]) == n], study["density"], log
+    )
+    ax.set_title(f"N = {n}", fontsize=8)
+    ax.legend(fontsize=6)
+plotting.save(fig, snakemake.output.pdf)

@@ -1,0 +1,39 @@
+"""costantini2010 Table 1: tau_c, amplitude, nu*, nu_bar*, their ratio and zeta* per
+(method, alpha, N, Lambda), the 1/N -> 0 rows and the first-Sonine theory."""
+
+import pandas as pd
+
+from kinetic import io
+from kinetic.analysis import costantini2010 as analysis
+from kinetic.workflow_support import start
+
+log = start(snakemake)
+study = snakemake.params.study
+rows = [analysis.summary_row(io.read_dataset(path)) for path in snakemake.input.runs]
+extrapolated, fits = analysis.extrapolated_rows(rows)
+rows += extrapolated
+rows += analysis.theory_rows(study["restitutions"], study["particles"], study["density"])
+table = pd.DataFrame(rows, columns=analysis.TABLE_COLUMNS)
+order = {method: k for k, method in enumerate(("theory", "md", "dsmc", "dsmc_homogeneous"))}
+table = table.sort_values(
+    by=["method", "alpha", "fictive_factor", "n_particles"],
+    key=lambda column: column.map(order) if column.name == "method" else column,
+    ascending=[True, False, True, True],
+    na_position="last",
+)
+table["n_particles"] = table["n_particles"].astype("Int64")
+table["fictive_factor"] = table["fictive_factor"].astype("Int64")
+io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".4g")
+io.write_table(pd.DataFrame(fits), snakemake.output.fits)
+for fit in fits:
+    log.info(
+        "%s alpha=%g Lambda=%s %s(1/N -> 0) = %.4f +- %.4f, chi2 = %.3g (dof %d)",
+        fit["method"],
+        fit["alpha"],
+        fit["fictive_factor"],
+        fit["quantity"],
+        fit["intercept"],
+        fit["intercept_err"],
+        fit["chi2"],
+        fit["dof"],
+    )
