@@ -1,0 +1,204 @@
+"""costantini2010: first-Sonine hydrodynamics of the transverse mode of the cooling gas.
+
+d = 2 inelastic hard disks, m = σ = 1. Reduced units of the document: lengths in
+ℓ = 1/(nσ), times in ℓ/v_s with v_s = √(2T_s/m); then ν* = ν/(ℓ v_s), ν̄* = ν̄/(ℓ v_s),
+ζ* = ζℓ/v_s and k* = kℓ = 2π/√(N nσ²) for the longest transverse mode k = 2π/L.
+Equation numbers are those of the reconstruction (``costantini2010.md``); confidence
+labels there: TEXT, RECON-H (high), RECON-M (form right, prefactors may differ).
+
+The first Sonine approximation of Brey, Dufty, Kim and Santos (PRE 58, 4638, 1998) gives,
+in units of ν0 = nT/η0 (η0 = ((d+2)/8) Γ(d/2) π^{-(d-1)/2} √(mT)/σ^{d-1}, the elastic
+first-Sonine shear viscosity), ν_η† = (3/(4d))(1 − α + 2d/3)(1 + α)(1 − a2/32) and
+ζ† = ((d+2)/(4d))(1 − α²)(1 + 3a2/16). In d = 2, ν0 = 2√π n √T, i.e. √(2π) in units of
+v_s/ℓ: every rate† times √(2π) is the same rate in the document's units.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = [
+    "a2_montanero",
+    "a2_van_noije_ernst",
+    "check_stable",
+    "coloured_noise_amplitude",
+    "correlation_amplitude",
+    "correlation_time",
+    "critical_length",
+    "drag_rate",
+    "fdr_ratio_coloured",
+    "fdr_ratio_white",
+    "max_n_density",
+    "nu_bar_star_from_fit",
+    "nu_bar_star_white",
+    "nu_eta_dagger",
+    "nu_star",
+    "nu_star_from_fit",
+    "reduced_wavenumber",
+    "zeta_dagger",
+    "zeta_star",
+]
+
+DIMENSION = 2
+RATE_UNIT = math.sqrt(2.0 * math.pi)
+"""ν0 = nT/η0 in units of v_s/ℓ (d = 2)."""
+
+
+def a2_van_noije_ernst(alpha, dimension: int = DIMENSION):
+    """a2 of the homogeneous cooling state, van Noije and Ernst (Eq. 13, RECON-H):
+    16(1−α)(1−2α²)/(9 + 24d − α(41 − 8d) + 30(1−α)α²)."""
+    alpha = np.asarray(alpha, dtype=float)
+    d = dimension
+    return (
+        16.0
+        * (1.0 - alpha)
+        * (1.0 - 2.0 * alpha**2)
+        / (9.0 + 24.0 * d - alpha * (41.0 - 8.0 * d) + 30.0 * (1.0 - alpha) * alpha**2)
+    )
+
+
+def a2_montanero(alpha, dimension: int = DIMENSION):
+    """a2 of montanero2007's Eq. (2.16) (the estimate that paper calls excellent)."""
+    from kinetic.theory.montanero2007 import hcs_a2
+
+    return hcs_a2(np.asarray(alpha, dtype=float), dimension)
+
+
+A2 = {"van_noije_ernst": a2_van_noije_ernst, "montanero": a2_montanero}
+"""The two a2 estimates by name (the config key ``a2``)."""
+
+
+def _a2(alpha, a2):
+    if a2 is None:
+        return a2_van_noije_ernst(alpha)
+    if isinstance(a2, str):
+        if a2 not in A2:
+            raise ValueError(f"a2 = {a2!r} is not allowed: must be one of {sorted(A2)}")
+        return A2[a2](alpha)
+    return np.asarray(a2, dtype=float)
+
+
+def nu_eta_dagger(alpha, a2=None):
+    """ν_η† = (3/(4d))(1 − α + 2d/3)(1 + α)(1 − a2/32), in units of ν0."""
+    alpha = np.asarray(alpha, dtype=float)
+    d = DIMENSION
+    return 3.0 / (4.0 * d) * (1.0 - alpha + 2.0 * d / 3.0) * (1.0 + alpha) * (
+        1.0 - _a2(alpha, a2) / 32.0
+    )
+
+
+def zeta_dagger(alpha, a2=None):
+    """ζ† = ((d+2)/(4d))(1 − α²)(1 + 3a2/16), in units of ν0."""
+    alpha = np.asarray(alpha, dtype=float)
+    d = DIMENSION
+    return (d + 2.0) / (4.0 * d) * (1.0 - alpha**2) * (1.0 + 3.0 * _a2(alpha, a2) / 16.0)
+
+
+def zeta_star(alpha, a2=None):
+    """Reduced cooling rate (Eq. 12, RECON-H): ζ* = √(π/2)(1 − α²)(1 + 3a2/16)."""
+    return RATE_UNIT * zeta_dagger(alpha, a2)
+
+
+def nu_star(alpha, a2=None):
+    """Reduced kinematic viscosity, first Sonine: 1/(2√(2π)(ν_η† − ζ†/2)); 0.19947 at
+    α = 1."""
+    return 1.0 / (2.0 * RATE_UNIT * (nu_eta_dagger(alpha, a2) - zeta_dagger(alpha, a2) / 2.0))
+
+
+def fdr_ratio_white(alpha, a2=None):
+    """ν̄*/ν* with white stress noise (RECON-M): (1 + a2)(ν_η† − ζ†/2)/(ν_η† − ζ†)."""
+    nu, zeta = nu_eta_dagger(alpha, a2), zeta_dagger(alpha, a2)
+    return (1.0 + _a2(alpha, a2)) * (nu - zeta / 2.0) / (nu - zeta)
+
+
+def nu_bar_star_white(alpha, a2=None):
+    """Reduced noise viscosity with white noise: ν* times ``fdr_ratio_white``."""
+    return nu_star(alpha, a2) * fdr_ratio_white(alpha, a2)
+
+
+def reduced_wavenumber(n_particles, density):
+    """k* = kℓ = 2π/√(N nσ²) of the longest mode k = 2π/L of a square box."""
+    return 2.0 * math.pi / np.sqrt(np.asarray(n_particles, dtype=float) * density)
+
+
+def decay_rate(alpha, n_particles, density, a2=None):
+    """λ = ν* k*² − ζ*/2, the decay rate of the mode in units of v_s/ℓ (Eq. 8)."""
+    k2 = reduced_wavenumber(n_particles, density) ** 2
+    return nu_star(alpha, a2) * k2 - zeta_star(alpha, a2) / 2.0
+
+
+def correlation_time(alpha, n_particles, density, a2=None):
+    """τ_c = 1/(ν* k*² − ζ*/2) in ℓ/v_s (Eq. 9); infinite at and beyond the instability."""
+    rate = decay_rate(alpha, n_particles, density, a2)
+    return np.where(rate > 0, 1.0 / np.where(rate > 0, rate, 1.0), np.inf)
+
+
+def correlation_amplitude(alpha, n_particles, density, a2=None):
+    """C(0) = ν̄* k*²/(ν* k*² − ζ*/2) with white noise (Eq. 9)."""
+    k2 = reduced_wavenumber(n_particles, density) ** 2
+    return nu_bar_star_white(alpha, a2) * k2 * correlation_time(alpha, n_particles, density, a2)
+
+
+def coloured_noise_amplitude(alpha, n_particles, density, a2=None):
+    """Factor γ²/(γ² − λ²) by which coloured stress noise raises the amplitude of the
+    exponential tail of C (RECON-M): the stress fluctuations relax at γ = ν_η* − ζ*
+    (ν_η* = √(2π) ν_η†, ζ* = √(2π) ζ†), the mode at λ = ν* k*² − ζ*/2 (both in v_s/ℓ).
+    Meaningful for λ < γ (NaN otherwise)."""
+    gamma = RATE_UNIT * (nu_eta_dagger(alpha, a2) - zeta_dagger(alpha, a2))
+    rate = decay_rate(alpha, n_particles, density, a2)
+    denominator = gamma**2 - rate**2
+    return np.where(denominator > 0, gamma**2 / np.where(denominator > 0, denominator, 1.0), np.nan)
+
+
+def fdr_ratio_coloured(alpha, n_particles, density, a2=None):
+    """ν̄*/ν* that a fit of the exponential tail measures with coloured noise: the white
+    ratio times ``coloured_noise_amplitude``."""
+    return fdr_ratio_white(alpha, a2) * coloured_noise_amplitude(alpha, n_particles, density, a2)
+
+
+def nu_star_from_fit(tau_c, zeta_star, k_star):
+    """Eq. 10: ν* = (1/τ_c + ζ*/2)/k*² (τ_c in ℓ/v_s)."""
+    return (1.0 / np.asarray(tau_c, dtype=float) + np.asarray(zeta_star) / 2.0) / np.asarray(
+        k_star
+    ) ** 2
+
+
+def nu_bar_star_from_fit(amplitude, tau_c, k_star):
+    """Eq. 11: ν̄* = A/(τ_c k*²), A the amplitude of C (the fitted tail's or C(0))."""
+    return np.asarray(amplitude, dtype=float) / (
+        np.asarray(tau_c, dtype=float) * np.asarray(k_star) ** 2
+    )
+
+
+def critical_length(alpha, a2=None):
+    """L_c/ℓ = 2π √(2ν*/ζ*): boxes at least that large are shear-unstable (∞ at α = 1)."""
+    zeta = zeta_star(alpha, a2)
+    nu = nu_star(alpha, a2)
+    return np.where(zeta > 0, 2.0 * math.pi * np.sqrt(2.0 * nu / np.where(zeta > 0, zeta, 1.0)), np.inf)
+
+
+def max_n_density(alpha, a2=None):
+    """Largest N nσ² of a stable box: (L_c/ℓ)² (L/ℓ = √(N nσ²))."""
+    return critical_length(alpha, a2) ** 2
+
+
+def check_stable(n_particles, density, alpha, a2=None) -> None:
+    """Raise ``ValueError`` with the bound if an N-particle box at this density and α is at
+    or beyond the shear instability (L >= L_c, where τ_c diverges)."""
+    length = math.sqrt(n_particles * density)
+    limit = float(critical_length(alpha, a2))
+    if length >= limit:
+        raise ValueError(
+            f"N = {n_particles} at n sigma^2 = {density:g} and alpha = {alpha:g} is shear-unstable: "
+            f"L = {length:.3g} l is not below the critical L_c = {limit:.3g} l (first Sonine); "
+            f"N n sigma^2 must stay below {limit**2:.3g}"
+        )
+
+
+def drag_rate(alpha, density, a2=None, temperature: float = 1.0) -> float:
+    """ω0 = ζ(T)/2 in engine units (m = σ = 1, time σ√(m/T0)): the drag that holds the
+    rescaled temperature at ``temperature`` (Eq. 12 with the chosen a2;
+    ζ = ζ* v/ℓ with v = √(2T), ℓ = 1/n)."""
+    return float(zeta_star(alpha, a2)) * math.sqrt(2.0 * temperature) * density / 2.0
