@@ -559,7 +559,12 @@ def simulate_cooling_modes(
                 "realization number (stream row)",
             ),
             "time": ("time", times, _TIME_UNIT, "rescaled time tau of the sample"),
-            "mode": ("mode", np.array(MODES), "1", "transverse mode: velocity component_wavevector"),
+            "mode": (
+                "mode",
+                np.array(MODES),
+                "1",
+                "transverse mode: velocity component_wavevector",
+            ),
             "axis": ("axis", np.array(["x", "y"]), "1", "Cartesian axis"),
         },
         attrs={
@@ -579,7 +584,6 @@ def simulate_cooling_modes(
         "simulated_particles": n_sim,
         "cell_side": settings.cell_side,
         "real_particles_per_cell": settings.real_particles_per_cell,
-        "collisions_per_particle_per_step_at_T0": settings.collision_frequency
-        * settings.time_step,
+        "collisions_per_particle_per_step_at_T0": settings.collision_frequency * settings.time_step,
     }
     return io.stamp(dataset, parameters=parameters, seed=seed)

@@ -235,7 +235,7 @@ def _collide_cells(
                 a, b, s0, s1, s2, s3 = _pair(count, s0, s1, s2, s3)
                 i = first + a
                 j = first + b
-                code, h0, h1, h2, s0, s1, s2, s3 = _trial(
+                code, h0, h1, _h2, s0, s1, s2, s3 = _trial(
                     velocity, i, j, 2, HARD_SPHERES, bound_sq, s0, s1, s2, s3
                 )
                 if code == 0:
@@ -269,7 +269,7 @@ def _collide_cells(
                     a, b, s0, s1, s2, s3 = _pair(count, s0, s1, s2, s3)
                     i = first + a
                     j = first + b
-                    code, h0, h1, h2, s0, s1, s2, s3 = _trial(
+                    code, h0, h1, _h2, s0, s1, s2, s3 = _trial(
                         velocity, i, j, 2, HARD_SPHERES, bound_sq, s0, s1, s2, s3
                     )
                     if code == 1:
