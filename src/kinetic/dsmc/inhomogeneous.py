@@ -576,6 +576,7 @@ def simulate_cooling_modes(
         "equilibration": equilibration,
         "sample_interval": sample_interval,
         "n_samples": n_samples,
+        "seed": seed,
         "n_realizations": n_realizations,
         "first_realization": first_realization,
         "engine": "dsmc",
