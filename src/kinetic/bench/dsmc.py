@@ -302,9 +302,9 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
             if k % RESTORE_EVERY == 0:
                 np.copyto(velocity, saved)
             inhomogeneous_kernels.collide_cells(
-                velocity, labels, gas.cell_start, carry, rng, rule_id, settings.restitution,
-                settings.density_per_count, settings.pair_coefficient, settings.time_step,
-                stage_tally, energy,
+                velocity, labels, gas.cell_start, carry, gas.cell_moments, rng, rule_id,
+                settings.restitution, settings.density_per_count, settings.pair_coefficient,
+                settings.time_step, stage_tally, energy,
             )  # fmt: skip
 
     stage(1)

@@ -131,6 +131,7 @@ def warmup() -> None:
         gas.labels[now],
         gas.cell_start,
         gas.carry,
+        gas.cell_moments,
         gas.rng,
         inhomogeneous_kernels.RULE_MAJORANT,
         settings.restitution,

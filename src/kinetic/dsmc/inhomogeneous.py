@@ -206,7 +206,8 @@ class CoolingModesGas:
 
     position, velocity: (2, 2, N_sim) float64 and labels: (2, 2, N_sim) int64, double
     buffered (layout in :mod:`kinetic.dsmc.inhomogeneous_kernels`); cell_of (N_sim,),
-    cell_start (M² + 1,), cell_fill (M²,) int64 work arrays; carry: (M²,) float64;
+    cell_start (M² + 1,), cell_fill (M²,) int64 and cell_moments (M², 5) float64 work
+    arrays; carry: (M²,) float64;
     rng: (4,) uint64 stream; tally: (TALLY_SIZE,) int64; energy: (1,) float64 energy
     lost since it was last reset (sum over simulated particles).
     """
@@ -219,6 +220,7 @@ class CoolingModesGas:
     cell_start: np.ndarray
     cell_fill: np.ndarray
     carry: np.ndarray
+    cell_moments: np.ndarray
     rng: np.ndarray
     tally: np.ndarray
     energy: np.ndarray
@@ -259,8 +261,8 @@ class CoolingModesGas:
         start = time.process_time()
         kernels.advance(
             self.position, self.velocity, self.labels, self.cell_of, self.cell_start,
-            self.cell_fill, self.carry, self.rng, _RULE_ID[s.collision_rule], s.restitution,
-            s.box_side, s.cells_per_side, s.density_per_count, s.pair_coefficient,
+            self.cell_fill, self.carry, self.cell_moments, self.rng, _RULE_ID[s.collision_rule],
+            s.restitution, s.box_side, s.cells_per_side, s.density_per_count, s.pair_coefficient,
             s.time_step, s.drag_rate, n_steps, self.tally, self.energy,
         )  # fmt: skip
         self.cpu_seconds += time.process_time() - start
@@ -272,8 +274,8 @@ class CoolingModesGas:
         start = time.process_time()
         kernels.run_samples(
             self.position, self.velocity, self.labels, self.cell_of, self.cell_start,
-            self.cell_fill, self.carry, self.rng, _RULE_ID[s.collision_rule], s.restitution,
-            s.box_side, s.cells_per_side, s.density_per_count, s.pair_coefficient,
+            self.cell_fill, self.carry, self.cell_moments, self.rng, _RULE_ID[s.collision_rule],
+            s.restitution, s.box_side, s.cells_per_side, s.density_per_count, s.pair_coefficient,
             s.time_step, s.drag_rate, self.tally, self.energy, steps_first, stride,
             s.wavenumber, observables, dissipated,
         )  # fmt: skip
@@ -315,6 +317,7 @@ def new_cooling_gas(settings: CoolingModesSettings, stream: np.ndarray) -> Cooli
         cell_start=np.zeros(n_cells + 1, dtype=np.int64),
         cell_fill=np.zeros(n_cells, dtype=np.int64),
         carry=np.zeros(n_cells),
+        cell_moments=np.zeros((n_cells, 5)),
         rng=rng,
         tally=np.zeros(kernels.TALLY_SIZE, dtype=np.int64),
         energy=np.zeros(1),
