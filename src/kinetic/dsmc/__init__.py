@@ -1,12 +1,23 @@
 """Homogeneous DSMC engine (Bird's method): hard spheres, Maxwell molecules, very hard
 particles, restitution α, the heat-flux force and thermostat of montanero2007, and a
 continuous-time variant with free-flight observers (visco2008). See ``simulate`` for the
-fronts and ``kernels`` for the numba kernels (shared with the inhomogeneous engine)."""
+fronts and ``kernels`` for the numba kernels (shared with the inhomogeneous engine).
+
+Inhomogeneous engine (costantini2010, d = 2): ``simulate_cooling_modes`` in
+``inhomogeneous`` (front) and ``inhomogeneous_kernels`` (numba kernels): fictive
+particles in M x M collision cells, in the stationary representation of the
+homogeneous cooling state, with the transverse-mode observers."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from kinetic.dsmc.inhomogeneous import (
+    CoolingModesGas,
+    CoolingModesSettings,
+    new_cooling_gas,
+    simulate_cooling_modes,
+)
 from kinetic.dsmc.simulate import (
     MOMENT_NAMES,
     HomogeneousGas,
@@ -21,12 +32,16 @@ from kinetic.dsmc.simulate import (
 
 __all__ = [
     "MOMENT_NAMES",
+    "CoolingModesGas",
+    "CoolingModesSettings",
     "HomogeneousGas",
     "HomogeneousSettings",
     "Samples",
     "advance_gas",
+    "new_cooling_gas",
     "new_gas",
     "realization_streams",
+    "simulate_cooling_modes",
     "simulate_free_flights",
     "simulate_homogeneous",
     "warmup",
@@ -37,9 +52,11 @@ def warmup() -> None:
     """Compile (or load from numba's cache) every kernel with the production argument types.
 
     Runs each kernel once on a tiny system in d = 2 and d = 3, with the NTC and Poisson
-    clocks, the Euler and exact force steps and the free-flight observers.
+    clocks, the Euler and exact force steps and the free-flight observers; and the
+    inhomogeneous engine (both collision rules, with and without drag, its observers and
+    its collision stage alone).
     """
-    from kinetic.dsmc import kernels
+    from kinetic.dsmc import inhomogeneous_kernels, kernels
 
     for dimension in (2, 3):
         for selection, force_step, splitting in (
@@ -79,3 +96,48 @@ def warmup() -> None:
             np.zeros(1),
             np.zeros(4, dtype=np.int64),
         )
+    for rule in ("paper", "majorant"):
+        for restitution, drag_rate in ((1.0, 0.0), (0.8, 0.001)):
+            simulate_cooling_modes(
+                n_particles=8,
+                density=0.05,
+                restitution=restitution,
+                drag_rate=drag_rate,
+                equilibration=0.5,
+                sample_interval=0.5,
+                n_samples=2,
+                seed=0,
+                fictive_factor=2,
+                cells_per_side=2,
+                time_step=0.5,
+                collision_rule=rule,
+            )
+    settings = CoolingModesSettings(
+        n_particles=8,
+        density=0.05,
+        restitution=0.9,
+        drag_rate=0.0,
+        fictive_factor=1,
+        cells_per_side=1,
+        time_step=0.5,
+        collision_rule="majorant",
+    )
+    gas = new_cooling_gas(settings, realization_streams(0, 0, 1)[0])
+    gas.advance(1)
+    gas.observables()
+    now = gas.parity
+    inhomogeneous_kernels.collide_cells(
+        gas.velocity[now],
+        gas.labels[now],
+        gas.cell_start,
+        gas.carry,
+        gas.cell_moments,
+        gas.rng,
+        inhomogeneous_kernels.RULE_MAJORANT,
+        settings.restitution,
+        settings.density_per_count,
+        settings.pair_coefficient,
+        settings.time_step,
+        gas.tally,
+        gas.energy,
+    )

@@ -1,0 +1,593 @@
+"""Front of the inhomogeneous DSMC engine (costantini2010): ``simulate_cooling_modes``.
+
+N real inelastic hard disks (d = 2, m = σ = 1) in a periodic square box of side
+L = √(N/n), simulated by Λ N fictive particles in M x M equal square collision cells, in
+the stationary representation of the homogeneous cooling state: between collisions
+dr/dτ = w and dw/dτ = +ω0 w, so that the temperature relaxes to T_s with ζ(T_s) = 2 ω0
+instead of cooling. The step (streaming with drag, counting sort by cell, collisions,
+centre-of-mass removal) and the two collision rules ("paper": the Appendix's fixed
+number ½ N_c ω_c(T_c) Δτ of collisions per cell and step; "majorant": Bird's scheme
+with a rigorous relative-speed majorant) are described in
+:mod:`kinetic.dsmc.inhomogeneous_kernels`. M = 1 is the paper's "homogeneous DSMC"
+(same engine, positions kept so that the modes can be measured).
+
+Units: m = σ = 1, initial temperature T0 = 1, time in σ √(m/T0). The collision frequency
+is ω_c(T) = 2 n σ √(πT/m), the mean free path λ = 1/(2√2 n σ).
+
+The dataset follows the "cooling modes" contract shared with the event-driven MD
+engine (same variable names); the DSMC adds per realization ``candidates``,
+``particle_steps`` and ``repeated_collisions`` (collisions whose two partners' previous
+collisions were with each other: the molecular-chaos diagnostic, to plot against the
+real particles per cell N/M²).
+
+Lower level (tests, studies that read the particles): ``CoolingModesSettings``
+(validated engine parameters), ``new_cooling_gas`` (one realization's state) and the
+``CoolingModesGas`` methods ``advance``, ``observables``, ``positions``,
+``velocities``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from kinetic import io
+from kinetic.dsmc import inhomogeneous_kernels as kernels
+from kinetic.dsmc.simulate import _choice, _integer, _real, realization_streams
+from kinetic.progress import Progress, logger
+
+__all__ = [
+    "COLLISION_RULES",
+    "MAX_COLLISIONS_PER_STEP",
+    "MAX_DRAG_PER_STEP",
+    "CoolingModesGas",
+    "CoolingModesSettings",
+    "new_cooling_gas",
+    "simulate_cooling_modes",
+]
+
+COLLISION_RULES = ("paper", "majorant")
+_RULE_ID = {"paper": kernels.RULE_PAPER, "majorant": kernels.RULE_MAJORANT}
+
+MAX_COLLISIONS_PER_STEP = 0.1
+"""Largest ω_c(T0) Δτ: mean collisions per particle per step at the initial temperature."""
+
+MAX_DRAG_PER_STEP = 0.1
+"""Largest ω0 Δτ: the drag's relative velocity change over one step."""
+
+MAX_SIMULATED_PARTICLES = 50_000_000
+"""Largest Λ N (memory: about 100 bytes per simulated particle)."""
+
+MAX_CELLS_PER_SIDE = 10_000
+
+CHUNK_PARTICLE_STEPS = 50_000_000
+"""Particle steps per kernel call between two progress lines (about half a second)."""
+
+MODES = ("wy_kx", "wx_ky")
+_TIME_UNIT = "sigma*sqrt(m/T0)"
+
+
+def _whole_steps(name: str, value: float, time_step: float, minimum: int) -> int:
+    """``value / time_step`` as an integer >= minimum, or an error naming both."""
+    ratio = value / time_step
+    count = round(ratio)
+    if count < minimum or abs(ratio - count) > 1e-9 * max(1.0, ratio):
+        raise ValueError(
+            f"{name} = {value!r} must be a whole multiple (>= {minimum}) of "
+            f"time_step = {time_step!r} (it is {ratio:.6g} time steps)"
+        )
+    return int(count)
+
+
+@dataclass(frozen=True)
+class CoolingModesSettings:
+    """Validated engine parameters of one inhomogeneous DSMC run (module units).
+
+    n_particles: N >= 2 real particles. density: n σ² > 0. restitution: α in (0, 1].
+    drag_rate: ω0 >= 0. fictive_factor: Λ >= 1 (Λ N simulated particles).
+    cells_per_side: M >= 1. time_step: Δτ > 0 with ω_c(T0) Δτ <= 0.1 and ω0 Δτ <= 0.1.
+    collision_rule: "paper" or "majorant".
+    """
+
+    n_particles: int
+    density: float
+    restitution: float
+    drag_rate: float
+    fictive_factor: int
+    cells_per_side: int
+    time_step: float
+    collision_rule: str
+
+    def __post_init__(self) -> None:
+        _integer("n_particles", self.n_particles, 2)
+        _real("density", self.density, 0.0, math.inf, low_open=True, high_open=True)
+        _real("restitution", self.restitution, 0.0, 1.0, low_open=True)
+        _real("drag_rate", self.drag_rate, 0.0, math.inf, high_open=True)
+        _integer("fictive_factor", self.fictive_factor, 1)
+        _integer("cells_per_side", self.cells_per_side, 1, MAX_CELLS_PER_SIDE)
+        _choice("collision_rule", self.collision_rule, COLLISION_RULES)
+        _real("time_step", self.time_step, 0.0, math.inf, low_open=True, high_open=True)
+        for name in ("n_particles", "fictive_factor", "cells_per_side"):
+            object.__setattr__(self, name, int(getattr(self, name)))
+        for name in ("density", "restitution", "drag_rate", "time_step"):
+            object.__setattr__(self, name, float(getattr(self, name)))
+        if self.n_simulated > MAX_SIMULATED_PARTICLES:
+            raise ValueError(
+                f"n_particles x fictive_factor = {self.n_particles} x {self.fictive_factor} = "
+                f"{self.n_simulated} simulated particles is too many: must be <= "
+                f"{MAX_SIMULATED_PARTICLES}"
+            )
+        collisions = self.collision_frequency * self.time_step
+        if collisions > MAX_COLLISIONS_PER_STEP:
+            raise ValueError(
+                f"time_step = {self.time_step!r} is too large: omega_c(T0) * time_step = "
+                f"{self.collision_frequency:.6g} x {self.time_step!r} = {collisions:.4g} "
+                f"collisions per particle per step, must be <= {MAX_COLLISIONS_PER_STEP} "
+                f"(omega_c = 2 n sigma sqrt(pi T0/m) at density = {self.density!r}; use "
+                f"time_step <= {MAX_COLLISIONS_PER_STEP / self.collision_frequency:.6g})"
+            )
+        drag = self.drag_rate * self.time_step
+        if drag > MAX_DRAG_PER_STEP:
+            raise ValueError(
+                f"time_step = {self.time_step!r} is too large for drag_rate = "
+                f"{self.drag_rate!r}: drag_rate * time_step = {drag:.4g} must be <= "
+                f"{MAX_DRAG_PER_STEP} (use time_step <= "
+                f"{MAX_DRAG_PER_STEP / self.drag_rate:.6g})"
+            )
+
+    @property
+    def n_simulated(self) -> int:
+        """N_sim = Λ N."""
+        return self.n_particles * self.fictive_factor
+
+    @property
+    def box_side(self) -> float:
+        """L = √(N/n)."""
+        return math.sqrt(self.n_particles / self.density)
+
+    @property
+    def wavenumber(self) -> float:
+        """k = 2π/L."""
+        return 2.0 * math.pi / self.box_side
+
+    @property
+    def cell_side(self) -> float:
+        return self.box_side / self.cells_per_side
+
+    @property
+    def real_particles_per_cell(self) -> float:
+        """N/M²."""
+        return self.n_particles / self.cells_per_side**2
+
+    @property
+    def collision_frequency(self) -> float:
+        """ω_c(T0) = 2 n σ √(π T0/m)."""
+        return 2.0 * self.density * math.sqrt(math.pi)
+
+    @property
+    def mean_free_path(self) -> float:
+        """λ = 1/(2√2 n σ)."""
+        return 1.0 / (2.0 * math.sqrt(2.0) * self.density)
+
+    @property
+    def density_per_count(self) -> float:
+        """1/(Λ A_c): a cell holding ``count`` simulated particles has real density
+        count/(Λ A_c)."""
+        return 1.0 / (self.fictive_factor * self.cell_side**2)
+
+    @property
+    def pair_coefficient(self) -> float:
+        """Collision rate per pair of a cell per unit relative speed (rule "majorant"):
+        S/(Λ A_c) x N_sim/(N_sim - 1), S = 2σ, so that each particle collides on average
+        at exactly 2 n σ √(πT/m) (see :mod:`kinetic.dsmc.inhomogeneous_kernels`)."""
+        n_sim = self.n_simulated
+        return kernels.CROSS_SECTION * self.density_per_count * n_sim / (n_sim - 1.0)
+
+    def parameters(self) -> dict[str, Any]:
+        return {
+            "n_particles": self.n_particles,
+            "density": self.density,
+            "restitution": self.restitution,
+            "drag_rate": self.drag_rate,
+            "fictive_factor": self.fictive_factor,
+            "cells_per_side": self.cells_per_side,
+            "time_step": self.time_step,
+            "collision_rule": self.collision_rule,
+        }
+
+
+@dataclass
+class CoolingModesGas:
+    """State of one realization (arrays mutated in place by ``advance``).
+
+    position, velocity: (2, 2, N_sim) float64 and labels: (2, 2, N_sim) int64, double
+    buffered (layout in :mod:`kinetic.dsmc.inhomogeneous_kernels`); cell_of (N_sim,),
+    cell_start (M² + 1,), cell_fill (M²,) int64 and cell_moments (M², 5) float64 work
+    arrays; carry: (M²,) float64;
+    rng: (4,) uint64 stream; tally: (TALLY_SIZE,) int64; energy: (1,) float64 energy
+    lost since it was last reset (sum over simulated particles).
+    """
+
+    settings: CoolingModesSettings
+    position: np.ndarray
+    velocity: np.ndarray
+    labels: np.ndarray
+    cell_of: np.ndarray
+    cell_start: np.ndarray
+    cell_fill: np.ndarray
+    carry: np.ndarray
+    cell_moments: np.ndarray
+    rng: np.ndarray
+    tally: np.ndarray
+    energy: np.ndarray
+    cpu_seconds: float = 0.0
+
+    @property
+    def parity(self) -> int:
+        return int(self.tally[kernels.TALLY_PARITY])
+
+    @property
+    def steps(self) -> int:
+        return int(self.tally[kernels.TALLY_STEPS])
+
+    @property
+    def time(self) -> float:
+        return self.steps * self.settings.time_step
+
+    @property
+    def collisions(self) -> int:
+        return int(self.tally[kernels.TALLY_COLLISIONS])
+
+    def positions(self) -> np.ndarray:
+        """(N_sim, 2) copy of the positions in [0, L)², sorted by cell after a step."""
+        return self.position[self.parity].T.copy()
+
+    def velocities(self) -> np.ndarray:
+        """(N_sim, 2) copy of the velocities w (same order as ``positions``)."""
+        return self.velocity[self.parity].T.copy()
+
+    def identities(self) -> np.ndarray:
+        """(N_sim,) int64 number of each particle in the initial state."""
+        return self.labels[self.parity, 0].copy()
+
+    def advance(self, n_steps: int) -> None:
+        """``n_steps`` steps of length ``settings.time_step`` (CPU time accumulated)."""
+        _integer("n_steps", n_steps, 0)
+        s = self.settings
+        start = time.process_time()
+        kernels.advance(
+            self.position, self.velocity, self.labels, self.cell_of, self.cell_start,
+            self.cell_fill, self.carry, self.cell_moments, self.rng, _RULE_ID[s.collision_rule],
+            s.restitution, s.box_side, s.cells_per_side, s.density_per_count, s.pair_coefficient,
+            s.time_step, s.drag_rate, n_steps, self.tally, self.energy,
+        )  # fmt: skip
+        self.cpu_seconds += time.process_time() - start
+        self._check()
+
+    def run_samples(self, steps_first: int, stride: int, observables, dissipated) -> None:
+        """``kernels.run_samples`` on this gas (rows of ``observables``, ``dissipated``)."""
+        s = self.settings
+        start = time.process_time()
+        kernels.run_samples(
+            self.position, self.velocity, self.labels, self.cell_of, self.cell_start,
+            self.cell_fill, self.carry, self.cell_moments, self.rng, _RULE_ID[s.collision_rule],
+            s.restitution, s.box_side, s.cells_per_side, s.density_per_count, s.pair_coefficient,
+            s.time_step, s.drag_rate, self.tally, self.energy, steps_first, stride,
+            s.wavenumber, observables, dissipated,
+        )  # fmt: skip
+        self.cpu_seconds += time.process_time() - start
+        self._check()
+
+    def observables(self) -> dict[str, Any]:
+        """The kernel's observer on the current state: ``temperature``, ``mode`` (complex
+        (2,): wy_kx, wx_ky), ``mode_norm`` (2,), ``momentum`` (2,) = Σ w/(N_sim √T)."""
+        out = np.zeros(kernels.N_OBSERVABLES)
+        kernels.observe(self.position, self.velocity, self.parity, self.settings.wavenumber, out)
+        return {
+            "temperature": out[0],
+            "mode": np.array([out[1] + 1j * out[2], out[3] + 1j * out[4]]),
+            "mode_norm": out[5:7].copy(),
+            "momentum": out[7:9].copy(),
+        }
+
+    def _check(self) -> None:
+        if self.tally[kernels.TALLY_EXCEEDED]:
+            raise RuntimeError(
+                "internal error: the relative-speed bound of a cell was exceeded "
+                f"{self.tally[kernels.TALLY_EXCEEDED]} times although it is kept rigorous"
+            )
+
+
+def new_cooling_gas(settings: CoolingModesSettings, stream: np.ndarray) -> CoolingModesGas:
+    """Initial state drawn from ``stream`` (copied): uniform positions, Gaussian
+    velocities with zero momentum and Σ|w|² = 2 N_sim T0 exactly."""
+    n = settings.n_simulated
+    n_cells = settings.cells_per_side**2
+    rng = np.array(stream, dtype=np.uint64).reshape(4).copy()
+    gas = CoolingModesGas(
+        settings=settings,
+        position=np.zeros((2, 2, n)),
+        velocity=np.zeros((2, 2, n)),
+        labels=np.zeros((2, 2, n), dtype=np.int64),
+        cell_of=np.zeros(n, dtype=np.int64),
+        cell_start=np.zeros(n_cells + 1, dtype=np.int64),
+        cell_fill=np.zeros(n_cells, dtype=np.int64),
+        carry=np.zeros(n_cells),
+        cell_moments=np.zeros((n_cells, 5)),
+        rng=rng,
+        tally=np.zeros(kernels.TALLY_SIZE, dtype=np.int64),
+        energy=np.zeros(1),
+    )
+    kernels.initial_state(gas.position, gas.velocity, gas.labels, gas.rng, settings.box_side)
+    return gas
+
+
+def _compile_outside_the_timers(settings: CoolingModesSettings) -> None:
+    """A tiny gas with the same argument types (a no-op once numba's cache is warm)."""
+    tiny = CoolingModesSettings(
+        **{**settings.parameters(), "n_particles": 4, "fictive_factor": 1, "cells_per_side": 1}
+    )
+    gas = new_cooling_gas(tiny, np.array([1, 2, 3, 4], dtype=np.uint64))
+    gas.advance(1)
+    gas.run_samples(1, 1, np.zeros((1, kernels.N_OBSERVABLES)), np.zeros(1))
+
+
+def simulate_cooling_modes(
+    *,
+    n_particles: int,
+    density: float,
+    restitution: float,
+    drag_rate: float,
+    equilibration: float,
+    sample_interval: float,
+    n_samples: int,
+    seed: int,
+    fictive_factor: int,
+    cells_per_side: int,
+    time_step: float,
+    collision_rule: str,
+    n_realizations: int = 1,
+    first_realization: int = 0,
+    label: str | None = None,
+):
+    """Transverse modes of the homogeneous cooling state by inhomogeneous DSMC (costantini2010).
+
+    Parameters (units of the module docstring)
+    ----------
+    n_particles
+        N >= 2 real particles; box side L = √(N/density).
+    density
+        n σ² > 0.
+    restitution
+        α in (0, 1].
+    drag_rate
+        ω0 >= 0 (1/time): dw/dτ = ω0 w between collisions; ω0 = ζ(T0)/2 keeps T_s = T0.
+    equilibration, sample_interval
+        τ before the first sample (>= 0) and between samples (> 0), both whole multiples
+        of ``time_step``.
+    n_samples
+        Samples at τ_j = equilibration + j sample_interval, j = 0..n_samples-1.
+    fictive_factor
+        Λ >= 1: Λ N simulated particles, each colliding at the rate of the real density
+        (a cell of area A_c holding ``count`` of them has real density count/(Λ A_c)).
+    cells_per_side
+        M >= 1: M x M equal square collision cells (M = 1: "homogeneous DSMC"). With
+        Λ = 1 and fewer than one real particle per cell a warning is logged.
+    time_step
+        Δτ > 0 with ω_c(T0) Δτ <= 0.1 (ω_c = 2 n σ √(πT0/m)) and ω0 Δτ <= 0.1.
+    collision_rule
+        "paper" (½ N_c ω_c(T_c) Δτ collisions per cell and step) or "majorant" (Bird's
+        scheme with a rigorous majorant; exact mean collision rate at any M).
+    seed, n_realizations, first_realization
+        Realization k uses row k of ``kinetic.rng.stream_states(seed, ·)``.
+    label
+        Prefix of the progress lines.
+
+    Returns
+    -------
+    xarray.Dataset (the "cooling modes" contract): coords ``realization``, ``time``
+    (τ_j), ``mode`` ("wy_kx", "wx_ky"), ``axis`` ("x", "y"); ``temperature``
+    (realization, time); ``mode_real``, ``mode_imag``, ``mode_norm`` (realization,
+    time, mode) summed over all Λ N simulated particles; ``dissipated_energy``
+    (realization, time) per simulated particle over the interval of length
+    sample_interval ending at τ_j (NaN for the first sample when equilibration <
+    sample_interval: that interval is not inside the run); ``momentum`` (realization,
+    time, axis) Σ w/(N_sim √T); per realization ``collisions``, ``candidates``,
+    ``particle_steps``, ``repeated_collisions``, ``cpu_seconds``.
+    """
+    settings = CoolingModesSettings(
+        n_particles=n_particles,
+        density=density,
+        restitution=restitution,
+        drag_rate=drag_rate,
+        fictive_factor=fictive_factor,
+        cells_per_side=cells_per_side,
+        time_step=time_step,
+        collision_rule=collision_rule,
+    )
+    equilibration = _real("equilibration", equilibration, 0.0, math.inf, high_open=True)
+    sample_interval = _real(
+        "sample_interval", sample_interval, 0.0, math.inf, low_open=True, high_open=True
+    )
+    n_samples = _integer("n_samples", n_samples, 1)
+    steps_before = _whole_steps("equilibration", equilibration, settings.time_step, 0)
+    stride = _whole_steps("sample_interval", sample_interval, settings.time_step, 1)
+    streams = realization_streams(seed, first_realization, n_realizations)
+    if label is not None and not isinstance(label, str):
+        raise TypeError(f"label must be a string or None, got {label!r}")
+
+    if settings.fictive_factor == 1 and settings.real_particles_per_cell < 1.0:
+        logger.warning(
+            "inhomogeneous DSMC with fictive_factor = 1 and %.3g real particles per cell "
+            "(N/M² = %d/%d²): fewer than one collision partner per cell, expect strong "
+            "recollisions (molecular chaos fails)",
+            settings.real_particles_per_cell,
+            settings.n_particles,
+            settings.cells_per_side,
+        )
+    # steps before the first sample's dissipation interval, and within it
+    if steps_before >= stride:
+        warm, first_steps = steps_before - stride, stride
+    else:
+        warm, first_steps = steps_before, 0
+    total_steps = steps_before + (n_samples - 1) * stride
+    n_sim = settings.n_simulated
+    chunk_steps = max(1, CHUNK_PARTICLE_STEPS // n_sim)
+    samples_per_chunk = max(1, chunk_steps // stride)
+
+    shape = (n_realizations, n_samples)
+    observables = np.zeros((*shape, kernels.N_OBSERVABLES))
+    dissipated = np.zeros(shape)
+    totals = {
+        key: np.zeros(n_realizations, dtype=np.int64)
+        for key in ("collisions", "candidates", "particle_steps", "repeated_collisions")
+    }
+    cpu_seconds = np.zeros(n_realizations)
+
+    label = label or (
+        f"dsmc cooling modes {settings.collision_rule} N={settings.n_particles} "
+        f"alpha={settings.restitution:g} Lambda={settings.fictive_factor} "
+        f"M={settings.cells_per_side}"
+    )
+    _compile_outside_the_timers(settings)
+    progress = Progress(max(1, n_realizations * total_steps), label=label, unit="steps")
+    for r in range(n_realizations):
+        gas = new_cooling_gas(settings, streams[r])
+        done = 0
+        while done < warm:
+            steps = min(chunk_steps, warm - done)
+            gas.advance(steps)
+            done += steps
+            progress.update(steps)
+        gas.energy[0] = 0.0
+        sample = 0
+        while sample < n_samples:
+            stop = min(n_samples, sample + samples_per_chunk)
+            steps_first = first_steps if sample == 0 else stride
+            gas.run_samples(
+                steps_first, stride, observables[r, sample:stop], dissipated[r, sample:stop]
+            )
+            progress.update(steps_first + (stop - sample - 1) * stride)
+            sample = stop
+        if first_steps == 0:
+            dissipated[r, 0] = np.nan
+        totals["collisions"][r] = gas.collisions
+        totals["candidates"][r] = gas.tally[kernels.TALLY_CANDIDATES]
+        totals["particle_steps"][r] = gas.tally[kernels.TALLY_PARTICLE_STEPS]
+        totals["repeated_collisions"][r] = gas.tally[kernels.TALLY_REPEATED]
+        cpu_seconds[r] = gas.cpu_seconds
+    if total_steps == 0:
+        progress.update(1)
+
+    times = equilibration + sample_interval * np.arange(n_samples)
+    mode_real = np.stack([observables[..., 1], observables[..., 3]], axis=-1)
+    mode_imag = np.stack([observables[..., 2], observables[..., 4]], axis=-1)
+    mode_norm = observables[..., 5:7]
+    dataset = io.make_dataset(
+        {
+            "temperature": (
+                ("realization", "time"),
+                observables[..., 0],
+                "T0",
+                "granular temperature sum |w - u|^2 / (2 N_sim) of the rescaled velocities",
+            ),
+            "mode_real": (
+                ("realization", "time", "mode"),
+                mode_real,
+                "sqrt(T0/m)",
+                "real part of the transverse mode at k = 2 pi/L, summed over all "
+                "simulated particles",
+            ),
+            "mode_imag": (
+                ("realization", "time", "mode"),
+                mode_imag,
+                "sqrt(T0/m)",
+                "imaginary part of the transverse mode at k = 2 pi/L, summed over all "
+                "simulated particles",
+            ),
+            "mode_norm": (
+                ("realization", "time", "mode"),
+                mode_norm,
+                "T0/m",
+                "normaliser of the mode: sum of w_y^2 (wy_kx) or w_x^2 (wx_ky)",
+            ),
+            "dissipated_energy": (
+                ("realization", "time"),
+                dissipated,
+                "T0",
+                "energy lost in collisions per simulated particle during the sample "
+                "interval ending at this time (NaN if that interval starts before 0)",
+            ),
+            "momentum": (
+                ("realization", "time", "axis"),
+                observables[..., 7:9],
+                "1",
+                "total momentum sum w / (N_sim sqrt(T))",
+            ),
+            "collisions": ("realization", totals["collisions"], "1", "collisions executed"),
+            "candidates": (
+                "realization",
+                totals["candidates"],
+                "1",
+                "candidate pairs tested (collisions / candidates = acceptance)",
+            ),
+            "particle_steps": (
+                "realization",
+                totals["particle_steps"],
+                "1",
+                "simulated particles times time steps",
+            ),
+            "repeated_collisions": (
+                "realization",
+                totals["repeated_collisions"],
+                "1",
+                "collisions whose two partners' previous collisions were with each other",
+            ),
+            "cpu_seconds": (
+                "realization",
+                cpu_seconds,
+                "s",
+                "CPU (process) time of the realization in the kernels",
+            ),
+        },
+        coords={
+            "realization": (
+                "realization",
+                np.arange(first_realization, first_realization + n_realizations),
+                "1",
+                "realization number (stream row)",
+            ),
+            "time": ("time", times, _TIME_UNIT, "rescaled time tau of the sample"),
+            "mode": (
+                "mode",
+                np.array(MODES),
+                "1",
+                "transverse mode: velocity component_wavevector",
+            ),
+            "axis": ("axis", np.array(["x", "y"]), "1", "Cartesian axis"),
+        },
+        attrs={
+            "units": "m = sigma = T0 = 1; time in sigma sqrt(m/T0); w the rescaled velocities",
+        },
+    )
+    parameters = {
+        **settings.parameters(),
+        "equilibration": equilibration,
+        "sample_interval": sample_interval,
+        "n_samples": n_samples,
+        "seed": seed,
+        "n_realizations": n_realizations,
+        "first_realization": first_realization,
+        "engine": "dsmc",
+        "box_side": settings.box_side,
+        "wavenumber": settings.wavenumber,
+        "simulated_particles": n_sim,
+        "cell_side": settings.cell_side,
+        "real_particles_per_cell": settings.real_particles_per_cell,
+        "collisions_per_particle_per_step_at_T0": settings.collision_frequency * settings.time_step,
+    }
+    return io.stamp(dataset, parameters=parameters, seed=seed)
