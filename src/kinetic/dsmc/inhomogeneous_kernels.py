@@ -123,6 +123,11 @@ TALLY_PARITY = 5
 TALLY_EXCEEDED = 6
 TALLY_SIZE = 7
 
+MAX_ATTEMPTS = 1_000_000
+"""Rule "paper": draws of a pair before a cell gives up a collision. Only a cell whose
+particles all move alike (no pair approaches, while round-off leaves T_c > 0) reaches
+it; a real cell accepts a pair within a few draws."""
+
 N_OBSERVABLES = 9
 """Row of ``observe``: T, Re/Im of the modes wy_kx and wx_ky, their normalisers Σ w_y²
 and Σ w_x², momentum x and y (Σ w/(n √T))."""
@@ -309,7 +314,8 @@ def _collide_cells(
             bound = (top1 + top2) * BOUND_SAFETY
             bound_sq = bound * bound
             for _ in range(n_collisions):
-                while True:
+                code = 0
+                for _attempt in range(MAX_ATTEMPTS):
                     candidates += 1
                     a, b, s0, s1, s2, s3 = _pair(count, s0, s1, s2, s3)
                     i = first + a
@@ -324,6 +330,9 @@ def _collide_cells(
                         c0, c1, total, top1, top2 = _cell_statistics(velocity, first, last)
                         bound = (top1 + top2) * BOUND_SAFETY
                         bound_sq = bound * bound
+                if code != 1:  # no pair approaches (equal velocities): nothing to do
+                    carry[c] = 0.0
+                    break
                 again, hh, raised, top1, top2 = _collided(
                     velocity, ident, partner, i, j, half, h0, h1, c0, c1, top1, top2
                 )
