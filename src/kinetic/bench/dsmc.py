@@ -288,6 +288,7 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
     velocity = saved.copy()
     labels = gas.labels[now].copy()
     carry = gas.carry.copy()
+    moments = gas.cell_moments.copy()
     rng = gas.rng.copy()
     stage_tally = np.zeros(inhomogeneous_kernels.TALLY_SIZE, dtype=np.int64)
     energy = np.zeros(1)
@@ -302,7 +303,7 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
             if k % RESTORE_EVERY == 0:
                 np.copyto(velocity, saved)
             inhomogeneous_kernels.collide_cells(
-                velocity, labels, gas.cell_start, carry, gas.cell_moments, rng, rule_id,
+                velocity, labels, gas.cell_start, carry, moments, rng, rule_id,
                 settings.restitution, settings.density_per_count, settings.pair_coefficient,
                 settings.time_step, stage_tally, energy,
             )  # fmt: skip

@@ -62,8 +62,10 @@ One step (``advance``)
    collision whose two partners' previous collisions were with each other is counted
    in ``tally[TALLY_REPEATED]`` (a recollision of the same pair in a row);
 4. the centre-of-mass velocity (from the cell sums, before the collisions, which
-   conserve momentum) is subtracted: what remains is the collisions' round-off,
-   removed at the next step (the drag would amplify round-off momentum exponentially).
+   conserve momentum) is subtracted, in the next step's streaming (so it is applied
+   in the same passes; ``moments`` carries it from one call to the next): the total
+   momentum never exceeds the round-off of the last two steps' collisions (the drag
+   would amplify round-off momentum exponentially).
 
 Random numbers: one xoshiro256+ stream per realization (a ``state`` row of
 :mod:`kinetic.rng`), held in four scalars inside the step loop. No kernel allocates in
@@ -120,6 +122,11 @@ TALLY_STEPS = 4
 TALLY_PARITY = 5
 TALLY_EXCEEDED = 6
 TALLY_SIZE = 7
+
+MAX_ATTEMPTS = 1_000_000
+"""Rule "paper": draws of a pair before a cell gives up a collision. Only a cell whose
+particles all move alike (no pair approaches, while round-off leaves T_c > 0) reaches
+it; a real cell accepts a pair within a few draws."""
 
 N_OBSERVABLES = 9
 """Row of ``observe``: T, Re/Im of the modes wy_kx and wx_ky, their normalisers Σ w_y²
@@ -307,7 +314,8 @@ def _collide_cells(
             bound = (top1 + top2) * BOUND_SAFETY
             bound_sq = bound * bound
             for _ in range(n_collisions):
-                while True:
+                code = 0
+                for _attempt in range(MAX_ATTEMPTS):
                     candidates += 1
                     a, b, s0, s1, s2, s3 = _pair(count, s0, s1, s2, s3)
                     i = first + a
@@ -322,6 +330,9 @@ def _collide_cells(
                         c0, c1, total, top1, top2 = _cell_statistics(velocity, first, last)
                         bound = (top1 + top2) * BOUND_SAFETY
                         bound_sq = bound * bound
+                if code != 1:  # no pair approaches (equal velocities): nothing to do
+                    carry[c] = 0.0
+                    break
                 again, hh, raised, top1, top2 = _collided(
                     velocity, ident, partner, i, j, half, h0, h1, c0, c1, top1, top2
                 )
@@ -415,7 +426,8 @@ def advance(
     updated; the current buffer is ``tally[TALLY_PARITY]``. Work arrays: cell_of (n,)
     int64; cell_start (M² + 1,) int64 (left holding the cell ranges of the last sort);
     cell_fill (M²,) int64; moments (M², 5) float64 (each cell's Σw_x, Σw_y, Σ|w|² and
-    two largest |w|² after the sort: its temperature and relative-speed bound). carry:
+    two largest |w|² after the sort: its temperature and relative-speed bound; zeros
+    for a new state, then kept between calls: it holds the momentum to remove). carry:
     (M²,) float64 carried fraction of each cell (a candidate for RULE_MAJORANT, a
     collision for RULE_PAPER). state: (4,) uint64 stream.
     rule: RULE_PAPER or RULE_MAJORANT. restitution α in (0, 1]. box_side L.
@@ -444,14 +456,22 @@ def advance(
         r_dst = position[1 - now]
         w_dst = velocity[1 - now]
         l_dst = labels[1 - now]
-        # 1-2: stream (in place) and count the particles of each cell
+        # 4 of the previous step: its centre-of-mass velocity, from its cell sums
+        # (before its collisions, which conserve momentum: what is left over is their
+        # round-off, removed one step later)
+        u0 = 0.0
+        u1 = 0.0
+        for c in range(n_cells):
+            u0 += moments[c, 0]
+            u1 += moments[c, 1]
+        u0 /= n
+        u1 /= n
+        # 1: stream the positions (in place) and count the particles of each cell
         for c in range(n_cells + 1):
             cell_start[c] = 0
         for i in range(n):
-            wx = w_src[0, i]
-            wy = w_src[1, i]
-            x = r_src[0, i] + wx * shift
-            y = r_src[1, i] + wy * shift
+            x = r_src[0, i] + (w_src[0, i] - u0) * shift
+            y = r_src[1, i] + (w_src[1, i] - u1) * shift
             if x >= box_side or x < 0.0:
                 x -= box_side * np.floor(x / box_side)
                 if x >= box_side:  # rounding of a tiny negative x + L
@@ -462,8 +482,6 @@ def advance(
                     y = 0.0
             r_src[0, i] = x
             r_src[1, i] = y
-            w_src[0, i] = wx * growth
-            w_src[1, i] = wy * growth
             ix = int(x * inverse_cell)
             iy = int(y * inverse_cell)
             if ix >= m:
@@ -478,13 +496,14 @@ def advance(
             cell_fill[c] = cell_start[c]
             for k in range(5):
                 moments[c, k] = 0.0
-        # 2: counting sort into the other buffer, with the cells' velocity moments
+        # 2: counting sort into the other buffer, with the drag on the velocities and
+        # the cells' velocity moments
         for i in range(n):
             c = cell_of[i]
             p = cell_fill[c]
             cell_fill[c] = p + 1
-            wx = w_src[0, i]
-            wy = w_src[1, i]
+            wx = (w_src[0, i] - u0) * growth
+            wy = (w_src[1, i] - u1) * growth
             r_dst[0, p] = r_src[0, i]
             r_dst[1, p] = r_src[1, i]
             w_dst[0, p] = wx
@@ -511,18 +530,6 @@ def advance(
             s2,
             s3,
         )
-        # 4: centre-of-mass velocity, as before the collisions (they conserve momentum,
-        # so what is left is their round-off, removed at the next step)
-        u0 = 0.0
-        u1 = 0.0
-        for c in range(n_cells):
-            u0 += moments[c, 0]
-            u1 += moments[c, 1]
-        u0 /= n
-        u1 /= n
-        for i in range(n):
-            w_dst[0, i] -= u0
-            w_dst[1, i] -= u1
         tally[TALLY_PARITY] = 1 - now
         tally[TALLY_STEPS] += 1
         tally[TALLY_PARTICLE_STEPS] += n
