@@ -91,7 +91,9 @@ def test_recovers_the_correlation_time_amplitude_and_viscosities():
     # ζ* = 0: ν* = 1/(τ_c k*²), ν̄* = A/(τ_c k*²)
     assert float(result.nu_star) == pytest.approx(1.0 / (float(result.tau_c) * k_star**2))
     assert float(result.ratio) == pytest.approx(float(result.amplitude), rel=1e-12)
-    np.testing.assert_allclose(result.correlation[0], 1.3, atol=5 * float(result.correlation_sem[0]))
+    np.testing.assert_allclose(
+        result.correlation[0], 1.3, atol=5 * float(result.correlation_sem[0])
+    )
 
 
 def test_measured_cooling_rate_in_reduced_units():

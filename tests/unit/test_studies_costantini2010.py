@@ -48,9 +48,12 @@ def test_engine_units():
     side = math.sqrt(1000 / density)  # 447 sigma, 6.3 mean free paths
     assert arguments["cells_per_side"] == round(side / (0.5 / (2 * math.sqrt(2) * density)))
     assert 5 < run.real_particles_per_cell(density) < 8
-    assert study.Run("dsmc", 1000, 0.8, 1, cell_side=0.1, time_step=0.05).real_particles_per_cell(
-        density
-    ) < 1
+    assert (
+        study.Run("dsmc", 1000, 0.8, 1, cell_side=0.1, time_step=0.05).real_particles_per_cell(
+            density
+        )
+        < 1
+    )
 
 
 def test_unstable_sizes_are_refused_with_the_bound():

@@ -42,13 +42,24 @@ for ax, column, fixed, fixed_value, label in (
 ):
     rows = table[(table[fixed] - fixed_value).abs() < 1e-6 * fixed_value].sort_values(column)
     plotting.errorbar(
-        ax, rows[column] ** 2, rows.nu_star, rows.nu_star_err, marker=style["marker"],
-        color=style["color"], label=f"DSMC, N = {rows.n_particles.iloc[0]}",
+        ax,
+        rows[column] ** 2,
+        rows.nu_star,
+        rows.nu_star_err,
+        marker=style["marker"],
+        color=style["color"],
+        label=f"DSMC, N = {rows.n_particles.iloc[0]}",
     )
-    ax.axhline(theory.nu_star(1.0), color=METHOD_STYLE["theory"]["color"], lw=0.8,
-               label="first Sonine")
-    ax.axhline(theory.nu_star_elastic(), color=METHOD_STYLE["theory"]["color"], lw=0.8,
-               ls="--", label="converged Sonine")
+    ax.axhline(
+        theory.nu_star(1.0), color=METHOD_STYLE["theory"]["color"], lw=0.8, label="first Sonine"
+    )
+    ax.axhline(
+        theory.nu_star_elastic(),
+        color=METHOD_STYLE["theory"]["color"],
+        lw=0.8,
+        ls="--",
+        label="converged Sonine",
+    )
     ax.set_xlabel(f"({label})$^2$")
 axes[0].set_ylabel(r"$\nu^*$ ($\alpha = 1$)")
 axes[0].legend(fontsize=6)

@@ -25,8 +25,14 @@ for path in snakemake.input.runs:
         (axes[1], "nu_bar_star", r"$\bar\nu^*$"),
     ):
         error = result[f"error_{name}"].values
-        ax.loglog(cpu, error, style["marker"], color=style["color"], mfc="none",
-                  label=METHOD_LABELS[method])
+        ax.loglog(
+            cpu,
+            error,
+            style["marker"],
+            color=style["color"],
+            mfc="none",
+            label=METHOD_LABELS[method],
+        )
         line = np.geomspace(cpu.min() / 2, cpu.max() * 4, 20)
         ax.loglog(line, error[0] * np.sqrt(cpu[0] / line), "--", color=style["color"], lw=0.6)
         ax.set_xlabel("CPU time (s)")

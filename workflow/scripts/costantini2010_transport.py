@@ -24,9 +24,7 @@ theory_color = METHOD_STYLE["theory"]["color"]
 
 def versus_inverse_n(quantity, symbol, path):
     """nu* or nu_bar* against 1/N, one panel per alpha, with the fitted lines."""
-    fig, axes = plotting.figure(
-        1, len(alphas), figsize=(2.4 * len(alphas), 2.6), squeeze=False
-    )
+    fig, axes = plotting.figure(1, len(alphas), figsize=(2.4 * len(alphas), 2.6), squeeze=False)
     for ax, alpha in zip(axes[0], alphas, strict=True):
         for method in ("dsmc", "md"):
             rows = finite[(finite.method == method) & (finite.alpha == alpha)]

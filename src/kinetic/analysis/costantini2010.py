@@ -187,7 +187,7 @@ def analyse_run(
     temperature_s = float(steady.temperature.mean())
     to_reduced = density * math.sqrt(2.0 * temperature_s)  # engine time -> ℓ/v_s
     k_star = theory.reduced_wavenumber(n_particles, density)
-    n_lags = max(3, int(round(max_lag / (interval * to_reduced))) + 1)
+    n_lags = max(3, round(max_lag / (interval * to_reduced)) + 1)
     lags = np.arange(n_lags) * interval * to_reduced
 
     modes = (steady.mode_real + 1j * steady.mode_imag).transpose("realization", "time", "mode")
@@ -320,9 +320,7 @@ def analyse_run(
         "largest |total momentum| / (N_sim sqrt(T)) sampled",
     )
     if "repeated_collisions" in dataset:
-        fraction = float(dataset.repeated_collisions.sum()) / max(
-            1, int(dataset.collisions.sum())
-        )
+        fraction = float(dataset.repeated_collisions.sum()) / max(1, int(dataset.collisions.sum()))
         data_vars["repeated_fraction"] = (
             (),
             fraction,

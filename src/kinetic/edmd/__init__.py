@@ -14,11 +14,19 @@ the lecture's O(N²)-per-event event-disks in float32 or float64, and its front
 
 import numpy as np
 
+from kinetic.edmd.cooling import simulate_cooling_modes
 from kinetic.edmd.observers import Observers
 from kinetic.edmd.simulate import simulate
 from kinetic.edmd.system import HardSphereSystem, InelasticCollapseError
 
-__all__ = ["HardSphereSystem", "InelasticCollapseError", "Observers", "simulate", "warmup"]
+__all__ = [
+    "HardSphereSystem",
+    "InelasticCollapseError",
+    "Observers",
+    "simulate",
+    "simulate_cooling_modes",
+    "warmup",
+]
 
 
 def warmup() -> None:

@@ -611,6 +611,45 @@ class HardSphereSystem:
         self.time_origin += t
         self.clock[0] = 0.0
 
+    def scale_velocities(self, factor: float) -> None:
+        """Multiply every velocity by ``factor`` (> 0) at the current time.
+
+        Hard-core dynamics only changes its time scale: positions stay continuous and every
+        pending event time t_e maps to t + (t_e − t)/factor (no prediction is redone; the
+        calendar is rebuilt). Used by the stationary representation of the cooling state
+        (``kinetic.edmd.cooling``), where the factor is prescribed, not a target temperature.
+        """
+        factor = float(factor)
+        if not (math.isfinite(factor) and factor > 0.0):
+            raise ValueError(f"factor must be finite and > 0, got {factor}")
+        t = float(self.clock[0])
+        current = k.temperature(self.phase, self.dimension)
+        if current <= 0.0:
+            return
+        k.rescale_velocities(t, factor * factor * current, self.phase, self.dimension)
+        finite = np.isfinite(self.last_collision)
+        self.last_collision[finite] = t + (self.last_collision[finite] - t) / factor
+        k.calendar_build(self.phase, *self._calendar_arrays())
+
+    def remove_drift(self) -> np.ndarray:
+        """Subtract the centre-of-mass velocity from every particle (periodic boxes) and
+        predict every event anew; returns the velocity removed.
+
+        A uniform shift leaves every pair's relative motion unchanged but moves the cell
+        crossings, hence the full prediction. In the stationary representation of the
+        cooling state the drag amplifies round-off momentum exponentially; the front calls
+        this whenever the drift exceeds round-off by a few orders.
+        """
+        if self.walls.any():
+            raise ValueError("remove_drift needs a periodic box (walls do not conserve momentum)")
+        d = self.dimension
+        t = float(self.clock[0])
+        drift = self.phase[:, 3 : 3 + d].mean(axis=0)
+        self.phase[:, :d] += drift * t  # positions stay continuous at t
+        self.phase[:, 3 : 3 + d] -= drift
+        self._predict_all(t)
+        return drift
+
     # --------------------------------------------------------------- read-out
     @property
     def time(self) -> float:

@@ -84,8 +84,12 @@ def nu_eta_dagger(alpha, a2=None):
     """ν_η† = (3/(4d))(1 − α + 2d/3)(1 + α)(1 − a2/32), in units of ν0."""
     alpha = np.asarray(alpha, dtype=float)
     d = DIMENSION
-    return 3.0 / (4.0 * d) * (1.0 - alpha + 2.0 * d / 3.0) * (1.0 + alpha) * (
-        1.0 - _a2(alpha, a2) / 32.0
+    return (
+        3.0
+        / (4.0 * d)
+        * (1.0 - alpha + 2.0 * d / 3.0)
+        * (1.0 + alpha)
+        * (1.0 - _a2(alpha, a2) / 32.0)
     )
 
 
@@ -176,7 +180,9 @@ def critical_length(alpha, a2=None):
     """L_c/ℓ = 2π √(2ν*/ζ*): boxes at least that large are shear-unstable (∞ at α = 1)."""
     zeta = zeta_star(alpha, a2)
     nu = nu_star(alpha, a2)
-    return np.where(zeta > 0, 2.0 * math.pi * np.sqrt(2.0 * nu / np.where(zeta > 0, zeta, 1.0)), np.inf)
+    return np.where(
+        zeta > 0, 2.0 * math.pi * np.sqrt(2.0 * nu / np.where(zeta > 0, zeta, 1.0)), np.inf
+    )
 
 
 def max_n_density(alpha, a2=None):
@@ -191,7 +197,8 @@ def check_stable(n_particles, density, alpha, a2=None) -> None:
     limit = float(critical_length(alpha, a2))
     if length >= limit:
         raise ValueError(
-            f"N = {n_particles} at n sigma^2 = {density:g} and alpha = {alpha:g} is shear-unstable: "
+            f"N = {n_particles} at n sigma^2 = {density:g} and alpha = {alpha:g} is "
+            "shear-unstable: "
             f"L = {length:.3g} l is not below the critical L_c = {limit:.3g} l (first Sonine); "
             f"N n sigma^2 must stay below {limit**2:.3g}"
         )

@@ -1,0 +1,215 @@
+"""Event-driven MD of the cooling granular gas in the stationary representation.
+
+N inelastic hard disks (restitution α) in a periodic square box at density n, run in the
+rescaled variables of the homogeneous cooling state: velocities w and time τ with, between
+collisions, dr/dτ = w and dw/dτ = +ω0 w (ω0 = ``drag_rate``). The engine's hard-core
+dynamics is run in its own time t (straight flights, no drag) in segments of
+Δτ = ``sample_interval``: at the start of a segment its velocities v equal w, within the
+segment τ − τ_start = ln(1 + ω0 t)/ω0 and w = (1 + ω0 t) v, so the segment lasts
+t_seg = (e^{ω0Δτ} − 1)/ω0 of engine time, and at its end every velocity is multiplied by
+e^{ω0Δτ} (``HardSphereSystem.scale_velocities``: a common factor only changes the time
+scale of hard-core dynamics, so this is exact, with no time-step error). Unlike the
+``rescale_every`` thermostat, which resets the temperature to a fixed value, the factor
+is prescribed: the temperature is free to relax to T_s with ζ(T_s) = 2ω0.
+
+Observers at every τ_j = equilibration + j Δτ (``kinetic.dsmc.simulate_cooling_modes``
+returns the same dataset; see its docstring for the variables). The energy dissipated in
+a segment is the segment's loss of Σv²/2 in engine units times e^{ω0Δτ}: a collision at
+engine time t loses (1 + ω0 t)² times its loss in w units, and the segment's mean factor
+is replaced by its geometric midpoint, a relative error below (ω0Δτ)²/12. MD conserves
+momentum, but the drag multiplies the round-off momentum by e^{ω0 τ}: whenever it exceeds
+``DRIFT_LIMIT`` at a sample the centre-of-mass velocity is subtracted (a uniform shift:
+relative motion unchanged) and every event predicted anew.
+
+Units: m = σ = 1, initial temperature T0 = 1, time σ√(m/T0).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from kinetic import io, rng
+from kinetic.dsmc.simulate import _integer as integer
+from kinetic.dsmc.simulate import _real as real
+from kinetic.edmd.system import HardSphereSystem
+from kinetic.progress import Progress
+
+__all__ = ["simulate_cooling_modes", "transverse_modes"]
+
+MODES = ("wy_kx", "wx_ky")
+
+DRIFT_LIMIT = 1e-13
+"""Relative total momentum |Σw|/(N√T) above which the centre-of-mass velocity is removed
+(round-off is ~1e-16; the drag multiplies it by e^{ω0 Δτ} per segment)."""
+
+
+def transverse_modes(positions: np.ndarray, velocities: np.ndarray, box_side: float):
+    """(modes, norms): Σ_j w_{j,y} e^{i k x_j} and Σ_j w_{j,x} e^{i k y_j} at k = 2π/L, and
+    their normalisers Σ w_y², Σ w_x² (positions, velocities: (N, 2) arrays)."""
+    k = 2.0 * math.pi / box_side
+    modes = np.array(
+        [
+            np.sum(velocities[:, 1] * np.exp(1j * k * positions[:, 0])),
+            np.sum(velocities[:, 0] * np.exp(1j * k * positions[:, 1])),
+        ]
+    )
+    norms = np.array([np.sum(velocities[:, 1] ** 2), np.sum(velocities[:, 0] ** 2)])
+    return modes, norms
+
+
+def _advance(system: HardSphereSystem, duration: float, drag_rate: float) -> float:
+    """Advance τ by ``duration`` (one segment); return the energy dissipated per particle
+    in w units (see the module docstring)."""
+    factor = math.exp(drag_rate * duration)
+    engine_time = math.expm1(drag_rate * duration) / drag_rate if drag_rate else duration
+    before = 0.5 * np.sum(system.phase[:, 3:5] ** 2)
+    system.run(until=system.time + engine_time)
+    after = 0.5 * np.sum(system.phase[:, 3:5] ** 2)
+    if factor != 1.0:
+        system.scale_velocities(factor)
+    return (before - after) * factor / system.n_particles
+
+
+def simulate_cooling_modes(
+    *,
+    n_particles: int,
+    density: float,
+    restitution: float,
+    drag_rate: float,
+    equilibration: float,
+    sample_interval: float,
+    n_samples: int,
+    seed: int,
+    n_realizations: int = 1,
+    first_realization: int = 0,
+    cell_occupancy: float | None = None,
+    label: str | None = None,
+):
+    """Temperature and transverse modes of the cooling gas by event-driven MD.
+
+    Arguments as in ``kinetic.dsmc.simulate_cooling_modes`` (without the DSMC ones), plus
+    ``cell_occupancy`` (passed to ``HardSphereSystem``: speed only). Samples at
+    τ_j = equilibration + j·sample_interval; the equilibration is run in segments of at
+    most ``sample_interval``. Realization k uses row k of
+    ``kinetic.rng.stream_states(seed, first_realization + n_realizations)``.
+    Raises ``kinetic.edmd.InelasticCollapseError`` if the gas collapses.
+    """
+    n_particles = integer("n_particles", n_particles, 2)
+    density = real("density", density, 0.0, 0.5, low_open=True)
+    restitution = real("restitution", restitution, 0.0, 1.0, low_open=True)
+    drag_rate = real("drag_rate", drag_rate, 0.0, 1e6)
+    equilibration = real("equilibration", equilibration, 0.0, 1e15)
+    sample_interval = real("sample_interval", sample_interval, 0.0, 1e12, low_open=True)
+    n_samples = integer("n_samples", n_samples, 1, 10**9)
+    seed = integer("seed", seed, 0)
+    n_realizations = integer("n_realizations", n_realizations, 1)
+    first_realization = integer("first_realization", first_realization, 0)
+    if cell_occupancy is not None:
+        cell_occupancy = real("cell_occupancy", cell_occupancy, 0.0, 1e6, low_open=True)
+    if drag_rate * sample_interval > 0.5:
+        raise ValueError(
+            f"drag_rate x sample_interval = {drag_rate * sample_interval:.3g} > 0.5: the "
+            "velocities would grow by more than e^0.5 within one segment; sample more often"
+        )
+    box_side = math.sqrt(n_particles / density)
+    states = rng.stream_states(seed, first_realization + n_realizations)[first_realization:]
+    sample_times = equilibration + sample_interval * np.arange(n_samples)
+
+    temperature = np.empty((n_realizations, n_samples))
+    modes = np.empty((n_realizations, n_samples, 2), dtype=complex)
+    norms = np.empty((n_realizations, n_samples, 2))
+    dissipated = np.full((n_realizations, n_samples), np.nan)
+    momentum = np.empty((n_realizations, n_samples, 2))
+    collisions = np.zeros(n_realizations, dtype=np.int64)
+    cpu_seconds = np.zeros(n_realizations)
+    progress = Progress(
+        n_realizations * (n_samples + equilibration / sample_interval),
+        label=label or f"md cooling modes N={n_particles} alpha={restitution:g}",
+        unit="segments",
+    )
+
+    for r, stream in enumerate(states):
+        begin = time.process_time()
+        system = HardSphereSystem(
+            n_particles=n_particles,
+            density=density,
+            restitution=restitution,
+            stream=stream,
+            cell_occupancy=cell_occupancy,
+        )
+        tau = 0.0
+        while tau < equilibration - 1e-12 * max(1.0, equilibration):
+            step = min(sample_interval, equilibration - tau)
+            _advance(system, step, drag_rate)
+            tau += step
+            progress.update(step / sample_interval)
+        for j in range(n_samples):
+            if j > 0 or equilibration > 0:
+                lost = _advance(system, sample_times[j] - tau, drag_rate)
+                tau = sample_times[j]
+                dissipated[r, j] = lost if (j > 0 or equilibration >= sample_interval) else np.nan
+            x, w = system.positions(), system.velocities()
+            mean = w.mean(axis=0)
+            temperature[r, j] = np.sum((w - mean) ** 2) / (2.0 * n_particles)
+            momentum[r, j] = w.sum(axis=0) / (n_particles * math.sqrt(temperature[r, j]))
+            if np.abs(momentum[r, j]).max() > DRIFT_LIMIT:
+                system.remove_drift()
+            modes[r, j], norms[r, j] = transverse_modes(x, w, box_side)
+            progress.update(1.0)
+        collisions[r] = system.collisions
+        cpu_seconds[r] = time.process_time() - begin
+
+    realization_dims = ("realization", "time")
+    mode_dims = ("realization", "time", "mode")
+    dataset = io.make_dataset(
+        {
+            "temperature": (realization_dims, temperature, "T0", "granular temperature"),
+            "mode_real": (mode_dims, modes.real, "sqrt(T0/m)", "real part of the mode"),
+            "mode_imag": (mode_dims, modes.imag, "sqrt(T0/m)", "imaginary part of the mode"),
+            "mode_norm": (mode_dims, norms, "T0/m", "sum of the squared velocity component"),
+            "dissipated_energy": (
+                realization_dims,
+                dissipated,
+                "T0",
+                "energy lost in collisions per particle in the preceding sample interval",
+            ),
+            "momentum": (
+                ("realization", "time", "axis"),
+                momentum,
+                "1",
+                "total momentum / (N sqrt(T))",
+            ),
+            "collisions": ("realization", collisions, "1", "collisions executed"),
+            "cpu_seconds": ("realization", cpu_seconds, "s", "process CPU time"),
+        },
+        coords={
+            "realization": (
+                "realization",
+                np.arange(first_realization, first_realization + n_realizations),
+                "1",
+                "realization number",
+            ),
+            "time": ("time", sample_times, "sigma*sqrt(m/T0)", "rescaled time tau"),
+            "mode": ("mode", list(MODES), "1", "w_y e^{ikx} or its x <-> y twin"),
+            "axis": ("axis", ["x", "y"], "1", "axis"),
+        },
+    )
+    parameters: dict[str, Any] = {
+        "engine": "md",
+        "n_particles": n_particles,
+        "density": density,
+        "restitution": restitution,
+        "drag_rate": drag_rate,
+        "equilibration": equilibration,
+        "sample_interval": sample_interval,
+        "n_samples": n_samples,
+        "n_realizations": n_realizations,
+        "first_realization": first_realization,
+        "box_side": box_side,
+        "wavenumber": 2.0 * math.pi / box_side,
+    }
+    return io.stamp(dataset, parameters=parameters, seed=seed)
