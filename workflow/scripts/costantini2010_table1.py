@@ -21,8 +21,8 @@ table = table.sort_values(
     ascending=[True, False, True, True],
     na_position="last",
 )
-table["n_particles"] = table["n_particles"].astype("Int64")
-table["fictive_factor"] = table["fictive_factor"].astype("Int64")
+for column in ("n_particles", "fictive_factor"):  # integers, empty where they do not apply
+    table[column] = [None if pd.isna(value) else int(value) for value in table[column]]
 io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".4g")
 io.write_table(pd.DataFrame(fits), snakemake.output.fits)
 for fit in fits:

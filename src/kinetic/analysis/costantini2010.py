@@ -137,7 +137,8 @@ def extrapolate_inverse_n(
     nan = {key: math.nan for key in ("intercept", "intercept_err", "slope", "slope_err", "chi2")}
     if x.size < 2 or np.unique(x).size < 2:
         return nan | {"dof": 0}
-    weight = 1.0 / sigma**2
+    # exact values (e.g. ζ* = 0 at α = 1) carry no error: fit them unweighted
+    weight = 1.0 / sigma**2 if np.all(sigma > 0) else np.ones_like(sigma)
     design = np.stack([np.ones_like(x), x], axis=1)
     covariance = np.linalg.inv(design.T @ (design * weight[:, None]))
     coefficients = covariance @ design.T @ (weight * y)

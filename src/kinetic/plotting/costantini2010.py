@@ -9,10 +9,10 @@ import xarray as xr
 __all__ = ["METHOD_LABELS", "METHOD_STYLE", "correlation_panel", "run_label"]
 
 METHOD_STYLE: dict[str, dict[str, Any]] = {
-    "md": {"marker": "o", "color": "k"},
-    "dsmc": {"marker": "s", "color": "C0"},
-    "dsmc_homogeneous": {"marker": "^", "color": "C3"},
-    "theory": {"color": "C2", "linestyle": "-"},
+    "md": {"marker": "o", "color": "black"},
+    "dsmc": {"marker": "s", "color": "tab:blue"},
+    "dsmc_homogeneous": {"marker": "^", "color": "tab:red"},
+    "theory": {"color": "tab:green", "linestyle": "-"},
 }
 """Marker and colour of each method (theory: a line)."""
 
