@@ -1,0 +1,96 @@
+"""kinetic.theory.costantini2010: the reconstruction's table, exact limits, the stability
+bound, the extraction formulas, and the elastic viscosity beyond first Sonine."""
+
+import math
+
+import numpy as np
+import pytest
+
+from kinetic.theory import costantini2010 as theory
+
+# costantini2010.md, "Theory curves": α, a2 (vNE), ζ*, ν*, ν̄* (white), ν̄*/ν*, L_c/ℓ, max N nσ²
+TABLE = [
+    (0.9, -0.0269, 0.2369, 0.2046, 0.2093, 1.023, 8.26, 68.2),
+    (0.8, -0.0219, 0.4493, 0.2108, 0.2278, 1.080, 6.09, 37.0),
+    (0.7, +0.0022, 0.6395, 0.2183, 0.2543, 1.165, 5.19, 27.0),
+    (0.6, +0.0387, 0.8079, 0.2273, 0.2892, 1.272, 4.71, 22.2),
+    (0.5, +0.0829, 0.9546, 0.2380, 0.3335, 1.401, 4.44, 19.7),
+]
+
+
+@pytest.mark.parametrize("row", TABLE)
+def test_the_reconstructions_table(row):
+    alpha, a2, zeta, nu, nu_bar, ratio, critical, most = row
+    assert float(theory.a2_van_noije_ernst(alpha)) == pytest.approx(a2, abs=5e-5)
+    assert float(theory.zeta_star(alpha)) == pytest.approx(zeta, abs=5e-5)
+    assert float(theory.nu_star(alpha)) == pytest.approx(nu, abs=5e-5)
+    assert float(theory.nu_bar_star_white(alpha)) == pytest.approx(nu_bar, abs=5e-5)
+    assert float(theory.fdr_ratio_white(alpha)) == pytest.approx(ratio, abs=5e-4)
+    assert float(theory.critical_length(alpha)) == pytest.approx(critical, abs=5e-3)
+    assert float(theory.max_n_density(alpha)) == pytest.approx(most, abs=0.05)
+
+
+def test_elastic_limit():
+    assert float(theory.nu_star(1.0)) == pytest.approx(1.0 / (2.0 * math.sqrt(2.0 * math.pi)))
+    assert float(theory.nu_star(1.0)) == pytest.approx(0.19947, abs=5e-6)
+    assert float(theory.zeta_star(1.0)) == 0.0
+    assert float(theory.fdr_ratio_white(1.0)) == 1.0
+    assert math.isinf(float(theory.critical_length(1.0)))
+    assert float(theory.zeta_star(1.0 - 1e-9)) == pytest.approx(0.0, abs=1e-8)
+    assert theory.drag_rate(1.0, 0.005) == 0.0
+
+
+def test_stability_bound_refuses_large_boxes_with_the_bound():
+    theory.check_stable(3000, 0.005, 0.5)  # N nσ² = 15 < 19.7
+    with pytest.raises(ValueError, match=r"L_c = 4\.44"):
+        theory.check_stable(3000, 0.01, 0.5)  # N nσ² = 30 > 19.7
+    assert math.isinf(float(theory.correlation_time(0.5, 3000, 0.01)))
+
+
+def test_extraction_formulas_invert_the_prediction():
+    for alpha, n in ((1.0, 1000), (0.8, 2000), (0.6, 3000)):
+        k_star = theory.reduced_wavenumber(n, 0.005)
+        tau_c = theory.correlation_time(alpha, n, 0.005)
+        amplitude = theory.correlation_amplitude(alpha, n, 0.005)
+        zeta = theory.zeta_star(alpha)
+        assert theory.nu_star_from_fit(tau_c, zeta, k_star) == pytest.approx(theory.nu_star(alpha))
+        assert theory.nu_bar_star_from_fit(amplitude, tau_c, k_star) == pytest.approx(
+            theory.nu_bar_star_white(alpha)
+        )
+
+
+def test_coloured_noise_raises_the_tail_amplitude():
+    factor = theory.coloured_noise_amplitude(np.array([1.0, 0.8, 0.6]), 2000, 0.005)
+    assert np.all(factor > 1.0)
+    # a larger system decays more slowly, closer to white noise
+    assert theory.coloured_noise_amplitude(0.8, 3000, 0.005) < theory.coloured_noise_amplitude(
+        0.8, 1000, 0.005
+    )
+
+
+def test_drag_rate_balances_the_first_sonine_cooling_at_the_initial_temperature():
+    # ζ(T0) = ζ* v0/ℓ with v0 = √2, ℓ = 1/n; ω0 = ζ/2
+    assert theory.drag_rate(0.8, 0.005) == pytest.approx(
+        0.4493 * math.sqrt(2) * 0.005 / 2, rel=1e-4
+    )
+    assert theory.drag_rate(0.8, 0.005, a2="montanero") != theory.drag_rate(0.8, 0.005)
+    with pytest.raises(ValueError, match="a2"):
+        theory.drag_rate(0.8, 0.005, a2="sonine")
+
+
+def test_sonine_viscosity_second_order_is_exact_in_two_and_three_dimensions():
+    # independent checks: the second Sonine approximation is 1 + 1/50 for hard disks and
+    # Chapman and Cowling's 1 + 3/202 for hard spheres
+    assert theory.viscosity_sonine_ratio(1, 2) == pytest.approx(1.0, abs=1e-12)
+    assert theory.viscosity_sonine_ratio(2, 2) == pytest.approx(1.0 + 1.0 / 50.0, abs=1e-12)
+    assert theory.viscosity_sonine_ratio(2, 3) == pytest.approx(1.0 + 3.0 / 202.0, abs=1e-12)
+
+
+def test_sonine_viscosity_converges_for_hard_disks():
+    ratios = [theory.viscosity_sonine_ratio(order, 2) for order in range(1, 9)]
+    steps = np.diff(ratios)
+    assert np.all(steps > 0)  # a variational sequence: each order raises η
+    assert np.all(steps[1:] < steps[:-1])
+    assert steps[-1] < 2e-6
+    assert ratios[-1] == pytest.approx(1.02197, abs=2e-5)
+    assert theory.nu_star_elastic() == pytest.approx(0.19947 * 1.02197, abs=2e-5)
