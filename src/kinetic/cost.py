@@ -51,9 +51,10 @@ __all__ = [
 ]
 
 # ------------------------------------------------------------------ job-level constants
-JOB_OVERHEAD_SECONDS = 30.0
-"""Start of a job: Python, imports, loading the compiled kernels from numba's cache,
-writing the netCDF file (5-15 s per ci job on the busy 2-core machine), doubled."""
+JOB_OVERHEAD_SECONDS = 10.0
+"""Start and end of a job: Python, imports, loading the compiled kernels from numba's
+cache, writing the netCDF file (1-2 s per ci job in its benchmark file), and Snakemake's
+own per-job work (about 1 s locally, 5-8 s through SLURM: submission and polling)."""
 
 BASE_MEMORY_MB = 1000.0
 """Memory of a job without particles: the script process (numpy, numba, xarray, netCDF4
