@@ -132,11 +132,11 @@ def _running_jobs():
 
 
 def test_scancel_loses_nothing_finished_and_the_rerun_builds_only_what_is_missing(slurm, tmp_path):
-    # four DSMC jobs of ~10 s, one at a time
+    # four DSMC jobs of 10-30 s, one at a time
     override = tmp_path / "longer.yaml"
     override.write_text(
-        "visco2008:\n  dsmc:\n    maxwell_free_paths:\n      n_particles: 2000\n"
-        "      duration: 2000\n      realizations: 8\n      realizations_per_job: 2\n"
+        "visco2008:\n  dsmc:\n    maxwell_free_paths:\n      n_particles: 4000\n"
+        "      duration: 20000\n      realizations: 8\n      realizations_per_job: 2\n"
     )
     target = "results/visco2008/dsmc/maxwell_free_paths.nc"
     batches = tmp_path / "results" / "visco2008" / "dsmc" / "maxwell_free_paths"
@@ -153,22 +153,27 @@ def test_scancel_loses_nothing_finished_and_the_rerun_builds_only_what_is_missin
         background=True,
     )
     try:
-        deadline = time.monotonic() + 600
+        # with --jobs 1 a job starts after the previous one is finished for Snakemake: wait
+        # for a batch file, then for the next job to start, and cancel that one
+        deadline, running_at_first_file = time.monotonic() + 600, None
         while time.monotonic() < deadline:
-            finished = sorted(batches.glob("batch*.nc")) if batches.exists() else []
             running = _running_jobs()
-            if finished and running:
+            if running_at_first_file is None and batches.exists() and any(batches.iterdir()):
+                running_at_first_file = set(running)
+            elif running_at_first_file is not None and set(running) - running_at_first_file:
                 break
             assert run.poll() is None, run.communicate()[0]
-            time.sleep(0.5)
+            time.sleep(0.2)
         else:
-            raise AssertionError("no batch finished while another ran")
+            raise AssertionError("no job started after the first batch finished")
+        (cancelled,) = set(running) - running_at_first_file
+        finished = sorted(batches.glob("batch*.nc"))
         # a second invocation in the same directory is refused by Snakemake's lock
         second = _snakemake(tmp_path, target, *configs, "--cores", "1", check=False)
         assert second.returncode != 0
         assert "cannot be locked" in second.stdout + second.stderr
         kept = {path: path.stat().st_mtime_ns for path in finished}
-        subprocess.run(["scancel", running[0]], check=True)
+        subprocess.run(["scancel", cancelled], check=True)
         output = run.communicate(timeout=600)[0]
     finally:
         if run.poll() is None:
