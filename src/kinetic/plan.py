@@ -34,6 +34,7 @@ __all__ = [
     "PLANNERS",
     "BudgetError",
     "Job",
+    "benchmark_overruns",
     "check_limits",
     "jobs_by_output",
     "main",
@@ -307,6 +308,39 @@ def check_limits(jobs: Iterable[Job], limits: Mapping[str, Any] | None = None) -
             "(kinetic.cost; lower the statistics, split the jobs, e.g. fewer realizations "
             "per job, or raise the limit):\n  " + "\n  ".join(shown)
         )
+
+
+def benchmark_overruns(directory: str | Path, jobs: Iterable[Job]) -> tuple[int, list[str]]:
+    """Compare the jobs' requests with what their Snakemake ``benchmark:`` files measured.
+
+    Returns ``(checked, problems)``: the number of jobs of ``jobs`` that have a benchmark
+    file under ``directory``, and one sentence per job whose measured wall time (column
+    ``s``) exceeds the overhead plus RUNTIME_SAFETY times its estimated CPU time (its
+    ``runtime`` request before rounding up to minutes) or whose peak memory (``max_rss``,
+    MB) exceeds its ``mem_mb`` request.
+    """
+    import csv
+
+    checked, problems = 0, []
+    for job in jobs:
+        path = Path(directory) / job.benchmark if job.benchmark else None
+        if path is None or not path.is_file():
+            continue
+        with path.open(newline="") as handle:
+            rows = list(csv.DictReader(handle, delimiter="\t"))
+        if not rows:
+            continue
+        checked += 1
+        seconds = max(float(row["s"]) for row in rows)
+        memory = max(float(row["max_rss"]) for row in rows if row["max_rss"] != "NA")
+        # the request before its rounding to whole minutes (at least 2): overhead + margin
+        runtime = cost.JOB_OVERHEAD_SECONDS + cost.RUNTIME_SAFETY * job.estimate.cpu_seconds
+        requested = cost.mem_mb(job.estimate)
+        if seconds > runtime:
+            problems.append(f"{job.output}: ran {seconds:.1f} s, estimate x margin {runtime:.1f} s")
+        if memory > requested:
+            problems.append(f"{job.output}: peak {memory:.0f} MB, asked for {requested} MB")
+    return checked, problems
 
 
 # ------------------------------------------------------------------ summaries
