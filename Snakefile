@@ -25,6 +25,7 @@ include: "workflow/rules/dsmc.smk"
 include: "workflow/rules/visco2008_dsmc.smk"
 include: "workflow/rules/montanero2007.smk"
 include: "workflow/rules/krauth2025.smk"
+include: "workflow/rules/report.smk"
 include: "workflow/rules/targets.smk"
 include: "workflow/rules/budget.smk"
 

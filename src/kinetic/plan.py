@@ -31,14 +31,17 @@ from kinetic.cost import Estimate
 
 __all__ = [
     "CORES",
+    "JOB_TABLE_COLUMNS",
     "PLANNERS",
     "BudgetError",
     "Job",
     "benchmark_overruns",
     "check_limits",
+    "job_table",
     "jobs_by_output",
     "main",
     "plan_jobs",
+    "resource_hints",
     "summary_line",
     "summary_rows",
     "summary_table",
@@ -341,6 +344,80 @@ def benchmark_overruns(directory: str | Path, jobs: Iterable[Job]) -> tuple[int,
         if memory > requested:
             problems.append(f"{job.output}: peak {memory:.0f} MB, asked for {requested} MB")
     return checked, problems
+
+
+JOB_TABLE_COLUMNS = (
+    "document",
+    "rule",
+    "output",
+    "work",
+    "estimated_cpu_s",
+    "runtime_min",
+    "mem_mb",
+    "measured_s",
+    "measured_cpu_s",
+    "measured_max_rss_mb",
+)
+"""Columns of :func:`job_table`."""
+
+
+def job_table(directory: str | Path, jobs: Iterable[Job]) -> list[dict[str, Any]]:
+    """One row per job (:data:`JOB_TABLE_COLUMNS`): the estimate and the requests, and,
+    where the job's benchmark file exists under ``directory``, what it measured (wall
+    seconds, CPU seconds, peak resident memory in MB; empty otherwise)."""
+    import csv
+
+    rows = []
+    for job in jobs:
+        row = {
+            "document": job.document,
+            "rule": job.rule,
+            "output": job.output,
+            "work": job.estimate.work,
+            "estimated_cpu_s": round(job.estimate.cpu_seconds, 3),
+            "runtime_min": cost.runtime_minutes(job.estimate),
+            "mem_mb": cost.mem_mb(job.estimate),
+            "measured_s": "",
+            "measured_cpu_s": "",
+            "measured_max_rss_mb": "",
+        }
+        path = Path(directory) / job.benchmark if job.benchmark else None
+        if path is not None and path.is_file():
+            with path.open(newline="") as handle:
+                measured = list(csv.DictReader(handle, delimiter="\t"))
+            if measured:
+                row["measured_s"] = measured[-1]["s"]
+                row["measured_cpu_s"] = measured[-1]["cpu_time"]
+                row["measured_max_rss_mb"] = measured[-1]["max_rss"]
+        rows.append(row)
+    return rows
+
+
+RESOURCE_OF_STATE = {"TIMEOUT": "runtime", "OUT_OF_MEMORY": "mem_mb"}
+"""SLURM job states that mean a job outgrew its request, and the resource to raise."""
+
+
+def resource_hints(log_text: str) -> str:
+    """Sentences telling which resource to raise for every job of a Snakemake log that
+    SLURM killed for its time (TIMEOUT) or memory (OUT_OF_MEMORY); empty if none."""
+    import re
+
+    hints = []
+    for block in re.split(r"\n(?=Error in rule )", log_text):
+        rule = re.match(r"Error in rule (\w+):", block)
+        state = re.search(r"SLURM status is: '(TIMEOUT|OUT_OF_MEMORY)'", block)
+        if not (rule and state):
+            continue
+        resource = RESOURCE_OF_STATE[state.group(1)]
+        output = re.search(r"^\s+output: ([^,\n]+)", block, flags=re.MULTILINE)
+        logs = re.search(r"^\s+log: ([^\n]+)", block, flags=re.MULTILINE)
+        hints.append(
+            f"rule {rule.group(1)} ({output.group(1) if output else 'job'}) was killed by "
+            f"SLURM ({state.group(1)}): raise its {resource}, e.g. --set-resources "
+            f"{rule.group(1)}:{resource}=<value> (every retry doubles it; kinetic.cost has "
+            f"the estimate){'; log: ' + logs.group(1) if logs else ''}"
+        )
+    return "\n".join(hints)
 
 
 # ------------------------------------------------------------------ summaries

@@ -12,3 +12,10 @@ except job_plan.BudgetError as error:
 
 if workflow.is_main_process:
     print(job_plan.summary_line(job_plan.plan_jobs(config)), file=sys.stderr)
+
+
+onerror:
+    # a job SLURM killed for its time or memory: say which resource to raise
+    hints = job_plan.resource_hints(Path(log).read_text()) if log else ""
+    if hints:
+        print(hints, file=sys.stderr)
