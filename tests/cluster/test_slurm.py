@@ -6,7 +6,8 @@ this machine by tests/cluster/start_slurm.sh (Debian's munge, slurmctld, slurmd)
   variable but the measured CPU times) as a local run with the same seeds;
 - a job cancelled with ``scancel`` while it runs is reported with its log, leaves no
   output, and the rerun builds only what is missing without touching finished outputs;
-- a second invocation in the same directory is refused by Snakemake's lock.
+- a second invocation in the same directory is refused by Snakemake's lock;
+- a job SLURM kills at its time limit is followed by a line naming the resource to raise.
 
 Run: ``pytest -m cluster tests/cluster`` as root (it installs the Debian packages if they
 are missing; skipped where SLURM cannot be installed). Only the daemons it started are
@@ -198,3 +199,31 @@ def test_scancel_loses_nothing_finished_and_the_rerun_builds_only_what_is_missin
         assert path.stat().st_mtime_ns == mtime
     assert all(path.exists() for path in missing)
     assert (tmp_path / target).exists()
+
+
+def test_a_job_killed_at_its_time_limit_is_told_to_raise_its_runtime(slurm, tmp_path):
+    # one DSMC job of ~100 s given a 1-minute limit
+    override = tmp_path / "long.yaml"
+    override.write_text(
+        "visco2008:\n  dsmc:\n    maxwell_free_paths:\n      n_particles: 4000\n"
+        "      duration: 30000\n      realizations: 16\n      realizations_per_job: 16\n"
+    )
+    result = _snakemake(
+        tmp_path,
+        "results/visco2008/dsmc/maxwell_free_paths/batch0000.nc",
+        "--configfile",
+        CI_CONFIG,
+        str(override),
+        *SLURM_OPTIONS,
+        "--retries",
+        "0",
+        "--set-resources",
+        "simulate_visco2008_dsmc:runtime=1",
+        check=False,
+    )
+    output = result.stdout + result.stderr
+    assert result.returncode != 0
+    assert "SLURM status is: 'TIMEOUT'" in output, output
+    assert "was killed by SLURM (TIMEOUT): raise its runtime" in output, output
+    assert "logs/visco2008/dsmc/maxwell_free_paths/batch0000.log" in output
+    assert not (tmp_path / "results/visco2008/dsmc/maxwell_free_paths/batch0000.nc").exists()

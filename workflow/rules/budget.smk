@@ -14,8 +14,16 @@ if workflow.is_main_process:
     print(job_plan.summary_line(job_plan.plan_jobs(config)), file=sys.stderr)
 
 
+def resource_hints_of_logs(logs):
+    """kinetic.plan.resource_hints of the run's log file(s) (``log`` of onerror)."""
+    paths = [logs] if isinstance(logs, (str, Path)) else list(logs or [])
+    return job_plan.resource_hints(
+        "\n".join(Path(path).read_text() for path in paths if Path(path).is_file())
+    )
+
+
 onerror:
     # a job SLURM killed for its time or memory: say which resource to raise
-    hints = job_plan.resource_hints(Path(log).read_text()) if log else ""
+    hints = resource_hints_of_logs(log)
     if hints:
         print(hints, file=sys.stderr)
