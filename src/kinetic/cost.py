@@ -136,8 +136,8 @@ EDMD_COLLISIONS_PER_SECOND = {
 }
 """Collisions per CPU-second of kinetic.edmd (2D) against N at two densities. Above
 N = 10⁵ the 10⁴ -> 10⁵ slope is extended (front, N = 10⁶, ρσ² = 10⁻²: 1.8 × 10⁵/s with
-the set-up, against 1.6 × 10⁵ extrapolated); 3D at packing 0.01 is as fast as 2D at
-ρσ² = 10⁻² (README: 3.0 / 2.1 / 1.1 × 10⁵)."""
+the set-up, against 1.6 × 10⁵ extrapolated). Only 2D runs are planned (visco2008); 3D at
+packing 0.01 would be about as fast as 2D at ρσ² = 10⁻³ (README: 3.0 / 2.1 / 1.1 × 10⁵)."""
 
 EDMD_OBSERVER_FACTOR = 1.2
 """visco2008's observers (windowed counts, flight and path histograms) on top of the
@@ -267,11 +267,10 @@ def dsmc_free_flights(
 
 
 # ------------------------------------------------------------------ cloning
-CLONING_EVENTS_PER_SECOND = {1e3: 7.1e6, 1e5: 5.3e6}
-"""README: collision events per CPU-second of kinetic.cloning at N_c = 10³ and 10⁵ (front,
-N_c = 10⁶: 4 × 10⁶ at twice the speed of the README's machine, so 2 × 10⁶ there: the
-10³ -> 10⁵ slope extended gives 4.3 × 10⁶, hence the last point)."""
-CLONING_EVENTS_PER_SECOND[1e6] = 2.0e6
+CLONING_EVENTS_PER_SECOND = {1e3: 7.1e6, 1e5: 5.3e6, 1e6: 2.0e6}
+"""Collision events per CPU-second of kinetic.cloning against N_c. README: 7.1 × 10⁶ at
+N_c = 10³, 5.3 × 10⁶ at 10⁵. Front at N_c = 10⁶: 4 × 10⁶, halved (the 10³ -> 10⁵ slope
+extended would give an optimistic 4.3 × 10⁶)."""
 
 CLONING_BYTES_PER_MEMBER = 200.0
 """Front: peak RSS 262 MB at N_c = 10⁶ against 223 MB at 10³ (40 B per member), x5 for
