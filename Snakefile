@@ -27,7 +27,9 @@ include: "workflow/rules/montanero2007.smk"
 include: "workflow/rules/krauth2025.smk"
 include: "workflow/rules/costantini2010/simulate.smk"
 include: "workflow/rules/costantini2010/figures.smk"
+include: "workflow/rules/report.smk"
 include: "workflow/rules/targets.smk"
+include: "workflow/rules/budget.smk"
 
 
 rule all:

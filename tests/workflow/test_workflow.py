@@ -10,6 +10,10 @@ from pathlib import Path
 import pandas as pd
 import pytest
 import xarray as xr
+import yaml
+
+from kinetic import plan
+from kinetic.config import validate_config
 
 REPOSITORY = Path(__file__).resolve().parents[2]
 SNAKEMAKE = [sys.executable, "-m", "snakemake", "--snakefile", str(REPOSITORY / "Snakefile")]
@@ -108,6 +112,12 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
                 assert "units" in variable.attrs, f"{path}:{name}"
             assert json.loads(dataset.attrs["config"])["seed"] == 7
             assert dataset.attrs["git_revision"]
+    # every simulation job ran within the runtime and memory it asked for (kinetic.cost)
+    config = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
+    validate_config(config)
+    checked, overruns = plan.benchmark_overruns(tmp_path, plan.plan_jobs(config))
+    assert checked >= 40, checked
+    assert not overruns, overruns
     # a rerun has nothing to do, and the report renders every figure built
     rerun = _snakemake(
         tmp_path,

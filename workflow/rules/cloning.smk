@@ -83,6 +83,9 @@ rule cloning_batch:
     params:
         run=cloning_run_parameters,
     threads: 1
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     script:
         "../scripts/cloning_batch.py"
 

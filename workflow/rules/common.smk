@@ -106,6 +106,37 @@ def figure_script(name):
     return str(Path(workflow.basedir) / "workflow" / "scripts" / f"{name}.py")
 
 
+# ---------------------------------------------------------------- resources of simulation jobs
+# Every simulation rule asks for the runtime (minutes) and memory (MB) that kinetic.cost
+# estimates for its output from the config (kinetic.plan lists the jobs), doubled on each
+# retry. workflow/rules/budget.smk refuses jobs above config['limits'] before any job.
+from kinetic import cost as job_cost
+from kinetic import plan as job_plan
+
+_PLANNED_JOBS = {}
+
+
+def planned_job(wildcards, rulename):
+    """The kinetic.plan entry of the job of ``rulename`` with these wildcards."""
+    if not _PLANNED_JOBS:
+        _PLANNED_JOBS.update(job_plan.jobs_by_output(config))
+    output = workflow.get_rule(rulename).output[0].apply_wildcards(wildcards)
+    try:
+        return _PLANNED_JOBS[str(output)]
+    except KeyError:
+        raise WorkflowError(f"kinetic.plan has no cost estimate for {output} (rule {rulename})")
+
+
+def planned_runtime(wildcards, attempt, rulename):
+    """resources.runtime (minutes) of a simulation job."""
+    return job_cost.runtime_minutes(planned_job(wildcards, rulename).estimate, attempt)
+
+
+def planned_mem_mb(wildcards, attempt, rulename):
+    """resources.mem_mb of a simulation job."""
+    return job_cost.mem_mb(planned_job(wildcards, rulename).estimate, attempt)
+
+
 wildcard_constraints:
     engine="[a-z0-9_]+",
 
@@ -119,5 +150,8 @@ rule warm_numba:
         touch("results/.cache/numba-{engine}.done"),
     log:
         "logs/warm_numba/{engine}.log",
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     script:
         "../scripts/warm_numba.py"

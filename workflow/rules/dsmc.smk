@@ -65,6 +65,9 @@ rule simulate_visco2008_dsmc:
     wildcard_constraints:
         run="|".join(VISCO2008_DSMC_RUNS),
         batch="[0-9]{4}",
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     script:
         "../scripts/dsmc_free_flights.py"
 

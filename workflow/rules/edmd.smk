@@ -117,6 +117,9 @@ rule edmd_visco2008_batch:
     wildcard_constraints:
         run=visco2008_md_run_pattern(),
         batch=r"\d{3}",
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     script:
         "../scripts/edmd_visco2008_batch.py"
 

@@ -116,6 +116,9 @@ rule krauth2025_line:
     wildcard_constraints:
         method="naive|direct",
         length="[0-9.]+",
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     script:
         "../scripts/krauth2025_line.py"
 
@@ -132,6 +135,9 @@ rule krauth2025_ring:
         "logs/benchmarks/krauth2025/pins/ring.tsv"
     params:
         job=krauth2025_ring_job,
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     script:
         "../scripts/krauth2025_ring.py"
 
@@ -146,6 +152,9 @@ rule krauth2025_snapshots:
         "logs/krauth2025/pins/snapshots.log",
     params:
         job=krauth2025_snapshots_job,
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     script:
         "../scripts/krauth2025_snapshots.py"
 
@@ -310,6 +319,9 @@ rule krauth2025_md:
         "logs/benchmarks/krauth2025/disks/md.tsv"
     params:
         job=krauth2025_md_job,
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     script:
         "../scripts/krauth2025_md.py"
 
@@ -328,6 +340,9 @@ rule krauth2025_disk_sampler:
         job=krauth2025_sampler_job,
     wildcard_constraints:
         method="direct|markov",
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     script:
         "../scripts/krauth2025_disk_sampler.py"
 
@@ -342,6 +357,9 @@ rule krauth2025_chaos_run:
         "logs/krauth2025/disks/chaos.log",
     params:
         job=krauth2025_chaos_job,
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     script:
         "../scripts/krauth2025_chaos_run.py"
 

@@ -164,6 +164,9 @@ rule montanero2007_simulate:
         batch=montanero2007_batch,
         seed=montanero2007_seed,
     threads: 1
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     script:
         "../scripts/montanero2007_simulate.py"
 

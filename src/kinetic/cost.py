@@ -1,0 +1,384 @@
+"""CPU time and memory of one simulation job, estimated from its parameters.
+
+One function per kind of job, taking the same keyword arguments as the engine front the
+job calls (the dictionaries the workflow rules pass as ``params``), returning an
+:class:`Estimate`: the expected CPU seconds of the computation and its peak memory.
+:func:`runtime_minutes` and :func:`mem_mb` turn an estimate into the ``runtime`` and
+``mem_mb`` a scheduler (SLURM) is asked for, with the safety factors below.
+
+Every coefficient is the inverse of a measured speed and says where it comes from:
+
+- "README" numbers are the medians of ``python -m kinetic.bench <engine>`` quoted in the
+  README's engine table (one core of the 2-core development machine, shared with other
+  work, 2026-11-23);
+- "front" numbers time the engine fronts themselves (import and compilation excluded)
+  on the same machine, 2026-11-24, for what the benches do not report (per-step cost
+  of the DSMC protocol, the continuous-time DSMC, the samplers); those runs were 1.5 to
+  2.5 times faster than the README's on a busier machine, so their speeds are halved
+  here to the README's level;
+- memory per particle is the growth of the peak resident set between N = 10³ and
+  N = 10⁶ (2 × 10⁶ for the DSMC), doubled.
+
+The estimates are meant to be upper bounds for a job on a loaded core of a similar
+machine, not predictions to 10 %: the workflow test checks that they bound the measured
+runtime and peak memory (Snakemake's ``benchmark:`` files) of the ``ci`` jobs.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+__all__ = [
+    "BASE_MEMORY_MB",
+    "JOB_OVERHEAD_SECONDS",
+    "MEMORY_SAFETY",
+    "MIN_RUNTIME_MINUTES",
+    "RUNTIME_SAFETY",
+    "Estimate",
+    "cloning_batch",
+    "compile_engine",
+    "dsmc_free_flights",
+    "dsmc_homogeneous",
+    "edmd_box",
+    "edmd_periodic",
+    "mem_mb",
+    "runtime_minutes",
+    "sampler_disks",
+    "sampler_line",
+    "sampler_ring",
+    "small_job",
+]
+
+# ------------------------------------------------------------------ job-level constants
+JOB_OVERHEAD_SECONDS = 10.0
+"""Start and end of a job: Python, imports, loading the compiled kernels from numba's
+cache, writing the netCDF file (1-2 s per ci job in its benchmark file), and Snakemake's
+own per-job work (about 1 s locally, 5-8 s through SLURM: submission and polling)."""
+
+BASE_MEMORY_MB = 1000.0
+"""Memory of a job without particles: the script process (numpy, numba, xarray, netCDF4
+and the compiled kernels: peak 200-260 MB measured, 410 MB when it compiles) plus the
+Snakemake process that runs it inside a SLURM allocation (~200 MB), rounded up."""
+
+RUNTIME_SAFETY = 3.0
+"""Runtime asked for = overhead + RUNTIME_SAFETY x estimated CPU time: covers slower or
+shared cores and the spread of the bench repeats (up to 10 % same day, x2.5 across load)."""
+
+MEMORY_SAFETY = 2.0
+"""Memory asked for = BASE_MEMORY_MB + MEMORY_SAFETY x estimated particle memory."""
+
+MIN_RUNTIME_MINUTES = 2
+"""Shortest runtime asked for (SLURM rounds to minutes; a ci job takes seconds)."""
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """Estimated cost of one job.
+
+    cpu_seconds : expected CPU time of the computation (one core), start-up excluded
+    memory_mb : expected peak memory of the particles and observers, base excluded
+    work : what is counted, e.g. '4.0e+08 collisions'
+    """
+
+    cpu_seconds: float
+    memory_mb: float
+    work: str
+
+    @property
+    def cpu_hours(self) -> float:
+        return self.cpu_seconds / 3600.0
+
+    @property
+    def job_seconds(self) -> float:
+        """Expected wall time of the job on one core, start-up included."""
+        return JOB_OVERHEAD_SECONDS + self.cpu_seconds
+
+    @property
+    def peak_mb(self) -> float:
+        """Expected peak memory of the job (base included)."""
+        return BASE_MEMORY_MB + self.memory_mb
+
+
+def runtime_minutes(estimate: Estimate, attempt: int = 1) -> int:
+    """SLURM ``runtime`` (minutes) for ``estimate``; doubled on every retry."""
+    seconds = JOB_OVERHEAD_SECONDS + RUNTIME_SAFETY * estimate.cpu_seconds
+    minutes = max(MIN_RUNTIME_MINUTES, math.ceil(seconds / 60.0))
+    return int(minutes * 2 ** (max(1, int(attempt)) - 1))
+
+
+def mem_mb(estimate: Estimate, attempt: int = 1) -> int:
+    """SLURM ``mem_mb`` for ``estimate`` (rounded up to 100 MB); doubled on every retry."""
+    megabytes = BASE_MEMORY_MB + MEMORY_SAFETY * estimate.memory_mb
+    return int(100 * math.ceil(megabytes / 100.0) * 2 ** (max(1, int(attempt)) - 1))
+
+
+def _interpolate(x: float, table: dict[float, float]) -> float:
+    """Piecewise log-log interpolation of ``table`` (x -> y), extrapolated with the slope
+    of the last interval above the table and held constant below it."""
+    points = sorted(table.items())
+    if x <= points[0][0]:
+        return points[0][1]
+    index = next((k for k in range(1, len(points)) if x <= points[k][0]), len(points) - 1)
+    (x0, y0), (x1, y1) = points[index - 1], points[index]
+    slope = math.log(y1 / y0) / math.log(x1 / x0)
+    return y0 * math.exp(slope * math.log(x / x0))
+
+
+def _mb(bytes_count: float) -> float:
+    return bytes_count / 1e6
+
+
+# ------------------------------------------------------------------ event-driven MD
+EDMD_COLLISIONS_PER_SECOND = {
+    0.01: {1e3: 5.9e5, 1e4: 4.2e5, 1e5: 2.6e5},  # README: 2D, rho sigma^2 = 1e-2
+    0.001: {1e3: 2.7e5, 1e4: 1.8e5, 1e5: 1.1e5},  # README: 2D, rho sigma^2 = 1e-3
+}
+"""Collisions per CPU-second of kinetic.edmd (2D) against N at two densities. Above
+N = 10⁵ the 10⁴ -> 10⁵ slope is extended (front, N = 10⁶, ρσ² = 10⁻²: 1.8 × 10⁵/s with
+the set-up, against 1.6 × 10⁵ extrapolated). Only 2D runs are planned (visco2008); 3D at
+packing 0.01 would be about as fast as 2D at ρσ² = 10⁻³ (README: 3.0 / 2.1 / 1.1 × 10⁵)."""
+
+EDMD_OBSERVER_FACTOR = 1.2
+"""visco2008's observers (windowed counts, flight and path histograms) on top of the
+bare collisions: the default build's MD took 1240 CPU-s where the bench speeds give 1036."""
+
+EDMD_BYTES_PER_PARTICLE = 450.0
+"""Front: peak RSS 205 MB at N = 10³, 425 MB at N = 10⁶ (220 B per disk), doubled."""
+
+
+def _edmd_speed(n_particles: float, density: float) -> float:
+    low = _interpolate(n_particles, EDMD_COLLISIONS_PER_SECOND[0.001])
+    high = _interpolate(n_particles, EDMD_COLLISIONS_PER_SECOND[0.01])
+    # log-linear in the density between the two measured ones, held above 1e-2 and
+    # extended below 1e-3 (dilute gases spend more time per collision on cell crossings)
+    slope = math.log(high / low) / math.log(10.0)
+    exponent = math.log10(min(max(density, 1e-12), 0.01) / 0.001)
+    return low * 10.0 ** (slope * exponent)
+
+
+def edmd_periodic(
+    *,
+    n_particles: int,
+    density: float,
+    realizations: int,
+    equilibration: float,
+    duration: float,
+    **_: object,
+) -> Estimate:
+    """One batch of kinetic.edmd.simulate: ``realizations`` x (equilibration collisions
+    per particle + ``duration`` mean free times) of N hard disks, N/2 collisions per
+    mean free time."""
+    collisions = realizations * n_particles / 2.0 * (equilibration + duration)
+    seconds = EDMD_OBSERVER_FACTOR * collisions / _edmd_speed(n_particles, density)
+    memory = _mb(EDMD_BYTES_PER_PARTICLE * n_particles)
+    return Estimate(seconds, memory, f"{collisions:.2e} collisions")
+
+
+EDMD_BOX_EVENTS_PER_SECOND = 2.1e6
+"""event-disks (kinetic.edmd.disks, O(N²) per event) at N = 4: front 4.2 × 10⁶ events/s,
+halved. The cost of an event grows like N² beyond that."""
+
+EDMD_BOX_EVENTS_PER_DISK_TIME = 8.0
+"""Events per disk per unit time for krauth2025's disks (σ = 0.15 in the unit box,
+βm = 1): front 31.6 events per unit time with 4 disks."""
+
+
+def edmd_box(*, n_disks: int, duration: float, realizations: int, **_: object) -> Estimate:
+    """kinetic.edmd.disks.simulate_box: ``realizations`` runs of ``duration``."""
+    events = realizations * duration * EDMD_BOX_EVENTS_PER_DISK_TIME * n_disks
+    seconds = events / EDMD_BOX_EVENTS_PER_SECOND * max(1.0, (n_disks / 4.0) ** 2)
+    return Estimate(seconds, _mb(1e4 * n_disks), f"{events:.2e} events")
+
+
+# ------------------------------------------------------------------ DSMC
+DSMC_COLLISIONS_PER_SECOND = {1e4: 1.39e7, 2e5: 9.8e6}
+"""README: accepted NTC collisions per CPU-second of kinetic.dsmc (d = 3, α = 1;
+8.7 × 10⁶ at α = 0.5, N = 2 × 10⁵, which the safety factor covers)."""
+
+DSMC_SECONDS_PER_PARTICLE_STEP = 5e-9
+"""Force, thermostat and moments per particle and time step (montanero2007's protocol):
+front 2.4 ns at N = 2 × 10⁴ and 2 × 10⁵ (Euler step), 2.8 ns (exact step), halved speed.
+Cross-check: the paper config's comment, ~3000 CPU-s per run of 200 realizations of
+60 τ at N = 2 × 10⁵, δt = 0.003 τ; this model gives 4100 s."""
+
+DSMC_SECONDS_PER_STEP = 4e-6
+"""Fixed cost of a time step (front: 4.7 ns per particle-step at N = 2000, 2.4 at 2 × 10⁴),
+doubled."""
+
+DSMC_SECONDS_PER_SAMPLED_PARTICLE = 2e-9
+"""Histogramming c_x and speeds at every ``sample_stride``-th step, per particle."""
+
+DSMC_STRANG_FACTOR = 1.5
+"""Strang splitting does two half force steps per step."""
+
+DSMC_COLLISIONS_PER_PARTICLE_TAU = 2.0 / math.sqrt(math.pi)
+"""Collisions per particle per τ = λ/v0 of hard spheres at the reference temperature."""
+
+DSMC_BYTES_PER_PARTICLE = 100.0
+"""Front: peak RSS 247 MB at N = 2 × 10⁶ against ~200 MB at 2000 (24 B per particle:
+three velocity components), with histograms and scratch, rounded up."""
+
+
+def dsmc_homogeneous(
+    *,
+    n_particles: int,
+    duration: float,
+    time_step: float,
+    realizations: int,
+    sample_stride: int = 10,
+    splitting: str = "lie",
+    **_: object,
+) -> Estimate:
+    """``realizations`` runs of kinetic.dsmc.simulate_homogeneous (montanero2007)."""
+    steps = math.ceil(duration / time_step - 1e-9)
+    particle_steps = steps * n_particles
+    collisions = n_particles / 2.0 * DSMC_COLLISIONS_PER_PARTICLE_TAU * duration
+    step_cost = DSMC_SECONDS_PER_PARTICLE_STEP
+    if splitting == "strang":
+        step_cost *= DSMC_STRANG_FACTOR
+    per_run = (
+        particle_steps * step_cost
+        + steps * DSMC_SECONDS_PER_STEP
+        + particle_steps / max(1, sample_stride) * DSMC_SECONDS_PER_SAMPLED_PARTICLE
+        + collisions / _interpolate(n_particles, DSMC_COLLISIONS_PER_SECOND)
+    )
+    return Estimate(
+        realizations * per_run,
+        _mb(DSMC_BYTES_PER_PARTICLE * n_particles),
+        f"{realizations * particle_steps:.2e} particle-steps",
+    )
+
+
+DSMC_FLIGHTS_PER_SECOND = {4e3: 6.5e6, 1e6: 1.0e6}
+"""Continuous-time DSMC with free-flight recording (kinetic.dsmc.simulate_free_flights,
+d = 2): front 1.3 × 10⁷ flights/s at N = 4000, 2.0 × 10⁶ at N = 10⁶ (the bath no longer
+fits in the cache), halved."""
+
+
+def dsmc_free_flights(
+    *, n_particles: int, duration: float, n_realizations: int, **_: object
+) -> Estimate:
+    """``n_realizations`` runs of kinetic.dsmc.simulate_free_flights: one flight per
+    particle per mean free time."""
+    flights = n_realizations * n_particles * duration
+    seconds = flights / _interpolate(n_particles, DSMC_FLIGHTS_PER_SECOND)
+    return Estimate(seconds, _mb(DSMC_BYTES_PER_PARTICLE * n_particles), f"{flights:.2e} flights")
+
+
+# ------------------------------------------------------------------ cloning
+CLONING_EVENTS_PER_SECOND = {1e3: 7.1e6, 1e5: 5.3e6, 1e6: 2.0e6}
+"""Collision events per CPU-second of kinetic.cloning against N_c. README: 7.1 × 10⁶ at
+N_c = 10³, 5.3 × 10⁶ at 10⁵. Front at N_c = 10⁶: 4 × 10⁶, halved (the 10³ -> 10⁵ slope
+extended would give an optimistic 4.3 × 10⁶)."""
+
+CLONING_BYTES_PER_MEMBER = 200.0
+"""Front: peak RSS 262 MB at N_c = 10⁶ against 223 MB at 10³ (40 B per member), x5 for
+the parent and offspring arrays of a cloning step."""
+
+
+def cloning_batch(
+    *,
+    lam: float,
+    population: int,
+    duration: float,
+    transient: float,
+    n_blocks: int,
+    n_runs: int,
+    histogram_bins: int = 120,
+    **_: object,
+) -> Estimate:
+    """``n_runs`` runs of kinetic.cloning.simulate: N_c c_λ events per unit time (c_λ =
+    1 for λ >= 0, 2e^{-λ} - 1 below) over the transient, rounded up to whole blocks, and
+    the measured ``duration``. At large λ the transient (e^λ mean free times for a member
+    to keep a few collisions) dominates."""
+    rate_factor = 1.0 if lam >= 0 else 2.0 * math.exp(-lam) - 1.0
+    block = duration / n_blocks
+    transient_blocks = math.ceil(transient / block - 1e-9) if block > 0 else 0
+    elapsed = duration + transient_blocks * block
+    events = n_runs * population * rate_factor * elapsed
+    seconds = events / _interpolate(population, CLONING_EVENTS_PER_SECOND)
+    memory = _mb(CLONING_BYTES_PER_MEMBER * population + 8.0 * histogram_bins * n_blocks * 4)
+    return Estimate(seconds, memory, f"{events:.2e} collision events")
+
+
+# ------------------------------------------------------------------ samplers
+DIRECT_PIN_CONFIGURATIONS_PER_SECOND = 2.1e6
+"""README: direct-pin configurations of 15 pins per CPU-second (cost grows like N)."""
+
+NAIVE_PIN_TRIES_PER_SECOND = 1.6e4 / 1.3e-3
+"""README: naive-pin 1.6 × 10⁴ accepted configurations/s at acceptance 1.3 × 10⁻³."""
+
+RING_SWEEPS_PER_SECOND = 8e5
+"""Front: 1.6 × 10⁶ sweeps of 15 pins per second (local moves on the ring), halved."""
+
+DIRECT_DISKS_PER_SECOND = 8e5
+"""Front: direct-disks 1.6 × 10⁶ configurations of 4 disks (σ = 0.15, unit box) per
+second, halved; the acceptance falls fast with density, which this does not model."""
+
+MARKOV_DISKS_SWEEPS_PER_SECOND = 3e6
+"""Front: markov-disks 1.3 × 10⁷ sweeps of 4 disks per second, divided by 4."""
+
+
+def sampler_line(
+    method: str,
+    *,
+    n_pins: int,
+    length: float,
+    sigma: float,
+    samples: int,
+    batches: int,
+    **_: object,
+) -> Estimate:
+    """kinetic.samplers.sample_line: ``samples`` x ``batches`` configurations."""
+    configurations = samples * batches
+    if method == "naive":
+        free = length - 2 * n_pins * sigma
+        acceptance = (free / (length - 2 * sigma)) ** n_pins if free > 0 else 0.0
+        tries = configurations / acceptance if acceptance > 0 else math.inf
+        seconds = tries / NAIVE_PIN_TRIES_PER_SECOND * n_pins / 15.0
+        return Estimate(seconds, 10.0, f"{tries:.2e} naive-pin tries")
+    seconds = configurations / DIRECT_PIN_CONFIGURATIONS_PER_SECOND * n_pins / 15.0
+    return Estimate(seconds, 10.0, f"{configurations:.2e} configurations")
+
+
+def sampler_ring(*, n_pins: int, sweeps: int, burn_in: int, chains: int, **_: object) -> Estimate:
+    """kinetic.samplers.sample_ring: ``chains`` x (burn_in + sweeps) sweeps."""
+    total = chains * (sweeps + burn_in)
+    seconds = total / RING_SWEEPS_PER_SECOND * n_pins / 15.0
+    return Estimate(seconds, 10.0, f"{total:.2e} sweeps")
+
+
+def sampler_disks(
+    method: str,
+    *,
+    n_disks: int,
+    samples: int,
+    batches: int,
+    burn_in: int = 0,
+    **_: object,
+) -> Estimate:
+    """kinetic.samplers.sample_disks: direct-disks configurations or markov-disks sweeps."""
+    if method == "markov":
+        total = batches * (samples + burn_in)
+        seconds = total / MARKOV_DISKS_SWEEPS_PER_SECOND * n_disks / 4.0
+        return Estimate(seconds, 10.0, f"{total:.2e} sweeps")
+    total = batches * samples
+    seconds = total / DIRECT_DISKS_PER_SECOND * (n_disks / 4.0) ** 2
+    return Estimate(seconds, 10.0, f"{total:.2e} configurations")
+
+
+# ------------------------------------------------------------------ fixed-size jobs
+COMPILE_SECONDS = 120.0
+"""Compiling one engine's kernels into numba's cache (rule warm_numba): 20-60 s on the
+development machine, doubled."""
+
+
+def compile_engine(**_: object) -> Estimate:
+    """Rule warm_numba: compile one engine's kernels."""
+    return Estimate(COMPILE_SECONDS, 500.0, "compilation")
+
+
+def small_job(seconds: float = 10.0, **_: object) -> Estimate:
+    """A job of a few seconds whatever the config (snapshots, a few hundred events)."""
+    return Estimate(float(seconds), 10.0, "fixed")

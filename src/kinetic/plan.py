@@ -1,0 +1,548 @@
+"""The simulation jobs a config asks for, their estimated cost, and the budget check.
+
+``python -m kinetic.plan --configfile config/paper.yaml`` prints, per document and in
+total, the number of simulation jobs, their CPU-hours, the longest job, the memory asked
+per job and the wall time on P = 2, 64 and 1024 cores (greedy longest-first scheduling
+of the estimated job times; the aggregation and figure jobs, seconds to minutes each,
+are not counted).
+
+The workflow uses the same job list: every simulation rule asks SLURM for the
+``runtime`` and ``mem_mb`` of its output's entry (:func:`jobs_by_output`, through
+kinetic.cost), and before any job the workflow refuses a config with a job above the
+``limits`` section (:func:`check_limits`) and prints the total (:func:`summary_line`).
+The paths and parameters here mirror the rule files' job plans (kinetic.cloning.plan
+and kinetic.studies.montanero2007 are shared with them); a workflow test compares this
+list with the jobs of a Snakemake dry run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import heapq
+import math
+import sys
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from kinetic import cost
+from kinetic.cost import Estimate
+
+__all__ = [
+    "CORES",
+    "JOB_TABLE_COLUMNS",
+    "PLANNERS",
+    "BudgetError",
+    "Job",
+    "benchmark_overruns",
+    "check_limits",
+    "job_table",
+    "jobs_by_output",
+    "main",
+    "plan_jobs",
+    "resource_hints",
+    "summary_line",
+    "summary_rows",
+    "summary_table",
+    "wall_seconds",
+]
+
+CORES = (2, 64, 1024)
+"""Core counts of the wall-time columns."""
+
+DEFAULT_LIMITS = {"max_job_cpu_hours": 12.0, "max_job_memory_gb": 16.0, "max_total_cpu_hours": 1e5}
+"""Defaults of the config section ``limits`` (workflow/schemas/limits.schema.yaml)."""
+
+
+class BudgetError(ValueError):
+    """A config whose jobs exceed the limits of its ``limits`` section."""
+
+
+@dataclass(frozen=True)
+class Job:
+    """One simulation job: its document, rule, first output, benchmark file and cost."""
+
+    document: str
+    rule: str
+    output: str
+    estimate: Estimate
+    benchmark: str | None = None
+
+
+# ------------------------------------------------------------------ per-document plans
+def _visco2008(config: Mapping[str, Any]) -> list[Job]:
+    section = config.get("visco2008", {})
+    jobs = []
+    md = section.get("md")
+    if md:
+        for run, density in md["densities"].items():
+            for batch in range(math.ceil(md["realizations"] / md["batch_size"])):
+                first = batch * md["batch_size"]
+                name = f"visco2008/md/{run}/batch{batch:03d}"
+                estimate = cost.edmd_periodic(
+                    n_particles=md["n_particles"],
+                    density=density,
+                    realizations=min(md["batch_size"], md["realizations"] - first),
+                    equilibration=md["equilibration"],
+                    duration=md["duration"],
+                )
+                jobs.append(
+                    Job(
+                        "visco2008",
+                        "edmd_visco2008_batch",
+                        f"results/{name}.nc",
+                        estimate,
+                        f"logs/benchmarks/{name}.tsv",
+                    )
+                )
+    for run, settings in section.get("dsmc", {}).items():
+        per_job = settings["realizations_per_job"]
+        for job in range(math.ceil(settings["realizations"] / per_job)):
+            first = job * per_job
+            name = f"visco2008/dsmc/{run}/batch{job:04d}"
+            estimate = cost.dsmc_free_flights(
+                n_particles=settings["n_particles"],
+                duration=settings["duration"],
+                n_realizations=min(per_job, settings["realizations"] - first),
+            )
+            jobs.append(
+                Job(
+                    "visco2008",
+                    "simulate_visco2008_dsmc",
+                    f"results/{name}.nc",
+                    estimate,
+                    f"logs/benchmarks/{name}.tsv",
+                )
+            )
+    cloning = section.get("cloning")
+    if cloning:
+        from kinetic.cloning import plan as cloning_plan
+
+        for study in ("scan", "error_vs_time"):
+            for kernel, point, size, batch in cloning_plan.batch_keys(cloning, study):
+                parameters = cloning_plan.run_parameters(
+                    cloning, study, kernel, point, size, batch, seed=0
+                )
+                name = f"visco2008/cloning/{study}/{kernel}/{point}/{size}/batch{batch}"
+                jobs.append(
+                    Job(
+                        "visco2008",
+                        "cloning_batch",
+                        f"results/{name}.nc",
+                        cost.cloning_batch(**parameters),
+                        f"logs/benchmarks/{name}.tsv",
+                    )
+                )
+    return jobs
+
+
+def _montanero2007(config: Mapping[str, Any]) -> list[Job]:
+    section = config.get("montanero2007")
+    if not section:
+        return []
+    from kinetic.studies.montanero2007 import batches, run_plan
+
+    jobs = []
+    for name, run in run_plan(section).items():
+        for index, (_, count) in enumerate(batches(run)):
+            estimate = cost.dsmc_homogeneous(**{**run, "realizations": count})
+            jobs.append(
+                Job(
+                    "montanero2007",
+                    "montanero2007_simulate",
+                    f"results/montanero2007/runs/{name}/batch{index}.nc",
+                    estimate,
+                    f"logs/benchmarks/montanero2007/simulate/{name}/batch{index}.tsv",
+                )
+            )
+    return jobs
+
+
+LINE_RUNS = (("direct", "length"), ("naive", "naive_length"), ("direct", "naive_length"))
+"""krauth2025's washing-line samples: (method, length key of config krauth2025.pins)."""
+
+
+def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
+    section = config.get("krauth2025")
+    if not section:
+        return []
+    jobs = []
+    pins, ring, disks = section["pins"], section["ring"], section["disks"]
+    lines = {}
+    for method, key in LINE_RUNS:
+        lines[f"{method}_L{pins[key]:g}"] = cost.sampler_line(
+            method,
+            n_pins=pins["n_pins"],
+            length=float(pins[key]),
+            sigma=pins["sigma"],
+            samples=pins[f"{method}_samples"],
+            batches=pins["batches"],
+        )
+    for name, estimate in lines.items():
+        jobs.append(
+            Job(
+                "krauth2025",
+                "krauth2025_line",
+                f"results/krauth2025/pins/{name}.nc",
+                estimate,
+                f"logs/benchmarks/krauth2025/pins/{name}.tsv",
+            )
+        )
+    jobs.append(
+        Job(
+            "krauth2025",
+            "krauth2025_ring",
+            "results/krauth2025/pins/ring.nc",
+            cost.sampler_ring(**ring),
+            "logs/benchmarks/krauth2025/pins/ring.tsv",
+        )
+    )
+    jobs.append(
+        Job(
+            "krauth2025",
+            "krauth2025_snapshots",
+            "results/krauth2025/pins/snapshots.nc",
+            cost.small_job(),
+        )
+    )
+    jobs.append(
+        Job(
+            "krauth2025",
+            "krauth2025_md",
+            "results/krauth2025/disks/md.nc",
+            cost.edmd_box(
+                n_disks=disks["n_disks"],
+                duration=disks["md_duration"],
+                realizations=disks["realizations"],
+            ),
+            "logs/benchmarks/krauth2025/disks/md.tsv",
+        )
+    )
+    for method, samples in (("direct", "direct_samples"), ("markov", "markov_sweeps")):
+        jobs.append(
+            Job(
+                "krauth2025",
+                "krauth2025_disk_sampler",
+                f"results/krauth2025/disks/{method}.nc",
+                cost.sampler_disks(
+                    method,
+                    n_disks=disks["n_disks"],
+                    samples=disks[samples],
+                    batches=disks["batches"],
+                    burn_in=disks["burn_in"] if method == "markov" else 0,
+                ),
+                f"logs/benchmarks/krauth2025/disks/{method}.tsv",
+            )
+        )
+    jobs.append(
+        Job(
+            "krauth2025",
+            "krauth2025_chaos_run",
+            "results/krauth2025/disks/chaos.nc",
+            cost.small_job(),
+        )
+    )
+    return jobs
+
+
+def _compile(config: Mapping[str, Any]) -> list[Job]:
+    return [
+        Job("compile", "warm_numba", f"results/.cache/numba-{engine}.done", cost.compile_engine())
+        for engine in ("edmd", "dsmc", "cloning", "samplers")
+    ]
+
+
+PLANNERS: dict[str, Callable[[Mapping[str, Any]], list[Job]]] = {
+    "visco2008": _visco2008,
+    "montanero2007": _montanero2007,
+    "krauth2025": _krauth2025,
+    "compile": _compile,
+}
+"""Document -> function listing its simulation jobs from the validated config. A new
+document's rule file adds its planner here (and its rules ask for planned resources)."""
+
+
+def plan_jobs(config: Mapping[str, Any]) -> list[Job]:
+    """Every simulation job of a validated (defaults filled) config, in plan order."""
+    return [job for planner in PLANNERS.values() for job in planner(config)]
+
+
+def jobs_by_output(config: Mapping[str, Any]) -> dict[str, Job]:
+    """:func:`plan_jobs` keyed by each job's first output path."""
+    return {job.output: job for job in plan_jobs(config)}
+
+
+# ------------------------------------------------------------------ limits
+def check_limits(jobs: Iterable[Job], limits: Mapping[str, Any] | None = None) -> None:
+    """Raise BudgetError naming every job (up to five) above a limit, with its estimate.
+
+    ``limits``: ``max_job_cpu_hours`` (estimated CPU time of one job),
+    ``max_job_memory_gb`` (memory a job would ask for, margin included),
+    ``max_total_cpu_hours`` (estimated CPU time of all jobs).
+    """
+    limits = {**DEFAULT_LIMITS, **(limits or {})}
+    jobs = list(jobs)
+    problems = []
+    for job in jobs:
+        estimate = job.estimate
+        if not estimate.cpu_hours <= limits["max_job_cpu_hours"]:
+            problems.append(
+                f"{job.output}: estimated {estimate.cpu_hours:.3g} CPU-hours "
+                f"({estimate.work}) > limits.max_job_cpu_hours = {limits['max_job_cpu_hours']:g}"
+            )
+        requested = cost.mem_mb(estimate) / 1000.0
+        if not requested <= limits["max_job_memory_gb"]:
+            problems.append(
+                f"{job.output}: would ask for {requested:.3g} GB of memory (estimated peak "
+                f"{estimate.peak_mb / 1000.0:.3g} GB, x{cost.MEMORY_SAFETY:g} margin on the "
+                f"particles) > limits.max_job_memory_gb = {limits['max_job_memory_gb']:g}"
+            )
+    total = sum(job.estimate.cpu_hours for job in jobs)
+    if not total <= limits["max_total_cpu_hours"]:
+        problems.append(
+            f"the config's {len(jobs)} simulation jobs: estimated {total:.3g} CPU-hours in all "
+            f"> limits.max_total_cpu_hours = {limits['max_total_cpu_hours']:g}"
+        )
+    if problems:
+        shown = problems[:5] + ([f"... and {len(problems) - 5} more"] if len(problems) > 5 else [])
+        raise BudgetError(
+            "refused before any job, the estimated cost exceeds the config's limits "
+            "(kinetic.cost; lower the statistics, split the jobs, e.g. fewer realizations "
+            "per job, or raise the limit):\n  " + "\n  ".join(shown)
+        )
+
+
+def benchmark_overruns(directory: str | Path, jobs: Iterable[Job]) -> tuple[int, list[str]]:
+    """Compare the jobs' requests with what their Snakemake ``benchmark:`` files measured.
+
+    Returns ``(checked, problems)``: the number of jobs of ``jobs`` that have a benchmark
+    file under ``directory``, and one sentence per job whose measured wall time (column
+    ``s``) exceeds the overhead plus RUNTIME_SAFETY times its estimated CPU time (its
+    ``runtime`` request before rounding up to minutes) or whose peak memory (``max_rss``,
+    MB) exceeds its ``mem_mb`` request.
+    """
+    import csv
+
+    checked, problems = 0, []
+    for job in jobs:
+        path = Path(directory) / job.benchmark if job.benchmark else None
+        if path is None or not path.is_file():
+            continue
+        with path.open(newline="") as handle:
+            rows = list(csv.DictReader(handle, delimiter="\t"))
+        if not rows:
+            continue
+        checked += 1
+        seconds = max(float(row["s"]) for row in rows)
+        memory = max(float(row["max_rss"]) for row in rows if row["max_rss"] != "NA")
+        # the request before its rounding to whole minutes (at least 2): overhead + margin
+        runtime = cost.JOB_OVERHEAD_SECONDS + cost.RUNTIME_SAFETY * job.estimate.cpu_seconds
+        requested = cost.mem_mb(job.estimate)
+        if seconds > runtime:
+            problems.append(f"{job.output}: ran {seconds:.1f} s, estimate x margin {runtime:.1f} s")
+        if memory > requested:
+            problems.append(f"{job.output}: peak {memory:.0f} MB, asked for {requested} MB")
+    return checked, problems
+
+
+JOB_TABLE_COLUMNS = (
+    "document",
+    "rule",
+    "output",
+    "work",
+    "estimated_cpu_s",
+    "runtime_min",
+    "mem_mb",
+    "measured_s",
+    "measured_cpu_s",
+    "measured_max_rss_mb",
+)
+"""Columns of :func:`job_table`."""
+
+
+def job_table(directory: str | Path, jobs: Iterable[Job]) -> list[dict[str, Any]]:
+    """One row per job (:data:`JOB_TABLE_COLUMNS`): the estimate and the requests, and,
+    where the job's benchmark file exists under ``directory``, what it measured (wall
+    seconds, CPU seconds, peak resident memory in MB; empty otherwise)."""
+    import csv
+
+    rows = []
+    for job in jobs:
+        row = {
+            "document": job.document,
+            "rule": job.rule,
+            "output": job.output,
+            "work": job.estimate.work,
+            "estimated_cpu_s": round(job.estimate.cpu_seconds, 3),
+            "runtime_min": cost.runtime_minutes(job.estimate),
+            "mem_mb": cost.mem_mb(job.estimate),
+            "measured_s": "",
+            "measured_cpu_s": "",
+            "measured_max_rss_mb": "",
+        }
+        path = Path(directory) / job.benchmark if job.benchmark else None
+        if path is not None and path.is_file():
+            with path.open(newline="") as handle:
+                measured = list(csv.DictReader(handle, delimiter="\t"))
+            if measured:
+                row["measured_s"] = measured[-1]["s"]
+                row["measured_cpu_s"] = measured[-1]["cpu_time"]
+                row["measured_max_rss_mb"] = measured[-1]["max_rss"]
+        rows.append(row)
+    return rows
+
+
+RESOURCE_OF_STATE = {"TIMEOUT": "runtime", "OUT_OF_MEMORY": "mem_mb"}
+"""SLURM job states that mean a job outgrew its request, and the resource to raise."""
+
+
+def resource_hints(log_text: str) -> str:
+    """Sentences telling which resource to raise for every job of a Snakemake log that
+    SLURM killed for its time (TIMEOUT) or memory (OUT_OF_MEMORY); empty if none."""
+    import re
+
+    hints = []
+    for block in re.split(r"\n(?=Error in rule )", log_text):
+        rule = re.match(r"Error in rule (\w+):", block)
+        state = re.search(r"SLURM status is: '(TIMEOUT|OUT_OF_MEMORY)'", block)
+        if not (rule and state):
+            continue
+        resource = RESOURCE_OF_STATE[state.group(1)]
+        output = re.search(r"^\s+output: ([^,\n]+)", block, flags=re.MULTILINE)
+        logs = re.search(r"^\s+log: ([^\n]+)", block, flags=re.MULTILINE)
+        hints.append(
+            f"rule {rule.group(1)} ({output.group(1) if output else 'job'}) was killed by "
+            f"SLURM ({state.group(1)}): raise its {resource}, e.g. --set-resources "
+            f"{rule.group(1)}:{resource}=<value> (every retry doubles it; kinetic.cost has "
+            f"the estimate){'; log: ' + logs.group(1) if logs else ''}"
+        )
+    return "\n".join(hints)
+
+
+# ------------------------------------------------------------------ summaries
+def wall_seconds(seconds: Iterable[float], cores: int) -> float:
+    """Makespan of independent jobs on ``cores`` cores, longest job first to the least
+    loaded core (within 4/3 of the optimum)."""
+    loads = [0.0] * min(cores, max(1, len(durations := sorted(seconds, reverse=True))))
+    heapq.heapify(loads)
+    for duration in durations:
+        heapq.heappush(loads, heapq.heappop(loads) + duration)
+    return max(loads) if durations else 0.0
+
+
+def summary_rows(jobs: Iterable[Job], cores: Iterable[int] = CORES) -> list[dict[str, Any]]:
+    """One row per document and a 'total' row: jobs, cpu_hours, longest_job_hours,
+    mem_mb (largest request), and wall_hours_P for each P of ``cores``."""
+    jobs = list(jobs)
+    cores = list(cores)
+    groups: dict[str, list[Job]] = {}
+    for job in jobs:
+        groups.setdefault(job.document, []).append(job)
+    groups["total"] = jobs
+    rows = []
+    for document, members in groups.items():
+        seconds = [job.estimate.job_seconds for job in members]
+        row = {
+            "document": document,
+            "jobs": len(members),
+            "cpu_hours": sum(job.estimate.cpu_seconds for job in members) / 3600.0,
+            "longest_job_hours": max(seconds, default=0.0) / 3600.0,
+            "mem_mb": max((cost.mem_mb(job.estimate) for job in members), default=0),
+        }
+        for count in cores:
+            row[f"wall_hours_{count}"] = wall_seconds(seconds, count) / 3600.0
+        rows.append(row)
+    return rows
+
+
+def _hours(value: float) -> str:
+    if value < 1.0:
+        return f"{value * 60:.3g} min"
+    return f"{value:.3g} h"
+
+
+def summary_table(jobs: Iterable[Job], cores: Iterable[int] = CORES) -> str:
+    """Markdown table of :func:`summary_rows`."""
+    cores = list(cores)
+    header = ["document", "jobs", "CPU-hours", "longest job", "mem_mb per job"] + [
+        f"wall, {count} cores" for count in cores
+    ]
+    lines = ["| " + " | ".join(header) + " |", "|" + " --- |" * len(header)]
+    for row in summary_rows(jobs, cores):
+        cells = [
+            row["document"],
+            str(row["jobs"]),
+            f"{row['cpu_hours']:.3g}",
+            _hours(row["longest_job_hours"]),
+            str(row["mem_mb"]),
+        ] + [_hours(row[f"wall_hours_{count}"]) for count in cores]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def summary_line(jobs: Iterable[Job]) -> str:
+    """One line: the estimated total of the config's simulation jobs."""
+    (total,) = [row for row in summary_rows(jobs) if row["document"] == "total"]
+    walls = ", ".join(f"{_hours(total[f'wall_hours_{p}'])} on {p}" for p in CORES)
+    return (
+        f"estimated cost of the config's {total['jobs']} simulation jobs (kinetic.plan): "
+        f"{total['cpu_hours']:.3g} CPU-hours, longest job {_hours(total['longest_job_hours'])}, "
+        f"at most {total['mem_mb']} MB per job; wall {walls} cores"
+    )
+
+
+# ------------------------------------------------------------------ command line
+def _load_config(paths: list[str]) -> dict[str, Any]:
+    import yaml
+
+    from kinetic.config import validate_config
+
+    config: dict[str, Any] = {}
+    for path in paths:
+        _merge(config, yaml.safe_load(Path(path).read_text()) or {})
+    validate_config(config)
+    return config
+
+
+def _merge(base: dict[str, Any], update: Mapping[str, Any]) -> None:
+    """Snakemake's --configfile semantics: later files update earlier ones key by key."""
+    for key, value in update.items():
+        if isinstance(value, Mapping) and isinstance(base.get(key), dict):
+            _merge(base[key], value)
+        else:
+            base[key] = value
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="python -m kinetic.plan",
+        description="Estimated cost of the simulation jobs of a workflow config.",
+    )
+    parser.add_argument(
+        "--configfile",
+        nargs="+",
+        default=["config/config.yaml"],
+        help="config file(s), merged in order as snakemake does (default: config/config.yaml)",
+    )
+    parser.add_argument("--jobs", action="store_true", help="also list every job")
+    arguments = parser.parse_args(argv)
+    config = _load_config(arguments.configfile)
+    jobs = plan_jobs(config)
+    print(summary_table(jobs))
+    if arguments.jobs:
+        for job in jobs:
+            print(
+                f"{job.output}\t{job.estimate.cpu_seconds:.1f} CPU-s\t{job.estimate.work}\t"
+                f"runtime={cost.runtime_minutes(job.estimate)} mem_mb={cost.mem_mb(job.estimate)}"
+            )
+    try:
+        check_limits(jobs, config.get("limits"))
+    except BudgetError as error:
+        print(error, file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,121 @@
+"""kinetic.cost and kinetic.plan: resource requests, the budget check, the summary."""
+
+import math
+
+import pytest
+
+from kinetic import cost, plan
+from kinetic.cost import Estimate
+
+
+def _job(seconds, memory_mb=0.0, document="d", output="results/x.nc"):
+    return plan.Job(document, "rule", output, Estimate(seconds, memory_mb, "work"))
+
+
+def test_requests_carry_the_safety_factors_and_double_on_every_retry():
+    estimate = Estimate(600.0, 500.0, "work")
+    minutes = math.ceil((cost.JOB_OVERHEAD_SECONDS + cost.RUNTIME_SAFETY * 600.0) / 60.0)
+    assert cost.runtime_minutes(estimate) == minutes
+    assert cost.runtime_minutes(estimate, attempt=3) == 4 * minutes
+    megabytes = cost.BASE_MEMORY_MB + cost.MEMORY_SAFETY * 500.0
+    assert cost.mem_mb(estimate) == 100 * math.ceil(megabytes / 100)
+    assert cost.mem_mb(estimate, attempt=2) == 2 * cost.mem_mb(estimate)
+    tiny = Estimate(0.1, 0.0, "work")
+    assert cost.runtime_minutes(tiny) == cost.MIN_RUNTIME_MINUTES
+
+
+def test_cloning_cost_grows_like_e_to_the_lambda_through_the_transient():
+    """The transient needed for a member to keep a few collisions is e^λ mean free times."""
+
+    def seconds(lam):
+        transient = max(10.0, 2 * math.exp(lam) * math.sqrt(2))
+        return cost.cloning_batch(
+            lam=lam, population=1000, duration=100.0, transient=transient, n_blocks=10, n_runs=4
+        ).cpu_seconds
+
+    assert seconds(20.0) / seconds(19.0) == pytest.approx(math.e, rel=1e-3)
+    assert seconds(30.0) / 3600 > 1e5  # hundreds of thousands of CPU-hours
+
+
+def test_costs_scale_with_the_work():
+    one = cost.edmd_periodic(
+        n_particles=1000, density=0.01, realizations=1, equilibration=10, duration=100
+    )
+    four = cost.edmd_periodic(
+        n_particles=1000, density=0.01, realizations=4, equilibration=10, duration=100
+    )
+    assert four.cpu_seconds == pytest.approx(4 * one.cpu_seconds)
+    # a collision costs more in a larger system and in a more dilute one
+    big = cost.edmd_periodic(
+        n_particles=10**6, density=0.01, realizations=1, equilibration=10, duration=100
+    )
+    dilute = cost.edmd_periodic(
+        n_particles=1000, density=0.001, realizations=1, equilibration=10, duration=100
+    )
+    assert big.cpu_seconds > 1000 * one.cpu_seconds
+    assert dilute.cpu_seconds > one.cpu_seconds
+    assert big.memory_mb == pytest.approx(1000 * one.memory_mb)
+    # montanero2007's paper protocol: ~20 s per realization of 60 τ at N = 2e5
+    paper = cost.dsmc_homogeneous(
+        n_particles=200_000, duration=60, time_step=0.003, realizations=1, sample_stride=50
+    )
+    assert 10 < paper.cpu_seconds < 40
+
+
+def test_limits_refuse_with_the_estimate_and_the_key():
+    jobs = [_job(100.0), _job(20 * 3600.0, output="results/long.nc")]
+    with pytest.raises(plan.BudgetError, match=r"results/long.nc: estimated 20 CPU-hours"):
+        plan.check_limits(jobs, {"max_job_cpu_hours": 12})
+    plan.check_limits(jobs, {"max_job_cpu_hours": 21})
+    heavy = [_job(1.0, memory_mb=40_000.0, output="results/heavy.nc")]
+    message = r"heavy.nc: would ask for 81 GB .*max_job_memory_gb"
+    with pytest.raises(plan.BudgetError, match=message):
+        plan.check_limits(heavy, {"max_job_memory_gb": 16})
+    with pytest.raises(plan.BudgetError, match=r"max_total_cpu_hours = 5"):
+        plan.check_limits([_job(3 * 3600.0)] * 2, {"max_total_cpu_hours": 5})
+
+
+def test_wall_time_is_bounded_by_the_longest_job_and_the_total_over_the_cores():
+    seconds = [7.0, 5.0, 4.0, 4.0, 3.0, 3.0, 2.0, 2.0, 1.0]
+    for cores in (1, 2, 3, 64):
+        wall = plan.wall_seconds(seconds, cores)
+        lower = max(max(seconds), sum(seconds) / cores)
+        assert lower <= wall <= 4 / 3 * lower + 1e-12
+    assert plan.wall_seconds(seconds, 1) == sum(seconds)
+    assert plan.wall_seconds([], 4) == 0.0
+
+
+def test_summary_rows_add_up_per_document():
+    jobs = [_job(3600.0, document="a"), _job(7200.0, document="a"), _job(1800.0, document="b")]
+    rows = {row["document"]: row for row in plan.summary_rows(jobs, cores=(1, 1024))}
+    assert rows["a"]["jobs"] == 2 and rows["b"]["jobs"] == 1 and rows["total"]["jobs"] == 3
+    assert rows["total"]["cpu_hours"] == pytest.approx(3.5)
+    overhead = cost.JOB_OVERHEAD_SECONDS / 3600
+    assert rows["total"]["wall_hours_1"] == pytest.approx(3.5 + 3 * overhead)
+    assert rows["total"]["wall_hours_1024"] == pytest.approx(2.0 + overhead)
+    assert "| total | 3 |" in plan.summary_table(jobs)
+
+
+def test_jobs_killed_for_time_or_memory_are_told_which_resource_to_raise():
+    log = (
+        "Error in rule cloning_batch:\n"
+        "    message: SLURM-job '17' failed, SLURM status is: 'TIMEOUT'. Detailed failure "
+        "reason unavailable (status command is not 'sacct').\n"
+        "    jobid: 3\n"
+        "    output: results/visco2008/cloning/scan/a/batch0.nc\n"
+        "    log: logs/visco2008/cloning/scan/a/batch0.log (check log file(s) for error details)\n"
+        "\n"
+        "Error in rule montanero2007_simulate:\n"
+        "    message: SLURM-job '18' failed, SLURM status is: 'OUT_OF_MEMORY'.\n"
+        "    output: results/montanero2007/runs/alpha030/batch0.nc\n"
+        "\n"
+        "Error in rule visco2008_fig01:\n"
+        "    message: SLURM-job '19' failed, SLURM status is: 'FAILED'.\n"
+    )
+    hints = plan.resource_hints(log).splitlines()
+    assert len(hints) == 2
+    assert "cloning_batch (results/visco2008/cloning/scan/a/batch0.nc)" in hints[0]
+    assert "raise its runtime" in hints[0]
+    assert "logs/visco2008/cloning/scan/a/batch0.log" in hints[0]
+    assert "montanero2007_simulate" in hints[1] and "raise its mem_mb" in hints[1]
+    assert plan.resource_hints("nothing failed") == ""

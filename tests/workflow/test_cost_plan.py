@@ -1,0 +1,111 @@
+"""The workflow's resource requests and budget check against kinetic.plan and kinetic.cost."""
+
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from kinetic import cost, plan
+from kinetic.config import validate_config
+
+REPOSITORY = Path(__file__).resolve().parents[2]
+SNAKEMAKE = [sys.executable, "-m", "snakemake", "--snakefile", str(REPOSITORY / "Snakefile")]
+CI_CONFIG = REPOSITORY / "config" / "ci.yaml"
+
+pytestmark = pytest.mark.workflow
+
+
+def _snakemake(workdir, *args):
+    return subprocess.run(
+        [*SNAKEMAKE, "--directory", str(workdir), *args],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        env={**os.environ, "MPLBACKEND": "Agg"},
+    )
+
+
+def _planned(path):
+    config = yaml.safe_load(Path(path).read_text())
+    validate_config(config)
+    return plan.plan_jobs(config)
+
+
+def _dry_run_requests(output):
+    """{first output: (rule, runtime, mem_mb)} of every job of a dry run's listing."""
+    requests = {}
+    for block in re.split(r"\n(?=rule \w+:\n)", output):
+        rule = re.match(r"rule (\w+):\n", block)
+        files = re.search(r"^    output: ([^,\n]+)", block, flags=re.MULTILINE)
+        resources = re.search(r"^    resources: (.*)$", block, flags=re.MULTILINE)
+        if rule and files and resources:
+            values = dict(re.findall(r"(\w+)=([^,]*)", resources.group(1)))
+            requests[files.group(1)] = (rule.group(1), values.get("runtime"), values.get("mem_mb"))
+    return requests
+
+
+def test_every_simulation_job_asks_for_its_planned_resources(tmp_path):
+    """The dry run's simulation jobs are exactly kinetic.plan's, with its requests."""
+    result = _snakemake(tmp_path, "--configfile", str(CI_CONFIG), "--dry-run")
+    output = result.stdout + result.stderr
+    assert result.returncode == 0, output
+    jobs = _planned(CI_CONFIG)
+    assert "estimated cost of the config's" in output
+    assert plan.summary_line(jobs) in output
+    requests = _dry_run_requests(output)
+    planned_rules = {job.rule for job in jobs}
+    simulated = {path for path, (rule, _, _) in requests.items() if rule in planned_rules}
+    assert simulated == {job.output for job in jobs}
+    for job in jobs:
+        rule, runtime, mem_mb = requests[job.output]
+        assert rule == job.rule
+        assert runtime == str(cost.runtime_minutes(job.estimate))
+        assert mem_mb == str(cost.mem_mb(job.estimate))
+
+
+@pytest.mark.parametrize(
+    ("override", "expected"),
+    [
+        (  # cloning's transient grows like e^λ
+            "visco2008:\n  cloning:\n    kernels:\n      hard_disks:\n"
+            "        lambdas: [0.0, 30.0]\n        populations: [100]\n",
+            r"cloning/scan/hard_disks/lam\+30\.000/N100/batch0\.nc: estimated [0-9.e+]+ CPU-hours",
+        ),
+        (
+            "visco2008:\n  md:\n    n_particles: 10000000\n",
+            r"md/rho1e-3/batch000\.nc: estimated [0-9.]+ CPU-hours .*max_job_cpu_hours = 12",
+        ),
+        (
+            "montanero2007:\n  protocol:\n    n_particles: 100000000\n",
+            r"runs/alpha030/batch0\.nc: would ask for [0-9.]+ GB of memory",
+        ),
+        (  # a configurable limit
+            "limits:\n  max_total_cpu_hours: 0.01\n",
+            r"estimated [0-9.]+ CPU-hours in all > limits\.max_total_cpu_hours = 0\.01",
+        ),
+    ],
+)
+def test_unaffordable_requests_are_refused_before_any_job(tmp_path, override, expected):
+    extra = tmp_path / "override.yaml"
+    extra.write_text(override)
+    result = _snakemake(tmp_path, "--configfile", str(CI_CONFIG), str(extra), "--cores", "1")
+    output = result.stdout + result.stderr
+    assert result.returncode != 0
+    assert "refused before any job" in output
+    assert re.search(expected, output), output
+    assert not (tmp_path / "results").exists()
+
+
+def test_plan_command_prints_the_table_and_refuses_what_the_workflow_refuses(tmp_path):
+    command = [sys.executable, "-m", "kinetic.plan", "--configfile", str(CI_CONFIG)]
+    result = subprocess.run(command, capture_output=True, text=True, check=True, cwd=REPOSITORY)
+    assert plan.summary_table(_planned(CI_CONFIG)) in result.stdout
+    extra = tmp_path / "override.yaml"
+    extra.write_text("limits:\n  max_job_cpu_hours: 1.0e-6\n")
+    refused = subprocess.run([*command, str(extra)], capture_output=True, text=True)
+    assert refused.returncode == 1
+    assert "max_job_cpu_hours = 1e-06" in refused.stderr

@@ -1,0 +1,54 @@
+# Workflow tables for `snakemake --report`: the config the build ran with (validated, with
+# every default filled in) and, per simulation job, the estimated cost, the resources it
+# asked for and what its benchmark file measured (kinetic.plan.job_table). With
+# targets: all, the job table waits for every simulation job; otherwise it lists the jobs
+# whose outputs exist.
+provide("workflow/config", "results/workflow/config.yaml")
+provide("workflow/jobs", "results/workflow/jobs.csv")
+
+
+localrules:
+    workflow_config,
+    workflow_jobs,
+
+
+def workflow_job_outputs(wildcards):
+    """Input function: the simulation outputs the job table reports on."""
+    outputs = [job.output for job in job_plan.plan_jobs(config)]
+    if config["targets"] == "all":
+        return outputs
+    return [path for path in outputs if Path(path).exists()]
+
+
+def workflow_config(wildcards):
+    return config
+
+
+rule workflow_config:
+    output:
+        report(
+            "results/workflow/config.yaml",
+            caption="../report/workflow_config.rst",
+            category="configuration and jobs",
+        ),
+    params:
+        config=workflow_config,
+    log:
+        "logs/workflow/config.log",
+    script:
+        "../scripts/workflow_config.py"
+
+
+rule workflow_jobs:
+    input:
+        workflow_job_outputs,
+    output:
+        report(
+            "results/workflow/jobs.csv",
+            caption="../report/workflow_jobs.rst",
+            category="configuration and jobs",
+        ),
+    log:
+        "logs/workflow/jobs.log",
+    script:
+        "../scripts/workflow_jobs.py"
