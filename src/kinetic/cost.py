@@ -191,6 +191,56 @@ def edmd_box(*, n_disks: int, duration: float, realizations: int, **_: object) -
     return Estimate(seconds, _mb(1e4 * n_disks), f"{events:.2e} events")
 
 
+# ------------------------------------------------------------------ costantini2010
+COOLING_DSMC_SECONDS_PER_PARTICLE_STEP = 1.5e-8
+"""kinetic.dsmc.simulate_cooling_modes, whole steps (streaming, sort, collisions, the
+mode observer every other step): 2.6 × 10⁻⁸ s per particle-step measured at N = 3000,
+Λ = 10 on the busy 2-core machine before the kernel's last speed-ups; the bench gives
+0.9 × 10⁻⁸ for the step alone."""
+
+COOLING_DSMC_BYTES_PER_PARTICLE = 120.0
+"""Positions, velocities, sort keys and scratch of one simulated particle."""
+
+COOLING_MD_SECONDS_PER_COLLISION = 2.5e-6
+"""kinetic.edmd.simulate_cooling_modes: collisions of N = 10³ disks at nσ² = 0.005."""
+
+COOLING_MD_SECONDS_PER_PARTICLE_SEGMENT = 2.5e-7
+"""Per particle and segment of rescaled time: clock rebase, calendar rebuild, velocity
+scaling and the observers (profiled at N = 10³: about 230 µs per segment)."""
+
+
+def cooling_modes(
+    *,
+    engine: str,
+    n_particles: int,
+    n_samples: int,
+    sample_interval: float,
+    density: float,
+    n_realizations: int,
+    fictive_factor: int = 1,
+    time_step: float | None = None,
+    **_: object,
+) -> Estimate:
+    """One job of costantini2010 (kinetic.dsmc or kinetic.edmd simulate_cooling_modes,
+    engine units): ``n_realizations`` runs of ``n_samples`` sample intervals."""
+    duration = n_samples * sample_interval
+    samples_bytes = 80.0 * n_samples * n_realizations
+    if engine == "dsmc":
+        simulated = fictive_factor * n_particles
+        particle_steps = n_realizations * simulated * duration / time_step
+        seconds = COOLING_DSMC_SECONDS_PER_PARTICLE_STEP * particle_steps
+        memory = _mb(COOLING_DSMC_BYTES_PER_PARTICLE * simulated + samples_bytes)
+        return Estimate(seconds, memory, f"{particle_steps:.2e} particle-steps")
+    collision_frequency = 2.0 * density * math.sqrt(math.pi)  # at T0 = 1
+    collisions = n_realizations * n_particles / 2.0 * collision_frequency * duration
+    seconds = (
+        COOLING_MD_SECONDS_PER_COLLISION * collisions
+        + COOLING_MD_SECONDS_PER_PARTICLE_SEGMENT * n_particles * n_samples * n_realizations
+    )
+    memory = _mb(EDMD_BYTES_PER_PARTICLE * n_particles + samples_bytes)
+    return Estimate(seconds, memory, f"{collisions:.2e} collisions")
+
+
 # ------------------------------------------------------------------ DSMC
 DSMC_COLLISIONS_PER_SECOND = {1e4: 1.39e7, 2e5: 9.8e6}
 """README: accepted NTC collisions per CPU-second of kinetic.dsmc (d = 3, α = 1;

@@ -159,6 +159,33 @@ def _montanero2007(config: Mapping[str, Any]) -> list[Job]:
     return jobs
 
 
+def _costantini2010(config: Mapping[str, Any]) -> list[Job]:
+    section = config.get("costantini2010")
+    if not section:
+        return []
+    from kinetic.studies import costantini2010 as study
+
+    jobs = []
+    for name, run in study.runs(section).items():
+        arguments = run.engine_arguments(section)
+        for job in study.jobs(section):
+            estimate = cost.cooling_modes(
+                engine=run.engine, n_realizations=job.n_realizations, **arguments
+            )
+            output = study.batch_file(run, job)
+            benchmark = output.replace("results/", "logs/benchmarks/", 1).replace(".nc", ".tsv")
+            jobs.append(
+                Job(
+                    "costantini2010",
+                    f"costantini2010_simulate_{run.engine}",
+                    output,
+                    estimate,
+                    benchmark,
+                )
+            )
+    return jobs
+
+
 LINE_RUNS = (("direct", "length"), ("naive", "naive_length"), ("direct", "naive_length"))
 """krauth2025's washing-line samples: (method, length key of config krauth2025.pins)."""
 
@@ -257,6 +284,7 @@ PLANNERS: dict[str, Callable[[Mapping[str, Any]], list[Job]]] = {
     "visco2008": _visco2008,
     "montanero2007": _montanero2007,
     "krauth2025": _krauth2025,
+    "costantini2010": _costantini2010,
     "compile": _compile,
 }
 """Document -> function listing its simulation jobs from the validated config. A new

@@ -43,9 +43,11 @@ __all__ = [
     "correlation_runs",
     "figure_runs",
     "grid_runs",
+    "batch_file",
     "jobs",
     "mean_free_path",
     "mean_free_time",
+    "run_file",
     "runs",
     "table_runs",
 ]
@@ -223,6 +225,16 @@ def runs(study: Mapping[str, Any]) -> dict[str, Run]:
     for run in grid_runs(study) + figure_runs(study) + convergence_runs(study):
         found.setdefault(run.name, run)
     return found
+
+
+def run_file(run: Run) -> str:
+    """The aggregate of one run (its jobs joined and analysed)."""
+    return f"results/costantini2010/{run.engine}/{run.name}.nc"
+
+
+def batch_file(run: Run, job: batches.Job) -> str:
+    """The dataset written by one job of a run."""
+    return f"results/costantini2010/{run.engine}/{run.name}/{batches.batch_name(job.index)}.nc"
 
 
 def jobs(study: Mapping[str, Any]) -> list[batches.Job]:

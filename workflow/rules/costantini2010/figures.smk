@@ -27,7 +27,7 @@ COSTANTINI2010_ANALYSIS_CODE = package_files(
 
 
 def costantini2010_files(runs):
-    return [costantini2010_run_file(run) for run in runs]
+    return [costantini2010_study.run_file(run) for run in runs]
 
 
 def costantini2010_figure_inputs(wildcards):

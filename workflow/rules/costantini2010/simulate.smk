@@ -4,7 +4,6 @@
 # them and computes C(tau), the tail fit, nu*, nu_bar*, zeta* and T(tau)
 # (kinetic.analysis.costantini2010). Run names are the keys of
 # kinetic.studies.costantini2010.runs(config): wildcards are looked up, never parsed.
-from kinetic import batches
 from kinetic.studies import costantini2010 as costantini2010_study
 
 COSTANTINI2010_PACKAGES = {"dsmc": "dsmc", "md": "edmd"}
@@ -29,16 +28,11 @@ def costantini2010_run(wildcards):
     return run
 
 
-def costantini2010_run_file(run):
-    """The aggregate of one run."""
-    return f"results/costantini2010/{run.engine}/{run.name}.nc"
-
-
 def costantini2010_batch_files(wildcards):
     """Input of the aggregate: every job's file of the run."""
     run = costantini2010_run(wildcards)
     return [
-        f"results/costantini2010/{run.engine}/{run.name}/{batches.batch_name(job.index)}.nc"
+        costantini2010_study.batch_file(run, job)
         for job in costantini2010_study.jobs(config["costantini2010"])
     ]
 
@@ -47,8 +41,8 @@ def costantini2010_job(wildcards):
     """Keyword arguments of simulate_cooling_modes for one job."""
     study = config["costantini2010"]
     run = costantini2010_run(wildcards)
-    plan = {batches.batch_name(job.index): job for job in costantini2010_study.jobs(study)}
-    job = plan.get(f"batch{wildcards.batch}")
+    plan = {f"{job.index:04d}": job for job in costantini2010_study.jobs(study)}
+    job = plan.get(wildcards.batch)
     if job is None:
         raise WorkflowError(f"costantini2010 run {run.name} has no job batch{wildcards.batch}")
     return run.engine_arguments(study) | {
@@ -85,6 +79,9 @@ rule costantini2010_simulate_dsmc:
     params:
         job=costantini2010_job,
     threads: 1
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     wildcard_constraints:
         engine="dsmc",
         run="[^/]+",
@@ -106,6 +103,9 @@ rule costantini2010_simulate_md:
     params:
         job=costantini2010_job,
     threads: 1
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     wildcard_constraints:
         engine="md",
         run="[^/]+",
