@@ -15,8 +15,8 @@ Definitions (fixed so that methods compare):
 - Units: ℓ = 1/(nσ), v_s = √(2T_s/m) with T_s the measured steady temperature,
   k* = kℓ = 2π/√(N nσ²); times τ* = τ v_s/ℓ.
 - τ_c and the amplitude A from a weighted straight-line fit of ln C on the tail, from
-  ``fit_start`` (coloured noise bends C at short times) to the first lag where C falls
-  below ``fit_stop`` C(0); ν* = (1/τ_c* + ζ*/2)/k*² (Eq. 10) and ν̄* = A/(τ_c* k*²)
+  ``fit_start`` (coloured noise bends C at short times; earlier where C has already
+  halved) to the first lag where C falls below ``fit_stop`` C(0); ν* = (1/τ_c* + ζ*/2)/k*² (Eq. 10) and ν̄* = A/(τ_c* k*²)
   (Eq. 11, the fitted tail amplitude; ``nu_bar_star_c0`` uses the measured C(0) instead).
 - ζ* measured from the energy dissipated by collisions: ζ = <dissipated energy per
   particle per unit τ>/<T> (the kinetic energy per particle is T in d = 2), ζ* = ζℓ/v_s.
@@ -89,9 +89,14 @@ def jackknife(values: np.ndarray, statistic) -> tuple[Any, Any]:
 
 
 def fit_window(correlation: np.ndarray, lags: np.ndarray, start: float, stop: float) -> slice:
-    """Lag indices of the tail fit: from the first lag >= ``start`` up to (excluding) the
-    first lag after it where C < ``stop`` · C(0) or C <= 0; at least three lags."""
+    """Lag indices of the tail fit: from the first lag >= ``start`` (or, for a mode that
+    decays within it, such as homogeneous DSMC's, from where C falls to C(0)/2) up to
+    (excluding) the first later lag where C < ``stop`` · C(0) or C <= 0; at least three
+    lags."""
+    half = np.flatnonzero(correlation < 0.5 * correlation[0])
     first = int(np.searchsorted(lags, start))
+    if half.size:
+        first = min(first, int(half[0]))
     below = np.flatnonzero(
         (correlation[first:] < stop * correlation[0]) | (correlation[first:] <= 0.0)
     )
