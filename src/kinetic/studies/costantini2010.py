@@ -38,12 +38,12 @@ from kinetic.theory import costantini2010 as theory
 __all__ = [
     "METHODS",
     "Run",
+    "batch_file",
     "check",
     "convergence_runs",
     "correlation_runs",
     "figure_runs",
     "grid_runs",
-    "batch_file",
     "jobs",
     "mean_free_path",
     "mean_free_time",
