@@ -16,8 +16,9 @@ Definitions (fixed so that methods compare):
   k* = kℓ = 2π/√(N nσ²); times τ* = τ v_s/ℓ.
 - τ_c and the amplitude A from a weighted straight-line fit of ln C on the tail, from
   ``fit_start`` (coloured noise bends C at short times; earlier where C has already
-  halved) to the first lag where C falls below ``fit_stop`` C(0); ν* = (1/τ_c* + ζ*/2)/k*² (Eq. 10) and ν̄* = A/(τ_c* k*²)
-  (Eq. 11, the fitted tail amplitude; ``nu_bar_star_c0`` uses the measured C(0) instead).
+  halved) to the first lag where C falls below ``fit_stop`` C(0); ν* = (1/τ_c* + ζ*/2)/k*²
+  (Eq. 10) and ν̄* = A/(τ_c* k*²) (Eq. 11, the fitted tail amplitude; ``nu_bar_star_c0``
+  uses the measured C(0) instead).
 - ζ* measured from the energy dissipated by collisions: ζ = <dissipated energy per
   particle per unit τ>/<T> (the kinetic energy per particle is T in d = 2), ζ* = ζℓ/v_s.
   ``zeta_star_balance`` = 2ω0 ℓ/v_s is the steady-state balance ζ(T_s) = 2ω0.
