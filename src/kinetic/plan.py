@@ -166,7 +166,7 @@ def _costantini2010(config: Mapping[str, Any]) -> list[Job]:
     from kinetic.studies import costantini2010 as study
 
     jobs = []
-    for _name, run in study.runs(section).items():
+    for run in study.runs(section).values():
         arguments = run.engine_arguments(section)
         for job in study.jobs(section):
             estimate = cost.cooling_modes(

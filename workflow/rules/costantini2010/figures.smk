@@ -3,7 +3,7 @@
 #          recollision diagnostic           fig02  C(tau): homogeneous vs inhomogeneous DSMC vs MD
 #   fig03  C(tau) for each N                fig04/05  nu*, nu_bar* against 1/N (table1 fits)
 #   fig06  nu*, nu_bar* against alpha       fig07  nu_bar*/nu* against alpha
-#   table1 one row per (method, alpha, N, Lambda), the 1/N -> 0 rows and theory
+#   table1 one row per (method, alpha, N, Lambda), the 1/N -> 0 rows and theory; checks
 #   error_vs_time  error of nu*, nu_bar* against CPU time; convergence  DSMC cell side and step
 
 for name in ("fig01", "fig02", "fig03", "fig04", "fig05", "fig06", "fig07"):
@@ -19,6 +19,7 @@ provide(
     *table_files("costantini2010", "table1"),
     "results/costantini2010/extrapolation.csv",
 )
+provide("costantini2010/checks", "results/costantini2010/checks.csv")
 
 COSTANTINI2010_ANALYSIS_CODE = package_files(
     "analysis/costantini2010", "theory/costantini2010", "studies/costantini2010", "plotting"
@@ -135,6 +136,7 @@ rule costantini2010_table1:
         csv="results/costantini2010/table1.csv",
         md="results/costantini2010/table1.md",
         fits="results/costantini2010/extrapolation.csv",
+        checks="results/costantini2010/checks.csv",
     log:
         "logs/costantini2010/table1.log",
     params:
