@@ -105,6 +105,29 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
         "k3_err",
     ]
     assert {"Poisson", "Gaussian", "Sonine"} <= set(table["source"])
+    costantini = pd.read_csv(results / "costantini2010" / "table1.csv")
+    assert list(costantini.columns) == [
+        "method",
+        "alpha",
+        "n_particles",
+        "fictive_factor",
+        "tau_c",
+        "tau_c_err",
+        "amplitude",
+        "amplitude_err",
+        "nu_star",
+        "nu_star_err",
+        "nu_bar_star",
+        "nu_bar_star_err",
+        "ratio",
+        "ratio_err",
+        "zeta_star",
+        "zeta_star_err",
+    ]
+    assert set(costantini["method"]) == {"theory", "md", "dsmc", "dsmc_homogeneous"}
+    simulated = costantini[costantini["method"] != "theory"]
+    assert simulated["nu_star_err"].gt(0).all()  # every simulated point has an error bar
+    assert simulated["n_particles"].isna().any()  # the 1/N -> 0 rows
     # every dataset carries units and provenance
     for path in results.rglob("*.nc"):
         with xr.open_dataset(path) as dataset:
