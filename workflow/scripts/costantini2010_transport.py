@@ -3,6 +3,7 @@ extrapolations (Figs 4, 5), both against alpha with theory (Fig 6), and nu_bar*/
 alpha with the white- and coloured-noise predictions (Fig 7)."""
 
 import numpy as np
+import pandas as pd
 
 from kinetic import io, plotting
 from kinetic.plotting.costantini2010 import METHOD_LABELS, METHOD_STYLE
@@ -31,7 +32,7 @@ def versus_inverse_n(quantity, symbol, path):
             if rows.empty:
                 continue
             style = METHOD_STYLE[method]
-            x = 1.0 / rows.n_particles.to_numpy(float)
+            x = 1000.0 / rows.n_particles.to_numpy(float)
             plotting.errorbar(
                 ax,
                 x,
@@ -65,8 +66,8 @@ def versus_inverse_n(quantity, symbol, path):
             label="first Sonine",
         )
         ax.set_title(rf"$\alpha = {alpha:g}$", fontsize=8)
-        ax.set_xlabel(r"$1/N$")
-        ax.set_xlim(left=-0.00005)
+        ax.set_xlabel(r"$10^3/N$")
+        ax.set_xlim(left=-0.05)
         ax.legend(fontsize=5)
     axes[0][0].set_ylabel(symbol)
     plotting.save(fig, path)
@@ -76,7 +77,7 @@ versus_inverse_n("nu_star", r"$\nu^*$", snakemake.output.fig04)
 versus_inverse_n("nu_bar_star", r"$\bar\nu^*$", snakemake.output.fig05)
 
 grid = np.linspace(min(0.5, min(alphas)), 1.0, 101)
-sizes = sorted(finite.n_particles.unique())
+sizes = sorted(int(n) for n in finite.n_particles.unique())
 fig, axes = plotting.figure(1, 2, figsize=(6.0, 2.6))
 for ax, quantity, symbol, curve in (
     (axes[0], "nu_star", r"$\nu^*$", theory.nu_star),
@@ -148,6 +149,11 @@ for method in ("dsmc", "md"):
             label=label,
         )
 ax.axhline(1.0, color="0.6", lw=0.5)
+shown = pd.concat([limit, finite])
+top = max(
+    float((shown.ratio + shown.ratio_err).max()), float(theory.fdr_ratio_white(grid).max())
+)
+ax.set_ylim(0.8, 1.15 * top)  # the coloured-noise curves of small N may leave the frame
 ax.set_xlabel(r"$\alpha$")
 ax.set_ylabel(r"$\bar\nu^*/\nu^*$")
 ax.legend(fontsize=5)
