@@ -12,7 +12,13 @@ from snakemake.utils import min_version
 min_version("9.0")
 
 
-configfile: "config/config.yaml"
+# A config file given with --configfile is the whole truth: the default is read only when
+# none is given (the schemas fill in, visibly, every key a file leaves out), so a key absent
+# from the user's file never keeps the default config's value.
+if not workflow.overwrite_configfiles:
+
+    configfile: f"{workflow.basedir}/config/config.yaml"
+
 
 
 include: "workflow/rules/common.smk"

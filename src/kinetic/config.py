@@ -11,6 +11,7 @@ sentence, e.g.::
 
 from __future__ import annotations
 
+import math
 import os
 import tempfile
 from collections.abc import MutableMapping
@@ -117,14 +118,48 @@ def compose_schema(path: str | os.PathLike) -> dict[str, Any]:
     return inline(document)
 
 
+def _strict_numbers(value: Any, schema: Any, path: str) -> None:
+    """Refuse what JSON Schema lets through: NaN and infinities pass every numeric bound
+    (comparisons with NaN are false), and 7.0 counts as an integer."""
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise ConfigError(
+                f"config key {path} = {value!r} is not allowed: must be a finite number"
+            )
+        kinds = schema.get("type") if isinstance(schema, dict) else None
+        kinds = kinds if isinstance(kinds, list) else [kinds]
+        if "integer" in kinds and "number" not in kinds:
+            raise ConfigError(
+                f"config key {path} = {value!r} is not allowed: must be an integer "
+                "(written without a decimal point)"
+            )
+        return
+    schema = schema if isinstance(schema, dict) else {}
+    if isinstance(value, dict):
+        properties = schema.get("properties", {})
+        extra = schema.get("additionalProperties")
+        for key, item in value.items():
+            child = properties.get(key, extra if isinstance(extra, dict) else {})
+            _strict_numbers(item, child, f"{path}.{key}" if path else str(key))
+    elif isinstance(value, list):
+        items = schema.get("items", {})
+        for index, item in enumerate(value):
+            _strict_numbers(item, items, f"{path}[{index}]")
+
+
 def validate_config(config: MutableMapping[str, Any], schema: str | os.PathLike = SCHEMA) -> None:
-    """Validate ``config`` in place (filling defaults) or raise ``ConfigError``."""
+    """Validate ``config`` in place (filling defaults) or raise ``ConfigError``.
+
+    Beyond the schema: no NaN or infinite number anywhere, and no float (7.0) where the
+    schema asks for an integer, each refused with its key."""
     from snakemake.exceptions import WorkflowError
     from snakemake.utils import validate
 
+    composed_schema = compose_schema(schema)
+    _strict_numbers(config, composed_schema, "")
     with tempfile.TemporaryDirectory() as directory:
         composed = Path(directory) / "config.schema.yaml"
-        composed.write_text(yaml.safe_dump(compose_schema(schema), sort_keys=False))
+        composed.write_text(yaml.safe_dump(composed_schema, sort_keys=False))
         try:
             validate(config, str(composed))
         except WorkflowError as workflow_error:

@@ -10,8 +10,11 @@ Conventions every dataset of the project follows (checked by ``check_conventions
 - netCDF attributes hold only strings, numbers and numeric arrays: booleans become
   ints, ``None`` becomes an empty string, anything else nested becomes JSON.
 
-Files are written to a temporary name and renamed, so a file under its final name is
-always complete: an interrupted job leaves no truncated result behind.
+Files (datasets and tables) are written to a hidden temporary name, flushed to disk and
+renamed, so a file under its final name is always complete: an interrupted job leaves no
+truncated result behind, and the temporary files of killed writers are removed at the
+start of the next build (``remove_orphans``). A file that cannot be read is reported by
+name with the advice to delete it (``CorruptFileError``).
 """
 
 from __future__ import annotations
@@ -31,11 +34,13 @@ import xarray as xr
 from kinetic import __version__
 
 __all__ = [
+    "CorruptFileError",
     "check_conventions",
     "git_revision",
     "make_dataset",
     "read_dataset",
     "read_table",
+    "remove_orphans",
     "stamp",
     "write_dataset",
     "write_table",
@@ -145,25 +150,68 @@ def stamp(
     return dataset.assign_attrs(attrs)
 
 
-def write_dataset(dataset: xr.Dataset, path: str | os.PathLike) -> Path:
-    """Write ``dataset`` to netCDF atomically (temporary file, then rename)."""
-    check_conventions(dataset)
-    path = Path(path)
+def _replace_atomically(path: Path, write) -> Path:
+    """Write through ``write(temporary_path)`` to a hidden temporary file beside ``path``,
+    flush it to disk, then rename it: a file under its final name is always complete.
+    A killed writer leaves a ``.<name>.<pid>.tmp`` that ``remove_orphans`` deletes."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    encoded = dataset.assign_attrs({k: _attribute_value(v) for k, v in dataset.attrs.items()})
-    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    temporary = path.with_name(f".{path.name}.{os.getpid()}{TEMPORARY_SUFFIX}")
     try:
-        encoded.to_netcdf(temporary, engine="netcdf4")
+        write(temporary)
+        with open(temporary, "rb+") as handle:
+            os.fsync(handle.fileno())
         os.replace(temporary, path)
     finally:
         temporary.unlink(missing_ok=True)
     return path
 
 
+TEMPORARY_SUFFIX = ".tmp"
+"""Suffix of the hidden files written before the rename (``.<name>.<pid>.tmp``)."""
+
+
+def remove_orphans(directory: str | os.PathLike) -> list[Path]:
+    """Delete the temporary files that killed writers left under ``directory`` (call it
+    only when no writer runs there, e.g. at the start of a locked build); returns them."""
+    orphans = [
+        path
+        for path in Path(directory).rglob(f".*{TEMPORARY_SUFFIX}")
+        if path.is_file() and path.name.count(".") >= 3
+    ]
+    for path in orphans:
+        path.unlink(missing_ok=True)
+    return orphans
+
+
+def write_dataset(dataset: xr.Dataset, path: str | os.PathLike) -> Path:
+    """Write ``dataset`` to netCDF atomically (temporary file, fsync, rename)."""
+    check_conventions(dataset)
+    encoded = dataset.assign_attrs({k: _attribute_value(v) for k, v in dataset.attrs.items()})
+    return _replace_atomically(
+        Path(path), lambda temporary: encoded.to_netcdf(temporary, engine="netcdf4")
+    )
+
+
+class CorruptFileError(OSError):
+    """A result file that cannot be read (truncated or corrupted): delete it and rerun."""
+
+
 def read_dataset(path: str | os.PathLike) -> xr.Dataset:
-    """Read a netCDF file written by ``write_dataset`` fully into memory and close it."""
-    with xr.open_dataset(path, engine="netcdf4") as dataset:
-        return dataset.load()
+    """Read a netCDF file written by ``write_dataset`` fully into memory and close it.
+
+    Raises ``CorruptFileError`` naming the file if it cannot be read (truncated,
+    corrupted, not netCDF), with the advice to delete it so that the rerun rebuilds it.
+    """
+    try:
+        with xr.open_dataset(path, engine="netcdf4") as dataset:
+            return dataset.load()
+    except FileNotFoundError:
+        raise
+    except (OSError, ValueError, RuntimeError) as error:
+        raise CorruptFileError(
+            f"{path} cannot be read ({error}): it is truncated or corrupted; delete it and "
+            "rerun, and Snakemake rebuilds it (and only what depends on it)"
+        ) from error
 
 
 def parameters_of(dataset: xr.Dataset) -> dict[str, Any]:
@@ -192,12 +240,15 @@ def write_table(
     *,
     float_format: str = ".6g",
 ) -> None:
-    """Write a table as CSV (empty cells for missing values) and optionally a Markdown twin."""
-    csv_path = Path(csv_path)
-    csv_path.parent.mkdir(parents=True, exist_ok=True)
-    frame.to_csv(csv_path, index=False, float_format="%.10g", na_rep="")
+    """Write a table as CSV (empty cells for missing values) and optionally a Markdown
+    twin, each atomically (temporary file, fsync, rename)."""
+    _replace_atomically(
+        Path(csv_path),
+        lambda temporary: frame.to_csv(temporary, index=False, float_format="%.10g", na_rep=""),
+    )
     if markdown_path is not None:
-        Path(markdown_path).write_text(_markdown(frame, float_format))
+        text = _markdown(frame, float_format)
+        _replace_atomically(Path(markdown_path), lambda temporary: temporary.write_text(text))
 
 
 def read_table(path: str | os.PathLike) -> pd.DataFrame:

@@ -70,6 +70,10 @@ def stream_states(seed: int, n_streams: int) -> np.ndarray:
     spawned child ``k`` of ``SeedSequence(seed)``, so the first rows do not depend on
     how many streams are asked for.
     """
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
+        raise TypeError(f"seed must be an integer >= 0, got {seed!r}")
+    if isinstance(n_streams, bool) or not isinstance(n_streams, int | np.integer):
+        raise TypeError(f"n_streams must be an integer, got {n_streams!r}")
     if n_streams < 1:
         raise ValueError(f"n_streams must be >= 1, got {n_streams}")
     children = np.random.SeedSequence(int(seed)).spawn(int(n_streams))

@@ -45,6 +45,18 @@ BAD_VALUES = [
     ("visco2008.theory.rate_points", -5, ["visco2008.theory.rate_points", "-5", ">= 11"]),
     ("visco2008.theory.time_max", 0.0, ["visco2008.theory.time_max", "0.0", "> 0"]),
     ("targets", ["visco2008/fig99"], ["targets.0", "visco2008/fig99", "one of"]),
+    # NaN and infinities pass every JSON Schema bound: refused beforehand, key named
+    ("visco2008.theory.time_max", float("nan"), ["visco2008.theory.time_max", "nan", "finite"]),
+    ("visco2008.md.densities.rho1e-3", float("nan"), ["visco2008.md.densities.rho1e-3", "finite"]),
+    ("montanero2007.alphas", [1.0, float("nan")], ["montanero2007.alphas[1]", "finite"]),
+    ("costantini2010.density", float("inf"), ["costantini2010.density", "inf", "finite"]),
+    ("costantini2010.restitutions", [float("nan")], ["costantini2010.restitutions[0]"]),
+    ("krauth2025.pins.sigma", float("-inf"), ["krauth2025.pins.sigma", "finite"]),
+    ("visco2008.cloning.transient", float("nan"), ["visco2008.cloning.transient", "finite"]),
+    # 7.0 counts as an integer for JSON Schema, not for us
+    ("seed", 7.0, ["seed", "7.0", "integer", "decimal point"]),
+    ("costantini2010.realizations", 4.0, ["costantini2010.realizations", "integer"]),
+    ("costantini2010.particles", [1000.0], ["costantini2010.particles[0]", "integer"]),
 ]
 
 

@@ -77,3 +77,25 @@ def test_table_csv_and_markdown(tmp_path):
     markdown = (tmp_path / "t.md").read_text().splitlines()
     assert markdown[0] == "| source | k2 | k2_err |"
     assert markdown[3] == "| Poisson | 1.0000 |  |"
+
+
+def test_tables_are_written_atomically_and_orphans_removed(tmp_path):
+    frame = pd.DataFrame({"a": [1.0, np.nan], "b": ["x", "y"]})
+    io.write_table(frame, tmp_path / "t.csv", tmp_path / "t.md")
+    assert io.read_table(tmp_path / "t.csv")["b"].tolist() == ["x", "y"]
+    assert (tmp_path / "t.md").read_text().startswith("| a | b |")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["t.csv", "t.md"]  # no temporary
+    orphan = tmp_path / "sub" / ".t.csv.4242.tmp"  # what a killed writer leaves
+    orphan.parent.mkdir()
+    orphan.write_text("half a tab")
+    assert io.remove_orphans(tmp_path) == [orphan]
+    assert not orphan.exists()
+    assert (tmp_path / "t.csv").exists()
+
+
+def test_a_truncated_dataset_is_named_with_the_advice_to_delete_it(tmp_path):
+    path = tmp_path / "batch0000.nc"
+    io.write_dataset(_dataset(np.arange(3.0)), path)
+    path.write_bytes(path.read_bytes()[:500])
+    with pytest.raises(io.CorruptFileError, match=r"batch0000\.nc cannot be read.*delete it"):
+        io.read_dataset(path)

@@ -13,6 +13,17 @@ except ConfigError as error:
 
 PAPERS = ["visco2008", "montanero2007", "krauth2025", "costantini2010"]
 
+
+onstart:
+    # the build holds Snakemake's lock: temporary files under results/ are orphans of
+    # writers killed in an earlier build (kinetic.io writes to .<name>.<pid>.tmp, then renames)
+    import sys
+
+    from kinetic.io import remove_orphans
+
+    for orphan in remove_orphans("results") if Path("results").is_dir() else []:
+        print(f"removed {orphan}, left by a killed job", file=sys.stderr)
+
 # ---------------------------------------------------------------- target registry
 # Rule files register each figure/table they can build: provide(id, file, ...).
 TARGETS = {}

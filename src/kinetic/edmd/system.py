@@ -128,6 +128,13 @@ def cell_grid(
     return counts
 
 
+def _number(name, value):
+    """``value`` as a float if it is a real number (not a bool, not a string)."""
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise TypeError(f"{name} must be a number, got {value!r}")
+    return float(value)
+
+
 def _finite_positive(name, value):
     if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
         raise TypeError(f"{name} must be a number, got {value!r}")
@@ -220,13 +227,18 @@ class HardSphereSystem:
             prefetch = sum(n_particles >= size for size in PREFETCH_MIN_PARTICLES)
         if prefetch not in (0, 1, 2):
             raise ValueError(f"prefetch must be 0, 1 or 2, got {prefetch!r}")
-        restitution = float(restitution)
+        restitution = _number("restitution", restitution)
         if not (math.isfinite(restitution) and 0.0 < restitution <= 1.0):
             raise ValueError(f"restitution must be in (0, 1], got {restitution}")
+        contact_time = _number("contact_time", contact_time)
         if not (math.isfinite(contact_time) and contact_time >= 0.0):
             raise ValueError(f"contact_time must be finite and >= 0, got {contact_time}")
+        for name, value in (("collapse_streak", collapse_streak), ("rescale_every", rescale_every)):
+            if isinstance(value, bool) or not isinstance(value, int | np.integer):
+                raise TypeError(f"{name} must be an integer, got {value!r}")
         if collapse_time is None:
             collapse_time = 1e-7 * diameter / math.sqrt(temperature)
+        collapse_time = _number("collapse_time", collapse_time)
         if not (math.isfinite(collapse_time) and collapse_time >= 0.0):
             raise ValueError(f"collapse_time must be finite and >= 0, got {collapse_time}")
         if int(collapse_streak) < 1:
