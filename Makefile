@@ -21,6 +21,7 @@ $(VENV)/.installed: environment-pip.txt pyproject.toml
 	touch $@
 
 figures: install
+	$(BIN)/python -m kinetic.config $(CONFIG)
 	$(BIN)/snakemake all --cores $(CORES) --configfile $(CONFIG) $(SNAKEMAKE_ARGS)
 
 lint: install

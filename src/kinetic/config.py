@@ -21,7 +21,7 @@ from typing import Any
 import jsonschema
 import yaml
 
-__all__ = ["SCHEMA", "ConfigError", "explain", "validate_config"]
+__all__ = ["SCHEMA", "ConfigError", "explain", "load_config_file", "main", "validate_config"]
 
 SCHEMA = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
 """The workflow's top-level schema (in a source checkout)."""
@@ -167,3 +167,40 @@ def validate_config(config: MutableMapping[str, Any], schema: str | os.PathLike 
             if not isinstance(cause, jsonschema.ValidationError):
                 raise
             raise ConfigError(explain(cause)) from None
+
+
+def load_config_file(path: str | os.PathLike) -> dict[str, Any]:
+    """Read one YAML config file; a syntax error names the file, line and column."""
+    path = Path(path)
+    try:
+        loaded = yaml.safe_load(path.read_text())
+    except yaml.YAMLError as error:
+        mark = getattr(error, "problem_mark", None)
+        where = f"{path}:{mark.line + 1}:{mark.column + 1}" if mark else str(path)
+        problem = getattr(error, "problem", None) or str(error)
+        raise ConfigError(f"{where}: not valid YAML ({problem})") from None
+    if not isinstance(loaded, dict):
+        raise ConfigError(f"{path}: a config file must hold a mapping of keys, got {loaded!r}")
+    return loaded
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m kinetic.config FILE...``: check config files before a build (syntax
+    with file and line, then the schema); prints one line per file, exits 1 on a bad one."""
+    import sys
+
+    paths = sys.argv[1:] if argv is None else argv
+    status = 0
+    for path in paths:
+        try:
+            validate_config(load_config_file(path))
+        except ConfigError as error:
+            print(f"{path}: {error}" if not str(error).startswith(str(path)) else str(error))
+            status = 1
+        else:
+            print(f"{path}: valid")
+    return status
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

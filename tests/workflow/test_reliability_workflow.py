@@ -1,0 +1,117 @@
+"""A config means exactly what it says, bad values stop before any job with their key, and
+a build killed mid-way resumes without losing or trusting anything half-written."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+import yaml
+
+from kinetic import io
+from kinetic.config import load_config_file, validate_config
+
+REPOSITORY = Path(__file__).resolve().parents[2]
+SNAKEMAKE = [sys.executable, "-m", "snakemake", "--snakefile", str(REPOSITORY / "Snakefile")]
+ENV = {**os.environ, "MPLBACKEND": "Agg"}
+
+
+def _snakemake(workdir, *args, timeout=600):
+    return subprocess.run(
+        [*SNAKEMAKE, "--directory", str(workdir), *args],
+        cwd=REPOSITORY,  # where config/config.yaml would be found and merged by a relative path
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env=ENV,
+        check=False,
+    )
+
+
+@pytest.mark.workflow
+@pytest.mark.parametrize("name", ["ci.yaml", "paper.yaml", None])
+def test_effective_config_is_the_file_plus_schema_defaults(tmp_path, name):
+    """No key of the default config leaks into a config given with --configfile."""
+    arguments = ["results/workflow/config.yaml", "--cores", "1"]
+    if name is not None:
+        arguments += ["--configfile", str(REPOSITORY / "config" / name)]
+    result = _snakemake(tmp_path, *arguments)
+    assert result.returncode == 0, result.stdout + result.stderr
+    effective = yaml.safe_load((tmp_path / "results/workflow/config.yaml").read_text())
+    expected = load_config_file(REPOSITORY / "config" / (name or "config.yaml"))
+    validate_config(expected)
+    assert effective == expected
+
+
+BAD_CONFIGS = [
+    ("seed: 7\ncostantini2010:\n  density: .nan\n", "costantini2010.density = nan"),
+    ("seed: 7.0\n", "seed = 7.0 is not allowed: must be an integer"),
+    ("seed: 7\nmontanero2007:\n  alphas: [1.0, .nan]\n", "montanero2007.alphas[1] = nan"),
+]
+"""Through the workflow; the whole table of bad values is tests/unit/test_config.py's."""
+
+
+@pytest.mark.workflow
+@pytest.mark.parametrize(("text", "message"), BAD_CONFIGS, ids=[m for _, m in BAD_CONFIGS])
+def test_bad_configs_stop_before_any_job(tmp_path, text, message):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(text)
+    result = _snakemake(tmp_path / "run", "--configfile", str(bad), "--cores", "1")
+    assert result.returncode != 0
+    assert message in result.stdout + result.stderr
+    assert not (tmp_path / "run" / "results").exists()
+
+
+def test_yaml_syntax_errors_name_file_and_line(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("seed: 7\ncostantini2010:\n  particles: [1000, 2000\n")
+    result = subprocess.run(
+        [sys.executable, "-m", "kinetic.config", str(bad)], capture_output=True, text=True
+    )
+    assert result.returncode == 1
+    assert f"{bad}:4:1: not valid YAML" in result.stdout
+
+
+@pytest.mark.workflow
+@pytest.mark.slow
+def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_path):
+    """kill -9 of the whole build while its second job runs: the first job's file is kept
+    and not rebuilt, nothing half-written is under a final name, the lock is lifted with
+    --unlock, and the rerun builds only what is missing (and removes the orphans)."""
+    config = tmp_path / "config.yaml"
+    settings = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
+    settings["costantini2010"].update({"realizations": 2, "realizations_per_job": 1})
+    config.write_text(yaml.safe_dump(settings))
+    run = "results/costantini2010/dsmc/n2000-alpha1-f10-cell0.5-step0.05"
+    target = [f"{run}.nc", "--cores", "1", "--configfile", str(config)]
+    process = subprocess.Popen(
+        [*SNAKEMAKE, "--directory", str(tmp_path), *target],
+        cwd=REPOSITORY,
+        env=ENV,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
+    first, second = tmp_path / run / "batch0000.nc", tmp_path / run / "batch0001.nc"
+    deadline = time.monotonic() + 300
+    while not first.exists() and time.monotonic() < deadline and process.poll() is None:
+        time.sleep(0.2)
+    time.sleep(1.0)  # the second job is running
+    os.killpg(process.pid, signal.SIGKILL)
+    process.wait()
+    assert first.exists(), "the first job did not finish in time"
+    kept = first.stat().st_mtime_ns
+    io.read_dataset(first)  # complete
+    assert not second.exists()  # the killed job left nothing under its final name
+    locked = _snakemake(tmp_path, *target)
+    assert locked.returncode != 0 and "unlock" in (locked.stdout + locked.stderr).lower()
+    assert _snakemake(tmp_path, *target, "--unlock").returncode == 0
+    resumed = _snakemake(tmp_path, *target)
+    assert resumed.returncode == 0, resumed.stdout + resumed.stderr
+    assert first.stat().st_mtime_ns == kept  # finished work was not redone
+    io.read_dataset(second)
+    io.read_dataset(tmp_path / f"{run}.nc")
+    assert not list((tmp_path / "results").rglob("*.tmp"))
