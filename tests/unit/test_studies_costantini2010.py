@@ -44,7 +44,9 @@ def test_engine_units():
     density = settings["density"]
     mean_free_time = 1.0 / (2.0 * density * math.sqrt(math.pi))
     assert arguments["time_step"] == pytest.approx(0.05 * mean_free_time)
-    assert arguments["sample_interval"] == pytest.approx(0.1 * mean_free_time)
+    assert arguments["sample_interval"] == pytest.approx(
+        settings["sample_interval"] * mean_free_time
+    )
     side = math.sqrt(1000 / density)  # 447 sigma, 6.3 mean free paths
     assert arguments["cells_per_side"] == round(side / (0.5 / (2 * math.sqrt(2) * density)))
     assert 5 < run.real_particles_per_cell(density) < 8

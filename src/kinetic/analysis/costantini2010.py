@@ -151,12 +151,21 @@ def extrapolate_inverse_n(
     nan = {key: math.nan for key in ("intercept", "intercept_err", "slope", "slope_err", "chi2")}
     if x.size < 2 or np.unique(x).size < 2:
         return nan | {"dof": 0}
-    # exact values (e.g. ζ* = 0 at α = 1) carry no error: fit them unweighted
-    weight = 1.0 / sigma**2 if np.all(sigma > 0) else np.ones_like(sigma)
     design = np.stack([np.ones_like(x), x], axis=1)
+    dof = x.size - 2
+    if not np.all(sigma > 0):  # exact values (ζ* = 0 at α = 1): a plain fit, no error
+        coefficients = np.linalg.lstsq(design, y, rcond=None)[0]
+        return {
+            "intercept": float(coefficients[0]),
+            "intercept_err": 0.0,
+            "slope": float(coefficients[1]),
+            "slope_err": 0.0,
+            "chi2": math.nan,
+            "dof": dof,
+        }
+    weight = 1.0 / sigma**2
     covariance = np.linalg.inv(design.T @ (design * weight[:, None]))
     coefficients = covariance @ design.T @ (weight * y)
-    dof = x.size - 2
     chi2 = float(np.sum(weight * (y - design @ coefficients) ** 2)) if dof > 0 else math.nan
     return {
         "intercept": float(coefficients[0]),
