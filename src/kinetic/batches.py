@@ -21,7 +21,7 @@ from typing import NamedTuple
 import numpy as np
 import xarray as xr
 
-__all__ = ["Job", "batch_name", "combine", "plan"]
+__all__ = ["Job", "batch_name", "check_disjoint", "combine", "plan", "read_batches"]
 
 REALIZATION = "realization"
 """Name of the dimension (and coordinate) that numbers the realizations of a run."""
@@ -67,6 +67,30 @@ def _parameters(dataset: xr.Dataset) -> dict:
     return parameters
 
 
+def check_disjoint(datasets: Sequence[xr.Dataset], names: Sequence[str]) -> None:
+    """Raise ``ValueError`` naming both batches if a realization appears in two of them."""
+    seen: dict[int, str] = {}
+    for name, dataset in zip(names, datasets, strict=True):
+        for k in np.asarray(dataset[REALIZATION].values).tolist():
+            if k in seen:
+                raise ValueError(
+                    f"realization {k} appears in both {seen[k]} and {name}: the batches "
+                    "overlap (files of two different job plans?); delete the stale one"
+                )
+            seen[k] = name
+
+
+def read_batches(paths: Sequence[str]) -> list[xr.Dataset]:
+    """Read the batch files of one run (``kinetic.io.read_dataset``: an unreadable file is
+    named) and check that no realization appears in two of them (both files named)."""
+    from kinetic import io
+
+    paths = [str(path) for path in paths]
+    datasets = [io.read_dataset(path) for path in paths]
+    check_disjoint(datasets, paths)
+    return datasets
+
+
 def combine(datasets: Sequence[xr.Dataset], *, names: Sequence[str] | None = None) -> xr.Dataset:
     """Concatenate the batches of one run along ``realization``.
 
@@ -92,12 +116,7 @@ def combine(datasets: Sequence[xr.Dataset], *, names: Sequence[str] | None = Non
             )
         if dataset.attrs.get("seed") != datasets[0].attrs.get("seed"):
             raise ValueError(f"{name} and {names[0]} have different seeds")
-    seen: dict[int, str] = {}
-    for name, dataset in zip(names, datasets, strict=True):
-        for k in np.asarray(dataset[REALIZATION].values).tolist():
-            if k in seen:
-                raise ValueError(f"realization {k} appears in both {seen[k]} and {name}")
-            seen[k] = name
+    check_disjoint(datasets, names)
     per_realization = [
         dataset[[v for v in dataset.data_vars if REALIZATION in dataset[v].dims]]
         for dataset in datasets

@@ -57,3 +57,13 @@ def test_combine_refuses_batches_of_different_runs():
         batches.combine([batch(0, 2), batch(2, 2, restitution=0.7)], names=["a.nc", "b.nc"])
     with pytest.raises(ValueError, match="different seeds"):
         batches.combine([batch(0, 2), batch(2, 2, seed=6)], names=["a.nc", "b.nc"])
+
+
+def test_read_batches_names_overlapping_files(tmp_path):
+    first, second = tmp_path / "batch0000.nc", tmp_path / "batch0001.nc"
+    io.write_dataset(batch(0, 2), first)
+    io.write_dataset(batch(1, 2), second)
+    with pytest.raises(ValueError, match=r"batch0000\.nc and .*batch0001\.nc"):
+        batches.read_batches([first, second])
+    io.write_dataset(batch(2, 2), second)
+    assert len(batches.read_batches([first, second])) == 2

@@ -150,9 +150,7 @@ for method in ("dsmc", "md"):
         )
 ax.axhline(1.0, color="0.6", lw=0.5)
 shown = pd.concat([limit, finite])
-top = max(
-    float((shown.ratio + shown.ratio_err).max()), float(theory.fdr_ratio_white(grid).max())
-)
+top = max(float((shown.ratio + shown.ratio_err).max()), float(theory.fdr_ratio_white(grid).max()))
 ax.set_ylim(0.8, 1.15 * top)  # the coloured-noise curves of small N may leave the frame
 ax.set_xlabel(r"$\alpha$")
 ax.set_ylabel(r"$\bar\nu^*/\nu^*$")

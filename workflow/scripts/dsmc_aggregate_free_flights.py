@@ -1,11 +1,12 @@
 """Combine the jobs of one visco2008 DSMC run (rule aggregate_visco2008_dsmc)."""
 
 from kinetic import io
+from kinetic.batches import read_batches
 from kinetic.dsmc.aggregate import combine_free_flights
 from kinetic.workflow_support import start
 
 log = start(snakemake)
-batches = [io.read_dataset(path) for path in snakemake.input]
+batches = read_batches(snakemake.input)
 combined = combine_free_flights(batches)
 combined = io.stamp(
     combined,

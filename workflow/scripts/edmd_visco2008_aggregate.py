@@ -2,12 +2,11 @@
 
 from kinetic import io
 from kinetic.analysis import collision_statistics
+from kinetic.batches import read_batches
 from kinetic.workflow_support import start
 
 log = start(snakemake)
-data = collision_statistics.combine_realizations(
-    io.read_dataset(path) for path in snakemake.input.batches
-)
+data = collision_statistics.combine_realizations(read_batches(snakemake.input.batches))
 io.write_dataset(data, snakemake.output.data)
 cumulants = collision_statistics.cumulant_dataset(data, snakemake.params.table_windows)
 io.write_dataset(cumulants, snakemake.output.cumulants)

@@ -267,12 +267,17 @@ def load_runs(paths: Sequence[Any]) -> dict[str, Any]:
     the order of their first batch in ``paths``.
     """
     from kinetic import io
+    from kinetic.batches import check_disjoint
 
     grouped: dict[str, list[Any]] = {}
+    files: dict[str, list[str]] = {}
     for path in paths:
         dataset = io.read_dataset(path)
         name = io.parameters_of(dataset).get("run")
         if not name:
             raise ValueError(f"{path} has no 'run' parameter: not written by the workflow")
         grouped.setdefault(name, []).append(dataset)
+        files.setdefault(name, []).append(str(path))
+    for name, datasets in grouped.items():
+        check_disjoint(datasets, files[name])
     return {name: combine(datasets) for name, datasets in grouped.items()}
