@@ -50,6 +50,7 @@ BAD_CONFIGS = [
     ("seed: 7\ncostantini2010:\n  density: .nan\n", "costantini2010.density = nan"),
     ("seed: 7.0\n", "seed = 7.0 is not allowed: must be an integer"),
     ("seed: 7\nmontanero2007:\n  alphas: [1.0, .nan]\n", "montanero2007.alphas[1] = nan"),
+    ("seed: 7\nmontanero2007:\n  alphas: [1.0, 0.305]\n", "montanero2007.alphas[1] = 0.305"),
 ]
 """Through the workflow; the whole table of bad values is tests/unit/test_config.py's."""
 

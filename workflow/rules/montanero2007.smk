@@ -8,7 +8,10 @@
 # Run names come from kinetic.studies.montanero2007.run_plan(config["montanero2007"]).
 from kinetic.studies.montanero2007 import alpha_key, batches, run_plan
 
-MONTANERO2007_RUNS = run_plan(config["montanero2007"])
+try:
+    MONTANERO2007_RUNS = run_plan(config["montanero2007"])
+except ValueError as error:
+    raise WorkflowError(str(error)) from None
 
 for _number in range(1, 8):
     provide(f"montanero2007/fig0{_number}", *figure_files("montanero2007", f"fig0{_number}"))

@@ -86,6 +86,26 @@ def _run(protocol: Mapping[str, Any], family: str, restitution: float, **overrid
     return run
 
 
+def _check_restitution_keys(section: Mapping[str, Any]) -> None:
+    """Every restitution of the section names a run (``alpha_key``): refuse one with more
+    than two decimals naming its config key, before any run is planned."""
+    lists = {
+        "alphas": section["alphas"],
+        "field_check.restitution": [section["field_check"]["restitution"]],
+        "hcs.alphas": section["hcs"]["alphas"],
+        "error_study.alphas": section["error_study"]["alphas"],
+        "extreme.alphas": section["extreme"]["alphas"],
+        "extreme.strong_dissipation": section["extreme"].get("strong_dissipation", []),
+    }
+    for key, values in lists.items():
+        for index, alpha in enumerate(values):
+            try:
+                alpha_key(alpha)
+            except ValueError as error:
+                where = key if key.endswith("restitution") else f"{key}[{index}]"
+                raise ValueError(f"config key montanero2007.{where} = {alpha!r}: {error}") from None
+
+
 def run_plan(section: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     """Every run of the study: ``{name: parameters}`` from the config section.
 
@@ -93,6 +113,7 @@ def run_plan(section: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     ``workflow/schemas/montanero2007.schema.yaml``).  Each run's parameters hold the
     protocol keys (:data:`PROTOCOL_KEYS`), ``restitution`` and ``family``.
     """
+    _check_restitution_keys(section)
     protocol = section["protocol"]
     plan: dict[str, dict[str, Any]] = {}
     for alpha in section["alphas"]:
