@@ -30,6 +30,10 @@ for column in ("n_particles", "fictive_factor"):  # integers, empty where they d
 io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".4g")
 io.write_table(pd.DataFrame(fits), snakemake.output.fits)
 io.write_table(pd.DataFrame(checks), snakemake.output.checks)
+amplitudes = pd.DataFrame(
+    [analysis.amplitude_row(result) for result in results], columns=analysis.AMPLITUDE_COLUMNS
+)
+io.write_table(amplitudes, snakemake.output.amplitudes)
 for check in checks:
     log.info(
         "%s %s: %.5g +- %.2g (expected %.5g, z = %.2f)",

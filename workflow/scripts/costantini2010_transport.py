@@ -14,6 +14,7 @@ log = start(snakemake)
 study = snakemake.params.study
 table = io.read_table(snakemake.input.table)
 fits = io.read_table(snakemake.input.fits)
+amplitudes = io.read_table(snakemake.input.amplitudes)
 measured = table[table.method.isin(["md", "dsmc"])]
 production = study["dsmc"]["fictive_factor"]
 measured = measured[(measured.method == "md") | (measured.fictive_factor == production)]
@@ -58,6 +59,21 @@ def versus_inverse_n(quantity, symbol, path):
                     marker=style["marker"],
                     color=style["color"],
                     label=rf"$1/N\to 0${chi2}",
+                )
+        if quantity == "nu_bar_star":  # the other amplitude: ν̄* from the measured C(0)
+            for method in ("dsmc", "md"):
+                other = amplitudes[(amplitudes.method == method) & (amplitudes.alpha == alpha)]
+                if method == "dsmc":
+                    other = other[other.fictive_factor == production]
+                ax.errorbar(
+                    1000.0 / other.n_particles,
+                    other.nu_bar_star_c0,
+                    other.nu_bar_star_c0_err,
+                    fmt=METHOD_STYLE[method]["marker"],
+                    color=METHOD_STYLE[method]["color"],
+                    alpha=0.3,
+                    ms=3,
+                    label=f"{METHOD_LABELS[method]}, from C(0)",
                 )
         ax.axhline(
             getattr(theory, quantity if quantity == "nu_star" else "nu_bar_star_white")(alpha),

@@ -38,7 +38,9 @@ from kinetic import io
 from kinetic.theory import costantini2010 as theory
 
 __all__ = [
+    "AMPLITUDE_COLUMNS",
     "TABLE_COLUMNS",
+    "amplitude_row",
     "analyse_run",
     "block_correlations",
     "checks",
@@ -393,6 +395,34 @@ def method_of(result: xr.Dataset) -> str:
     return "dsmc_homogeneous" if int(result.attrs["cells_per_side"]) == 1 else "dsmc"
 
 
+AMPLITUDE_COLUMNS = [
+    "method",
+    "alpha",
+    "n_particles",
+    "fictive_factor",
+    "amplitude",
+    "amplitude_err",
+    "correlation_zero",
+    "correlation_zero_err",
+    "nu_bar_star",
+    "nu_bar_star_err",
+    "nu_bar_star_c0",
+    "nu_bar_star_c0_err",
+]
+"""Columns of ``amplitudes.csv``: ν̄* from the fitted tail amplitude (Table 1's) beside ν̄*
+from the measured C(0)."""
+
+
+def amplitude_row(result: xr.Dataset) -> dict[str, Any]:
+    """Both amplitudes of one run and the ν̄* each gives."""
+    row = summary_row(result)
+    out = {key: row[key] for key in ("method", "alpha", "n_particles", "fictive_factor")}
+    for name in ("amplitude", "correlation_zero", "nu_bar_star", "nu_bar_star_c0"):
+        out[name] = float(result[name])
+        out[f"{name}_err"] = float(result[f"{name}_err"])
+    return out
+
+
 def summary_row(result: xr.Dataset) -> dict[str, Any]:
     """One simulated row of Table 1 from a run aggregate (``analyse_run`` + parameters)."""
     method = method_of(result)
@@ -602,6 +632,14 @@ def elastic_checks(extrapolated: Sequence[dict[str, Any]], fits: Sequence[dict[s
                     row["nu_star"],
                     row["nu_star_err"],
                     theory.nu_star_elastic(),
+                )
+            )
+            rows.append(
+                _check(
+                    f"nu_bar*/nu*(1/N -> 0) = 1 at alpha = 1: {row['method']}",
+                    row["ratio"],
+                    row["ratio_err"],
+                    1.0,
                 )
             )
     for fit in fits:

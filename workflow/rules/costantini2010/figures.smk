@@ -19,7 +19,11 @@ provide(
     *table_files("costantini2010", "table1"),
     "results/costantini2010/extrapolation.csv",
 )
-provide("costantini2010/checks", "results/costantini2010/checks.csv")
+provide(
+    "costantini2010/checks",
+    "results/costantini2010/checks.csv",
+    "results/costantini2010/amplitudes.csv",
+)
 
 COSTANTINI2010_ANALYSIS_CODE = package_files(
     "analysis/costantini2010", "theory/costantini2010", "studies/costantini2010", "plotting"
@@ -137,6 +141,7 @@ rule costantini2010_table1:
         md="results/costantini2010/table1.md",
         fits="results/costantini2010/extrapolation.csv",
         checks="results/costantini2010/checks.csv",
+        amplitudes="results/costantini2010/amplitudes.csv",
     log:
         "logs/costantini2010/table1.log",
     params:
@@ -150,6 +155,7 @@ rule costantini2010_fig04_to_fig07:
     input:
         table="results/costantini2010/table1.csv",
         fits="results/costantini2010/extrapolation.csv",
+        amplitudes="results/costantini2010/amplitudes.csv",
         script=figure_script("costantini2010_transport"),
         code=COSTANTINI2010_ANALYSIS_CODE,
     output:
