@@ -127,7 +127,7 @@ def test_error_against_cpu_time_falls_with_more_blocks():
 
 def test_too_short_blocks_are_refused_with_advice():
     with pytest.raises(ValueError, match="too short"):
-        analyse(synthetic_run(4, samples=200))
+        analyse(synthetic_run(4, samples=40))
 
 
 def test_extrapolation_in_inverse_n_is_exact_on_a_line_and_reports_chi2():

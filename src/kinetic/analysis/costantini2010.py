@@ -200,7 +200,8 @@ def analyse_run(
 
     ``transient``: engine time discarded before C(τ) and the steady averages;
     ``max_lag``, ``fit_start``: in ℓ/v_s; ``fit_stop``: fraction of C(0) ending the fit.
-    Returns a dataset with C(τ*) and its error (``lag`` in ℓ/v_s), the mean temperature
+    Returns a dataset with C(τ*) and its error (``lag`` in ℓ/v_s, up to ``max_lag`` or half
+    a block, whichever is shorter), the mean temperature
     against τ over the whole run (``time`` in ℓ/v_s, for Fig 1), and the scalars τ_c, A,
     ν*, ν̄*, their ratio, ζ* (measured and balance), T_s, each with its error, the fit
     window, the collision and momentum diagnostics, and the error of ν* and ν̄* against
@@ -214,6 +215,9 @@ def analyse_run(
     to_reduced = density * math.sqrt(2.0 * temperature_s)  # engine time -> ℓ/v_s
     k_star = theory.reduced_wavenumber(n_particles, density)
     n_lags = max(3, round(max_lag / (interval * to_reduced)) + 1)
+    # a run whose gas is much colder than T0 (Fig 1's bad case) covers fewer l/v_s per
+    # sample: its lags stop at half a block
+    n_lags = min(n_lags, max(3, steady.sizes["time"] // blocks_per_realization // 2))
     lags = np.arange(n_lags) * interval * to_reduced
 
     modes = (steady.mode_real + 1j * steady.mode_imag).transpose("realization", "time", "mode")
