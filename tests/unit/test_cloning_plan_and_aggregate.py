@@ -90,8 +90,8 @@ def test_batches_pool_into_the_single_run_result(section):
     assert record["n_runs"] == 4
     assert record["mu"] == pytest.approx(float(whole.mu), rel=1e-12)
     assert record["a2_err"] == pytest.approx(float(whole.a2_err), rel=1e-12)
-    with pytest.raises(ValueError, match="repeat run indices"):
-        aggregate.combine_points([parts[0], parts[0]])
+    with pytest.raises(ValueError, match=r"appears in both a\.nc and b\.nc"):
+        aggregate.combine_points([parts[0], parts[0]], names=["a.nc", "b.nc"])
 
 
 def test_table_has_the_contract_columns_and_extrapolation_rows(section):

@@ -5,7 +5,8 @@ from kinetic.cloning import aggregate
 from kinetic.workflow_support import start
 
 log = start(snakemake)
-records = aggregate.combine_points(io.read_dataset(path) for path in snakemake.input.batches)
+paths = list(snakemake.input.batches)
+records = aggregate.combine_points([io.read_dataset(path) for path in paths], names=paths)
 limits = aggregate.extrapolate_points(records)
 io.write_table(aggregate.scan_table(records, limits), snakemake.output.csv, snakemake.output.md)
 dataset = io.stamp(

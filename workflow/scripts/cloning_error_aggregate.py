@@ -7,7 +7,8 @@ from kinetic.cloning import aggregate
 from kinetic.workflow_support import start
 
 log = start(snakemake)
-records = aggregate.combine_points(io.read_dataset(path) for path in snakemake.input.batches)
+paths = list(snakemake.input.batches)
+records = aggregate.combine_points([io.read_dataset(path) for path in paths], names=paths)
 reference = io.read_dataset(snakemake.input.reference)
 exact = {}
 for record in records:

@@ -47,17 +47,28 @@ def _attribute(dataset, key):
     return io.parameters_of(dataset)[key]
 
 
-def combine_points(datasets) -> list[dict[str, Any]]:
+def combine_points(datasets, names=None) -> list[dict[str, Any]]:
     """Group batch datasets by point and pool their runs.
 
     Batches of one point must share every parameter except ``first_run``/``n_runs`` and
-    must not repeat a run index. Returns records sorted by (kernel, λ, N_c).
+    must not repeat a run index (the error names both batches, by ``names``, e.g. their
+    paths, or by position). Returns records sorted by (kernel, λ, N_c).
     """
+    datasets = list(datasets)
+    names = list(names) if names is not None else [f"batch {i}" for i in range(len(datasets))]
     groups = defaultdict(list)
-    for dataset in datasets:
+    sources = defaultdict(dict)
+    for name, dataset in zip(names, datasets, strict=True):
         parameters = io.parameters_of(dataset)
         key = (parameters["kernel_label"], float(parameters["lam"]), int(parameters["population"]))
         groups[key].append(dataset)
+        for run in np.asarray(dataset["run"].values).tolist():
+            if run in sources[key]:
+                raise ValueError(
+                    f"run {run} of {key[0]} lam={key[1]} N={key[2]} appears in both "
+                    f"{sources[key][run]} and {name}: the batches overlap; delete the stale one"
+                )
+            sources[key][run] = name
     records = []
     for (label, lam, population), members in sorted(groups.items()):
         first = io.parameters_of(members[0])
