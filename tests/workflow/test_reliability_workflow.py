@@ -84,7 +84,10 @@ def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_
     --unlock, and the rerun builds only what is missing (and removes the orphans)."""
     config = tmp_path / "config.yaml"
     settings = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
-    settings["costantini2010"].update({"realizations": 2, "realizations_per_job": 1})
+    # two jobs of about 10 s each, so that the second is surely running when killed
+    settings["costantini2010"].update(
+        {"realizations": 2, "realizations_per_job": 1, "min_duration": 1500}
+    )
     config.write_text(yaml.safe_dump(settings))
     run = "results/costantini2010/dsmc/n2000-alpha1-f10-cell0.5-step0.05"
     target = [f"{run}.nc", "--cores", "1", "--configfile", str(config)]
@@ -97,10 +100,11 @@ def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_
         start_new_session=True,
     )
     first, second = tmp_path / run / "batch0000.nc", tmp_path / run / "batch0001.nc"
+    second_log = tmp_path / "logs" / run.removeprefix("results/") / "batch0001.log"
     deadline = time.monotonic() + 300
-    while not first.exists() and time.monotonic() < deadline and process.poll() is None:
+    while not second_log.exists() and time.monotonic() < deadline and process.poll() is None:
         time.sleep(0.2)
-    time.sleep(1.0)  # the second job is running
+    time.sleep(2.0)  # the second job is running
     os.killpg(process.pid, signal.SIGKILL)
     process.wait()
     assert first.exists(), "the first job did not finish in time"
