@@ -11,7 +11,9 @@ Usage in a figure script::
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 import numpy as np
@@ -20,10 +22,48 @@ matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt
 
-__all__ = ["STYLE", "density_points", "errorbar", "figure", "inset", "save"]
+__all__ = [
+    "METHOD_LABELS",
+    "METHOD_STYLE",
+    "STYLE",
+    "bin_average",
+    "density_points",
+    "errorbar",
+    "figure",
+    "inset",
+    "method_errorbar",
+    "residual_panel",
+    "save",
+    "theory_steps",
+    "write_caption",
+]
 
 STYLE = Path(__file__).with_name("kinetic.mplstyle")
 plt.style.use(STYLE)
+
+
+METHOD_STYLE: dict[str, dict[str, Any]] = {
+    "md": {"marker": "o", "color": "black"},
+    "dsmc": {"marker": "s", "color": "tab:blue"},
+    "cloning": {"marker": "^", "color": "tab:red"},
+    "direct": {"marker": "D", "color": "tab:purple"},
+    "markov": {"marker": "v", "color": "tab:orange"},
+    "theory": {"color": "tab:green", "linestyle": "-"},
+    "theory_alt": {"color": "tab:gray", "linestyle": "--"},
+}
+"""One symbol and colour per method, the same in every figure of every document (MD,
+DSMC, cloning, direct and Markov-chain sampling; theory as lines, a second theory
+dashed)."""
+
+METHOD_LABELS = {
+    "md": "MD",
+    "dsmc": "DSMC",
+    "cloning": "cloning",
+    "direct": "direct sampling",
+    "markov": "Markov chain",
+    "theory": "theory",
+    "theory_alt": "theory",
+}
 
 
 def figure(nrows: int = 1, ncols: int = 1, **kwargs):
@@ -61,3 +101,60 @@ def save(fig, pdf_path: str | os.PathLike) -> None:
     fig.savefig(pdf_path, metadata={"CreationDate": None, "Creator": "kinetic"})
     fig.savefig(pdf_path.with_suffix(".png"))
     plt.close(fig)
+
+
+def method_errorbar(ax, method: str, x, y, yerr, *, label=None, **kwargs):
+    """Simulation points of ``method`` (a key of METHOD_STYLE) with their standard errors,
+    in the method's marker and colour; ``label`` defaults to the method's name."""
+    style = {**METHOD_STYLE[method], **kwargs}
+    marker = style.pop("marker", "o")
+    label = METHOD_LABELS[method] if label is None else label
+    return errorbar(ax, x, y, yerr, label=label, marker=marker, **style)
+
+
+def bin_average(function: Callable[[np.ndarray], np.ndarray], edges, points: int = 12):
+    """The mean of ``function`` over each bin [edges[i], edges[i+1]] (Gauss-Legendre with
+    ``points`` nodes per bin): the quantity a histogram estimates, to compare like with
+    like near steep fronts and contacts."""
+    edges = np.asarray(edges, dtype=float)
+    nodes, weights = np.polynomial.legendre.leggauss(points)
+    left, right = edges[:-1, None], edges[1:, None]
+    x = 0.5 * (right - left) * nodes[None, :] + 0.5 * (right + left)
+    return 0.5 * (function(x) * weights[None, :]).sum(axis=1)
+
+
+def theory_steps(ax, edges, values, *, method: str = "theory", label=None, **kwargs):
+    """Bin-averaged theory drawn as steps over the histogram's bins."""
+    style = {k: v for k, v in METHOD_STYLE[method].items() if k != "marker"}
+    style.update(kwargs)
+    label = METHOD_LABELS[method] if label is None else label
+    return ax.stairs(values, edges, label=label, baseline=None, **style)
+
+
+def residual_panel(ax, x, data, error, theory, *, method: str = "md", label=None, **kwargs):
+    """Residuals data/theory - 1 with their errors, beside a zero line; points where the
+    theory vanishes are skipped."""
+    data, error, theory = (np.asarray(a, dtype=float) for a in (data, error, theory))
+    ok = theory != 0
+    ax.axhline(0.0, color="0.6", linewidth=0.6, zorder=0)
+    ax.set_ylabel("data/theory − 1")
+    return method_errorbar(
+        ax,
+        method,
+        np.asarray(x)[ok],
+        data[ok] / theory[ok] - 1.0,
+        error[ok] / np.abs(theory[ok]),
+        label=label,
+        **kwargs,
+    )
+
+
+def write_caption(template: str | os.PathLike, path: str | os.PathLike, **values) -> str:
+    """Render a caption template (reStructuredText with ``str.format`` fields such as
+    ``{z_k2:.1f}``) with numbers taken from the data files, and write it to ``path``
+    (the report reads it there). Returns the text."""
+    text = Path(template).read_text(encoding="utf-8").format(**values)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+    return text
