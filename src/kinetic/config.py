@@ -1,9 +1,8 @@
 """Config validation with messages that name the key, the value and the allowed range.
 
-The workflow validates ``config`` against ``workflow/schemas/config.schema.yaml`` with
-``snakemake.utils.validate`` (which also fills the schema's defaults in place) before
-any job starts; ``validate_config`` wraps it and rewrites jsonschema's error into one
-sentence, e.g.::
+The workflow validates ``config`` against ``workflow/schemas/config.schema.yaml`` before
+any job starts, filling the schema's defaults in place as ``snakemake.utils.validate``
+does; ``validate_config`` rewrites jsonschema's error into one sentence, e.g.::
 
     config key visco2008.md.n_particles = -5 is not allowed: must be >= 2
     (number of disks in the periodic box)
@@ -11,9 +10,9 @@ sentence, e.g.::
 
 from __future__ import annotations
 
+import copy
 import math
 import os
-import tempfile
 from collections.abc import MutableMapping
 from pathlib import Path
 from typing import Any
@@ -25,6 +24,9 @@ __all__ = ["SCHEMA", "ConfigError", "explain", "load_config_file", "main", "vali
 
 SCHEMA = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
 """The workflow's top-level schema (in a source checkout)."""
+
+_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+"""libyaml's loader where available: the schemas are read at every workflow parse."""
 
 
 class ConfigError(ValueError):
@@ -86,7 +88,7 @@ def compose_schema(path: str | os.PathLike) -> dict[str, Any]:
     Recursive definitions are not supported (none of the schemas needs one).
     """
     path = Path(path).resolve()
-    document = yaml.safe_load(path.read_text())
+    document = yaml.load(path.read_text(), Loader=_LOADER)
 
     def pointer(reference: str) -> Any:
         node: Any = document
@@ -152,21 +154,31 @@ def validate_config(config: MutableMapping[str, Any], schema: str | os.PathLike 
 
     Beyond the schema: no NaN or infinite number anywhere, and no float (7.0) where the
     schema asks for an integer, each refused with its key."""
-    from snakemake.exceptions import WorkflowError
-    from snakemake.utils import validate
-
     composed_schema = compose_schema(schema)
     _strict_numbers(config, composed_schema, "")
-    with tempfile.TemporaryDirectory() as directory:
-        composed = Path(directory) / "config.schema.yaml"
-        composed.write_text(yaml.safe_dump(composed_schema, sort_keys=False))
-        try:
-            validate(config, str(composed))
-        except WorkflowError as workflow_error:
-            cause = workflow_error.__context__  # snakemake raises while handling it
-            if not isinstance(cause, jsonschema.ValidationError):
-                raise
-            raise ConfigError(explain(cause)) from None
+    try:
+        _DefaultFillingValidator(composed_schema).validate(config)
+    except jsonschema.ValidationError as error:
+        raise ConfigError(explain(error)) from None
+
+
+def _fill_defaults(validator, properties, instance, schema):
+    """The 'properties' keyword, which first sets every missing key that has a default
+    (the schema is fully inlined, so one validator sees every level)."""
+    if isinstance(instance, dict):
+        for name, subschema in properties.items():
+            if isinstance(subschema, dict) and "default" in subschema:
+                instance.setdefault(name, copy.deepcopy(subschema["default"]))
+    yield from jsonschema.Draft202012Validator.VALIDATORS["properties"](
+        validator, properties, instance, schema
+    )
+
+
+_DefaultFillingValidator = jsonschema.validators.extend(
+    jsonschema.Draft202012Validator, {"properties": _fill_defaults}
+)
+"""Draft 2020-12 validation that fills defaults, as ``snakemake.utils.validate`` does,
+without its round trip through a schema file (the parse of every dry run pays it)."""
 
 
 def load_config_file(path: str | os.PathLike) -> dict[str, Any]:

@@ -115,3 +115,11 @@ def test_table_has_the_contract_columns_and_extrapolation_rows(section):
     assert dataset.sizes["point"] == 7 and dataset.sizes["limit"] == 4
     assert isinstance(table["n_c"].dtype, pd.Int64Dtype)
     assert np.isfinite(dataset["limit_mu_rate"].values[:2]).all()
+
+
+@pytest.mark.parametrize("lam", [-2.0, -0.3, 0.0, 0.7])
+def test_planned_event_rate_factor_is_the_kernels(lam):
+    from kinetic.cloning import kernels
+    from kinetic.cloning.plan import event_rate_factor
+
+    assert event_rate_factor(lam) == pytest.approx(kernels.compensation_parameters(lam)[0])

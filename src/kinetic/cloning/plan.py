@@ -21,8 +21,6 @@ from typing import Any
 
 import numpy as np
 
-from kinetic.cloning.kernels import compensation_parameters
-
 __all__ = [
     "KERNEL_SETTINGS",
     "batch_keys",
@@ -95,6 +93,12 @@ def point_seed_key(study: str, kernel: str, lam_token: str, n_token: str) -> str
     return f"visco2008/cloning/{study}/{kernel}/{lam_token}/{n_token}"
 
 
+def event_rate_factor(lam: float) -> float:
+    """c_λ of ``kernels.compensation_parameters`` (1 for λ >= 0, 2e^{-λ} - 1 below), in
+    plain Python: the workflow plans jobs at every parse without loading the kernels."""
+    return 1.0 if lam >= 0.0 else 2.0 * math.exp(-lam) - 1.0
+
+
 def run_parameters(
     section: Mapping[str, Any],
     study: str,
@@ -124,7 +128,7 @@ def run_parameters(
     settings = _study_settings(section, study)
     if not 0 <= int(batch) < settings["batches"]:
         raise ValueError(f"batch {batch} outside 0..{settings['batches'] - 1}")
-    rate_factor, _, _ = compensation_parameters(lam)
+    rate_factor = event_rate_factor(lam)
     duration = settings["collisions_per_run"] / (population * rate_factor)
     kernel_settings = KERNEL_SETTINGS[kernel]
     renewal = section["transient_kept_collisions"] * math.exp(lam) / kernel_settings["slowest_rate"]
