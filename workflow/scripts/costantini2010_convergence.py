@@ -62,7 +62,7 @@ for ax, column, fixed, fixed_value, label in (
     )
     ax.set_xlabel(f"({label})$^2$")
 axes[0].set_ylabel(r"$\nu^*$ ($\alpha = 1$)")
-axes[0].legend(fontsize=6)
+plotting.figure_legend(fig)
 plotting.save(fig, snakemake.output.pdf)
 io.write_table(table, snakemake.output.csv)
 log.info("%s", table.to_string())

@@ -50,6 +50,6 @@ for path in snakemake.input.runs:
         )
     seconds_for_1pc = float(cpu[0] * (result.error_nu_star[0] / (0.01 * result.nu_star)) ** 2)
     log.info("%s: CPU seconds for a 1 %% error on nu*: %.3g", method, seconds_for_1pc)
-axes[0].legend(fontsize=6)
+plotting.figure_legend(fig)
 plotting.save(fig, snakemake.output.pdf)
 io.write_table(pd.DataFrame(records), snakemake.output.csv)

@@ -36,7 +36,7 @@ for result in results:
 ax.axhline(1.0, color=METHOD_STYLE["theory"]["color"], lw=0.8, ls=":", label=r"expected $T_s$")
 ax.set_xlabel(r"$\tau\, v_s/\ell$")
 ax.set_ylabel(r"$T/T_0$")
-ax.legend(fontsize=6, loc="best", ncols=2)
+plotting.figure_legend(fig, ncols=3)
 chaos.set_xscale("log")
 chaos.set_yscale("log")
 chaos.set_xlabel("real particles per cell")

@@ -10,5 +10,5 @@ study = snakemake.params.study
 results = [io.read_dataset(path) for path in snakemake.input.runs]
 fig, ax = plotting.figure()
 correlation_panel(ax, results, study["density"], log)
-ax.legend(fontsize=6)
+plotting.legend_outside(ax)
 plotting.save(fig, snakemake.output.pdf)

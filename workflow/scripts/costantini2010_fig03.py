@@ -15,5 +15,5 @@ for ax, n in zip(axes if len(sizes) > 1 else [axes], sizes, strict=True):
         ax, [r for r in results if int(r.attrs["n_particles"]) == n], study["density"], log
     )
     ax.set_title(f"N = {n}", fontsize=8)
-    ax.legend(fontsize=6)
+plotting.figure_legend(fig)
 plotting.save(fig, snakemake.output.pdf)

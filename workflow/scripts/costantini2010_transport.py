@@ -84,8 +84,8 @@ def versus_inverse_n(quantity, symbol, path):
         ax.set_title(rf"$\alpha = {alpha:g}$", fontsize=8)
         ax.set_xlabel(r"$10^3/N$")
         ax.set_xlim(left=-0.05)
-        ax.legend(fontsize=5)
     axes[0][0].set_ylabel(symbol)
+    plotting.figure_legend(fig)
     plotting.save(fig, path)
 
 
@@ -130,7 +130,7 @@ for ax, quantity, symbol, curve in (
     )
     ax.set_xlabel(r"$\alpha$")
     ax.set_ylabel(symbol)
-axes[0].legend(fontsize=5)
+plotting.figure_legend(fig)
 plotting.save(fig, snakemake.output.fig06)
 
 fig, ax = plotting.figure()
@@ -170,7 +170,7 @@ top = max(float((shown.ratio + shown.ratio_err).max()), float(theory.fdr_ratio_w
 ax.set_ylim(0.8, 1.15 * top)  # the coloured-noise curves of small N may leave the frame
 ax.set_xlabel(r"$\alpha$")
 ax.set_ylabel(r"$\bar\nu^*/\nu^*$")
-ax.legend(fontsize=5)
+plotting.legend_outside(ax)
 plotting.save(fig, snakemake.output.fig07)
 for _, row in limit.iterrows():
     log.info(

@@ -30,7 +30,9 @@ __all__ = [
     "density_points",
     "errorbar",
     "figure",
+    "figure_legend",
     "inset",
+    "legend_outside",
     "method_errorbar",
     "residual_panel",
     "save",
@@ -101,6 +103,27 @@ def save(fig, pdf_path: str | os.PathLike) -> None:
     fig.savefig(pdf_path, metadata={"CreationDate": None, "Creator": "kinetic"})
     fig.savefig(pdf_path.with_suffix(".png"))
     plt.close(fig)
+
+
+def legend_outside(ax, *, ncols: int = 1, **kwargs):
+    """The legend of ``ax`` to the right of the axes, off the data, at the style's size."""
+    kwargs.setdefault("loc", "upper left")
+    kwargs.setdefault("bbox_to_anchor", (1.02, 1.0))
+    kwargs.setdefault("borderaxespad", 0.0)
+    return ax.legend(ncols=ncols, **kwargs)
+
+
+def figure_legend(fig, *, ncols: int = 3, **kwargs):
+    """One legend for every axes of ``fig`` (each label once), above the panels."""
+    handles, labels = {}, []
+    for ax in fig.axes:
+        for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
+            if label not in handles:
+                handles[label] = handle
+                labels.append(label)
+    kwargs.setdefault("loc", "lower center")
+    kwargs.setdefault("bbox_to_anchor", (0.5, 1.0))
+    return fig.legend([handles[label] for label in labels], labels, ncols=ncols, **kwargs)
 
 
 def method_errorbar(ax, method: str, x, y, yerr, *, label=None, **kwargs):

@@ -6,15 +6,18 @@ from typing import Any
 
 import xarray as xr
 
+from kinetic import plotting
+
 __all__ = ["METHOD_LABELS", "METHOD_STYLE", "correlation_panel", "run_label"]
 
 METHOD_STYLE: dict[str, dict[str, Any]] = {
-    "md": {"marker": "o", "color": "black"},
-    "dsmc": {"marker": "s", "color": "tab:blue"},
-    "dsmc_homogeneous": {"marker": "^", "color": "tab:red"},
-    "theory": {"color": "tab:green", "linestyle": "-"},
+    "md": plotting.METHOD_STYLE["md"],
+    "dsmc": plotting.METHOD_STYLE["dsmc"],
+    "dsmc_homogeneous": {"marker": "v", "color": "tab:cyan"},
+    "theory": plotting.METHOD_STYLE["theory"],
 }
-"""Marker and colour of each method (theory: a line)."""
+"""Marker and colour of each method (theory: a line): the project's, plus a variant of
+DSMC's for the homogeneous (one-cell) DSMC."""
 
 METHOD_LABELS = {
     "md": "MD",
