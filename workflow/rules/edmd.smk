@@ -21,7 +21,7 @@ def _check_visco2008_md():
         problems.append(f"windows {windows} must be strictly increasing")
     if windows[-1] > md["duration"]:
         problems.append(f"the longest window {windows[-1]} exceeds duration {md['duration']}")
-    for key in ("table_windows", "ldf_windows"):
+    for key in ("table_windows", "ldf_windows", "extrapolation_windows"):
         missing = [t for t in md[key] if t not in windows]
         if missing:
             problems.append(f"{key} {missing} are not among windows {windows}")

@@ -5,7 +5,13 @@ provide("visco2008/fig03", *figure_files("visco2008", "fig03"))
 provide("visco2008/fig11", *figure_files("visco2008", "fig11"))
 provide("visco2008/table1", *table_files("visco2008", "table1"))
 
-VISCO2008_THEORY_FAMILIES = ["large_deviations", "free_flights", "free_paths", "closures"]
+VISCO2008_THEORY_FAMILIES = [
+    "large_deviations",
+    "free_flights",
+    "free_paths",
+    "closures",
+    "finite_time",
+]
 
 
 def visco2008_theory(family):
@@ -26,6 +32,11 @@ def visco2008_theory_grid(wildcards):
             "lambda_min": theory["lambda_min"],
             "lambda_max": theory["lambda_max"],
             "points": theory["lambda_points"],
+        },
+        # π(n) at the MD's counting windows (Fig. 9): the windows are the MD's, by design
+        "finite_time": {
+            "windows": config["visco2008"]["md"]["ldf_windows"],
+            "rate_max": theory["rate_max"],
         },
     }
     return grids[wildcards.family]

@@ -36,6 +36,10 @@ def visco2008_md_ldf_windows(wildcards):
     return visco2008_md()["ldf_windows"]
 
 
+def visco2008_md_ldf_min_count(wildcards):
+    return visco2008_md()["ldf_min_count"]
+
+
 def visco2008_md_error_window(wildcards):
     return visco2008_md()["error_window"]
 
@@ -81,18 +85,22 @@ rule visco2008_fig09:
     input:
         md=visco2008_md_figure_data,
         curves=visco2008_theory("large_deviations"),
+        finite=visco2008_theory("finite_time"),
+        template="workflow/report/visco2008_fig09.rst",
         script=figure_script("visco2008_fig09"),
     output:
         pdf="results/visco2008/fig09.pdf",
         png=report(
             "results/visco2008/fig09.png",
-            caption="../report/visco2008_fig09.rst",
+            caption="../../results/visco2008/fig09.caption.rst",
             category="visco2008",
         ),
+        caption="results/visco2008/fig09.caption.rst",
     log:
         "logs/visco2008/fig09.log",
     params:
         windows=visco2008_md_ldf_windows,
+        min_count=visco2008_md_ldf_min_count,
     script:
         "../scripts/visco2008_fig09.py"
 

@@ -26,6 +26,7 @@ __all__ = [
     "collision_frequency",
     "combine_realizations",
     "count_large_deviation",
+    "count_ldf_estimate",
     "cumulant_dataset",
     "cumulant_table",
     "error_against_cpu_time",
@@ -140,14 +141,29 @@ def free_path_pdf(dataset) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return centres, density, sem
 
 
-def count_large_deviation(dataset, window: float, checkpoint: int = -1):
+def count_large_deviation(dataset, window: float, checkpoint: int = -1, *, min_count: int = 1):
     """Finite-time estimate of π(n) from the pooled count histogram at window length t:
 
         π_t(n) = (1/t) ln[P(N = n t) / max_k P(N = k)],   n = N / t,
 
     with t in measured mean free times (pooled ω). Returns (n, π_t, error) for counts
-    observed at least once; error = 1/(t √count) (pooled counting error).
+    observed at least ``min_count`` times; error = 1/(t √count) (pooled counting error).
     """
+    estimate = count_ldf_estimate(dataset, window, checkpoint, min_count=min_count)
+    return estimate["rate"], estimate["ldf"], estimate["error"]
+
+
+def count_ldf_estimate(dataset, window: float, checkpoint: int = -1, *, min_count: int = 1):
+    """π_t(n) of ``count_large_deviation`` with its bookkeeping, as a dict: ``count`` (k),
+    ``rate`` (n = k/t), ``ldf``, ``error``, ``t`` (window in measured mean free times),
+    ``total`` (pooled counts), ``dropped`` (observed bins with fewer than ``min_count``).
+
+    Bins seen fewer than ``min_count`` times are left out: a bin seen once sits at the
+    floor ln(1/total)/t whatever its probability (a false plateau at the ends of the
+    range), and its counting error is far from Gaussian.
+    """
+    if min_count < 1:
+        raise ValueError(f"min_count must be >= 1, got {min_count}")
     index = int(np.argmin(np.abs(dataset["window"].values - window)))
     histogram = dataset["window_histogram"].values[:, checkpoint, index].sum(axis=0)
     n_particles = dataset.attrs["n_particles"]
@@ -158,11 +174,17 @@ def count_large_deviation(dataset, window: float, checkpoint: int = -1):
     )
     t = float(dataset["window_time"].values[:, index].mean() * omega)
     counts = np.arange(histogram.size)
-    seen = histogram > 0
-    probability = histogram[seen] / histogram.sum()
-    ldf = np.log(probability / probability.max()) / t
-    error = 1.0 / (t * np.sqrt(histogram[seen]))
-    return counts[seen] / t, ldf, error
+    kept = histogram >= min_count
+    probability = histogram[kept] / histogram.sum()
+    return {
+        "count": counts[kept],
+        "rate": counts[kept] / t,
+        "ldf": np.log(probability / probability.max()) / t,
+        "error": 1.0 / (t * np.sqrt(histogram[kept])),
+        "t": t,
+        "total": int(histogram.sum()),
+        "dropped": int(np.sum((histogram > 0) & ~kept)),
+    }
 
 
 def error_against_cpu_time(dataset, window: float = 10.0) -> dict:
