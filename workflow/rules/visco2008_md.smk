@@ -86,7 +86,7 @@ rule visco2008_fig09:
         md=visco2008_md_figure_data,
         curves=visco2008_theory("large_deviations"),
         finite=visco2008_theory("finite_time"),
-        template="workflow/report/visco2008_fig09.rst",
+        template=caption_template("visco2008_fig09"),
         script=figure_script("visco2008_fig09"),
     output:
         pdf="results/visco2008/fig09.pdf",
