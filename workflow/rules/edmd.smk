@@ -92,6 +92,10 @@ def visco2008_md_table_windows(wildcards):
     return visco2008_md()["table_windows"]
 
 
+def visco2008_md_extrapolation_windows(wildcards):
+    return visco2008_md()["extrapolation_windows"]
+
+
 def edmd_sources(wildcards):
     return engine_sources("edmd")
 
@@ -135,6 +139,7 @@ rule edmd_visco2008_aggregate:
         "logs/visco2008/md/{run}_aggregate.log",
     params:
         table_windows=visco2008_md_table_windows,
+        extrapolation_windows=visco2008_md_extrapolation_windows,
     wildcard_constraints:
         run=visco2008_md_run_pattern(),
     script:

@@ -47,6 +47,11 @@ def visco2008_table1_md(wildcards):
     return VISCO2008_TABLE1_MD
 
 
+def visco2008_table1_extrapolation_windows(wildcards):
+    """Windows t of the 1/t fit of Table I's extrapolated rows (for the caption)."""
+    return config["visco2008"]["md"]["extrapolation_windows"]
+
+
 rule visco2008_theory:
     input:
         package_files("theory"),
@@ -100,11 +105,15 @@ rule visco2008_table1:
     input:
         closures=visco2008_theory("closures"),
         md=visco2008_table1_md,
+        template=caption_template("visco2008_table1"),
         script=figure_script("visco2008_table1"),
     output:
         csv="results/visco2008/table1.csv",
         md="results/visco2008/table1.md",
+        caption="results/visco2008/table1.caption.rst",
     log:
         "logs/visco2008/table1.log",
+    params:
+        extrapolation_windows=visco2008_table1_extrapolation_windows,
     script:
         "../scripts/visco2008_table1.py"

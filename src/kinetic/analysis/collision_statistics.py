@@ -30,6 +30,7 @@ __all__ = [
     "cumulant_dataset",
     "cumulant_table",
     "error_against_cpu_time",
+    "extrapolated_cumulants",
     "flight_time_pdf",
     "free_path_pdf",
     "histogram_cumulants",
@@ -106,6 +107,48 @@ def cumulant_table(dataset, checkpoint: int = -1) -> dict:
         "order": np.arange(1, 4),
         "scaled_cumulant": mean,
         "scaled_cumulant_sem": sem,
+    }
+
+
+def extrapolated_cumulants(dataset, windows, checkpoint: int = -1) -> dict:
+    """⟨N^p⟩_c/t extrapolated to t -> ∞ by a fit k_p(t) = k_p(∞) + c_p/t over ``windows``.
+
+    For a stationary count with integrable correlations Var N_t = 2 D t - C + o(1), and
+    likewise for the third cumulant, so the finite-t cumulants approach their limit as
+    1/t once t exceeds the correlation time of the free flights (a few mean free times).
+    The fit is made realization by realization (least squares in 1/t, with t that
+    realization's window in measured mean free times), and the spread of the intercepts
+    over the independent realizations gives the error: the windows of one realization
+    share their collisions, so their cumulants are correlated and a pooled fit would not
+    give an honest error.
+
+    Returns a dict: ``order`` (p = 1, 2, 3), ``value`` and ``sem`` of k_p(∞), ``slope`` and
+    ``slope_sem`` of c_p, ``windows`` (the t used).
+    """
+    windows = np.asarray(windows, dtype=float)
+    if windows.size < 2:
+        raise ValueError(f"need at least two windows to extrapolate in 1/t, got {windows}")
+    index = np.array([int(np.argmin(np.abs(dataset["window"].values - w))) for w in windows])
+    if not np.allclose(dataset["window"].values[index], windows):
+        raise ValueError(f"windows {list(windows)} not all observed: {dataset['window'].values}")
+    values = scaled_cumulants(dataset, checkpoint)[:, index, :]  # (r, w, p)
+    omega = collision_frequency(dataset, checkpoint)
+    inverse_t = 1.0 / (dataset["window_time"].values[:, index] * omega[:, None])  # (r, w)
+    intercepts, slopes = [], []
+    for r in range(values.shape[0]):
+        design = np.stack([np.ones_like(inverse_t[r]), inverse_t[r]], axis=1)
+        coefficients, *_ = np.linalg.lstsq(design, values[r], rcond=None)  # (2, p)
+        intercepts.append(coefficients[0])
+        slopes.append(coefficients[1])
+    value, sem = mean_and_sem(np.array(intercepts), axis=0)
+    slope, slope_sem = mean_and_sem(np.array(slopes), axis=0)
+    return {
+        "order": np.arange(1, 4),
+        "value": value,
+        "sem": sem,
+        "slope": slope,
+        "slope_sem": slope_sem,
+        "windows": windows,
     }
 
 
@@ -266,11 +309,14 @@ def combine_realizations(datasets) -> xr.Dataset:
     )
 
 
-def cumulant_dataset(dataset, windows=None) -> xr.Dataset:
+def cumulant_dataset(dataset, windows=None, extrapolation_windows=None) -> xr.Dataset:
     """Table I input: ⟨N^p⟩_c/t and its standard error for the requested windows.
 
     Coordinates ``window`` (t, mean free times) and ``order`` (p = 1, 2, 3); data variables
     ``scaled_cumulant`` and ``scaled_cumulant_sem``; global attribute ``density`` (ρσ²).
+    With ``extrapolation_windows``, also ``extrapolated_cumulant`` and
+    ``extrapolated_cumulant_sem`` (order): the t -> ∞ values of ``extrapolated_cumulants``,
+    and the attribute ``extrapolation_windows``.
     """
     table = cumulant_table(dataset)
     index = np.arange(table["window"].size)
@@ -279,8 +325,28 @@ def cumulant_dataset(dataset, windows=None) -> xr.Dataset:
         if not np.allclose(table["window"][index], windows):
             raise ValueError(f"windows {list(windows)} not all observed: {table['window']}")
     parameters = io.parameters_of(dataset)
+    variables = {}
+    attrs = {"density": float(parameters["density"])}
+    if extrapolation_windows is not None:
+        limit = extrapolated_cumulants(dataset, extrapolation_windows)
+        variables = {
+            "extrapolated_cumulant": (
+                "order",
+                limit["value"],
+                "1",
+                "<N^p>_c / t extrapolated to t -> infinity (fit in 1/t per realization)",
+            ),
+            "extrapolated_cumulant_sem": (
+                "order",
+                limit["sem"],
+                "1",
+                "standard error over independent realizations of the extrapolation",
+            ),
+        }
+        attrs["extrapolation_windows"] = limit["windows"]
     result = io.make_dataset(
         {
+            **variables,
             "scaled_cumulant": (
                 ("window", "order"),
                 table["scaled_cumulant"][index],
@@ -298,7 +364,7 @@ def cumulant_dataset(dataset, windows=None) -> xr.Dataset:
             "window": ("window", table["window"][index], "mean free times", "counting window t"),
             "order": ("order", table["order"], "1", "cumulant order p"),
         },
-        attrs={"density": float(parameters["density"])},
+        attrs=attrs,
     )
     return io.stamp(
         result,
