@@ -97,6 +97,18 @@ def visco2008_free_flights(*, time_max: float, points: int, d: int = 2):
                 _RATE_UNIT,
                 f"{pdf}, very hard particles (B4)",
             ),
+            "hard_spheres_survival": (
+                "time",
+                visco2008.free_flight_time_survival(time, d),
+                "1",
+                "probability of a free flight longer than t, hard spheres (Eq. 9)",
+            ),
+            "weighted_survival": (
+                "time",
+                visco2008.weighted_free_flight_time_survival(time, d),
+                "1",
+                "probability of a free flight longer than t under (A1)",
+            ),
             "maxwell": (
                 "time",
                 np.exp(-time),
@@ -113,9 +125,9 @@ def visco2008_free_paths(*, path_max: float, points: int, d: int = 2):
     """Free-path densities of Figs. 2 and 12, x in mean free paths l = <v>/ω."""
     path = np.linspace(0.0, path_max, points)
     pdf = "free path density"
-    inner = path[1:]
-    hard = np.concatenate([[np.nan], visco2008.free_path_pdf(inner, d)])
-    maxwell = np.concatenate([[np.nan], visco2008.maxwell_free_path_pdf(inner, d)])
+    # both densities are finite at x = 0: Eq. (14) gives 1.2193, (D3) gives π/2 (d = 2)
+    hard = visco2008.free_path_pdf(path, d)
+    maxwell = visco2008.maxwell_free_path_pdf(path, d)
     return make_dataset(
         {
             "hard_spheres": ("path", hard, "1/l", f"{pdf}, hard spheres (Eq. 14)"),
@@ -125,7 +137,19 @@ def visco2008_free_paths(*, path_max: float, points: int, d: int = 2):
                 "1/l",
                 "dominant exponential exp(-x/(sqrt(2) l)) (Eq. 16)",
             ),
+            "hard_spheres_survival": (
+                "path",
+                visco2008.free_path_survival(path, d),
+                "1",
+                "probability of a free path longer than x, hard spheres (Eq. 14)",
+            ),
             "maxwell": ("path", maxwell, "1/l", f"{pdf}, Maxwell molecules (D3)"),
+            "maxwell_survival": (
+                "path",
+                visco2008.maxwell_free_path_survival(path, d),
+                "1",
+                "probability of a free path longer than x, Maxwell molecules (D3)",
+            ),
             "maxwell_asymptotic": (
                 "path",
                 visco2008.maxwell_free_path_pdf_asymptotic(path, d),

@@ -42,9 +42,11 @@ __all__ = [
     "free_flight_time_laplace",
     "free_flight_time_pdf",
     "free_flight_time_pdf_asymptotic",
+    "free_flight_time_survival",
     "free_path_decay_rate",
     "free_path_pdf",
     "free_path_pdf_tail",
+    "free_path_survival",
     "gaussian_count_ldf",
     "gaussian_cumulants",
     "gaussian_mu",
@@ -53,6 +55,7 @@ __all__ = [
     "log_free_flight_time_pdf",
     "maxwell_free_path_pdf",
     "maxwell_free_path_pdf_asymptotic",
+    "maxwell_free_path_survival",
     "mean_free_path",
     "mean_speed",
     "poisson_count_ldf",
@@ -68,6 +71,7 @@ __all__ = [
     "vhp_free_flight_time_pdf",
     "weighted_free_flight_time_pdf",
     "weighted_free_flight_time_pdf_asymptotic",
+    "weighted_free_flight_time_survival",
 ]
 
 SQRT2 = np.sqrt(2.0)
@@ -230,6 +234,22 @@ def weighted_free_flight_time_pdf(t, d: int):
     return np.exp(_vectorize_log_integral(make, t))
 
 
+def free_flight_time_survival(t, d: int):
+    """Probability that a free flight lasts longer than t: ∫_t^∞ P_FFT = ∫ dv φ r e^{-r t}
+    (ω = 1), which is P_FFT^W(t) of (A1). Histogram bins [a, b] hold exactly
+    (S(a) - S(b))/(b - a), the bin average the data estimate."""
+    return weighted_free_flight_time_pdf(t, d)
+
+
+def weighted_free_flight_time_survival(t, d: int):
+    """∫_t^∞ P_FFT^W = ∫ dv φ(v) e^{-r t} (bin averages of (A1), as for P_FFT)."""
+
+    def make(time):
+        return lambda v: _log_speed_density(v, d) - collision_rate(v, d) * time
+
+    return np.exp(_vectorize_log_integral(make, t))
+
+
 def weighted_free_flight_time_pdf_asymptotic(t, d: int):
     """(A8): e^{-t/√2} 2^{(d-1)/2} (2 - 2/d + √2 t/d)^{-d/2}.
 
@@ -278,6 +298,32 @@ def free_path_pdf(x, d: int):
         )
 
     return scale * np.exp(_vectorize_log_integral(make, x))
+
+
+def free_path_survival(x, d: int):
+    """Probability that a free path is longer than x (units of l): ∫ dv φ r e^{-r x l/v}."""
+    scale = mean_free_path(d)
+
+    def make(length):
+        path = length * scale
+        return lambda v: (
+            _log_speed_density(v, d)
+            + np.log(collision_rate(v, d))
+            - collision_rate(v, d) * path / v
+        )
+
+    return np.exp(_vectorize_log_integral(make, x))
+
+
+def maxwell_free_path_survival(x, d: int):
+    """Maxwell molecules: probability that a free path exceeds x, ∫ dv φ(v) e^{-x l/v}."""
+    scale = mean_free_path(d)
+
+    def make(length):
+        path = length * scale
+        return lambda v: _log_speed_density(v, d) - path / v
+
+    return np.exp(_vectorize_log_integral(make, x))
 
 
 def free_path_pdf_tail(x, d: int, amplitude: float = 1.0):
