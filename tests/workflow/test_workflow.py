@@ -93,7 +93,8 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
         assert (results / "visco2008" / f"{name}.pdf").stat().st_size > 1000
         assert (results / "visco2008" / f"{name}.png").stat().st_size > 1000
     table = pd.read_csv(results / "visco2008" / "table1.csv")
-    assert list(table.columns) == [
+    # the original columns come first and keep their names; new ones follow
+    assert list(table.columns)[:9] == [
         "source",
         "rho",
         "t",
@@ -105,6 +106,9 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
         "k3_err",
     ]
     assert {"Poisson", "Gaussian", "Sonine"} <= set(table["source"])
+    assert {"paper_k2", "z_k2", "z_sonine_k2", "paper_row_density"} <= set(table.columns)
+    assert set(table["kind"]) == {"md", "extrapolated", "theory"}
+    assert (results / "visco2008" / "table1.caption.rst").stat().st_size > 100
     costantini = pd.read_csv(results / "costantini2010" / "table1.csv")
     assert list(costantini.columns) == [
         "method",

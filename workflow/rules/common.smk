@@ -117,6 +117,12 @@ def figure_script(name):
     return str(Path(workflow.basedir) / "workflow" / "scripts" / f"{name}.py")
 
 
+def caption_template(name):
+    """The caption template workflow/report/<name>.rst, an input of the figure rule that
+    renders it with numbers from the data (kinetic.plotting.write_caption)."""
+    return str(Path(workflow.basedir) / "workflow" / "report" / f"{name}.rst")
+
+
 # ---------------------------------------------------------------- resources of simulation jobs
 # Every simulation rule asks for the runtime (minutes) and memory (MB) that kinetic.cost
 # estimates for its output from the config (kinetic.plan lists the jobs), doubled on each

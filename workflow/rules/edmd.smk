@@ -21,7 +21,7 @@ def _check_visco2008_md():
         problems.append(f"windows {windows} must be strictly increasing")
     if windows[-1] > md["duration"]:
         problems.append(f"the longest window {windows[-1]} exceeds duration {md['duration']}")
-    for key in ("table_windows", "ldf_windows"):
+    for key in ("table_windows", "ldf_windows", "extrapolation_windows"):
         missing = [t for t in md[key] if t not in windows]
         if missing:
             problems.append(f"{key} {missing} are not among windows {windows}")
@@ -92,6 +92,10 @@ def visco2008_md_table_windows(wildcards):
     return visco2008_md()["table_windows"]
 
 
+def visco2008_md_extrapolation_windows(wildcards):
+    return visco2008_md()["extrapolation_windows"]
+
+
 def edmd_sources(wildcards):
     return engine_sources("edmd")
 
@@ -135,6 +139,7 @@ rule edmd_visco2008_aggregate:
         "logs/visco2008/md/{run}_aggregate.log",
     params:
         table_windows=visco2008_md_table_windows,
+        extrapolation_windows=visco2008_md_extrapolation_windows,
     wildcard_constraints:
         run=visco2008_md_run_pattern(),
     script:

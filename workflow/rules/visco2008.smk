@@ -5,7 +5,13 @@ provide("visco2008/fig03", *figure_files("visco2008", "fig03"))
 provide("visco2008/fig11", *figure_files("visco2008", "fig11"))
 provide("visco2008/table1", *table_files("visco2008", "table1"))
 
-VISCO2008_THEORY_FAMILIES = ["large_deviations", "free_flights", "free_paths", "closures"]
+VISCO2008_THEORY_FAMILIES = [
+    "large_deviations",
+    "free_flights",
+    "free_paths",
+    "closures",
+    "finite_time",
+]
 
 
 def visco2008_theory(family):
@@ -27,6 +33,11 @@ def visco2008_theory_grid(wildcards):
             "lambda_max": theory["lambda_max"],
             "points": theory["lambda_points"],
         },
+        # π(n) at the MD's counting windows (Fig. 9): the windows are the MD's, by design
+        "finite_time": {
+            "windows": config["visco2008"]["md"]["ldf_windows"],
+            "rate_max": theory["rate_max"],
+        },
     }
     return grids[wildcards.family]
 
@@ -34,6 +45,11 @@ def visco2008_theory_grid(wildcards):
 def visco2008_table1_md(wildcards):
     """MD cumulant files registered by the MD rules (none until they exist)."""
     return VISCO2008_TABLE1_MD
+
+
+def visco2008_table1_extrapolation_windows(wildcards):
+    """Windows t of the 1/t fit of Table I's extrapolated rows (for the caption)."""
+    return config["visco2008"]["md"]["extrapolation_windows"]
 
 
 rule visco2008_theory:
@@ -89,11 +105,15 @@ rule visco2008_table1:
     input:
         closures=visco2008_theory("closures"),
         md=visco2008_table1_md,
+        template=caption_template("visco2008_table1"),
         script=figure_script("visco2008_table1"),
     output:
         csv="results/visco2008/table1.csv",
         md="results/visco2008/table1.md",
+        caption="results/visco2008/table1.caption.rst",
     log:
         "logs/visco2008/table1.log",
+    params:
+        extrapolation_windows=visco2008_table1_extrapolation_windows,
     script:
         "../scripts/visco2008_table1.py"

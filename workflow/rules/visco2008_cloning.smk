@@ -43,14 +43,16 @@ rule visco2008_fig05:
         scan="results/visco2008/cloning.nc",
         closures=visco2008_theory("closures"),
         reference="results/visco2008/cloning/reference.nc",
+        template=caption_template("visco2008_fig05"),
         script=figure_script("visco2008_fig05"),
     output:
         pdf="results/visco2008/fig05.pdf",
         png=report(
             "results/visco2008/fig05.png",
-            caption="../report/visco2008_fig05.rst",
+            caption="../../results/visco2008/fig05.caption.rst",
             category="visco2008",
         ),
+        caption="results/visco2008/fig05.caption.rst",
     log:
         "logs/visco2008/fig05.log",
     script:
@@ -62,14 +64,16 @@ rule visco2008_fig06:
         scan="results/visco2008/cloning.nc",
         closures=visco2008_theory("closures"),
         reference="results/visco2008/cloning/reference.nc",
+        template=caption_template("visco2008_fig06"),
         script=figure_script("visco2008_fig06"),
     output:
         pdf="results/visco2008/fig06.pdf",
         png=report(
             "results/visco2008/fig06.png",
-            caption="../report/visco2008_fig06.rst",
+            caption="../../results/visco2008/fig06.caption.rst",
             category="visco2008",
         ),
+        caption="results/visco2008/fig06.caption.rst",
     log:
         "logs/visco2008/fig06.log",
     script:
@@ -100,14 +104,16 @@ rule visco2008_fig08:
         scan="results/visco2008/cloning.nc",
         closures=visco2008_theory("closures"),
         reference="results/visco2008/cloning/reference.nc",
+        template=caption_template("visco2008_fig08"),
         script=figure_script("visco2008_fig08"),
     output:
         pdf="results/visco2008/fig08.pdf",
         png=report(
             "results/visco2008/fig08.png",
-            caption="../report/visco2008_fig08.rst",
+            caption="../../results/visco2008/fig08.caption.rst",
             category="visco2008",
         ),
+        caption="results/visco2008/fig08.caption.rst",
     log:
         "logs/visco2008/fig08.log",
     script:

@@ -10,14 +10,16 @@ rule visco2008_fig12:
     input:
         dsmc="results/visco2008/dsmc/maxwell_free_paths.nc",
         curves=visco2008_theory("free_paths"),
+        template=caption_template("visco2008_fig12"),
         script=figure_script("visco2008_fig12"),
     output:
         pdf="results/visco2008/fig12.pdf",
         png=report(
             "results/visco2008/fig12.png",
-            caption="../report/visco2008_fig12.rst",
+            caption="../../results/visco2008/fig12.caption.rst",
             category="visco2008",
         ),
+        caption="results/visco2008/fig12.caption.rst",
     log:
         "logs/visco2008/fig12.log",
     script:

@@ -36,23 +36,29 @@ def visco2008_md_ldf_windows(wildcards):
     return visco2008_md()["ldf_windows"]
 
 
+def visco2008_md_ldf_min_count(wildcards):
+    return visco2008_md()["ldf_min_count"]
+
+
 def visco2008_md_error_window(wildcards):
     return visco2008_md()["error_window"]
 
 
 rule visco2008_fig01:
     input:
-        md=visco2008_md_figure_data,
+        md=visco2008_md_all_data,
         dsmc=visco2008_fig01_dsmc,
         curves=visco2008_theory("free_flights"),
+        template=caption_template("visco2008_fig01"),
         script=figure_script("visco2008_fig01"),
     output:
         pdf="results/visco2008/fig01.pdf",
         png=report(
             "results/visco2008/fig01.png",
-            caption="../report/visco2008_fig01.rst",
+            caption="../../results/visco2008/fig01.caption.rst",
             category="visco2008",
         ),
+        caption="results/visco2008/fig01.caption.rst",
     log:
         "logs/visco2008/fig01.log",
     script:
@@ -61,16 +67,18 @@ rule visco2008_fig01:
 
 rule visco2008_fig02:
     input:
-        md=visco2008_md_figure_data,
+        md=visco2008_md_all_data,
         curves=visco2008_theory("free_paths"),
+        template=caption_template("visco2008_fig02"),
         script=figure_script("visco2008_fig02"),
     output:
         pdf="results/visco2008/fig02.pdf",
         png=report(
             "results/visco2008/fig02.png",
-            caption="../report/visco2008_fig02.rst",
+            caption="../../results/visco2008/fig02.caption.rst",
             category="visco2008",
         ),
+        caption="results/visco2008/fig02.caption.rst",
     log:
         "logs/visco2008/fig02.log",
     script:
@@ -81,34 +89,40 @@ rule visco2008_fig09:
     input:
         md=visco2008_md_figure_data,
         curves=visco2008_theory("large_deviations"),
+        finite=visco2008_theory("finite_time"),
+        template=caption_template("visco2008_fig09"),
         script=figure_script("visco2008_fig09"),
     output:
         pdf="results/visco2008/fig09.pdf",
         png=report(
             "results/visco2008/fig09.png",
-            caption="../report/visco2008_fig09.rst",
+            caption="../../results/visco2008/fig09.caption.rst",
             category="visco2008",
         ),
+        caption="results/visco2008/fig09.caption.rst",
     log:
         "logs/visco2008/fig09.log",
     params:
         windows=visco2008_md_ldf_windows,
+        min_count=visco2008_md_ldf_min_count,
     script:
         "../scripts/visco2008_fig09.py"
 
 
 rule visco2008_fig10:
     input:
-        md=visco2008_md_figure_data,
+        md=visco2008_md_all_data,
         curves=visco2008_theory("free_flights"),
+        template=caption_template("visco2008_fig10"),
         script=figure_script("visco2008_fig10"),
     output:
         pdf="results/visco2008/fig10.pdf",
         png=report(
             "results/visco2008/fig10.png",
-            caption="../report/visco2008_fig10.rst",
+            caption="../../results/visco2008/fig10.caption.rst",
             category="visco2008",
         ),
+        caption="results/visco2008/fig10.caption.rst",
     log:
         "logs/visco2008/fig10.log",
     script:

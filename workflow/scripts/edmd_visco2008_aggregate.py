@@ -8,9 +8,19 @@ from kinetic.workflow_support import start
 log = start(snakemake)
 data = collision_statistics.combine_realizations(read_batches(snakemake.input.batches))
 io.write_dataset(data, snakemake.output.data)
-cumulants = collision_statistics.cumulant_dataset(data, snakemake.params.table_windows)
+cumulants = collision_statistics.cumulant_dataset(
+    data,
+    snakemake.params.table_windows,
+    extrapolation_windows=snakemake.params.extrapolation_windows,
+)
 io.write_dataset(cumulants, snakemake.output.cumulants)
 for window in cumulants["window"].values:
     values = cumulants["scaled_cumulant"].sel(window=window).values
     errors = cumulants["scaled_cumulant_sem"].sel(window=window).values
     log.info("t = %g: <N^p>_c/t = %s +- %s", window, values.round(4), errors.round(4))
+log.info(
+    "t -> inf (fit in 1/t over t = %s): %s +- %s",
+    cumulants.attrs["extrapolation_windows"],
+    cumulants["extrapolated_cumulant"].values.round(4),
+    cumulants["extrapolated_cumulant_sem"].values.round(4),
+)

@@ -1,54 +1,77 @@
-"""visco2008 Fig. 1: free-flight-time density P_FFT(t), MD (and DSMC) against Eqs. 9, 11."""
+"""visco2008 Fig. 1: free-flight-time density P_FFT(t), MD at both densities (and DSMC)
+against Eq. 9 (bin averages for the residuals), Eq. 11 and e^{-t}."""
 
 import numpy as np
 
 from kinetic import io, plotting
 from kinetic.analysis import collision_statistics
+from kinetic.studies.visco2008_histograms import (
+    RESIDUAL_MAX_RELATIVE_ERROR,
+    Curve,
+    Histogram,
+    comparison_figure,
+)
 from kinetic.workflow_support import start
 
 start(snakemake)
-md = io.read_dataset(snakemake.input.md)
 curves = io.read_dataset(snakemake.input.curves)
-t_md, pdf_md, sem_md = collision_statistics.flight_time_pdf(md)
-dsmc = [io.read_dataset(path) for path in snakemake.input.dsmc]
-t = curves["time"].values
-asymptotic = np.where(t >= 0.5, curves["hard_spheres_asymptotic"].values, np.nan)
-density = md.attrs["density"]
+grid = curves["time"].values
+survival = curves["hard_spheres_survival"].values
 
-fig, ax = plotting.figure()
-inset = plotting.inset(ax)
-for axis, t_max, every in ((ax, 4.0, 2), (inset, float(t_md.max()), 5)):
-    plotting.density_points(
-        axis,
-        t_md,
-        pdf_md,
-        sem_md,
-        x_max=t_max,
-        every=every,
-        markersize=3,
-        label=rf"MD, $\rho\sigma^2 = {density:g}$",
+histograms = []
+runs = sorted(
+    (io.read_dataset(path) for path in snakemake.input.md), key=lambda d: d.attrs["density"]
+)
+for number, md in enumerate(runs):
+    t_md, pdf_md, sem_md = collision_statistics.flight_time_pdf(md)
+    histograms.append(
+        Histogram(
+            rf"MD, $\rho\sigma^2 = {md.attrs['density']:g}$",
+            collision_statistics.bin_edges(t_md),
+            pdf_md,
+            sem_md,
+            style={"markersize": 2.0, "mfc": "black"} if number == 0 else {"markersize": 3.2},
+        )
     )
-    for data in dsmc:
-        flight_time = data["flight_time"].values
-        plotting.density_points(
-            axis,
-            flight_time,
+for data in (io.read_dataset(path) for path in snakemake.input.dsmc):
+    histograms.append(
+        Histogram(
+            "DSMC",
+            np.asarray(data["time_edges"].values)
+            if "time_edges" in data
+            else collision_statistics.bin_edges(data["flight_time"].values),
             data["time_pdf"].values,
             data["time_pdf_sem"].values,
-            x_max=t_max,
-            every=max(1, int(np.sum(flight_time <= t_max)) // 25),  # about 25 squares
-            marker="s",
-            markersize=3,
-            label="DSMC",
+            method="dsmc",
+            style={"markersize": 2.5},
         )
-    axis.plot(t, curves["hard_spheres"], "-", color="k", label="Eq. (9)")
-    axis.plot(t, asymptotic, "-.", color="C3", label="Eq. (11)")
-    axis.plot(t, curves["maxwell"], "--", color="C2", label=r"$e^{-t}$")
-    axis.set_xlim(0, t_max)
-inset.set_yscale("log")
-inset.set_ylim(max(1e-6, 0.3 * float(pdf_md[pdf_md > 0].min())), 2)
-ax.set_ylim(0, 1.1)
-ax.set_xlabel(r"$t$  (mean free times, $\omega = 1$)")
-ax.set_ylabel(r"$P_{\rm FFT}(t)$")
-ax.legend(loc="center right", bbox_to_anchor=(1.0, 0.27), fontsize=6)
+    )
+
+t = grid
+asymptotic = np.where(t >= 0.5, curves["hard_spheres_asymptotic"].values, np.nan)
+fig, numbers = comparison_figure(
+    histograms,
+    lambda edges: collision_statistics.bin_averaged_density(grid, survival, edges),
+    [
+        Curve("Eq. (9)", t, curves["hard_spheres"].values, plotting.METHOD_STYLE["theory"]),
+        Curve("Eq. (11)", t, asymptotic, {"color": "tab:green", "linestyle": ":"}),
+        Curve(r"$e^{-t}$", t, curves["maxwell"].values, plotting.METHOD_STYLE["theory_alt"]),
+    ],
+    linear_max=4.0,
+    xlabel=r"$t$  (mean free times, $\omega = 1$)",
+    ylabel=r"$P_{\rm FFT}(t)$",
+    reference_label="Eq. (9)",
+)
 plotting.save(fig, snakemake.output.pdf)
+values = list(numbers.values())
+plotting.write_caption(
+    snakemake.input.template,
+    snakemake.output.caption,
+    rho_low=runs[0].attrs["density"],
+    rho_high=runs[-1].attrs["density"],
+    chi2_low=values[0]["chi2"],
+    dof_low=values[0]["dof"],
+    chi2_high=values[1]["chi2"],
+    dof_high=values[1]["dof"],
+    max_error=100 * RESIDUAL_MAX_RELATIVE_ERROR,
+)

@@ -2,8 +2,11 @@
 cloning Monte Carlo against the first-Sonine closure (valid for small a2, ends at its
 fold) and the deterministic solution of Eq. (28)."""
 
+import numpy as np
+
 from kinetic import io, plotting
-from kinetic.cloning.figures import draw_series, finite, scan_series
+from kinetic.cloning.figures import finite, scan_series
+from kinetic.studies.visco2008_cloning_figures import data_limits, draw_series
 from kinetic.workflow_support import start
 
 start(snakemake)
@@ -13,20 +16,35 @@ reference = io.read_dataset(snakemake.input.reference)
 lam = closures["lam"].values
 
 fig, ax = plotting.figure()
-ax.plot(*finite(lam, closures["a2_sonine"].values), "--", label="Sonine (Eqs. 47-49)")
+ax.plot(
+    *finite(lam, closures["a2_sonine"].values),
+    "--",
+    color="tab:green",
+    label="Sonine (Eqs. 47-49)",
+)
 ax.plot(
     *finite(reference["lam"].values, reference["a2"].values),
     "-",
-    color="0.6",
+    color="0.3",
     lw=0.7,
     label="Eq. (28), quadrature",
 )
 ax.axhline(0.0, color="0.8", lw=0.5)
-LAMBDA_MAX = 2.6  # beyond, a2 grows past 3 (and the population collapses soon after)
-draw_series(ax, series, lam_max=LAMBDA_MAX)
-ax.set_xlim(lam.min(), LAMBDA_MAX)
-ax.set_ylim(-0.1, 1.2)
+# every usable point is drawn (runs whose population collapsed onto a few clones are
+# not estimates of a2 and are left out by scan_series); the axes follow the points
+drawn = draw_series(ax, series)
+shown_lam = np.concatenate([drawn["limit"][0], drawn["single"][0]])
+ax.set_xlim(lam.min() - 0.1, float(shown_lam.max()) + 0.2)
+ax.set_ylim(*data_limits(drawn, include=[-0.1, 1.2]))
 ax.set_xlabel(r"$\lambda$")
 ax.set_ylabel(r"$a_2(\lambda)$")
-ax.legend(loc="upper left", fontsize=6)
+ax.legend(loc="upper left")
 plotting.save(fig, snakemake.output.pdf)
+plotting.write_caption(
+    snakemake.input.template,
+    snakemake.output.caption,
+    population=series.single_population,
+    n_single=int(drawn["single"][0].size),
+    n_limit=int(drawn["limit"][0].size),
+    lambdas_single=", ".join(f"{x:g}" for x in drawn["single"][0]) or "none",
+)

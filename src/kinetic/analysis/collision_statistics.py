@@ -23,12 +23,16 @@ from kinetic import io
 from kinetic.analysis.statistics import mean_and_sem
 
 __all__ = [
+    "bin_averaged_density",
+    "bin_edges",
     "collision_frequency",
     "combine_realizations",
     "count_large_deviation",
+    "count_ldf_estimate",
     "cumulant_dataset",
     "cumulant_table",
     "error_against_cpu_time",
+    "extrapolated_cumulants",
     "flight_time_pdf",
     "free_path_pdf",
     "histogram_cumulants",
@@ -108,6 +112,48 @@ def cumulant_table(dataset, checkpoint: int = -1) -> dict:
     }
 
 
+def extrapolated_cumulants(dataset, windows, checkpoint: int = -1) -> dict:
+    """⟨N^p⟩_c/t extrapolated to t -> ∞ by a fit k_p(t) = k_p(∞) + c_p/t over ``windows``.
+
+    For a stationary count with integrable correlations Var N_t = 2 D t - C + o(1), and
+    likewise for the third cumulant, so the finite-t cumulants approach their limit as
+    1/t once t exceeds the correlation time of the free flights (a few mean free times).
+    The fit is made realization by realization (least squares in 1/t, with t that
+    realization's window in measured mean free times), and the spread of the intercepts
+    over the independent realizations gives the error: the windows of one realization
+    share their collisions, so their cumulants are correlated and a pooled fit would not
+    give an honest error.
+
+    Returns a dict: ``order`` (p = 1, 2, 3), ``value`` and ``sem`` of k_p(∞), ``slope`` and
+    ``slope_sem`` of c_p, ``windows`` (the t used).
+    """
+    windows = np.asarray(windows, dtype=float)
+    if windows.size < 2:
+        raise ValueError(f"need at least two windows to extrapolate in 1/t, got {windows}")
+    index = np.array([int(np.argmin(np.abs(dataset["window"].values - w))) for w in windows])
+    if not np.allclose(dataset["window"].values[index], windows):
+        raise ValueError(f"windows {list(windows)} not all observed: {dataset['window'].values}")
+    values = scaled_cumulants(dataset, checkpoint)[:, index, :]  # (r, w, p)
+    omega = collision_frequency(dataset, checkpoint)
+    inverse_t = 1.0 / (dataset["window_time"].values[:, index] * omega[:, None])  # (r, w)
+    intercepts, slopes = [], []
+    for r in range(values.shape[0]):
+        design = np.stack([np.ones_like(inverse_t[r]), inverse_t[r]], axis=1)
+        coefficients, *_ = np.linalg.lstsq(design, values[r], rcond=None)  # (2, p)
+        intercepts.append(coefficients[0])
+        slopes.append(coefficients[1])
+    value, sem = mean_and_sem(np.array(intercepts), axis=0)
+    slope, slope_sem = mean_and_sem(np.array(slopes), axis=0)
+    return {
+        "order": np.arange(1, 4),
+        "value": value,
+        "sem": sem,
+        "slope": slope,
+        "slope_sem": slope_sem,
+        "windows": windows,
+    }
+
+
 def _pdf(histograms, totals, bin_width):
     """Per-realization densities -> pooled density and SEM over realizations."""
     histograms = np.asarray(histograms, dtype=float)
@@ -116,6 +162,28 @@ def _pdf(histograms, totals, bin_width):
     pooled = histograms.sum(axis=0) / (totals.sum() * bin_width)
     _, sem = mean_and_sem(per_realization, axis=0)
     return pooled, sem
+
+
+def bin_edges(centres) -> np.ndarray:
+    """Edges of uniform bins given their centres."""
+    centres = np.asarray(centres, dtype=float)
+    width = centres[1] - centres[0]
+    return np.append(centres - 0.5 * width, centres[-1] + 0.5 * width)
+
+
+def bin_averaged_density(grid, survival, edges) -> np.ndarray:
+    """Bin averages (S(a) - S(b))/(b - a) of a density from its survival function S
+    tabulated on ``grid``: exactly what a histogram estimates. ln S is interpolated by a
+    cubic spline (ln S is close to linear in the tails, and S is smooth at 0 where the
+    density itself may have an x ln x term); bins beyond the grid are NaN."""
+    from scipy.interpolate import CubicSpline
+
+    grid, survival, edges = (np.asarray(a, dtype=float) for a in (grid, survival, edges))
+    keep = survival > 0
+    spline = CubicSpline(grid[keep], np.log(survival[keep]))
+    inside = (edges >= grid[keep][0]) & (edges <= grid[keep][-1])
+    values = np.where(inside, np.exp(spline(np.clip(edges, grid[0], grid[keep][-1]))), np.nan)
+    return (values[:-1] - values[1:]) / np.diff(edges)
 
 
 def flight_time_pdf(dataset) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -140,14 +208,29 @@ def free_path_pdf(dataset) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return centres, density, sem
 
 
-def count_large_deviation(dataset, window: float, checkpoint: int = -1):
+def count_large_deviation(dataset, window: float, checkpoint: int = -1, *, min_count: int = 1):
     """Finite-time estimate of π(n) from the pooled count histogram at window length t:
 
         π_t(n) = (1/t) ln[P(N = n t) / max_k P(N = k)],   n = N / t,
 
     with t in measured mean free times (pooled ω). Returns (n, π_t, error) for counts
-    observed at least once; error = 1/(t √count) (pooled counting error).
+    observed at least ``min_count`` times; error = 1/(t √count) (pooled counting error).
     """
+    estimate = count_ldf_estimate(dataset, window, checkpoint, min_count=min_count)
+    return estimate["rate"], estimate["ldf"], estimate["error"]
+
+
+def count_ldf_estimate(dataset, window: float, checkpoint: int = -1, *, min_count: int = 1):
+    """π_t(n) of ``count_large_deviation`` with its bookkeeping, as a dict: ``count`` (k),
+    ``rate`` (n = k/t), ``ldf``, ``error``, ``t`` (window in measured mean free times),
+    ``total`` (pooled counts), ``dropped`` (observed bins with fewer than ``min_count``).
+
+    Bins seen fewer than ``min_count`` times are left out: a bin seen once sits at the
+    floor ln(1/total)/t whatever its probability (a false plateau at the ends of the
+    range), and its counting error is far from Gaussian.
+    """
+    if min_count < 1:
+        raise ValueError(f"min_count must be >= 1, got {min_count}")
     index = int(np.argmin(np.abs(dataset["window"].values - window)))
     histogram = dataset["window_histogram"].values[:, checkpoint, index].sum(axis=0)
     n_particles = dataset.attrs["n_particles"]
@@ -158,11 +241,17 @@ def count_large_deviation(dataset, window: float, checkpoint: int = -1):
     )
     t = float(dataset["window_time"].values[:, index].mean() * omega)
     counts = np.arange(histogram.size)
-    seen = histogram > 0
-    probability = histogram[seen] / histogram.sum()
-    ldf = np.log(probability / probability.max()) / t
-    error = 1.0 / (t * np.sqrt(histogram[seen]))
-    return counts[seen] / t, ldf, error
+    kept = histogram >= min_count
+    probability = histogram[kept] / histogram.sum()
+    return {
+        "count": counts[kept],
+        "rate": counts[kept] / t,
+        "ldf": np.log(probability / probability.max()) / t,
+        "error": 1.0 / (t * np.sqrt(histogram[kept])),
+        "t": t,
+        "total": int(histogram.sum()),
+        "dropped": int(np.sum((histogram > 0) & ~kept)),
+    }
 
 
 def error_against_cpu_time(dataset, window: float = 10.0) -> dict:
@@ -244,11 +333,14 @@ def combine_realizations(datasets) -> xr.Dataset:
     )
 
 
-def cumulant_dataset(dataset, windows=None) -> xr.Dataset:
+def cumulant_dataset(dataset, windows=None, extrapolation_windows=None) -> xr.Dataset:
     """Table I input: ⟨N^p⟩_c/t and its standard error for the requested windows.
 
     Coordinates ``window`` (t, mean free times) and ``order`` (p = 1, 2, 3); data variables
     ``scaled_cumulant`` and ``scaled_cumulant_sem``; global attribute ``density`` (ρσ²).
+    With ``extrapolation_windows``, also ``extrapolated_cumulant`` and
+    ``extrapolated_cumulant_sem`` (order): the t -> ∞ values of ``extrapolated_cumulants``,
+    and the attribute ``extrapolation_windows``.
     """
     table = cumulant_table(dataset)
     index = np.arange(table["window"].size)
@@ -257,8 +349,28 @@ def cumulant_dataset(dataset, windows=None) -> xr.Dataset:
         if not np.allclose(table["window"][index], windows):
             raise ValueError(f"windows {list(windows)} not all observed: {table['window']}")
     parameters = io.parameters_of(dataset)
+    variables = {}
+    attrs = {"density": float(parameters["density"])}
+    if extrapolation_windows is not None:
+        limit = extrapolated_cumulants(dataset, extrapolation_windows)
+        variables = {
+            "extrapolated_cumulant": (
+                "order",
+                limit["value"],
+                "1",
+                "<N^p>_c / t extrapolated to t -> infinity (fit in 1/t per realization)",
+            ),
+            "extrapolated_cumulant_sem": (
+                "order",
+                limit["sem"],
+                "1",
+                "standard error over independent realizations of the extrapolation",
+            ),
+        }
+        attrs["extrapolation_windows"] = limit["windows"]
     result = io.make_dataset(
         {
+            **variables,
             "scaled_cumulant": (
                 ("window", "order"),
                 table["scaled_cumulant"][index],
@@ -276,7 +388,7 @@ def cumulant_dataset(dataset, windows=None) -> xr.Dataset:
             "window": ("window", table["window"][index], "mean free times", "counting window t"),
             "order": ("order", table["order"], "1", "cumulant order p"),
         },
-        attrs={"density": float(parameters["density"])},
+        attrs=attrs,
     )
     return io.stamp(
         result,

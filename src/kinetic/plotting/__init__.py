@@ -81,10 +81,10 @@ def inset(ax, bounds=(0.55, 0.55, 0.4, 0.4), **kwargs):
 
 
 def errorbar(ax, x, y, yerr, *, label=None, marker="o", **kwargs):
-    """Simulation points: open markers with their standard errors."""
-    return ax.errorbar(
-        x, y, yerr=yerr, fmt=marker, mfc="none", label=label, elinewidth=0.7, **kwargs
-    )
+    """Simulation points: open markers (unless ``mfc`` says otherwise, e.g. to tell two
+    runs of one method apart) with their standard errors."""
+    kwargs.setdefault("mfc", "none")
+    return ax.errorbar(x, y, yerr=yerr, fmt=marker, label=label, elinewidth=0.7, **kwargs)
 
 
 def density_points(ax, x, density, error, *, x_max, every, **kwargs):

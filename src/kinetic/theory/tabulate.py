@@ -15,6 +15,7 @@ from kinetic.theory import visco2008
 
 __all__ = [
     "visco2008_closures",
+    "visco2008_finite_time",
     "visco2008_free_flights",
     "visco2008_free_paths",
     "visco2008_large_deviations",
@@ -96,6 +97,18 @@ def visco2008_free_flights(*, time_max: float, points: int, d: int = 2):
                 _RATE_UNIT,
                 f"{pdf}, very hard particles (B4)",
             ),
+            "hard_spheres_survival": (
+                "time",
+                visco2008.free_flight_time_survival(time, d),
+                "1",
+                "probability of a free flight longer than t, hard spheres (Eq. 9)",
+            ),
+            "weighted_survival": (
+                "time",
+                visco2008.weighted_free_flight_time_survival(time, d),
+                "1",
+                "probability of a free flight longer than t under (A1)",
+            ),
             "maxwell": (
                 "time",
                 np.exp(-time),
@@ -112,9 +125,9 @@ def visco2008_free_paths(*, path_max: float, points: int, d: int = 2):
     """Free-path densities of Figs. 2 and 12, x in mean free paths l = <v>/ω."""
     path = np.linspace(0.0, path_max, points)
     pdf = "free path density"
-    inner = path[1:]
-    hard = np.concatenate([[np.nan], visco2008.free_path_pdf(inner, d)])
-    maxwell = np.concatenate([[np.nan], visco2008.maxwell_free_path_pdf(inner, d)])
+    # both densities are finite at x = 0: Eq. (14) gives 1.2193, (D3) gives π/2 (d = 2)
+    hard = visco2008.free_path_pdf(path, d)
+    maxwell = visco2008.maxwell_free_path_pdf(path, d)
     return make_dataset(
         {
             "hard_spheres": ("path", hard, "1/l", f"{pdf}, hard spheres (Eq. 14)"),
@@ -124,7 +137,19 @@ def visco2008_free_paths(*, path_max: float, points: int, d: int = 2):
                 "1/l",
                 "dominant exponential exp(-x/(sqrt(2) l)) (Eq. 16)",
             ),
+            "hard_spheres_survival": (
+                "path",
+                visco2008.free_path_survival(path, d),
+                "1",
+                "probability of a free path longer than x, hard spheres (Eq. 14)",
+            ),
             "maxwell": ("path", maxwell, "1/l", f"{pdf}, Maxwell molecules (D3)"),
+            "maxwell_survival": (
+                "path",
+                visco2008.maxwell_free_path_survival(path, d),
+                "1",
+                "probability of a free path longer than x, Maxwell molecules (D3)",
+            ),
             "maxwell_asymptotic": (
                 "path",
                 visco2008.maxwell_free_path_pdf_asymptotic(path, d),
@@ -207,6 +232,39 @@ def visco2008_closures(*, lambda_min: float, lambda_max: float, points: int, d: 
         coords={
             "lam": ("lam", lam, "1", "counting field lambda"),
             "order": ("order", order, "1", "cumulant order p"),
+        },
+        attrs={"dimension": d},
+    )
+
+
+def visco2008_finite_time(*, windows, rate_max: float, d: int = 2):
+    """π_t(n) at the finite windows t of Fig. 9, the estimator the MD uses applied to models:
+    the exact Poisson(1) count and the Gaussian closure at saddle-point order (leading 1/t
+    correction). Counts k = 0 .. ceil(rate_max × max t); n = k/t; NaN where k/t > rate_max."""
+    windows = np.asarray(windows, dtype=float)
+    counts = np.arange(int(np.ceil(rate_max * windows.max())) + 1)
+    poisson = np.full((windows.size, counts.size), np.nan)
+    gaussian = np.full((windows.size, counts.size), np.nan)
+    for w, t in enumerate(windows):
+        shown = counts <= rate_max * t
+        poisson[w, shown] = visco2008.poisson_count_ldf(t, counts[shown])
+        gaussian[w, shown] = visco2008.gaussian_count_ldf(t, counts[shown])
+    rate = counts[None, :] / windows[:, None]
+    ldf = "finite-t estimate (1/t) ln[P(N = k)/max P] of pi(n)"
+    return make_dataset(
+        {
+            "rate": (("window", "count"), rate, _RATE_UNIT, "collision rate n = k/t"),
+            "poisson": (("window", "count"), poisson, _RATE_UNIT, f"{ldf}, Poisson(t) exact"),
+            "gaussian": (
+                ("window", "count"),
+                gaussian,
+                _RATE_UNIT,
+                f"{ldf}, Gaussian closure (Eq. 43) at saddle-point order",
+            ),
+        },
+        coords={
+            "window": ("window", windows, "1/omega", "counting window t"),
+            "count": ("count", counts, "1", "number of collisions k"),
         },
         attrs={"dimension": d},
     )
