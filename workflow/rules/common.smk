@@ -14,6 +14,23 @@ except ConfigError as error:
 PAPERS = ["visco2008", "montanero2007", "krauth2025", "costantini2010"]
 
 
+def drop_default_submission_limit(settings):
+    """Run without Snakemake's default cap of 100 job submissions a second.
+
+    With any cap, every scheduling pass starts a timer that runs another pass one timespan
+    later, and that pass starts another: each finished job adds a chain, so the passes
+    multiply (about 27,000 in a 7-minute ci build, each re-reading the size of every
+    ready job's inputs; 8 % of the build's CPU went to the main process). Our jobs come
+    nowhere near 100 a second. A cap given explicitly (any other value) is kept.
+    """
+    limit = getattr(settings, "max_jobs_per_timespan", None)
+    if limit is not None and (limit.max_jobs, limit.timespan) == (100, 1):
+        settings.max_jobs_per_timespan = None
+
+
+drop_default_submission_limit(workflow.scheduling_settings)
+
+
 onstart:
     # the build holds Snakemake's lock: temporary files under results/ are orphans of
     # writers killed in an earlier build (kinetic.io writes to .<name>.<pid>.tmp, then renames)
