@@ -14,21 +14,19 @@ except ConfigError as error:
 PAPERS = ["visco2008", "montanero2007", "krauth2025", "costantini2010"]
 
 
-def drop_default_submission_limit(settings):
+def drop_default_submission_limit(scheduler):
     """Run without Snakemake's default cap of 100 job submissions a second.
 
     With any cap, every scheduling pass starts a timer that runs another pass one timespan
     later, and that pass starts another: each finished job adds a chain, so the passes
     multiply (about 27,000 in a 7-minute ci build, each re-reading the size of every
     ready job's inputs; 8 % of the build's CPU went to the main process). Our jobs come
-    nowhere near 100 a second. A cap given explicitly (any other value) is kept.
+    nowhere near 100 a second. A cap given explicitly (any other value) is kept. The
+    scheduler exists only once the DAG is built, hence the call from ``onstart``.
     """
-    limit = getattr(settings, "max_jobs_per_timespan", None)
-    if limit is not None and (limit.max_jobs, limit.timespan) == (100, 1):
-        settings.max_jobs_per_timespan = None
-
-
-drop_default_submission_limit(workflow.scheduling_settings)
+    limiter = getattr(scheduler, "job_rate_limiter", None)
+    if limiter is not None and (limiter.max_jobs, limiter.timespan) == (100, 1):
+        scheduler.job_rate_limiter = None
 
 
 onstart:
@@ -40,6 +38,7 @@ onstart:
 
     for orphan in remove_orphans("results") if Path("results").is_dir() else []:
         print(f"removed {orphan}, left by a killed job", file=sys.stderr)
+    drop_default_submission_limit(getattr(workflow, "scheduler", None))
 
 # ---------------------------------------------------------------- target registry
 # Rule files register each figure/table they can build: provide(id, file, ...).
