@@ -155,7 +155,7 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
         "--dry-run",
     )
     assert "Nothing to be done" in rerun.stdout + rerun.stderr
-    _snakemake(
+    report = _snakemake(
         tmp_path,
         "--configfile",
         str(REPOSITORY / "config" / "ci.yaml"),
@@ -163,3 +163,5 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
         str(tmp_path / "report.html"),
     )
     assert (tmp_path / "report.html").stat().st_size > 10_000
+    # every caption is valid reStructuredText (docutils reports ERROR/3 and WARNING/2 lines)
+    assert "ERROR/" not in report.stderr and "WARNING/" not in report.stderr, report.stderr

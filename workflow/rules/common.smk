@@ -1,4 +1,5 @@
 # Shared by every rule file: config validation, the target registry, seeds, code inputs.
+import os
 from pathlib import Path
 
 from snakemake.exceptions import WorkflowError
@@ -137,6 +138,16 @@ def caption_template(name):
     """The caption template workflow/report/<name>.rst, an input of the figure rule that
     renders it with numbers from the data (kinetic.plotting.write_caption)."""
     return str(Path(workflow.basedir) / "workflow" / "report" / f"{name}.rst")
+
+
+def rendered_caption(document, name):
+    """The caption a figure rule renders from its data, for report(caption=...).
+
+    Snakemake resolves a relative caption path against the rule file's directory, which is
+    the source tree, not the working directory (--directory); the rendered caption lives in
+    the working directory's results/, so the path is made absolute here.
+    """
+    return os.path.abspath(f"results/{document}/{name}.caption.rst")
 
 
 # ---------------------------------------------------------------- resources of simulation jobs

@@ -49,7 +49,7 @@ rule visco2008_fig05:
         pdf="results/visco2008/fig05.pdf",
         png=report(
             "results/visco2008/fig05.png",
-            caption="../../results/visco2008/fig05.caption.rst",
+            caption=rendered_caption("visco2008", "fig05"),
             category="visco2008",
         ),
         caption="results/visco2008/fig05.caption.rst",
@@ -70,7 +70,7 @@ rule visco2008_fig06:
         pdf="results/visco2008/fig06.pdf",
         png=report(
             "results/visco2008/fig06.png",
-            caption="../../results/visco2008/fig06.caption.rst",
+            caption=rendered_caption("visco2008", "fig06"),
             category="visco2008",
         ),
         caption="results/visco2008/fig06.caption.rst",
@@ -110,7 +110,7 @@ rule visco2008_fig08:
         pdf="results/visco2008/fig08.pdf",
         png=report(
             "results/visco2008/fig08.png",
-            caption="../../results/visco2008/fig08.caption.rst",
+            caption=rendered_caption("visco2008", "fig08"),
             category="visco2008",
         ),
         caption="results/visco2008/fig08.caption.rst",

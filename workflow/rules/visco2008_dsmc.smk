@@ -16,7 +16,7 @@ rule visco2008_fig12:
         pdf="results/visco2008/fig12.pdf",
         png=report(
             "results/visco2008/fig12.png",
-            caption="../../results/visco2008/fig12.caption.rst",
+            caption=rendered_caption("visco2008", "fig12"),
             category="visco2008",
         ),
         caption="results/visco2008/fig12.caption.rst",

@@ -55,7 +55,7 @@ rule visco2008_fig01:
         pdf="results/visco2008/fig01.pdf",
         png=report(
             "results/visco2008/fig01.png",
-            caption="../../results/visco2008/fig01.caption.rst",
+            caption=rendered_caption("visco2008", "fig01"),
             category="visco2008",
         ),
         caption="results/visco2008/fig01.caption.rst",
@@ -75,7 +75,7 @@ rule visco2008_fig02:
         pdf="results/visco2008/fig02.pdf",
         png=report(
             "results/visco2008/fig02.png",
-            caption="../../results/visco2008/fig02.caption.rst",
+            caption=rendered_caption("visco2008", "fig02"),
             category="visco2008",
         ),
         caption="results/visco2008/fig02.caption.rst",
@@ -96,7 +96,7 @@ rule visco2008_fig09:
         pdf="results/visco2008/fig09.pdf",
         png=report(
             "results/visco2008/fig09.png",
-            caption="../../results/visco2008/fig09.caption.rst",
+            caption=rendered_caption("visco2008", "fig09"),
             category="visco2008",
         ),
         caption="results/visco2008/fig09.caption.rst",
@@ -119,7 +119,7 @@ rule visco2008_fig10:
         pdf="results/visco2008/fig10.pdf",
         png=report(
             "results/visco2008/fig10.png",
-            caption="../../results/visco2008/fig10.caption.rst",
+            caption=rendered_caption("visco2008", "fig10"),
             category="visco2008",
         ),
         caption="results/visco2008/fig10.caption.rst",
