@@ -6,7 +6,7 @@
 #   results/montanero2007/figNN.pdf|png, table1.csv|md, error_vs_time.*, extreme.*, checks.*
 #
 # Run names come from kinetic.studies.montanero2007.run_plan(config["montanero2007"]).
-from kinetic.studies.montanero2007 import alpha_key, batches, run_plan
+from kinetic.studies.montanero2007 import alpha_key, batches, field_partner, run_plan
 
 try:
     MONTANERO2007_RUNS = run_plan(config["montanero2007"])
@@ -97,6 +97,23 @@ def montanero2007_field_pair(wildcards):
     if field["restitution"] == alpha:
         files += montanero2007_run_files(f"field_{alpha_key(alpha)}")
     return files
+
+
+def montanero2007_field_partners(alphas):
+    """Batch files of the larger-field partner of each scan run at these restitutions:
+    the O(eps*^2) bias and the extrapolation eps* -> 0 of Figs 3, 4, 7 and Table 1."""
+    section = config["montanero2007"]
+    return [
+        path for alpha in alphas for path in montanero2007_run_files(field_partner(section, alpha))
+    ]
+
+
+def montanero2007_scan_partners(wildcards):
+    return montanero2007_field_partners(config["montanero2007"]["alphas"])
+
+
+def montanero2007_fig07_partners(wildcards):
+    return montanero2007_field_partners(config["montanero2007"]["figures"]["fig07_alphas"])
 
 
 def montanero2007_error_inputs(wildcards):
@@ -214,6 +231,7 @@ rule montanero2007_fig02:
 rule montanero2007_fig03:
     input:
         runs=montanero2007_scan_runs,
+        partners=montanero2007_scan_partners,
         script=figure_script("montanero2007_fig03"),
         code=MONTANERO2007_ANALYSIS_CODE,
     output:
@@ -232,6 +250,7 @@ rule montanero2007_fig03:
 rule montanero2007_fig04:
     input:
         runs=montanero2007_scan_runs,
+        partners=montanero2007_scan_partners,
         script=figure_script("montanero2007_fig04"),
         code=MONTANERO2007_ANALYSIS_CODE,
     output:
@@ -290,6 +309,7 @@ rule montanero2007_fig06:
 rule montanero2007_fig07:
     input:
         runs=montanero2007_fig07_runs,
+        partners=montanero2007_fig07_partners,
         script=figure_script("montanero2007_fig07"),
         code=MONTANERO2007_ANALYSIS_CODE,
     output:
@@ -310,6 +330,7 @@ rule montanero2007_fig07:
 rule montanero2007_table1:
     input:
         runs=montanero2007_scan_runs,
+        partners=montanero2007_scan_partners,
         script=figure_script("montanero2007_table1"),
         code=MONTANERO2007_ANALYSIS_CODE,
     output:

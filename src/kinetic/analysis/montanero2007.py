@@ -31,6 +31,9 @@ __all__ = [
     "beta1_ratio_estimate",
     "distributions_of",
     "error_budget",
+    "field_extrapolation",
+    "rows_with_field_bias",
+    "FIELD_EVEN_KEYS",
     "kappa_prime_estimate",
     "linear_response_fit",
     "odd_marginal_estimate",
@@ -375,6 +378,23 @@ def summary_row(ds, summary: dict[str, Any] | None = None) -> dict[str, Any]:
     return row
 
 
+def rows_with_field_bias(scan, partners) -> list[dict[str, Any]]:
+    """Summary rows of the ``scan`` datasets, sorted by restitution, each with the bias
+    and eps* -> 0 columns of :func:`field_extrapolation` against the dataset of
+    ``partners`` at its restitution (both: iterables of run datasets)."""
+    by_alpha = {}
+    for ds in partners:
+        row = summary_row(ds)
+        by_alpha[row["alpha"]] = row
+    rows = []
+    for ds in scan:
+        row = summary_row(ds)
+        if row["alpha"] not in by_alpha:
+            raise ValueError(f"no larger-field partner run at restitution {row['alpha']}")
+        rows.append({**row, **field_extrapolation(row, by_alpha[row["alpha"]])})
+    return sorted(rows, key=lambda row: row["alpha"])
+
+
 # --------------------------------------------------------- error against run time
 
 
@@ -579,6 +599,40 @@ def error_budget(rows, n_reference: int, target_errors):
 
 
 # ------------------------------------------------------------- beyond linear response
+
+FIELD_EVEN_KEYS = ("kappa_ratio", "b1_full", "b2_full", "b3_full")
+"""Summary-row estimates that are even in eps* (q_x and every <c_x L_k> are odd)."""
+
+
+def field_extrapolation(low: dict, high: dict, keys=FIELD_EVEN_KEYS) -> dict[str, float]:
+    """The O(eps*^2) bias of the estimates of ``low`` and their limit eps* -> 0.
+
+    ``low`` and ``high`` are summary rows (:func:`summary_row`) of two independent runs at
+    the same restitution and fields eps_1 < eps_2.  Each estimate X is even in eps*, so
+    X(eps) = X_0 + c eps^2 + O(eps^4) and, with w = eps_1^2 / (eps_2^2 - eps_1^2),
+
+        bias at eps_1 = X(eps_1) - X_0 = w (X(eps_2) - X(eps_1)),
+        X_0 = X(eps_1) - bias = (1 + w) X(eps_1) - w X(eps_2),
+
+    with errors propagated from the two independent standard errors.  Returns
+    ``{key_bias, key_bias_err, key_extrapolated, key_extrapolated_err}`` per key, and the
+    two fields as ``field_low``, ``field_high``.
+    """
+    if low["alpha"] != high["alpha"]:
+        raise ValueError(f"field pair at different restitutions {low['alpha']}, {high['alpha']}")
+    e1, e2 = float(low["reduced_field"]), float(high["reduced_field"])
+    if not 0 < e1 < e2:
+        raise ValueError(f"fields must satisfy 0 < eps_1 < eps_2, got {e1}, {e2}")
+    w = e1**2 / (e2**2 - e1**2)
+    out = {"field_low": e1, "field_high": e2}
+    for key in keys:
+        x1, s1 = low[key], low[f"{key}_err"]
+        x2, s2 = high[key], high[f"{key}_err"]
+        out[f"{key}_bias"] = w * (x2 - x1)
+        out[f"{key}_bias_err"] = float(w * np.hypot(s1, s2))
+        out[f"{key}_extrapolated"] = (1 + w) * x1 - w * x2
+        out[f"{key}_extrapolated_err"] = float(np.hypot((1 + w) * s1, w * s2))
+    return out
 
 
 def linear_response_fit(fields, kappa, kappa_err, max_field: float):

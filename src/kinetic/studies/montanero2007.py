@@ -122,6 +122,18 @@ def run_plan(section: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     plan[f"field_{alpha_key(field['restitution'])}"] = _run(
         protocol, "field", field["restitution"], reduced_field=field["reduced_field"]
     )
+    for alpha in section["alphas"]:
+        name = field_partner(section, alpha)
+        if name not in plan:
+            plan[name] = _run(
+                protocol,
+                "bias",
+                alpha,
+                **{
+                    **section["field_bias"].get("overrides", {}),
+                    "reduced_field": _bias_field(section),
+                },
+            )
     hcs = section["hcs"]
     for alpha in hcs["alphas"]:
         plan[f"hcs_{alpha_key(alpha)}"] = _run(
@@ -157,6 +169,26 @@ def run_plan(section: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     return plan
 
 
+def _bias_field(section: Mapping[str, Any]) -> float:
+    return float(section["field_bias"]["reduced_field"])
+
+
+def field_partner(section: Mapping[str, Any], alpha: float) -> str:
+    """Name of the run at restitution ``alpha`` and the larger field of ``field_bias``.
+
+    Beside each scan run it gives the O(eps*^2) bias of the scan's estimates
+    (:func:`kinetic.analysis.montanero2007.field_extrapolation`).  The Fig 1 partner
+    (``field_check``, the protocol's statistics) serves when it has the same restitution and
+    field, so that run is not simulated twice.
+    """
+    field = section["field_check"]
+    if alpha_key(alpha) == alpha_key(field["restitution"]) and float(
+        field["reduced_field"]
+    ) == _bias_field(section):
+        return f"field_{alpha_key(alpha)}"
+    return f"bias_{_field_key(_bias_field(section))}_{alpha_key(alpha)}"
+
+
 def _check_references(section: Mapping[str, Any]) -> None:
     """Figures, the error study and the extreme fields reuse scan runs: those must exist."""
     scan = {alpha_key(alpha) for alpha in section["alphas"]}
@@ -175,6 +207,12 @@ def _check_references(section: Mapping[str, Any]) -> None:
                 f"config key montanero2007.{key} names restitution {missing}, which is not in "
                 f"montanero2007.alphas = {list(section['alphas'])} (that key reuses scan runs)"
             )
+    if _bias_field(section) <= section["protocol"]["reduced_field"]:
+        raise ValueError(
+            f"config key montanero2007.field_bias.reduced_field = {_bias_field(section)} must "
+            f"exceed protocol.reduced_field = {section['protocol']['reduced_field']} (the "
+            "scan's field)"
+        )
     half = section["protocol"]["cx_bins"] // 2
     if half % figures["phi_rebin"]:
         raise ValueError(
