@@ -25,6 +25,7 @@ from kinetic.io import parameters_of
 from kinetic.theory import montanero2007 as theory
 
 __all__ = [
+    "FIELD_EVEN_KEYS",
     "N_SONINE",
     "b_estimates",
     "beta1_estimate",
@@ -32,14 +33,13 @@ __all__ = [
     "distributions_of",
     "error_budget",
     "field_extrapolation",
-    "rows_with_field_bias",
-    "FIELD_EVEN_KEYS",
     "kappa_prime_estimate",
     "linear_response_fit",
     "odd_marginal_estimate",
     "particle_number_bias",
     "phi_estimate",
     "rebin",
+    "rows_with_field_bias",
     "steady_average",
     "steady_summary_of",
     "summary_row",
