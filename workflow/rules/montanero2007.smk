@@ -232,15 +232,17 @@ rule montanero2007_fig03:
     input:
         runs=montanero2007_scan_runs,
         partners=montanero2007_scan_partners,
+        template=caption_template("montanero2007_fig03"),
         script=figure_script("montanero2007_fig03"),
         code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/fig03.pdf",
         png=report(
             "results/montanero2007/fig03.png",
-            caption="../report/montanero2007_fig03.rst",
+            caption=rendered_caption("montanero2007", "fig03"),
             category="montanero2007",
         ),
+        caption="results/montanero2007/fig03.caption.rst",
     log:
         "logs/montanero2007/fig03.log",
     script:
@@ -251,15 +253,17 @@ rule montanero2007_fig04:
     input:
         runs=montanero2007_scan_runs,
         partners=montanero2007_scan_partners,
+        template=caption_template("montanero2007_fig04"),
         script=figure_script("montanero2007_fig04"),
         code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/fig04.pdf",
         png=report(
             "results/montanero2007/fig04.png",
-            caption="../report/montanero2007_fig04.rst",
+            caption=rendered_caption("montanero2007", "fig04"),
             category="montanero2007",
         ),
+        caption="results/montanero2007/fig04.caption.rst",
     log:
         "logs/montanero2007/fig04.log",
     script:
@@ -310,15 +314,17 @@ rule montanero2007_fig07:
     input:
         runs=montanero2007_fig07_runs,
         partners=montanero2007_fig07_partners,
+        template=caption_template("montanero2007_fig07"),
         script=figure_script("montanero2007_fig07"),
         code=MONTANERO2007_ANALYSIS_CODE,
     output:
         pdf="results/montanero2007/fig07.pdf",
         png=report(
             "results/montanero2007/fig07.png",
-            caption="../report/montanero2007_fig07.rst",
+            caption=rendered_caption("montanero2007", "fig07"),
             category="montanero2007",
         ),
+        caption="results/montanero2007/fig07.caption.rst",
     log:
         "logs/montanero2007/fig07.log",
     params:

@@ -116,7 +116,6 @@ for column, alpha in enumerate(alphas):
     top.set_xlabel(r"$\delta t/\tau$")
     top.set_ylabel(r"$\kappa'/\kappa_0$")
     top.set_title(rf"$\alpha = {alpha:g}$", fontsize=8)
-    top.legend(fontsize=5)
 
     steps = sorted({s["time_step"] for s in settings})
     palette = dict(
@@ -152,8 +151,8 @@ for column, alpha in enumerate(alphas):
     bottom.set_yscale("log")
     bottom.set_xlabel("CPU time (s, one core)")
     bottom.set_ylabel(r"relative error of $\kappa'$ (stat. $\oplus$ bias)")
-    bottom.legend(fontsize=4, ncol=2, loc="lower left")
 
+plotting.figure_legend(fig, ncols=4)
 settings_table = pd.DataFrame(all_settings)
 targets_table = pd.DataFrame(all_targets)
 plotting.save(fig, snakemake.output.pdf)

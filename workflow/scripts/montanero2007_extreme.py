@@ -119,15 +119,14 @@ for row in rows:
         )
 left.set_xlabel(r"$\varepsilon^{*2}$")
 left.set_ylabel(r"$\kappa'/\kappa_0$")
-left.legend(
-    fontsize=6,
+plotting.figure_legend(
+    fig,
+    ncols=3,
     title=r"dashed: $\kappa_0(1 - C\varepsilon^{*2})$, all but the largest field",
-    title_fontsize=5,
 )
 right.axhline(0.0, color="0.6", lw=0.5)
 right.set_xlabel(r"$\varepsilon^*$")
 right.set_ylabel("nonlinear signatures")
-right.legend(fontsize=4)
 fig.subplots_adjust(wspace=0.4)
 plotting.save(fig, snakemake.output.pdf)
 frame = pd.DataFrame(table)

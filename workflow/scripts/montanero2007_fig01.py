@@ -39,6 +39,6 @@ ax.set_title(
 ax.set_xlabel(r"$t/\tau$")
 ax.set_ylabel(r"$\kappa'(t)/\kappa_0$")
 ax.set_xlim(0, float(np.max(t)))
-ax.legend(loc="lower right", fontsize=6)
+ax.legend(loc="lower right")
 plotting.save(fig, snakemake.output.pdf)
 log.info("steady kappa'/kappa0 = %.4f +- %.4f", value, error)

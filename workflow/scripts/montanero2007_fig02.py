@@ -48,14 +48,7 @@ handles += [
     Line2D([], [], color="0.4", ls="-", label=r"from $\langle c_x L_k^{(3/2)}(c^2)\rangle$"),
     Line2D([], [], color="0.4", ls="--", label=r"from $\langle c_x L_k^{(1/2)}(c_x^2)\rangle$"),
 ]
-axes[0, 0].legend(
-    handles=handles,
-    loc="upper center",
-    bbox_to_anchor=(0.5, 1.32),
-    ncol=3,
-    fontsize=5,
-    frameon=False,
-)
+fig.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=3)
 axes[-1, 0].set_xlabel(r"$t/\tau$")
 axes[-1, 0].set_xlim(0, float(t.max()))
 plotting.save(fig, snakemake.output.pdf)

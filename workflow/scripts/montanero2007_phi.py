@@ -18,14 +18,13 @@ for ax, ds in zip(axes[:, 0], runs, strict=True):
     curves = analysis.distributions_of(ds, summary, rebin_factor=figures["phi_rebin"])
     x = curves["phi_cx2"]
     shown = x <= figures["phi_cx2_max"]
-    plotting.errorbar(
+    plotting.method_errorbar(
         ax,
+        "dsmc",
         x[shown],
         curves["phi"][shown],
         curves["phi_err"][shown],
-        marker="o",
         markersize=2.5,
-        color="k",
         label=r"DSMC $\varphi$",
     )
     dense = np.linspace(0.0, figures["phi_cx2_max"], 400)
@@ -41,7 +40,7 @@ for ax, ds in zip(axes[:, 0], runs, strict=True):
     ax.text(0.97, 0.92, rf"$\alpha = {alpha:g}$", transform=ax.transAxes, ha="right", va="top")
     ax.set_ylabel(r"$\varphi(c_x^2)$")
     log.info("alpha = %g: b' = %s", alpha, np.array2string(summary["b_full"], precision=4))
-axes[0, 0].legend(loc="lower left", fontsize=6)
+plotting.figure_legend(fig, ncols=3)
 axes[-1, 0].set_xlabel(r"$c_x^2$")
 axes[-1, 0].set_xlim(0.0, figures["phi_cx2_max"])
 plotting.save(fig, snakemake.output.pdf)

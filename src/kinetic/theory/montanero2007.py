@@ -392,3 +392,19 @@ def beta1_sonine(cx2, b):
         for x in np.atleast_1d(np.asarray(cx2, dtype=float))
     ]
     return 8.0 / (3.0 * np.sqrt(np.pi)) * np.asarray(values).reshape(np.shape(cx2))
+
+
+def beta1_share(cx2, b=(1.0,)):
+    """beta_1(cx2)/b'_1 (Eq. 4.6) for phi(c_x^2) = sum_k b'_k L_k^(1/2)(c_x^2) (Eq. 4.4).
+
+    The share of b'_1 carried by particles with c_x^2 < ``cx2``; with ``b = (1,)`` (the first
+    Sonine approximation) it does not depend on alpha: 0.8419 at cx2 = 6.  The series'
+    higher terms integrate to zero over all c_x (orthogonality), so the limit is 1 for any b.
+    """
+
+    def integrand(u):
+        phi = sum(bk * laguerre(k + 1, 0.5, u * u) for k, bk in enumerate(b))
+        return u * u * (1.5 - u * u) * np.exp(-u * u) * phi
+
+    total = integrate.quad(integrand, 0.0, np.inf)[0]
+    return integrate.quad(integrand, 0.0, float(np.sqrt(cx2)))[0] / total
