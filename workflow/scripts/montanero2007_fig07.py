@@ -90,6 +90,9 @@ for alpha, key in ((1.0, "elastic"), (0.3, "strong")):
     numbers[f"{key}_z"] = (values[alpha]["limit"] - numbers[f"{key}_paper"]) / values[alpha][
         "limit_err"
     ]
+    # a two-digit percentage stands for the interval [paper - 0.5, paper + 0.5)
+    gap = abs(values[alpha]["limit"] - numbers[f"{key}_paper"]) - 0.5
+    numbers[f"{key}_z_round"] = max(gap, 0.0) / values[alpha]["limit_err"]
     numbers[f"{key}_reach"] = (
         CX2 + (numbers[f"{key}_paper"] - values[alpha]["share"]) / values[alpha]["slope"]
     )

@@ -121,8 +121,12 @@ def figure_legend(fig, *, ncols: int = 3, **kwargs):
             if label not in handles:
                 handles[label] = handle
                 labels.append(label)
+    # just above the highest panel (and its title), not at the figure's top edge, which
+    # leaves the default top margin empty between legend and panels
+    top = max(ax.get_position().y1 for ax in fig.axes)
+    titled = any(ax.get_title() for ax in fig.axes if ax.get_position().y1 == top)
     kwargs.setdefault("loc", "lower center")
-    kwargs.setdefault("bbox_to_anchor", (0.5, 1.0))
+    kwargs.setdefault("bbox_to_anchor", (0.5, top + (0.05 if titled else 0.01)))
     return fig.legend([handles[label] for label in labels], labels, ncols=ncols, **kwargs)
 
 
