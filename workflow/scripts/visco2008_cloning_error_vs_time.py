@@ -3,7 +3,6 @@ for each population size (lines) and the finite-N_c bias against the determinist
 solution of Eq. (28) (dotted levels)."""
 
 import numpy as np
-from matplotlib.ticker import NullFormatter
 
 from kinetic import io, plotting
 from kinetic.workflow_support import start
@@ -24,7 +23,6 @@ for ax, lam in zip(axes, lams, strict=True):
         if bias > 2 * float(ds["mu_rate_final_err"].values[k]):  # resolved biases only
             ax.axhline(bias, ls=":", lw=0.8, color=line.get_color())
     ax.set_title(rf"$\lambda={lam:g}$")
-    ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("CPU time (s)")
 axes[0].set_ylabel(r"error of $\mu$")
 handles, labels = axes[-1].get_legend_handles_labels()
@@ -32,9 +30,8 @@ fig.legend(
     handles,
     labels,
     loc="upper center",
-    ncol=min(len(labels), 7),
-    fontsize=6,
-    bbox_to_anchor=(0.5, 1.08),
+    ncol=min(len(labels), 5),
+    bbox_to_anchor=(0.5, 1.12),
 )
 fig.text(
     0.5,
@@ -42,6 +39,5 @@ fig.text(
     r"points: $(e^{-\lambda}-1)\langle r\rangle$ estimator; thin lines: "
     r"compensation count; dotted: $|\mu(N_c)-\mu|$ against Eq. (28) where > 2 s.e.",
     ha="center",
-    fontsize=6,
 )
 plotting.save(fig, snakemake.output.pdf)
