@@ -1,5 +1,5 @@
 """visco2008 Figs. 5, 7, 8 at λ = 0.5 and 1: the cloning μ, T, a2 of hard disks against
-the first-Sonine closure (SPEC §1 reference points), the Gaussian closure (Eq. 43) and
+the first-Sonine closure (reference points of the document), the Gaussian closure (Eq. 43) and
 the deterministic solution of Eq. (28) (``kinetic.theory.visco2008_exact``).
 
 The closures are approximations, so the test asserts only what theory guarantees:
@@ -20,7 +20,7 @@ import pytest
 from kinetic.cloning import simulate
 from kinetic.theory.visco2008_exact import reference_solution
 
-# SPEC §1: Appendix E with the sign of (E3) corrected, ω = 1
+# Appendix E of the document, with the sign of (E3) corrected, ω = 1
 SONINE = {
     0.5: {"mu": -0.378325, "temperature": 0.853572, "a2": 0.046533},
     1.0: {"mu": -0.578512, "temperature": 0.684897, "a2": 0.140143},

@@ -1,4 +1,4 @@
-"""Extreme cases of the DSMC engine (issue 4): each works with a stated accuracy.
+"""Extreme cases of the DSMC engine: each works with a stated accuracy.
 
 - A velocity outlier far above every thermal speed: the rigorous bound includes it, so
   its collision rate is exact (no acceptance probability is ever capped at 1), at the

@@ -1,4 +1,4 @@
-"""Which time step the heat-flux force needs (issue 4: "show which δt each needs").
+"""Which time step the heat-flux force needs (the paper's Euler step and the exact one).
 
 The force integrator is not what limits δt: the Euler step (4.1) and the exact
 integration differ by O(ε² δt²) per step, invisible at ε* <= 0.05. What biases the

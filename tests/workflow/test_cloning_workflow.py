@@ -1,5 +1,5 @@
 """Cloning rules of the workflow: target selection, early config rejection, a tiny real
-run that writes cloning.csv with the columns of issue 5, and resumption."""
+run that writes cloning.csv with the columns other tools read, and resumption."""
 
 import os
 import subprocess

@@ -393,7 +393,7 @@ rule montanero2007_extreme:
 
 
 rule montanero2007_checks:
-    # Fails (after writing the table to its log) when a check of issue 4 fails.
+    # Fails (after writing the table to its log) when a check fails.
     input:
         runs=montanero2007_check_inputs,
         script=figure_script("montanero2007_checks"),

@@ -1,4 +1,5 @@
-"""montanero2007 checks of issue 4; fails loudly (after logging the table) if one fails.
+"""montanero2007 checks of the paper's claims and of the engine; fails loudly (after logging
+the table) if one fails.
 
 Statistical checks pass within `sigmas` standard errors, widened to Student's t for the
 number of realizations behind each error (analysis.tolerance_factor).

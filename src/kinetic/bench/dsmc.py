@@ -16,7 +16,7 @@ production runs):
   Strang-split protocol at δt = 0.2 τ (as accurate, see test_dsmc_force_splitting.py):
   CPU time per step and per τ.
 
-Target (issue 4): at least 5·10⁶ accepted collisions per CPU-second at N = 2·10⁵.
+Target: at least 5·10⁶ accepted collisions per CPU-second at N = 2·10⁵.
 
 Inhomogeneous engine (``kinetic.dsmc.simulate_cooling_modes``, costantini2010): N = 3000
 real disks, Λ = 10 (3·10⁴ simulated), α = 0.8, nσ² = 0.005, drag ω0 = ζ(T0)/2, M x M

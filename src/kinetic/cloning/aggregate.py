@@ -37,7 +37,7 @@ __all__ = [
 ]
 
 TABLE_COLUMNS = ["kernel", "lambda", "mu", "mu_err", "T", "T_err", "a2", "a2_err", "n_c"]
-"""Columns of results/visco2008/cloning.csv (issue 5 contract)."""
+"""Columns of results/visco2008/cloning.csv (read by other tools: keep the names)."""
 
 OBSERVABLES = ("mu", "mu_rate", "temperature", "a2")
 _SHAPE_KEYS = ("kernel", "dimension", "lam", "population", "duration", "transient", "n_blocks")

@@ -12,7 +12,7 @@ Everything here is dimensionless unless a function says otherwise:
   (Eq. 2.11, 2.45);
 - the *effective collision frequency* of Eq. (2.15) is written ``nu0`` here.  The paper's
   markdown writes it ``v_0`` as well (Eqs. 2.14, 2.15, 2.46, 2.47): the two are different
-  quantities (SPEC §1).  Reduced rates are ``zeta* = zeta / nu0`` and
+  quantities.  Reduced rates are ``zeta* = zeta / nu0`` and
   ``nu_kappa* = nu_kappa / nu0``;
 - the simulation units of Section 4: mean free path ``lambda = 1 / (sqrt(2) pi n sigma^2)``
   (d = 3; :func:`mean_free_path` gives the d-dimensional analogue), mean free time
@@ -20,8 +20,8 @@ Everything here is dimensionless unless a function says otherwise:
   pure number (:func:`nu0_tau`, 8/(5 sqrt(pi)) in d = 3) and is the single place where
   the two systems of units meet.
 
-Typos of the source fixed here (SPEC §1)
-----------------------------------------
+Typos of the source fixed here
+------------------------------
 - Eqs. (2.41)/(2.42) read ``kappa = (d+2)/2 (nT/m) (1 + 2 a2) / (nu_kappa - 2 zeta)`` and
   ``kappa' = (d+2)/2 (nT/m) (1 + 3 a2 / 2) / (nu_kappa' - 3 zeta / 2)``;
 - Eq. (3.5): the left side is the thermostat parameter, the right side the cooling rate;
@@ -206,7 +206,7 @@ def reduced_nu_kappa(alpha, d: int = 3, a2=None):
 
 
 def reduced_nu_kappa_modified(alpha, d: int = 3, a2=None):
-    """Collision frequency of the modified first Sonine approximation (Ref. [28], SPEC §3).
+    """Collision frequency of the modified first Sonine approximation (Ref. [28]).
 
     ``(1+alpha)/d [(d-1)/2 + 3 (d+8)(1-alpha)/16 + (296 + 217 d - 3 (160 + 11 d) alpha) a2/256]``.
     Equal to Eq. (2.46) at a2 = 0.
@@ -231,7 +231,7 @@ def _nu_for(approximation: str):
 
 
 def kappa_ratio(alpha, d: int = 3, approximation: str = "standard", a2=None):
-    """Thermal conductivity ``kappa / kappa0``, Eq. (2.41) with the SPEC fix, over Eq. (2.47).
+    """Thermal conductivity ``kappa / kappa0``, Eq. (2.41) (typo fixed) over Eq. (2.47).
 
     ``kappa/kappa0 = (d-1)/d (1 + 2 a2) / (nu_kappa* - 2 zeta*)``; ``approximation`` is
     ``"standard"`` (Eq. 2.46) or ``"modified"`` (Ref. [28]).  Equal to 1 at alpha = 1.
@@ -245,7 +245,7 @@ def kappa_ratio(alpha, d: int = 3, approximation: str = "standard", a2=None):
 
 
 def kappa_prime_ratio(alpha, d: int = 3, approximation: str = "standard", a2=None):
-    """Modified thermal conductivity ``kappa' / kappa0``, Eq. (2.42) with the SPEC fix.
+    """Modified thermal conductivity ``kappa' / kappa0``, Eq. (2.42), typo fixed.
 
     ``kappa'/kappa0 = (d-1)/d (1 + 3 a2 / 2) / (nu_kappa'* - 3 zeta* / 2)`` with
     ``nu_kappa'*`` from Eq. (2.46) (``"standard"``) or Ref. [28] (``"modified"``).
