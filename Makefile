@@ -1,6 +1,7 @@
 # Two entry points, each creating its own virtual environment first:
 #   make figures   build every available figure and table with config/config.yaml
-#   make test      lint and run the whole test suite
+#   make test      lint and run the whole test suite (what CI runs)
+#   make test-fast lint and run the tests not marked slow (minutes, for editing)
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
@@ -9,7 +10,7 @@ CONFIG ?= config/config.yaml
 # extra snakemake options, e.g. SNAKEMAKE_ARGS=-n for a dry run
 SNAKEMAKE_ARGS ?=
 
-.PHONY: install figures test lint clean-results
+.PHONY: install figures test test-fast lint clean-results
 
 install: $(VENV)/.installed
 
@@ -30,6 +31,9 @@ lint: install
 
 test: lint
 	$(BIN)/python -m pytest
+
+test-fast: lint
+	$(BIN)/python -m pytest -m "not slow and not cluster"
 
 clean-results:
 	rm -rf results logs .snakemake
