@@ -6,6 +6,8 @@ Per independent realization (or batch), from the datasets of ``kinetic.edmd.disk
 - ``wall_pressures``: βP by the wall rift, Eq. (4.9a), (1/(2 L τ)) Σ 2/|v⊥| over the hits
   of the chosen walls of total length 2L, and by the kinematic estimator, Eq. (4.10a)
   times β = 2N/R² (m = 1), (β/(2 L τ)) Σ 2|v⊥|;
+- ``rate_pressures``: βP from the rate of wall hits alone, n̂ (4.9b), times the finite-N
+  flux average 2⟨1/|v⊥|⟩ (4.9c) or its N → ∞ limit (4.9d), both with R of the realization;
 - ``contact_pressure``: the thermodynamic βP_y = contact density, the projected density
   η(y) at the wall (extrapolated from the first bins, ``theory.krauth2025.wall_value``)
   over the wall length L_x.
@@ -16,9 +18,9 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from kinetic.theory.krauth2025 import wall_value
+from kinetic.theory.krauth2025 import rate_pressure_factors, wall_value
 
-__all__ = ["FACES", "contact_pressure", "wall_pressures"]
+__all__ = ["FACES", "contact_pressure", "rate_pressures", "wall_hit_rate", "wall_pressures"]
 
 #: faces of ``wall_statistics``: the x walls (length L_y each), the y walls (L_x each)
 FACES = {"x": [0, 1], "y": [2, 3], "all": [0, 1, 2, 3]}
@@ -33,6 +35,25 @@ def wall_pressures(md: xr.Dataset, faces: str) -> tuple[np.ndarray, np.ndarray]:
     norm = 2 / (wall_length * float(md.attrs["duration"]))
     beta = 2 * int(md.attrs["n_disks"]) / md["radius_squared"].values
     return hits[:, 2] * norm, beta * hits[:, 1] * norm
+
+
+def wall_hit_rate(md: xr.Dataset, faces: str) -> np.ndarray:
+    """n̂ of Eq. (4.9b) per realization: hits on ``faces`` per unit wall length and time."""
+    box_x, box_y = float(md.attrs["box_x"]), float(md.attrs["box_y"])
+    wall_length = {"x": 2 * box_y, "y": 2 * box_x, "all": 2 * (box_x + box_y)}[faces]
+    hits = md["wall_statistics"].values[:, FACES[faces], 0].sum(axis=1)
+    return hits / (wall_length * float(md.attrs["duration"]))
+
+
+def rate_pressures(md: xr.Dataset, faces: str) -> tuple[np.ndarray, np.ndarray]:
+    """(finite N, N → ∞) βP per realization from the wall-hit rate: Eqs. (4.9c), (4.9d)."""
+    n = int(md.attrs["n_disks"])
+    rate = wall_hit_rate(md, faces)
+    radii = np.sqrt(md["radius_squared"].values)
+    factors = [rate_pressure_factors(n, radius) for radius in radii]
+    finite = np.array([f["finite"] for f in factors]) * rate
+    limit = np.array([f["limit"] for f in factors]) * rate
+    return finite, limit
 
 
 def contact_pressure(data: xr.Dataset) -> np.ndarray:

@@ -151,6 +151,25 @@ def pair_speed_averages(n_disks: int, radius: float) -> dict[str, float]:
     }
 
 
+def rate_pressure_factors(n_disks: int, radius: float) -> dict[str, float]:
+    """βP per unit rate of wall hits n̂ (hits per unit wall length and time), Eqs. (4.9c, d)
+    and (4.10c, d) times β.
+
+    The wall rift gives βP = 2⟨1/|v⊥|⟩ n̂ (4.9b) and the kinematic estimator P = 2m⟨|v⊥|⟩ n̂
+    (4.10b); with Eq. (4.13) and the microcanonical β = 2N/(mR²) both become
+    ``finite`` = (2√π/R) Γ(N+1/2)/Γ(N) (4.9c, and β times 4.10c), whose N → ∞ form is
+    ``limit`` = √(2πβm) = 2√(πN)/R (4.9d, and β times 4.10d). The lecture prints
+    (4.10d) as √(2πβm) n̂, which is the limit of βP_x, not of P_x = √(2πm/β) n̂. Their
+    ratio Γ(N+1/2)/(Γ(N)√N) is 0.969 at N = 4.
+    """
+    ratio = _gamma_ratio(n_disks)
+    return {
+        "finite": 2 * math.sqrt(math.pi) / radius * ratio,
+        "limit": 2 * math.sqrt(math.pi * n_disks) / radius,
+        "finite_over_limit": ratio / math.sqrt(n_disks),
+    }
+
+
 def wall_value(edges, averages, terms: int = 3, bins: int = 4) -> float:
     """Value at ``edges[0]`` of the polynomial (``terms`` coefficients) whose averages over
     the first ``bins`` bins fit the histogram ``averages`` best (least squares): the
