@@ -10,6 +10,8 @@ of its expectation (bins on the line are nearly independent).
 import numpy as np
 import pytest
 
+from kinetic.analysis.krauth2025 import pin_contact_density
+from kinetic.analysis.statistics import mean_and_sem
 from kinetic.samplers import kernels, naive_acceptance, pin_snapshots, sample_line, sample_ring
 from kinetic.theory import krauth2025 as theory
 
@@ -52,6 +54,33 @@ def test_line_density_matches_eq_4_7(method, length, samples):
     _check(_z_scores(data.density.values, data.density_sem.values, exact), batches)
     # every configuration puts its N pins inside [σ, L − σ]
     assert int(data.counts.sum()) == n * samples * batches
+
+
+@pytest.mark.parametrize(("method", "samples"), [("direct", 20_000), ("naive", 500)])
+def test_wall_rift_pressure_is_the_contact_density(method, samples):
+    """§4.4.3 in one dimension: the pin density at contact with a post is βP, exactly
+    N/(L − 2Nσ) = 0.6 for 15 pins of width 1 on L = 40; the extrapolation to the post
+    leaves no visible bias on the exact bin averages."""
+    n, length, sigma, batches = 15, 40.0, 0.5, 12
+    data = sample_line(
+        method,
+        n_pins=n,
+        length=length,
+        sigma=sigma,
+        samples=samples,
+        batches=batches,
+        bins=390,
+        seed=13,
+    )
+    edges = data.bin_edges.values
+    width = edges[1] - edges[0]
+    per_batch = data.counts.values / (samples * width)
+    contact, sem = mean_and_sem([pin_contact_density(edges, row) for row in per_batch])
+    beta_p = n / (length - 2 * n * sigma)
+    assert abs(contact - beta_p) < 4.5 * sem
+    assert sem < 0.05 * beta_p  # the check has power
+    exact = theory.bin_average(lambda x: n * theory.pin_density(x, n, length, sigma), edges)
+    assert abs(pin_contact_density(edges, exact) - beta_p) < 0.1 * sem
 
 
 def test_naive_acceptance_is_the_ratio_of_partition_functions():

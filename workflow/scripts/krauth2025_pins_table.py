@@ -3,7 +3,15 @@ the pin density in the bins at the posts and in the middle fifth of the line, th
 ("the density there is 4 times larger than in the bulk") and naive-pin's acceptance, each
 with its standard error across batches, beside the exact values (Eqs. 4.6, 4.7 averaged
 over the same bins; ``post_over_centre_exact`` is Eq. 4.7 at the post over its value at
-the centre, the lecture's "4 times"). Acceptance columns are naive-pin's only."""
+the centre, the lecture's "4 times"). Acceptance columns are naive-pin's only.
+
+The 1-D check of the wall-rift pressure (§4.4.3): removing a slab at a wall eliminates the
+configurations with a pin touching it, so βP is the pin density at contact, here
+extrapolated to the post from the first bins of each batch
+(``analysis.krauth2025.pin_contact_density``), against the exact βP = N/(L − 2Nσ) of N
+pins of width 2σ between hard walls (columns beta_p_*); beta_p_extrapolation_bias is the
+same fit applied to the exact bin averages minus the exact βP, the part of the difference
+that is the method's, not the sampling's."""
 
 import math
 
@@ -11,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from kinetic import io
+from kinetic.analysis.krauth2025 import pin_contact_density as contact_density
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.workflow_support import start
 
@@ -40,6 +49,11 @@ for path in snakemake.input.lines:
     acceptance, acceptance_sem = mean_and_sem(samples / run["started"].values)
     curve = run["density_curve"].values
     at_post = curve[0] / np.interp(0.5 * length, run["x_curve"].values, curve)
+    edges = run["bin_edges"].values
+    contact_b = np.array([contact_density(edges, row) for row in per_batch])
+    contact, contact_sem = mean_and_sem(contact_b)
+    n_pins, sigma = int(run.attrs["n_pins"]), float(run.attrs["sigma"])
+    beta_p_exact = n_pins / (length - 2 * n_pins * sigma)
     rows.append(
         {
             "method": run.attrs["method"],
@@ -61,6 +75,11 @@ for path in snakemake.input.lines:
             "acceptance_sem": acceptance_sem if naive else math.nan,
             "acceptance_exact": float(run["acceptance_exact"]) if naive else math.nan,
             "cpu_seconds": float(run["cpu_seconds"].sum()),
+            "beta_p_wall_rift": contact,
+            "beta_p_wall_rift_sem": contact_sem,
+            "beta_p_exact": beta_p_exact,
+            "beta_p_z": (contact - beta_p_exact) / contact_sem,
+            "beta_p_extrapolation_bias": contact_density(edges, exact) - beta_p_exact,
         }
     )
 io.write_table(pd.DataFrame(rows), snakemake.output.csv, snakemake.output.md, float_format=".5g")
