@@ -11,10 +11,15 @@ import math
 import numpy as np
 import pytest
 
-from kinetic.analysis.krauth2025 import contact_pressure, rate_pressures, wall_pressures
+from kinetic.analysis.krauth2025 import (
+    contact_pressure,
+    parting_table,
+    rate_pressures,
+    wall_pressures,
+)
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.edmd import HardSphereSystem, Observers, naive
-from kinetic.edmd.disks import chaos, initial_state, simulate_box
+from kinetic.edmd.disks import CLASSIC_START, chaos, initial_state, simulate_box
 from kinetic.samplers import sample_disks
 from kinetic.theory import krauth2025 as theory
 
@@ -168,6 +173,34 @@ def test_chaos_precisions_part_and_float64_is_deterministic():
     )
     assert gap32[0] < 1e-5 and gap_ulp[0] < 1e-14  # same start, up to the precision
     assert gap32[-1] > 1e3 * gap32[0] and gap_ulp[-1] > 1e3 * max(gap_ulp[0], 1e-16)
+
+
+def test_classic_start_hits_the_right_wall_first():
+    """Krauth's four-disk start: disk 3 at (0.75, 0.75) moving at (0.78, 0.1177) reaches
+    the wall x = 1 − σ first, at t = (1 − 0.15 − 0.75)/0.78, before any other event."""
+    data = chaos(n_disks=N, sigma=SIGMA, events=12, seed=1, start="classic")
+    np.testing.assert_allclose(
+        data["initial_positions"].values, np.array(CLASSIC_START["positions"]), atol=1e-7
+    )
+    run = data.sel(precision="float64")
+    assert run["event_time"].values[0] == pytest.approx(0.1 / 0.78, rel=1e-6)
+    assert run["event_pair"].values[0][0] == 3 and run["event_pair"].values[0][1] < 0
+    with pytest.raises(ValueError, match="classic start"):
+        chaos(n_disks=N, sigma=0.1, events=12, seed=1, start="classic")
+
+
+def test_precisions_part_after_a_handful_of_pair_collisions():
+    """The sequences part where the exponentially growing difference reaches O(1): from
+    float32's 1e-8 after fewer pair collisions than from float64's one-ulp 1e-16 (about
+    13 and 32 per disk in the default build), over eight random starts."""
+    data = chaos(n_disks=N, sigma=SIGMA, events=300, seed=9, extra_starts=8)
+    rows = [row for row in parting_table(data) if row["start"] > 0]
+    f32 = [r["pair_collisions_per_disk"] for r in rows if r["comparison"].startswith("float32")]
+    ulp = [r["pair_collisions_per_disk"] for r in rows if r["comparison"].startswith("float64_")]
+    assert not np.isnan(f32).any() and not np.isnan(ulp).any()  # all parted within 300
+    (a, sa), (b, sb) = mean_and_sem(f32), mean_and_sem(ulp)
+    assert b - a > 4.5 * math.hypot(sa, sb)
+    assert 3 < a < 30  # a handful of collisions per disk, not hundreds
 
 
 @pytest.mark.parametrize(

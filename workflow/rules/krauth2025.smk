@@ -229,7 +229,11 @@ rule krauth2025_pins_table:
 # check) and the pressure table of section 4.4.3 (Eqs. 4.9, 4.10, 4.13, 4.14).
 
 provide("krauth2025/fig04_01", *figure_files("krauth2025", "fig04_01"))
-provide("krauth2025/chaos", *figure_files("krauth2025", "chaos"))
+provide(
+    "krauth2025/chaos",
+    *figure_files("krauth2025", "chaos"),
+    *table_files("krauth2025", "chaos_table"),
+)
 provide("krauth2025/fig04_06", *figure_files("krauth2025", "fig04_06"))
 provide("krauth2025/pressure_table", *table_files("krauth2025", "pressure_table"))
 
@@ -281,8 +285,15 @@ def krauth2025_chaos_job(wildcards):
         "sigma": disks["sigma"],
         "box": disks["box"],
         "events": max(disks["chaos_events"], disks["snapshot_events"]),
+        "start": disks["start"],
+        "extra_starts": disks["chaos_starts"],
         "seed": job_seed("krauth2025/disks/chaos"),
     }
+
+
+def krauth2025_snapshot_panels(wildcards):
+    """Events drawn in Fig 4.1 after the start."""
+    return krauth2025_disks()["snapshot_events"]
 
 
 def krauth2025_check_disks():
@@ -378,7 +389,7 @@ rule krauth2025_fig04_01:
     log:
         "logs/krauth2025/fig04_01.log",
     params:
-        panels=lambda wildcards: krauth2025_disks()["snapshot_events"],
+        panels=krauth2025_snapshot_panels,
     script:
         "../scripts/krauth2025_fig04_01.py"
 
@@ -387,13 +398,17 @@ rule krauth2025_chaos:
     input:
         chaos="results/krauth2025/disks/chaos.nc",
         script=figure_script("krauth2025_chaos"),
+        template=caption_template("krauth2025_chaos"),
     output:
         pdf="results/krauth2025/chaos.pdf",
         png=report(
             "results/krauth2025/chaos.png",
-            caption="../report/krauth2025_chaos.rst",
+            caption=rendered_caption("krauth2025", "chaos"),
             category="krauth2025",
         ),
+        caption="results/krauth2025/chaos.caption.rst",
+        csv="results/krauth2025/chaos_table.csv",
+        md="results/krauth2025/chaos_table.md",
     log:
         "logs/krauth2025/chaos.log",
     script:

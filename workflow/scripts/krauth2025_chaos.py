@@ -1,26 +1,71 @@
 """krauth2025 §4.1.2, chaos: the same initial state of four disks run by event-disks in
 float32 and in float64, and in float64 from positions one unit in the last place away.
-The largest position difference against the float64 run grows exponentially with the
-number of events until the sequences of collisions part (vertical lines)."""
+The largest position difference against the float64 run grows exponentially until the
+sequences of collisions part (vertical lines): against all events (walls included) and
+against pair collisions per disk, the lecture's count. chaos_table.csv gives, for the
+figure's start and for further random starts, the event and the pair collisions per disk
+at which each sequence parts from float64, with their mean and standard error over the
+random starts."""
 
 import numpy as np
+import pandas as pd
 
 from kinetic import io, plotting
+from kinetic.analysis.krauth2025 import pair_collisions_per_disk, parting_table
+from kinetic.analysis.statistics import mean_and_sem
 from kinetic.workflow_support import start
 
-start(snakemake)
+log = start(snakemake)
 data = io.read_dataset(snakemake.input.chaos)
+n_disks = int(data.attrs["n_disks"])
 reference = data.sel(precision="float64")
-fig, ax = plotting.figure()
-for name, label in (("float32", "float32"), ("float64_ulp", "float64, one ulp away")):
+events = data["event"].values
+per_disk = pair_collisions_per_disk(reference["event_pair"].values, n_disks)
+fig, (by_event, by_pair) = plotting.figure(1, 2, figsize=(6.8, 2.6), sharey=True)
+labels = {"float32": "float32", "float64_ulp": "float64, one ulp away"}
+for name, label in labels.items():
     run = data.sel(precision=name)
     gap = np.abs(run["positions"] - reference["positions"]).max(("disk", "axis")).values
-    events = data["event"].values
-    (line,) = ax.semilogy(events, np.maximum(gap, 1e-17), "-", lw=0.9, label=label)
+    gap = np.maximum(gap, 1e-17)
+    (line,) = by_event.semilogy(events, gap, "-", lw=0.9, label=label)
+    by_pair.semilogy(per_disk, gap, "-", lw=0.9, color=line.get_color())
     differs = np.flatnonzero((run["event_pair"] != reference["event_pair"]).any("member").values)
     if differs.size:
-        ax.axvline(events[differs[0]], color=line.get_color(), ls=":", lw=0.8)
-ax.set_xlabel("event")
-ax.set_ylabel("largest position difference to float64")
-ax.legend(fontsize=6, loc="lower right")
+        by_event.axvline(events[differs[0]], color=line.get_color(), ls=":", lw=0.8)
+        by_pair.axvline(per_disk[differs[0]], color=line.get_color(), ls=":", lw=0.8)
+by_event.set_xlabel("event (pair and wall collisions)")
+by_pair.set_xlabel("pair collisions per disk")
+by_event.set_ylabel("largest position difference to float64")
+plotting.figure_legend(fig, ncols=2)
 plotting.save(fig, snakemake.output.pdf)
+
+table = pd.DataFrame(parting_table(data))
+summary = []
+for comparison, group in table[table["start_kind"] == "random"].groupby("comparison"):
+    row = {"start": -1, "start_kind": "random, mean", "comparison": comparison}
+    for key in ("parting_event", "pair_collisions_per_disk"):
+        values = group[key].dropna().values
+        mean, sem = mean_and_sem(values) if values.size > 1 else (np.nan, np.nan)
+        row[key], row[f"{key}_sem"] = mean, sem
+    row["events_compared"] = int(group["events_compared"].iloc[0])
+    row["starts_parted"] = int(group["parting_event"].notna().sum())
+    row["starts"] = len(group)
+    summary.append(row)
+table = pd.concat([table, pd.DataFrame(summary)], ignore_index=True)
+io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".4g")
+log.info("where the precisions part:\n%s", table.to_string(index=False))
+
+first = table[table["start"] == 0].set_index("comparison")
+means = table[table["start"] == -1].set_index("comparison")
+numbers = {"start": data.attrs["start"], "starts": int(data.attrs["extra_starts"])}
+for key, comparison in (("f32", "float32 against float64"), ("ulp", "float64_ulp against float64")):
+    numbers[f"{key}_event"] = first.loc[comparison, "parting_event"]
+    numbers[f"{key}_pairs"] = first.loc[comparison, "pair_collisions_per_disk"]
+    if comparison in means.index:
+        for name in ("parting_event", "pair_collisions_per_disk"):
+            numbers[f"{key}_{name}"] = means.loc[comparison, name]
+            numbers[f"{key}_{name}_sem"] = means.loc[comparison, f"{name}_sem"]
+    else:
+        for name in ("parting_event", "pair_collisions_per_disk"):
+            numbers[f"{key}_{name}"] = numbers[f"{key}_{name}_sem"] = np.nan
+plotting.write_caption(snakemake.input.template, snakemake.output.caption, **numbers)

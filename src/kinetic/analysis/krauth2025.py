@@ -15,6 +15,8 @@ Per independent realization (or batch), from the datasets of ``kinetic.edmd.disk
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import xarray as xr
 
@@ -23,6 +25,8 @@ from kinetic.theory.krauth2025 import rate_pressure_factors, wall_value
 __all__ = [
     "FACES",
     "contact_pressure",
+    "pair_collisions_per_disk",
+    "parting_table",
     "pin_contact_density",
     "rate_pressures",
     "wall_hit_rate",
@@ -89,3 +93,42 @@ def pin_contact_density(edges, density) -> float:
     left = wall_value(edges, density, PIN_CONTACT_TERMS, PIN_CONTACT_BINS)
     right = wall_value(mirrored, density[::-1], PIN_CONTACT_TERMS, PIN_CONTACT_BINS)
     return 0.5 * (left + right)
+
+
+def pair_collisions_per_disk(event_pair, n_disks: int) -> np.ndarray:
+    """Pair collisions per disk after each event of one sequence (event_pair: (events, 2),
+    second member negative for a wall): each pair collision counts for two disks."""
+    pair = np.asarray(event_pair)[:, 1] >= 0
+    return 2.0 * np.cumsum(pair) / n_disks
+
+
+def parting_table(chaos: xr.Dataset) -> list[dict]:
+    """Where the collision sequences of float32 and of a one-ulp start part from float64,
+    for every start of a ``kinetic.edmd.disks.chaos`` dataset: the first event whose pair
+    differs, and the pair collisions per disk of the float64 sequence before it (NaN when
+    the sequences agree over all events: the run was too short to see them part)."""
+    n_disks = int(chaos.attrs["n_disks"])
+    pairs = chaos["start_event_pair"]
+    rows = []
+    for start in chaos["start"].values:
+        reference = pairs.sel(start=start, precision="float64").values
+        per_disk = pair_collisions_per_disk(reference, n_disks)
+        for other in ("float32", "float64_ulp"):
+            differs = np.flatnonzero(
+                (pairs.sel(start=start, precision=other).values != reference).any(axis=1)
+            )
+            parted = differs.size > 0
+            index = int(differs[0]) if parted else -1
+            rows.append(
+                {
+                    "start": int(start),
+                    "start_kind": chaos.attrs["start"] if start == 0 else "random",
+                    "comparison": f"{other} against float64",
+                    "parting_event": index + 1 if parted else math.nan,
+                    "pair_collisions_per_disk": (per_disk[index - 1] if index > 0 else 0.0)
+                    if parted
+                    else math.nan,
+                    "events_compared": int(reference.shape[0]),
+                }
+            )
+    return rows

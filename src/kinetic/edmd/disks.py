@@ -6,7 +6,9 @@ disks in a box with walls.
   y-density by Eq. (4.3) and from stroboscopic snapshots, the wall hits per face with
   Σ|v⊥| and Σ 1/|v⊥|, and the pair collisions with Σ|Δv⊥| and Σ 1/|Δv⊥|, per realization;
 - ``chaos``: the same initial state run in float32 and float64 (and in float64 from a
-  state one unit in the last place away), event by event (§4.1.2);
+  state one unit in the last place away), event by event (§4.1.2), from the classic start
+  of Krauth's four-disk program or a random one, and the event sequences of further
+  random starts (where the precisions part, with a spread);
 - ``initial_state``: the start of realization r of a seed.
 """
 
@@ -24,7 +26,16 @@ from kinetic.progress import Progress
 from kinetic.rng import stream_states
 from kinetic.samplers import disk_configuration
 
-__all__ = ["chaos", "initial_state", "simulate_box"]
+__all__ = ["CLASSIC_START", "chaos", "initial_state", "simulate_box"]
+
+CLASSIC_START = {
+    "sigma": 0.15,
+    "box": (1.0, 1.0),
+    "positions": ((0.25, 0.25), (0.75, 0.25), (0.25, 0.75), (0.75, 0.75)),
+    "velocities": ((0.21, 0.12), (0.71, 0.18), (-0.23, -0.79), (0.78, 0.1177)),
+}
+"""The start of Krauth's own event-disks program (four disks of radius 0.15 in the unit
+box), the snapshots readers of the book and the lecture know."""
 
 
 def initial_state(n_disks: int, sigma: float, box, seed: int, realization: int):
@@ -167,13 +178,20 @@ def simulate_box(
     return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
 
 
-def chaos(*, n_disks: int, sigma: float, box=(1.0, 1.0), events: int, seed: int) -> xr.Dataset:
-    """One initial state (realization 0 of ``seed``, rounded to float32 so that every run
-    starts from exactly the same numbers) run for ``events`` events in float64, in
-    float32, and in float64 from positions moved by one unit in the last place."""
-    if isinstance(events, bool) or not isinstance(events, int) or events < 1:
-        raise ValueError(f"events must be an integer >= 1, got {events!r}")
-    x, v = initial_state(n_disks, sigma, box, seed, 0)
+def _classic_start(n_disks: int, sigma: float, box) -> tuple[np.ndarray, np.ndarray]:
+    expected = (len(CLASSIC_START["positions"]), CLASSIC_START["sigma"], CLASSIC_START["box"])
+    given = (n_disks, float(sigma), tuple(float(side) for side in box))
+    if given != expected:
+        raise ValueError(
+            f"the classic start is {expected[0]} disks of radius {expected[1]} in the box "
+            f"{expected[2]}; got n_disks = {n_disks}, sigma = {sigma}, box = {tuple(box)}"
+        )
+    return np.array(CLASSIC_START["positions"]), np.array(CLASSIC_START["velocities"])
+
+
+def _parting_runs(x, v, sigma, box, events: int):
+    """The three runs of one start (float64, float32, float64 one ulp away), from the
+    start rounded to float32 so that every run begins from exactly the same numbers."""
     x = x.astype(np.float32).astype(np.float64)
     v = v.astype(np.float32).astype(np.float64)
     runs = {
@@ -181,6 +199,7 @@ def chaos(*, n_disks: int, sigma: float, box=(1.0, 1.0), events: int, seed: int)
         "float32": (x.astype(np.float32), v.astype(np.float32), np.float32),
         "float64_ulp": (np.nextafter(x, np.inf), v.copy(), np.float64),
     }
+    n_disks = x.shape[0]
     times = np.zeros((len(runs), events))
     pairs = np.zeros((len(runs), events, 2), dtype=np.int64)
     positions = np.zeros((len(runs), events, n_disks, 2))
@@ -199,6 +218,39 @@ def chaos(*, n_disks: int, sigma: float, box=(1.0, 1.0), events: int, seed: int)
         )
         times[index] = event_time
         positions[index] = event_positions
+    return list(runs), x, v, times, pairs, positions
+
+
+def chaos(
+    *,
+    n_disks: int,
+    sigma: float,
+    box=(1.0, 1.0),
+    events: int,
+    seed: int,
+    start: str = "random",
+    extra_starts: int = 0,
+) -> xr.Dataset:
+    """One initial state run for ``events`` events in float64, in float32, and in float64
+    from positions moved by one unit in the last place; ``start`` is "classic"
+    (:data:`CLASSIC_START`) or "random" (realization 0 of ``seed``). ``extra_starts``
+    random starts (realizations 1, 2, ... of ``seed``) add their event sequences
+    (``start_event_pair``) for the statistics of where the precisions part."""
+    if isinstance(events, bool) or not isinstance(events, int) or events < 1:
+        raise ValueError(f"events must be an integer >= 1, got {events!r}")
+    if isinstance(extra_starts, bool) or not isinstance(extra_starts, int) or extra_starts < 0:
+        raise ValueError(f"extra_starts must be an integer >= 0, got {extra_starts!r}")
+    if start == "classic":
+        x, v = _classic_start(n_disks, sigma, box)
+    elif start == "random":
+        x, v = initial_state(n_disks, sigma, box, seed, 0)
+    else:
+        raise ValueError(f"start must be 'classic' or 'random', got {start!r}")
+    names, x, v, times, pairs, positions = _parting_runs(x, v, sigma, box, events)
+    start_pairs = [pairs]
+    for realization in range(1, extra_starts + 1):
+        xs, vs = initial_state(n_disks, sigma, box, seed, realization)
+        start_pairs.append(_parting_runs(xs, vs, sigma, box, events)[4])
     data = {
         "event_time": (("precision", "event"), times, "time", "time of the event"),
         "event_pair": (
@@ -220,14 +272,27 @@ def chaos(*, n_disks: int, sigma: float, box=(1.0, 1.0), events: int, seed: int)
             "length/time",
             "common initial velocities",
         ),
+        "start_event_pair": (
+            ("start", "precision", "event", "member"),
+            np.array(start_pairs),
+            "1",
+            "event_pair of every start (start 0: the one above; then random starts)",
+        ),
     }
     coords = {
-        "precision": ("precision", list(runs), "1", "arithmetic of the run"),
+        "precision": ("precision", names, "1", "arithmetic of the run"),
+        "start": ("start", np.arange(extra_starts + 1), "1", "initial state"),
         "event": ("event", np.arange(1, events + 1), "1", "event number"),
         "member": ("member", [0, 1], "1", "first or second member"),
         "disk": ("disk", np.arange(n_disks), "1", "disk"),
         "axis": ("axis", ["x", "y"], "1", "coordinate"),
     }
-    parameters = {"n_disks": int(n_disks), "sigma": float(sigma), "events": events}
+    parameters = {
+        "n_disks": int(n_disks),
+        "sigma": float(sigma),
+        "events": events,
+        "start": start,
+        "extra_starts": extra_starts,
+    }
     parameters.update({"box_x": float(box[0]), "box_y": float(box[1])})
     return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
