@@ -175,6 +175,26 @@ def test_chaos_precisions_part_and_float64_is_deterministic():
     assert gap32[-1] > 1e3 * gap32[0] and gap_ulp[-1] > 1e3 * max(gap_ulp[0], 1e-16)
 
 
+def test_velocities_are_uniform_on_the_energy_sphere(md):
+    """§4.2.1: one velocity component over R follows the sphere's marginal
+    ∝ (1 − u²)^(N − 3/2), not the Maxwell Gaussian (a large difference at N = 4)."""
+    from scipy import stats
+
+    from kinetic.plotting import bin_average
+
+    edges = md["velocity_edges"].values
+    density, error = mean_and_sem(md["velocity_density"].values, axis=0)
+    populated = error > 0
+    sphere = bin_average(lambda u: theory.sphere_velocity_marginal(u, N), edges)
+    maxwell = bin_average(lambda u: theory.maxwell_velocity_marginal(u, N), edges)
+    dof = int(populated.sum())
+    chi2_sphere = np.sum(((density - sphere)[populated] / error[populated]) ** 2)
+    chi2_maxwell = np.sum(((density - maxwell)[populated] / error[populated]) ** 2)
+    assert stats.chi2.sf(chi2_sphere, dof) > 1e-3
+    assert chi2_maxwell / dof > 100
+    np.testing.assert_allclose((density * np.diff(edges)).sum(), 1.0, rtol=1e-9)
+
+
 def test_classic_start_hits_the_right_wall_first():
     """Krauth's four-disk start: disk 3 at (0.75, 0.75) moving at (0.78, 0.1177) reaches
     the wall x = 1 − σ first, at t = (1 − 0.15 − 0.75)/0.78, before any other event."""

@@ -235,6 +235,7 @@ provide(
     *table_files("krauth2025", "chaos_table"),
 )
 provide("krauth2025/fig04_06", *figure_files("krauth2025", "fig04_06"))
+provide("krauth2025/velocities", *figure_files("krauth2025", "velocities"))
 provide("krauth2025/pressure_table", *table_files("krauth2025", "pressure_table"))
 
 
@@ -257,6 +258,7 @@ def krauth2025_md_job(wildcards):
         "snapshot_interval": disks["snapshot_interval"],
         "bins": krauth2025_disk_bins(),
         "realizations": disks["realizations"],
+        "velocity_bins": disks["velocity_bins"],
         "seed": job_seed("krauth2025/disks/md"),
     }
 
@@ -432,6 +434,25 @@ rule krauth2025_fig04_06:
         "logs/krauth2025/fig04_06.log",
     script:
         "../scripts/krauth2025_fig04_06.py"
+
+
+rule krauth2025_velocities:
+    input:
+        md="results/krauth2025/disks/md.nc",
+        script=figure_script("krauth2025_velocities"),
+        template=caption_template("krauth2025_velocities"),
+    output:
+        pdf="results/krauth2025/velocities.pdf",
+        png=report(
+            "results/krauth2025/velocities.png",
+            caption=rendered_caption("krauth2025", "velocities"),
+            category="krauth2025",
+        ),
+        caption="results/krauth2025/velocities.caption.rst",
+    log:
+        "logs/krauth2025/velocities.log",
+    script:
+        "../scripts/krauth2025_velocities.py"
 
 
 rule krauth2025_pressure_table:

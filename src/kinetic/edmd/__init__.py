@@ -95,4 +95,6 @@ def _warm_naive() -> None:
         0.9,
         np.zeros((4, 3)),
         np.zeros(3),
+        np.zeros(4),
+        1.0,
     )

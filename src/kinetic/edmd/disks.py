@@ -4,7 +4,9 @@ disks in a box with walls.
 - ``simulate_box``: independent realizations (direct-disks start, Gaussian velocities
   scaled to Σ v² = 2N, i.e. k_B T = 1 with m = 1) run for a fixed time; returns the
   y-density by Eq. (4.3) and from stroboscopic snapshots, the wall hits per face with
-  Σ|v⊥| and Σ 1/|v⊥|, and the pair collisions with Σ|Δv⊥| and Σ 1/|Δv⊥|, per realization;
+  Σ|v⊥| and Σ 1/|v⊥|, the pair collisions with Σ|Δv⊥| and Σ 1/|Δv⊥|, and the time-weighted
+  density of one velocity component over R (§4.2.1: uniform on the sphere Σv² = R²), per
+  realization;
 - ``chaos``: the same initial state run in float32 and float64 (and in float64 from a
   state one unit in the last place away), event by event (§4.1.2), from the classic start
   of Krauth's four-disk program or a random one, and the event sequences of further
@@ -67,6 +69,7 @@ def simulate_box(
     bins: int,
     realizations: int,
     seed: int,
+    velocity_bins: int = 40,
 ) -> xr.Dataset:
     """Run ``realizations`` independent systems for ``duration`` each (see the module
     docstring). Densities are disk centres per unit length of y on [σ, L_y − σ]."""
@@ -76,6 +79,8 @@ def simulate_box(
         raise ValueError("snapshot_interval must not exceed duration")
     if isinstance(bins, bool) or not isinstance(bins, int) or bins < 1:
         raise ValueError(f"bins must be an integer >= 1, got {bins!r}")
+    if isinstance(velocity_bins, bool) or not isinstance(velocity_bins, int) or velocity_bins < 2:
+        raise ValueError(f"velocity_bins must be an integer >= 2, got {velocity_bins!r}")
     if isinstance(realizations, bool) or not isinstance(realizations, int) or realizations < 2:
         raise ValueError(f"realizations must be an integer >= 2, got {realizations!r}")
     box = np.array([float(side) for side in box])
@@ -86,6 +91,7 @@ def simulate_box(
     snapshots = np.zeros((realizations, bins))
     walls = np.zeros((realizations, 4, 3))
     pairs = np.zeros((realizations, 3))
+    velocity_time = np.zeros((realizations, velocity_bins))
     events = np.zeros(realizations, dtype=np.int64)
     radius2 = np.zeros(realizations)
     cpu = np.zeros(realizations)
@@ -104,6 +110,8 @@ def simulate_box(
         upper,
         walls[0],
         pairs[0],
+        velocity_time[0],
+        1.0,
     )
     for r, (x, v) in enumerate(starts):
         radius2[r] = np.sum(v**2)
@@ -121,6 +129,8 @@ def simulate_box(
             upper,
             walls[r],
             pairs[r],
+            velocity_time[r],
+            math.sqrt(radius2[r]),
         )
         cpu[r] = time.process_time() - begin
         progress.update(1)
@@ -156,6 +166,19 @@ def simulate_box(
         "radius_squared": ("realization", radius2, "length^2/time^2", "R^2 = sum of v^2"),
         "cpu_seconds": ("realization", cpu, "s", "CPU time per realization"),
         "bin_edges": ("edge", edges, "length", "bin edges"),
+        "velocity_density": (
+            ("realization", "u"),
+            velocity_time / (duration * 2 * n_disks * (2.0 / velocity_bins)),
+            "1",
+            "time-weighted density of u = v_a/R, one velocity component over the radius "
+            "of the velocity sphere, both components of every disk",
+        ),
+        "velocity_edges": (
+            "velocity_edge",
+            np.linspace(-1.0, 1.0, velocity_bins + 1),
+            "1",
+            "bin edges of u",
+        ),
     }
     coords = {
         "y": ("y", 0.5 * (edges[1:] + edges[:-1]), "length", "disk centre y (bin middle)"),
@@ -163,6 +186,13 @@ def simulate_box(
         "face": ("face", ["x=0", "x=Lx", "y=0", "y=Ly"], "1", "wall"),
         "statistic": ("statistic", ["count", "sum", "sum_inverse"], "1", "accumulated sum"),
         "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
+        "u": (
+            "u",
+            np.linspace(-1.0, 1.0, velocity_bins + 1)[:-1] + 1.0 / velocity_bins,
+            "1",
+            "v_a/R (bin middle)",
+        ),
+        "velocity_edge": ("velocity_edge", np.arange(velocity_bins + 1), "1", "edge index"),
     }
     parameters = {
         "n_disks": int(n_disks),
@@ -174,6 +204,7 @@ def simulate_box(
         "bins": bins,
         "realizations": realizations,
         "snapshot_count": n_snapshots,
+        "velocity_bins": velocity_bins,
     }
     return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
 

@@ -165,14 +165,20 @@ def observe(
     upper,
     wall_statistics,
     pair_statistics,
+    velocity_time,
+    radius,
 ):
     """Run for ``duration`` from time 0, feeding the observers (all float64):
 
     ``occupancy`` (bins on [lower, upper)): time spent by the disks in each bin of y
     (Eq. 4.3 times T); ``snapshots``: counts of the disks' y every ``snapshot_interval``
     (from time interval/2); ``wall_statistics`` (4, 3): per face hits, Σ|v⊥|, Σ 1/|v⊥|;
-    ``pair_statistics`` (3,): collisions, Σ|Δv⊥|, Σ 1/|Δv⊥|. Returns the events done."""
+    ``pair_statistics`` (3,): collisions, Σ|Δv⊥|, Σ 1/|Δv⊥|; ``velocity_time`` (bins on
+    [-1, 1)): time spent by every velocity component v_i,a/``radius`` in each bin (both
+    components of every disk, as velocities are constant between events). Returns the
+    events done."""
     n = x.shape[0]
+    velocity_bins = velocity_time.shape[0]
     scale = occupancy.shape[0] / (upper - lower)
     t = 0.0
     next_snapshot = 0.5 * snapshot_interval
@@ -192,6 +198,9 @@ def observe(
             next_snapshot += snapshot_interval
         for m in range(n):
             _flight_occupancy(x[m, 1], v[m, 1], dt, occupancy, lower, scale)
+            for a in range(2):
+                index = int((v[m, a] / radius + 1.0) * 0.5 * velocity_bins)
+                velocity_time[min(max(index, 0), velocity_bins - 1)] += dt
         _advance(x, v, dt)
         t += dt
         if k < 0:

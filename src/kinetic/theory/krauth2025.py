@@ -151,6 +151,21 @@ def pair_speed_averages(n_disks: int, radius: float) -> dict[str, float]:
     }
 
 
+def sphere_velocity_marginal(u, n_disks: int):
+    """Density of u = v_a/R, one velocity component over R, when the 2N components are
+    uniform on the sphere Σ v² = R² (§4.2.1): Γ(N)/(√π Γ(N − 1/2)) (1 − u²)^(N − 3/2)."""
+    u = np.asarray(u, dtype=float)
+    norm = math.exp(gammaln(n_disks) - gammaln(n_disks - 0.5)) / math.sqrt(math.pi)
+    return norm * np.clip(1.0 - u * u, 0.0, None) ** (n_disks - 1.5)
+
+
+def maxwell_velocity_marginal(u, n_disks: int):
+    """The Maxwell limit of :func:`sphere_velocity_marginal`: v_a Gaussian with
+    ⟨v_a²⟩ = R²/(2N), i.e. √(N/π) exp(−N u²)."""
+    u = np.asarray(u, dtype=float)
+    return math.sqrt(n_disks / math.pi) * np.exp(-n_disks * u * u)
+
+
 def rate_pressure_factors(n_disks: int, radius: float) -> dict[str, float]:
     """βP per unit rate of wall hits n̂ (hits per unit wall length and time), Eqs. (4.9c, d)
     and (4.10c, d) times β.
