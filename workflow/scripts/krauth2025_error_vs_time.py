@@ -102,6 +102,6 @@ for index, (method, quantity, values, cpu) in enumerate(series):
     )
 ax.set_xlabel("CPU time (s)")
 ax.set_ylabel("relative standard error")
-ax.legend(fontsize=5.5, loc="upper left", bbox_to_anchor=(1.02, 1.0))
+plotting.legend_outside(ax)
 plotting.save(fig, snakemake.output.pdf)
 io.write_table(pd.DataFrame(rows), snakemake.output.csv, snakemake.output.md, float_format=".4g")

@@ -35,5 +35,5 @@ for index, ax in enumerate(np.ravel(axes)):
     ax.set_xlim(-0.02, box[0] + 0.02)
     ax.set_ylim(-0.02, box[1] + 0.02)
     label = "start" if index == 0 else ("wall" if pairs[index][1] < 0 else "pair")
-    ax.set_title(f"t = {times[index]:.3f} ({label})", fontsize=6)
+    ax.set_title(f"t = {times[index]:.3f} ({label})", fontsize=7)
 plotting.save(fig, snakemake.output.pdf)

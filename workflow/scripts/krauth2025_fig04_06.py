@@ -11,13 +11,13 @@ from kinetic.workflow_support import start
 start(snakemake)
 md = io.read_dataset(snakemake.input.md)
 series = [
-    ("density_trajectory", md, "MD, Eq. (4.3)", "o"),
-    ("density_snapshots", md, "MD, snapshots", "s"),
-    ("density", io.read_dataset(snakemake.input.direct), "direct-disks", "^"),
-    ("density", io.read_dataset(snakemake.input.markov), "markov-disks", "v"),
+    ("density_trajectory", md, "MD, Eq. (4.3)", ("md", {})),
+    ("density_snapshots", md, "MD, snapshots", ("md", {"marker": "s", "mfc": "black"})),
+    ("density", io.read_dataset(snakemake.input.direct), "direct-disks", ("direct", {})),
+    ("density", io.read_dataset(snakemake.input.markov), "markov-disks", ("markov", {})),
 ]
 fig, ax = plotting.figure()
-for offset, (name, data, label, marker) in enumerate(series):
+for offset, (name, data, label, (method, style)) in enumerate(series):
     if "realization" in data[name].dims:
         values, error = mean_and_sem(data[name].values)  # over the realizations
     else:
@@ -25,12 +25,14 @@ for offset, (name, data, label, marker) in enumerate(series):
     y = data["y"].values
     every = max(1, y.size // 18)
     shown = slice(offset % every, None, every)
-    plotting.errorbar(ax, y[shown], values[shown], error[shown], marker=marker, ms=2.5, label=label)
+    plotting.method_errorbar(
+        ax, method, y[shown], values[shown], error[shown], ms=2.5, label=label, **style
+    )
 ax.set_xlabel("$y$")
 ax.set_ylabel(r"projected density $\eta(y)$")
 ax.set_title(
     f"$N = {int(md.attrs['n_disks'])}$ disks of radius $\\sigma = {float(md.attrs['sigma']):g}$",
     fontsize=8,
 )
-ax.legend(fontsize=6, loc="upper center")
+plotting.legend_outside(ax)
 plotting.save(fig, snakemake.output.pdf)

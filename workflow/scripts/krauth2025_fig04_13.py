@@ -33,5 +33,5 @@ ax.set_title(
     f"$N = {int(attrs['n_pins'])}$ pins on a ring of length $L = {float(attrs['length']):g}$",
     fontsize=8,
 )
-ax.legend(fontsize=6, loc="upper center")
+plotting.legend_outside(ax)
 plotting.save(fig, snakemake.output.pdf)
