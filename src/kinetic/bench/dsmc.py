@@ -143,6 +143,29 @@ def _collision_stage(n: int, alpha: float, repeats: int, collisions_per_particle
         _generator_floor(gas.rng, draws)
         return float(draws)
 
+    speeds = np.empty(n, dtype=np.float32)
+    weighted_tally = np.zeros(4, dtype=np.int64)
+    weighted_draws = [0]
+
+    def weighted_work() -> float:
+        before = int(weighted_tally[kernels.TALLY_ACCEPTED])
+        weighted_draws[0] += kernels.collide_weighted(
+            gas.velocity,
+            gas.rng,
+            alpha,
+            settings.pair_coefficient,
+            duration,
+            False,
+            gas.bounds,
+            gas.carry,
+            weighted_tally,
+            speeds,
+        )
+        kernels.force_and_thermostat(gas.velocity, 0.0, False, settings.target_energy, gas.bounds)
+        return float(weighted_tally[kernels.TALLY_ACCEPTED] - before)
+
+    weighted = median_rate(weighted_work, repeats=repeats)
+    weighted_candidates = int(weighted_tally[kernels.TALLY_CANDIDATES])
     floor = median_rate(candidate_loop, repeats=repeats)["rate_per_cpu_second"]
     generator = median_rate(generator_loop, repeats=repeats)["rate_per_cpu_second"]
     draws_per_collision = 2.0 / acceptance + MARSAGLIA_DRAWS
@@ -173,6 +196,20 @@ def _collision_stage(n: int, alpha: float, repeats: int, collisions_per_particle
             "collision_work_ns": 1e9 / accepted_rate - 1e9 / (floor * acceptance),
         },
         "meets_target": bool(n < 100_000 or accepted_rate >= TARGET_COLLISIONS_PER_SECOND),
+        "candidates_per_collision": float(1.0 / acceptance),
+        "per_pair_majorant": {
+            "note": "kernels.collide_weighted: majorant s_i + s_j per pair (exact), i drawn "
+            "with probability s_i / sum s by a uniform index kept with s_i / max s",
+            "accepted_collisions_per_cpu_second": weighted["rate_per_cpu_second"],
+            "acceptance_ratio": float(
+                weighted_tally[kernels.TALLY_ACCEPTED] / max(weighted_candidates, 1)
+            ),
+            "candidates_per_collision": float(
+                weighted_candidates / max(int(weighted_tally[kernels.TALLY_ACCEPTED]), 1)
+            ),
+            "index_draws_per_candidate": float(weighted_draws[0] / max(weighted_candidates, 1)),
+            "speed_relative_to_uniform_pairs": weighted["rate_per_cpu_second"] / accepted_rate,
+        },
     }
 
 
