@@ -46,12 +46,32 @@ def start(snakemake: Any) -> logging.Logger:
     return logger
 
 
-def write_output(snakemake: Any, dataset: Any, seed: int) -> None:
-    """Stamp ``dataset`` with its stored parameters, ``seed`` and the workflow config, and
-    write it (atomically) to the job's first output."""
+def write_output(
+    snakemake: Any,
+    dataset: Any,
+    seed: int | None,
+    *,
+    output: str | None = None,
+    parameters: dict | None = None,
+) -> None:
+    """Stamp ``dataset`` with provenance and write it atomically: the one path by which a
+    workflow script writes netCDF.
+
+    Attributes: the physical ``parameters`` (default: those the engine stored), ``seed``
+    (the seed of the random streams behind the data: the job's seed for a simulation, the
+    run's for an aggregate of one run, -1 for data without random numbers or combined from
+    several runs), ``root_seed`` (the config's seed, from which every job seed derives),
+    the workflow ``config``, the package version and the git revision. ``output`` names
+    the rule output to write (default: the first).
+    """
     from kinetic import io
 
     dataset = io.stamp(
-        dataset, parameters=io.parameters_of(dataset), seed=seed, config=snakemake.config
+        dataset,
+        parameters=io.parameters_of(dataset) if parameters is None else parameters,
+        seed=seed,
+        config=snakemake.config,
     )
-    io.write_dataset(dataset, snakemake.output[0])
+    dataset = dataset.assign_attrs(root_seed=int(snakemake.config.get("seed", -1)))
+    path = snakemake.output[0] if output is None else getattr(snakemake.output, output)
+    io.write_dataset(dataset, path)

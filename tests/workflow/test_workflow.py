@@ -139,6 +139,10 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
                 assert "units" in variable.attrs, f"{path}:{name}"
             assert json.loads(dataset.attrs["config"])["seed"] == 7
             assert dataset.attrs["git_revision"]
+            # one provenance writer (kinetic.workflow_support.write_output) for every file
+            provenance = {"seed", "root_seed", "config", "kinetic_version", "parameters_json"}
+            assert provenance <= set(dataset.attrs), f"{path}: {sorted(dataset.attrs)}"
+            assert dataset.attrs["root_seed"] == 7, path
     # every simulation job ran within the runtime and memory it asked for (kinetic.cost)
     config = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
     validate_config(config)

@@ -2,20 +2,20 @@
 
 from kinetic import io
 from kinetic.cloning import aggregate
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 paths = list(snakemake.input.batches)
 records = aggregate.combine_points([io.read_dataset(path) for path in paths], names=paths)
 limits = aggregate.extrapolate_points(records)
 io.write_table(aggregate.scan_table(records, limits), snakemake.output.csv, snakemake.output.md)
-dataset = io.stamp(
+write_output(
+    snakemake,
     aggregate.scan_dataset(records, limits),
+    None,
+    output="nc",
     parameters={"points": len(records)},
-    seed=snakemake.config["seed"],
-    config=snakemake.config,
 )
-io.write_dataset(dataset, snakemake.output.nc)
 for record in records:
     if record["collapsed"]:
         log.info(

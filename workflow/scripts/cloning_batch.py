@@ -1,8 +1,7 @@
 """One batch of cloning Monte Carlo runs (rule cloning_batch) -> netCDF."""
 
-from kinetic import io
 from kinetic.cloning import simulate
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 parameters = dict(snakemake.params.run)
@@ -12,10 +11,7 @@ dataset = simulate(
     f"{snakemake.wildcards.point} {snakemake.wildcards.size} "
     f"batch {snakemake.wildcards.batch}",
 )
-dataset = io.stamp(
-    dataset, parameters=io.parameters_of(dataset), seed=parameters["seed"], config=snakemake.config
-)
-io.write_dataset(dataset, snakemake.output[0])
+write_output(snakemake, dataset, parameters["seed"])
 log.info(
     "mu = %.6f +- %.6f, T = %.5f +- %.5f, a2 = %.5f +- %.5f",
     float(dataset.mu),

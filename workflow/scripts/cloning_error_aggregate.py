@@ -4,7 +4,7 @@ import numpy as np
 
 from kinetic import io
 from kinetic.cloning import aggregate
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 paths = list(snakemake.input.batches)
@@ -16,11 +16,11 @@ for record in records:
     exact[record["lam"]] = float(reference["mu"].values[match[0]])
 table = aggregate.error_table(records, exact)
 io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".4g")
-dataset = io.stamp(
+write_output(
+    snakemake,
     aggregate.error_dataset(records, exact),
+    None,
+    output="nc",
     parameters={"points": len(records)},
-    seed=snakemake.config["seed"],
-    config=snakemake.config,
 )
-io.write_dataset(dataset, snakemake.output.nc)
 log.info("error study: %d points", len(records))

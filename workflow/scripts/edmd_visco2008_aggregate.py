@@ -1,19 +1,18 @@
 """Join the batches of one visco2008 MD run; derive its Table I cumulants."""
 
-from kinetic import io
 from kinetic.analysis import collision_statistics
 from kinetic.batches import read_batches
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 data = collision_statistics.combine_realizations(read_batches(snakemake.input.batches))
-io.write_dataset(data, snakemake.output.data)
+write_output(snakemake, data, int(data.attrs["seed"]), output="data")
 cumulants = collision_statistics.cumulant_dataset(
     data,
     snakemake.params.table_windows,
     extrapolation_windows=snakemake.params.extrapolation_windows,
 )
-io.write_dataset(cumulants, snakemake.output.cumulants)
+write_output(snakemake, cumulants, int(data.attrs["seed"]), output="cumulants")
 for window in cumulants["window"].values:
     values = cumulants["scaled_cumulant"].sel(window=window).values
     errors = cumulants["scaled_cumulant_sem"].sel(window=window).values

@@ -2,7 +2,7 @@
 
 from kinetic import io
 from kinetic.studies.montanero2007 import simulate_batch
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 run = dict(snakemake.params.run)
@@ -15,16 +15,15 @@ dataset = simulate_batch(
     count=batch["count"],
     label=f"montanero2007 {name} batch{snakemake.wildcards.batch}",
 )
-dataset = io.stamp(
+write_output(
+    snakemake,
     dataset,
+    int(snakemake.params.seed),
     parameters={
         **io.parameters_of(dataset),
         "run": name,
         "family": run["family"],
         "setting": run.get("setting", ""),
     },
-    seed=int(snakemake.params.seed),
-    config=snakemake.config,
 )
-io.write_dataset(dataset, snakemake.output[0])
 log.info("wrote %s (%.1f CPU s)", snakemake.output[0], float(dataset["cpu_seconds"].sum()))

@@ -78,7 +78,6 @@ def simulate(
     free_path_bins: int = 200,
     cell_occupancy: float | None = None,
     label: str | None = None,
-    config: dict | None = None,
 ):
     """Equilibrium MD realizations with collision-count, free-flight and free-path observers.
 
@@ -101,7 +100,7 @@ def simulate(
         of the free-flight-time histogram; free_path_max, free_path_bins likewise in Enskog
         mean free paths l = ⟨v⟩/ω.
     cell_occupancy : mean particles per cell (speed only; default by dimension).
-    label : prefix of the progress lines; config : stored as provenance.
+    label : prefix of the progress lines.
 
     Returns an ``xarray.Dataset`` (dims realization, checkpoint, window, count, flight_time,
     free_path), every variable with units and long_name, parameters and seed stamped.
@@ -399,4 +398,4 @@ def simulate(
         "cell_occupancy": float(cell_occupancy or DEFAULT_CELL_OCCUPANCY[dimension]),
     }
     dataset = io.make_dataset(data_vars, coords)
-    return io.stamp(dataset, parameters=parameters, seed=int(seed), config=config)
+    return io.stamp(dataset, parameters=parameters, seed=int(seed))
