@@ -12,7 +12,7 @@ import pytest
 from kinetic import rng
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import kernels
-from kinetic.dsmc.units import KERNELS, candidate_coefficient, equilibrium_collision_frequency
+from kinetic.gas import KERNELS, candidate_coefficient, equilibrium_collision_frequency
 from kinetic.theory import visco2008
 
 KERNEL_IDS = {

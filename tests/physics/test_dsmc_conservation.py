@@ -5,7 +5,7 @@ import pytest
 
 from kinetic import rng
 from kinetic.dsmc import kernels
-from kinetic.dsmc.units import KERNELS, candidate_coefficient
+from kinetic.gas import KERNELS, candidate_coefficient
 
 KERNEL_IDS = {
     "hard_spheres": kernels.HARD_SPHERES,

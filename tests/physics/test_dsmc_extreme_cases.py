@@ -29,7 +29,7 @@ from kinetic.dsmc import (
     realization_streams,
     simulate_homogeneous,
 )
-from kinetic.dsmc.units import candidate_coefficient, cross_section
+from kinetic.gas import candidate_coefficient, cross_section
 
 
 def test_velocity_outlier_collides_at_its_exact_rate():

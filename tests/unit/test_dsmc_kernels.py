@@ -5,7 +5,7 @@ import pytest
 
 from kinetic import rng
 from kinetic.dsmc import kernels
-from kinetic.dsmc.units import candidate_coefficient
+from kinetic.gas import candidate_coefficient
 
 
 def _gas(d, n, seed=1):

@@ -64,8 +64,9 @@ from typing import Any
 
 import numpy as np
 
+from kinetic import gas as units
 from kinetic import io
-from kinetic.dsmc import kernels, units
+from kinetic.dsmc import kernels
 from kinetic.progress import Progress, logger
 from kinetic.rng import stream_states
 

@@ -33,9 +33,9 @@ from kinetic.edmd.system import (
     DEFAULT_CELL_OCCUPANCY,
     HardSphereSystem,
     enskog_collision_frequency,
-    mean_speed,
     packing_fraction,
 )
+from kinetic.gas import mean_speed
 from kinetic.progress import Progress
 
 __all__ = ["count_bins_for", "simulate"]
@@ -157,7 +157,7 @@ def simulate(
     warmup()
     omega_enskog = enskog_collision_frequency(density, dimension)
     tau_enskog = 1.0 / omega_enskog
-    path_enskog = mean_speed(1.0, dimension) * tau_enskog
+    path_enskog = mean_speed(dimension, 1.0) * tau_enskog
     flight_width = flight_time_max * tau_enskog / flight_time_bins
     path_width = free_path_max * path_enskog / free_path_bins
     count_bins = count_bins_for(windows[-1])

@@ -25,7 +25,6 @@ __all__ = [
     "InelasticCollapseError",
     "cell_grid",
     "enskog_collision_frequency",
-    "mean_speed",
     "packing_fraction",
 ]
 
@@ -69,13 +68,6 @@ def packing_fraction(density: float, dimension: int, diameter: float = 1.0) -> f
     if dimension == 2:
         return density * math.pi * diameter**2 / 4.0
     return density * math.pi * diameter**3 / 6.0
-
-
-def mean_speed(temperature: float, dimension: int) -> float:
-    """Maxwellian ⟨|v|⟩ (m = 1): √(πT/2) in d = 2, √(8T/π) in d = 3."""
-    if dimension == 2:
-        return math.sqrt(math.pi * temperature / 2.0)
-    return math.sqrt(8.0 * temperature / math.pi)
 
 
 def contact_value(density: float, dimension: int, diameter: float = 1.0) -> float:

@@ -32,7 +32,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from kinetic import batches
+from kinetic import batches, gas
 from kinetic.theory import costantini2010 as theory
 
 __all__ = [
@@ -57,13 +57,13 @@ METHODS = ("dsmc_homogeneous", "dsmc", "md")
 
 
 def mean_free_time(density: float) -> float:
-    """1/ω_c at T0 = 1 in engine time units σ√(m/T0): ω_c = 2nσ√(πT0/m)."""
-    return 1.0 / (2.0 * density * math.sqrt(math.pi))
+    """1/ω_c of hard disks at T0 = 1 in engine time units σ√(m/T0): ω_c = 2nσ√(πT0/m)."""
+    return 1.0 / gas.equilibrium_collision_frequency("hard_spheres", 2, density)
 
 
 def mean_free_path(density: float) -> float:
-    """λ = 1/(2√2 nσ) in σ."""
-    return 1.0 / (2.0 * math.sqrt(2.0) * density)
+    """λ = 1/(2√2 nσ) of hard disks, in σ."""
+    return gas.mean_free_path(2, density)
 
 
 @dataclass(frozen=True)

@@ -34,6 +34,8 @@ from functools import lru_cache
 import numpy as np
 from scipy import integrate, optimize, special
 
+from kinetic.gas import mean_speed
+
 __all__ = [
     "TABLE_I_DOCUMENT",
     "collision_frequency",
@@ -103,11 +105,6 @@ def collision_frequency(
     """
     ell = 1.0 / (diameter ** (d - 1) * density * chi)
     return 2.0 * np.pi ** ((d - 1) / 2) * np.sqrt(temperature / mass) / (ell * special.gamma(d / 2))
-
-
-def mean_speed(d: int) -> float:
-    """<v> of a Maxwellian at T = 1, m = 1: sqrt(2) Γ((d+1)/2) / Γ(d/2)."""
-    return SQRT2 * np.exp(special.gammaln((d + 1) / 2) - special.gammaln(d / 2))
 
 
 def mean_free_path(d: int) -> float:

@@ -1,4 +1,5 @@
-"""Units and rate constants of the DSMC engine: the one place where they are converted.
+"""Gas quantities every engine and theory uses (Maxwellian speeds, cross-sections, collision
+frequencies, mean free paths, time units): the one place where the units are converted.
 
 Simulation units: mass m = 1, diameter σ = 1, temperature in units of T0 (= 1 at the
 start, and held there by the thermostat). The two conventions of the documents:
@@ -63,9 +64,10 @@ def solid_angle(d: int) -> float:
 
 
 def mean_speed(d: int, temperature: float = 1.0) -> float:
-    """<|v|> of a Maxwellian: sqrt(2T) Γ((d+1)/2)/Γ(d/2)."""
-    d = _dimension(d)
-    return math.sqrt(2.0 * temperature) * math.gamma((d + 1) / 2) / math.gamma(d / 2)
+    """<|v|> of a Maxwellian in any dimension d >= 1: sqrt(2T) Γ((d+1)/2)/Γ(d/2)."""
+    if isinstance(d, bool) or int(d) != d or d < 1:
+        raise ValueError(f"dimension must be an integer >= 1, got {d!r}")
+    return math.sqrt(2.0 * temperature) * math.exp(math.lgamma((d + 1) / 2) - math.lgamma(d / 2))
 
 
 def mean_relative_speed(d: int, temperature: float = 1.0) -> float:
