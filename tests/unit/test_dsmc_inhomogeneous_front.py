@@ -86,6 +86,20 @@ def test_bad_parameters_are_refused_before_any_work(monkeypatch, changes, fragme
     assert fragment in str(error.value)
 
 
+@pytest.mark.parametrize("density", [0.005, 0.05, 0.0123])
+def test_a_step_of_exactly_the_limit_is_accepted(density):
+    """0.1 mean free times (the ci config's step) is omega_c dt = 0.1 up to rounding."""
+    from kinetic.studies.costantini2010 import mean_free_time
+
+    limit = front.MAX_COLLISIONS_PER_STEP * mean_free_time(density)
+    keys = ("n_particles", "restitution", "drag_rate", "fictive_factor", "cells_per_side")
+    engine = {key: SMALL[key] for key in keys} | {"collision_rule": "paper", "density": density}
+    settings = CoolingModesSettings(**engine, time_step=limit)
+    assert settings.collision_frequency * settings.time_step == pytest.approx(0.1, rel=1e-12)
+    with pytest.raises(ValueError, match="too large"):
+        CoolingModesSettings(**engine, time_step=limit * 1.001)
+
+
 def test_dataset_follows_the_contract():
     dataset = simulate_cooling_modes(**SMALL, n_realizations=2, first_realization=5)
     assert list(dataset.realization.values) == [5, 6]

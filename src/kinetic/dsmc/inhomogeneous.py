@@ -59,6 +59,9 @@ MAX_COLLISIONS_PER_STEP = 0.1
 MAX_DRAG_PER_STEP = 0.1
 """Largest ω0 Δτ: the drag's relative velocity change over one step."""
 
+_ROUNDING = 1.0 + 1e-12
+"""A step given in mean free times lands on a limit up to rounding: the limit is allowed."""
+
 MAX_SIMULATED_PARTICLES = 50_000_000
 """Largest Λ N (memory: about 100 bytes per simulated particle)."""
 
@@ -122,7 +125,7 @@ class CoolingModesSettings:
                 f"{MAX_SIMULATED_PARTICLES}"
             )
         collisions = self.collision_frequency * self.time_step
-        if collisions > MAX_COLLISIONS_PER_STEP:
+        if collisions > MAX_COLLISIONS_PER_STEP * _ROUNDING:
             raise ValueError(
                 f"time_step = {self.time_step!r} is too large: omega_c(T0) * time_step = "
                 f"{self.collision_frequency:.6g} x {self.time_step!r} = {collisions:.4g} "
@@ -131,7 +134,7 @@ class CoolingModesSettings:
                 f"time_step <= {MAX_COLLISIONS_PER_STEP / self.collision_frequency:.6g})"
             )
         drag = self.drag_rate * self.time_step
-        if drag > MAX_DRAG_PER_STEP:
+        if drag > MAX_DRAG_PER_STEP * _ROUNDING:
             raise ValueError(
                 f"time_step = {self.time_step!r} is too large for drag_rate = "
                 f"{self.drag_rate!r}: drag_rate * time_step = {drag:.4g} must be <= "
