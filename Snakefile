@@ -5,7 +5,11 @@
 #   snakemake --cores 1 results/visco2008/fig03.pdf   one figure, and only what it needs
 #   snakemake --cores all --configfile config/ci.yaml  the whole workflow in minutes
 #
-# This file is a table of contents; the rules live in workflow/rules/.
+# This file is a table of contents. Each document's rules live in
+# workflow/rules/<document>/: simulate.smk (<document>_simulate_<what> and
+# <document>_aggregate_<what>: jobs of realizations and their joining), theory.smk
+# (<document>_theory...) where the document has theory files of its own, and figures.smk
+# (<document>_figNN, tables and studies). common.smk holds what every document shares.
 
 from snakemake.utils import min_version
 
@@ -22,15 +26,13 @@ if not workflow.overwrite_configfiles:
 
 
 include: "workflow/rules/common.smk"
-include: "workflow/rules/visco2008.smk"
-include: "workflow/rules/edmd.smk"
-include: "workflow/rules/visco2008_md.smk"
-include: "workflow/rules/cloning.smk"
-include: "workflow/rules/visco2008_cloning.smk"
-include: "workflow/rules/dsmc.smk"
-include: "workflow/rules/visco2008_dsmc.smk"
-include: "workflow/rules/montanero2007.smk"
-include: "workflow/rules/krauth2025.smk"
+include: "workflow/rules/visco2008/theory.smk"
+include: "workflow/rules/visco2008/simulate.smk"
+include: "workflow/rules/visco2008/figures.smk"
+include: "workflow/rules/montanero2007/simulate.smk"
+include: "workflow/rules/montanero2007/figures.smk"
+include: "workflow/rules/krauth2025/simulate.smk"
+include: "workflow/rules/krauth2025/figures.smk"
 include: "workflow/rules/costantini2010/simulate.smk"
 include: "workflow/rules/costantini2010/figures.smk"
 include: "workflow/rules/report.smk"

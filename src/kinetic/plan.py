@@ -19,14 +19,13 @@ from __future__ import annotations
 
 import argparse
 import heapq
-import math
 import sys
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from kinetic import cost
+from kinetic import batches, cost
 from kinetic.cost import Estimate
 
 __all__ = [
@@ -77,39 +76,41 @@ def _visco2008(config: Mapping[str, Any]) -> list[Job]:
     md = section.get("md")
     if md:
         for run, density in md["densities"].items():
-            for batch in range(math.ceil(md["realizations"] / md["batch_size"])):
-                first = batch * md["batch_size"]
-                name = f"visco2008/md/{run}/batch{batch:03d}"
+            for job in batches.plan(
+                realizations=md["realizations"], realizations_per_job=md["realizations_per_job"]
+            ):
+                name = f"visco2008/md/{run}/{batches.batch_name(job.index)}"
                 estimate = cost.edmd_periodic(
                     n_particles=md["n_particles"],
                     density=density,
-                    realizations=min(md["batch_size"], md["realizations"] - first),
+                    realizations=job.n_realizations,
                     equilibration=md["equilibration"],
                     duration=md["duration"],
                 )
                 jobs.append(
                     Job(
                         "visco2008",
-                        "edmd_visco2008_batch",
+                        "visco2008_simulate_md",
                         f"results/{name}.nc",
                         estimate,
                         f"logs/benchmarks/{name}.tsv",
                     )
                 )
     for run, settings in section.get("dsmc", {}).items():
-        per_job = settings["realizations_per_job"]
-        for job in range(math.ceil(settings["realizations"] / per_job)):
-            first = job * per_job
-            name = f"visco2008/dsmc/{run}/batch{job:04d}"
+        for job in batches.plan(
+            realizations=settings["realizations"],
+            realizations_per_job=settings["realizations_per_job"],
+        ):
+            name = f"visco2008/dsmc/{run}/{batches.batch_name(job.index)}"
             estimate = cost.dsmc_free_flights(
                 n_particles=settings["n_particles"],
                 duration=settings["duration"],
-                n_realizations=min(per_job, settings["realizations"] - first),
+                n_realizations=job.n_realizations,
             )
             jobs.append(
                 Job(
                     "visco2008",
-                    "simulate_visco2008_dsmc",
+                    "visco2008_simulate_dsmc",
                     f"results/{name}.nc",
                     estimate,
                     f"logs/benchmarks/{name}.tsv",
@@ -124,11 +125,13 @@ def _visco2008(config: Mapping[str, Any]) -> list[Job]:
                 parameters = cloning_plan.run_parameters(
                     cloning, study, kernel, point, size, batch, seed=0
                 )
-                name = f"visco2008/cloning/{study}/{kernel}/{point}/{size}/batch{batch}"
+                name = (
+                    f"visco2008/cloning/{study}/{kernel}/{point}/{size}/{batches.batch_name(batch)}"
+                )
                 jobs.append(
                     Job(
                         "visco2008",
-                        "cloning_batch",
+                        "visco2008_simulate_cloning",
                         f"results/{name}.nc",
                         cost.cloning_batch(**parameters),
                         f"logs/benchmarks/{name}.tsv",
@@ -141,19 +144,23 @@ def _montanero2007(config: Mapping[str, Any]) -> list[Job]:
     section = config.get("montanero2007")
     if not section:
         return []
-    from kinetic.studies.montanero2007 import batches, run_plan
+    from kinetic.studies.montanero2007 import run_plan
 
     jobs = []
     for name, run in run_plan(section).items():
-        for index, (_, count) in enumerate(batches(run)):
-            estimate = cost.dsmc_homogeneous(**{**run, "realizations": count})
+        for job in batches.plan(
+            realizations=int(run["realizations"]),
+            realizations_per_job=int(run["realizations_per_job"]),
+        ):
+            estimate = cost.dsmc_homogeneous(**{**run, "realizations": job.n_realizations})
+            path = f"montanero2007/runs/{name}/{batches.batch_name(job.index)}"
             jobs.append(
                 Job(
                     "montanero2007",
-                    "montanero2007_simulate",
-                    f"results/montanero2007/runs/{name}/batch{index}.nc",
+                    "montanero2007_simulate_dsmc",
+                    f"results/{path}.nc",
                     estimate,
-                    f"logs/benchmarks/montanero2007/simulate/{name}/batch{index}.tsv",
+                    f"logs/benchmarks/{path}.tsv",
                 )
             )
     return jobs
@@ -210,7 +217,7 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
         jobs.append(
             Job(
                 "krauth2025",
-                "krauth2025_line",
+                "krauth2025_simulate_line",
                 f"results/krauth2025/pins/{name}.nc",
                 estimate,
                 f"logs/benchmarks/krauth2025/pins/{name}.tsv",
@@ -219,7 +226,7 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
     jobs.append(
         Job(
             "krauth2025",
-            "krauth2025_ring",
+            "krauth2025_simulate_ring",
             "results/krauth2025/pins/ring.nc",
             cost.sampler_ring(**ring),
             "logs/benchmarks/krauth2025/pins/ring.tsv",
@@ -228,7 +235,7 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
     jobs.append(
         Job(
             "krauth2025",
-            "krauth2025_snapshots",
+            "krauth2025_simulate_pin_snapshots",
             "results/krauth2025/pins/snapshots.nc",
             cost.small_job(),
         )
@@ -236,7 +243,7 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
     jobs.append(
         Job(
             "krauth2025",
-            "krauth2025_md",
+            "krauth2025_simulate_md",
             "results/krauth2025/disks/md.nc",
             cost.edmd_box(
                 n_disks=disks["n_disks"],
@@ -250,7 +257,7 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
         jobs.append(
             Job(
                 "krauth2025",
-                "krauth2025_disk_sampler",
+                "krauth2025_simulate_disks",
                 f"results/krauth2025/disks/{method}.nc",
                 cost.sampler_disks(
                     method,
@@ -265,7 +272,7 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
     jobs.append(
         Job(
             "krauth2025",
-            "krauth2025_chaos_run",
+            "krauth2025_simulate_chaos",
             "results/krauth2025/disks/chaos.nc",
             cost.small_job(),
         )

@@ -192,8 +192,8 @@ def test_scancel_loses_nothing_finished_and_the_rerun_builds_only_what_is_missin
     plan = _snakemake(tmp_path, target, *configs, "--cores", "2", "--dry-run", "--quiet", "rules")
     planned = plan.stdout + plan.stderr
     counts = dict(re.findall(r"^(\w+)\s+(\d+)$", planned, flags=re.MULTILINE))
-    assert counts.get("simulate_visco2008_dsmc") == str(len(missing)), planned
-    assert counts.get("aggregate_visco2008_dsmc") == "1", planned
+    assert counts.get("visco2008_simulate_dsmc") == str(len(missing)), planned
+    assert counts.get("visco2008_aggregate_dsmc") == "1", planned
     _snakemake(tmp_path, target, *configs, "--cores", "2")
     for path, mtime in kept.items():
         assert path.stat().st_mtime_ns == mtime
@@ -218,7 +218,7 @@ def test_a_job_killed_at_its_time_limit_is_told_to_raise_its_runtime(slurm, tmp_
         "--retries",
         "0",
         "--set-resources",
-        "simulate_visco2008_dsmc:runtime=1",
+        "visco2008_simulate_dsmc:runtime=1",
         check=False,
     )
     output = result.stdout + result.stderr

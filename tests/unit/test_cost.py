@@ -98,24 +98,24 @@ def test_summary_rows_add_up_per_document():
 
 def test_jobs_killed_for_time_or_memory_are_told_which_resource_to_raise():
     log = (
-        "Error in rule cloning_batch:\n"
+        "Error in rule visco2008_simulate_cloning:\n"
         "    message: SLURM-job '17' failed, SLURM status is: 'TIMEOUT'. Detailed failure "
         "reason unavailable (status command is not 'sacct').\n"
         "    jobid: 3\n"
-        "    output: results/visco2008/cloning/scan/a/batch0.nc\n"
+        "    output: results/visco2008/cloning/scan/a/batch0000.nc\n"
         "    log: logs/visco2008/cloning/scan/a/batch0.log (check log file(s) for error details)\n"
         "\n"
-        "Error in rule montanero2007_simulate:\n"
+        "Error in rule montanero2007_simulate_dsmc:\n"
         "    message: SLURM-job '18' failed, SLURM status is: 'OUT_OF_MEMORY'.\n"
-        "    output: results/montanero2007/runs/alpha030/batch0.nc\n"
+        "    output: results/montanero2007/runs/alpha030/batch0000.nc\n"
         "\n"
         "Error in rule visco2008_fig01:\n"
         "    message: SLURM-job '19' failed, SLURM status is: 'FAILED'.\n"
     )
     hints = plan.resource_hints(log).splitlines()
     assert len(hints) == 2
-    assert "cloning_batch (results/visco2008/cloning/scan/a/batch0.nc)" in hints[0]
+    assert "visco2008_simulate_cloning (results/visco2008/cloning/scan/a/batch0000.nc)" in hints[0]
     assert "raise its runtime" in hints[0]
     assert "logs/visco2008/cloning/scan/a/batch0.log" in hints[0]
-    assert "montanero2007_simulate" in hints[1] and "raise its mem_mb" in hints[1]
+    assert "montanero2007_simulate_dsmc" in hints[1] and "raise its mem_mb" in hints[1]
     assert plan.resource_hints("nothing failed") == ""

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 import yaml
 
-from kinetic import io
+from kinetic import batches, io
 from kinetic.config import validate_config
 from kinetic.studies import montanero2007 as study
 
@@ -41,7 +41,10 @@ def test_plan_of_every_shipped_config(name):
         assert run["reduced_field"] == section["protocol"]["reduced_field"]
     assert all(run["reduced_field"] == 0.0 for run in plan.values() if run["family"] == "hcs")
     for name_, run in plan.items():
-        assert sum(count for _, count in study.batches(run)) == run["realizations"], name_
+        jobs = batches.plan(
+            realizations=run["realizations"], realizations_per_job=run["realizations_per_job"]
+        )
+        assert sum(job.n_realizations for job in jobs) == run["realizations"], name_
 
 
 def test_paper_config_is_the_papers_protocol():
@@ -53,11 +56,6 @@ def test_paper_config_is_the_papers_protocol():
     assert protocol["force_step"] == "euler"
     alphas = _section("paper.yaml")["alphas"]
     assert min(alphas) == 0.3 and max(alphas) == 1.0
-
-
-def test_batches_cover_realizations_once():
-    run = {"realizations": 10, "realizations_per_job": 4}
-    assert study.batches(run) == [(0, 4), (4, 4), (8, 2)]
 
 
 def test_inconsistent_sections_are_refused_with_the_key():
@@ -100,7 +98,8 @@ def test_batching_does_not_change_the_data(tmp_path):
     run = _run()
     whole = study.simulate_batch(run, seed=11, first=0, count=3, label="whole")
     paths = []
-    for index, (first, count) in enumerate(study.batches(run)):
+    jobs = batches.plan(realizations=3, realizations_per_job=2)
+    for index, first, count in jobs:
         batch = study.simulate_batch(run, seed=11, first=first, count=count, label="part")
         batch = io.stamp(batch, parameters={**io.parameters_of(batch), "run": "x"}, seed=11)
         paths.append(io.write_dataset(batch, tmp_path / f"batch{index}.nc"))

@@ -43,8 +43,8 @@ def run(workdir, *args, check=True):
 @pytest.mark.workflow
 def test_fig05_plans_only_the_scan(tmp_path):
     plan = run(tmp_path, "results/visco2008/fig05.pdf", "--configfile", CI, "--dry-run")
-    assert "cloning_batch" in plan and "cloning_aggregate" in plan
-    assert "cloning_reference" in plan and "warm_numba" in plan
+    assert "visco2008_simulate_cloning" in plan and "visco2008_aggregate_cloning" in plan
+    assert "visco2008_theory_cloning_reference" in plan and "warm_numba" in plan
     assert "error_vs_time" not in plan
     for unrelated in ("visco2008_fig04", "visco2008_fig07", "visco2008_fig03"):
         assert f"rule {unrelated}:" not in plan
@@ -82,9 +82,9 @@ def test_tiny_scan_writes_the_table_and_resumes(tmp_path):
     assert table["n_c"].isna().sum() == 2  # extrapolations at λ = 0.5 and 1
     assert (table["mu_err"] > 0).all()
     # a run stopped before one batch and the aggregate finished resumes with just those
-    batch = tmp_path / "results/visco2008/cloning/scan/hard_disks/lam+1.000/N40/batch1.nc"
+    batch = tmp_path / "results/visco2008/cloning/scan/hard_disks/lam+1.000/N40/batch0001.nc"
     batch.unlink()
     (tmp_path / target).unlink()
     plan = run(tmp_path, target, "--configfile", str(config), "--dry-run")
-    assert plan.count("rule cloning_batch:") == 1
-    assert "batch1.nc" in plan and "rule cloning_aggregate:" in plan
+    assert plan.count("rule visco2008_simulate_cloning:") == 1
+    assert "batch0001.nc" in plan and "rule visco2008_aggregate_cloning:" in plan

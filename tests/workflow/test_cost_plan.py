@@ -73,15 +73,15 @@ def test_every_simulation_job_asks_for_its_planned_resources(tmp_path):
         (  # cloning's transient grows like e^λ
             "visco2008:\n  cloning:\n    kernels:\n      hard_disks:\n"
             "        lambdas: [0.0, 30.0]\n        populations: [100]\n",
-            r"cloning/scan/hard_disks/lam\+30\.000/N100/batch0\.nc: estimated [0-9.e+]+ CPU-hours",
+            r"hard_disks/lam\+30\.000/N100/batch0000\.nc: estimated [0-9.e+]+ CPU-hours",
         ),
         (
             "visco2008:\n  md:\n    n_particles: 10000000\n",
-            r"md/rho1e-3/batch000\.nc: estimated [0-9.]+ CPU-hours .*max_job_cpu_hours = 12",
+            r"md/rho1e-3/batch0000\.nc: estimated [0-9.]+ CPU-hours .*max_job_cpu_hours = 12",
         ),
         (
             "montanero2007:\n  protocol:\n    n_particles: 100000000\n",
-            r"runs/alpha030/batch0\.nc: would ask for [0-9.]+ GB of memory",
+            r"runs/alpha030/batch0000\.nc: would ask for [0-9.]+ GB of memory",
         ),
         (  # a configurable limit
             "limits:\n  max_total_cpu_hours: 0.01\n",

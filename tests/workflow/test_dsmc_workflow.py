@@ -39,8 +39,8 @@ def test_fig12_plans_the_maxwell_jobs_only(tmp_path):
     assert "free_flight_times" not in plan
     for rule in (
         "warm_numba",
-        "simulate_visco2008_dsmc",
-        "aggregate_visco2008_dsmc",
+        "visco2008_simulate_dsmc",
+        "visco2008_aggregate_dsmc",
         "visco2008_theory",
         "visco2008_fig12",
     ):

@@ -41,8 +41,13 @@ def test_ring_figure_plans_only_the_ring(tmp_path):
     )
     plan = result.stdout + result.stderr
     assert result.returncode == 0, plan
-    assert "krauth2025_ring" in plan
-    for unrelated in ("krauth2025_line", "krauth2025_snapshots", "edmd", "dsmc"):
+    assert "krauth2025_simulate_ring" in plan
+    for unrelated in (
+        "krauth2025_simulate_line",
+        "krauth2025_simulate_pin_snapshots",
+        "edmd",
+        "dsmc",
+    ):
         assert unrelated not in plan
 
 

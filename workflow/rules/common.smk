@@ -45,15 +45,6 @@ onstart:
 # Rule files register each figure/table they can build: provide(id, file, ...).
 TARGETS = {}
 
-# netCDF files with MD cumulants for Table I of visco2008 (filled by workflow/rules/edmd.smk).
-VISCO2008_TABLE1_MD = []
-
-# netCDF files of DSMC free-flight-time densities drawn as squares in visco2008 Fig 1:
-# coordinate `flight_time` (mean free times), variables `time_pdf`, `time_pdf_sem`
-# (the output of kinetic.dsmc.aggregate; registered in workflow/rules/visco2008_md.smk).
-VISCO2008_FIG01_DSMC = []
-
-
 def provide(target_id, *paths):
     """Register the files of one figure or table under its id, e.g. 'visco2008/fig03'."""
     TARGETS[target_id] = list(paths)

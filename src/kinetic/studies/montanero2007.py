@@ -1,4 +1,4 @@
-"""The montanero2007 study: which DSMC runs, in which batches, and how they combine.
+"""The montanero2007 study: which DSMC runs, and how their batches are read back.
 
 The study needs several families of runs of the forced, thermostatted homogeneous gas
 of :func:`kinetic.dsmc.simulate_homogeneous` (d = 3 inelastic hard spheres, montanero2007
@@ -18,25 +18,21 @@ units: time in τ = λ/v0, field ε* = λ ε, velocities c = V/v0):
 Every run is named by a plain string (``alpha030``, ``field_alpha030``,
 ``hcs_alpha050``, ``error_<setting>_alpha100``, ``extreme_field200_alpha100``); the
 names are the keys of :func:`run_plan`, so Snakemake wildcards are looked up, never
-parsed.  A run's realizations are split into batches (jobs); realization k always uses
-stream row k of the run's seed, so batching does not change the data.
+parsed.  A run's realizations are split into jobs by :mod:`kinetic.batches`;
+realization k always uses stream row k of the run's seed, so batching does not change
+the data.
 """
 
 from __future__ import annotations
 
 import copy
-import json
 import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-import numpy as np
-
 __all__ = [
     "PROTOCOL_KEYS",
     "alpha_key",
-    "batches",
-    "combine",
     "load_runs",
     "run_plan",
     "simulate_batch",
@@ -245,12 +241,6 @@ def _check_run(name: str, run: Mapping[str, Any]) -> None:
         raise ValueError(f"montanero2007 run {name}: needs >= 2 realizations for error bars")
 
 
-def batches(run: Mapping[str, Any]) -> list[tuple[int, int]]:
-    """``[(first_realization, count), ...]``: the jobs of one run."""
-    total, per_job = int(run["realizations"]), int(run["realizations_per_job"])
-    return [(first, min(per_job, total - first)) for first in range(0, total, per_job)]
-
-
 def simulate_batch(run: Mapping[str, Any], *, seed: int, first: int, count: int, label: str):
     """Realizations ``first .. first+count-1`` of one run (an xarray.Dataset).
 
@@ -285,48 +275,13 @@ def simulate_batch(run: Mapping[str, Any], *, seed: int, first: int, count: int,
     return dataset.assign_attrs(steady_from_tau=float(histogram_start))
 
 
-def combine(datasets: Sequence[Any]):
-    """Concatenate batch datasets of one run along ``realization`` (sorted, no duplicates).
-
-    Variables without a realization dimension (edges, coordinates) must agree; the
-    attributes of the first batch are kept, ``n_realizations`` updated.
-    """
-    import xarray as xr
-
-    if not datasets:
-        raise ValueError("no batch to combine")
-    ordered = sorted(datasets, key=lambda ds: int(ds.realization.values[0]))
-    combined = xr.concat(
-        ordered,
-        dim="realization",
-        data_vars="minimal",
-        coords="minimal",
-        compat="equals",
-        join="exact",
-        combine_attrs="override",
-    )
-    realizations = combined.realization.values
-    if len(np.unique(realizations)) != len(realizations):
-        raise ValueError(f"batches overlap: realizations {sorted(realizations.tolist())}")
-    combined.attrs["n_realizations"] = len(realizations)
-    combined.attrs["first_realization"] = int(realizations.min())
-    if "parameters_json" in combined.attrs:
-        parameters = json.loads(combined.attrs["parameters_json"])
-        parameters.update(
-            n_realizations=len(realizations), first_realization=int(realizations.min())
-        )
-        combined.attrs["parameters_json"] = json.dumps(parameters, sort_keys=True)
-    return combined
-
-
 def load_runs(paths: Sequence[Any]) -> dict[str, Any]:
     """Read batch files and combine them per run: ``{run name: dataset}``.
 
     The run of a batch is the ``run`` parameter the workflow stamped into it; runs keep
     the order of their first batch in ``paths``.
     """
-    from kinetic import io
-    from kinetic.batches import check_disjoint
+    from kinetic import batches, io
 
     grouped: dict[str, list[Any]] = {}
     files: dict[str, list[str]] = {}
@@ -337,6 +292,6 @@ def load_runs(paths: Sequence[Any]) -> dict[str, Any]:
             raise ValueError(f"{path} has no 'run' parameter: not written by the workflow")
         grouped.setdefault(name, []).append(dataset)
         files.setdefault(name, []).append(str(path))
-    for name, datasets in grouped.items():
-        check_disjoint(datasets, files[name])
-    return {name: combine(datasets) for name, datasets in grouped.items()}
+    return {
+        name: batches.combine(datasets, names=files[name]) for name, datasets in grouped.items()
+    }

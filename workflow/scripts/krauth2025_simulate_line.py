@@ -1,4 +1,4 @@
-"""One washing-line sample of krauth2025 §4.4.1 (rule krauth2025_line): the pin density
+"""One washing-line sample of krauth2025 §4.4.1 (rule krauth2025_simulate_line): the pin density
 by naive-pin or direct-pin, with the exact density of Eq. (4.7) averaged over the same
 bins (``density_exact``) and on a fine grid (``density_curve``) for the figures."""
 

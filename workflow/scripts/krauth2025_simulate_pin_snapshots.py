@@ -1,4 +1,4 @@
-"""Direct-pin configurations for krauth2025 Fig. 4.10 (rule krauth2025_snapshots)."""
+"""Direct-pin configurations for krauth2025 Fig. 4.10 (rule krauth2025_simulate_pin_snapshots)."""
 
 from kinetic.samplers import pin_snapshots
 from kinetic.workflow_support import start, write_output

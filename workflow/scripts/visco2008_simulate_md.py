@@ -1,4 +1,4 @@
-"""One batch of visco2008 MD realizations (rule edmd_visco2008_batch)."""
+"""One batch of visco2008 MD realizations (rule visco2008_simulate_md)."""
 
 from kinetic.edmd import simulate
 from kinetic.workflow_support import start, write_output

@@ -1,4 +1,5 @@
-"""Join the batches of one visco2008 MD run; derive its Table I cumulants."""
+"""Join the batches of one visco2008 MD run; derive its Table I cumulants (rule
+visco2008_aggregate_md)."""
 
 from kinetic.analysis import collision_statistics
 from kinetic.batches import read_batches

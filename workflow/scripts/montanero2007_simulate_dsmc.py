@@ -1,4 +1,4 @@
-"""One batch of realizations of one montanero2007 run (rule montanero2007_simulate)."""
+"""One batch of realizations of one montanero2007 run (rule montanero2007_simulate_dsmc)."""
 
 from kinetic import io
 from kinetic.studies.montanero2007 import simulate_batch
@@ -13,7 +13,7 @@ dataset = simulate_batch(
     seed=int(snakemake.params.seed),
     first=batch["first"],
     count=batch["count"],
-    label=f"montanero2007 {name} batch{snakemake.wildcards.batch}",
+    label=f"montanero2007 {name} {snakemake.wildcards.batch}",
 )
 write_output(
     snakemake,

@@ -1,17 +1,8 @@
-# montanero2007: DSMC of the heat-flux-forced granular gas (kinetic.dsmc), Figs 1-7, Table 1,
-# the error-against-run-time study, the extreme cases and the checks.
+# montanero2007 figures and tables: Figs 1-7, Table 1, the error-against-run-time study,
+# the extreme cases and the checks, from the runs of simulate.smk.
 #
-#   results/montanero2007/runs/<run>/batch<k>.nc   one job: a batch of realizations
-#   (readers combine the batches of a run in memory: kinetic.studies.montanero2007.load_runs)
 #   results/montanero2007/figNN.pdf|png, table1.csv|md, error_vs_time.*, extreme.*, checks.*
-#
-# Run names come from kinetic.studies.montanero2007.run_plan(config["montanero2007"]).
-from kinetic.studies.montanero2007 import alpha_key, batches, field_partner, run_plan
-
-try:
-    MONTANERO2007_RUNS = run_plan(config["montanero2007"])
-except ValueError as error:
-    raise WorkflowError(str(error)) from None
+from kinetic.studies.montanero2007 import alpha_key, field_partner
 
 for _number in range(1, 8):
     provide(f"montanero2007/fig0{_number}", *figure_files("montanero2007", f"fig0{_number}"))
@@ -30,25 +21,12 @@ provide(
 provide("montanero2007/checks", *table_files("montanero2007", "checks"))
 
 
-wildcard_constraints:
-    run="|".join(sorted(MONTANERO2007_RUNS)),
-    batch=r"\d+",
-
-
-# ---------------------------------------------------------------- named helpers
-def montanero2007_run_files(name):
-    """The batch files of one run (all its realizations)."""
-    return [
-        f"results/montanero2007/runs/{name}/batch{index}.nc"
-        for index in range(len(batches(MONTANERO2007_RUNS[name])))
-    ]
-
 
 def montanero2007_runs_of(family):
     """Batch files of every run of one family, in plan order."""
     return [
         path
-        for name, run in MONTANERO2007_RUNS.items()
+        for name, run in montanero2007_runs().items()
         if run["family"] == family
         for path in montanero2007_run_files(name)
     ]
@@ -57,26 +35,6 @@ def montanero2007_runs_of(family):
 def montanero2007_scan(alphas):
     """Batch files of the scan runs at these restitution coefficients."""
     return [path for alpha in alphas for path in montanero2007_run_files(alpha_key(alpha))]
-
-
-def montanero2007_run_parameters(wildcards):
-    """Parameters of the run named by the wildcard (protocol merged with overrides)."""
-    return MONTANERO2007_RUNS[wildcards.run]
-
-
-def montanero2007_batch(wildcards):
-    """(first realization, count) of one job."""
-    jobs = batches(MONTANERO2007_RUNS[wildcards.run])
-    index = int(wildcards.batch)
-    if index >= len(jobs):
-        raise ValueError(f"run {wildcards.run} has {len(jobs)} batches, not batch{index}")
-    first, count = jobs[index]
-    return {"first": first, "count": count}
-
-
-def montanero2007_seed(wildcards):
-    """One seed per run; realization k uses stream row k, whatever the batching."""
-    return job_seed(f"montanero2007/{wildcards.run}")
 
 
 def montanero2007_section(wildcards):
@@ -168,30 +126,6 @@ def montanero2007_scan_runs(wildcards):
     return montanero2007_runs_of("scan")
 
 
-# ---------------------------------------------------------------- simulation
-rule montanero2007_simulate:
-    input:
-        warm=numba_warm("dsmc"),
-        code=engine_sources("dsmc") + package_files("studies"),
-    output:
-        "results/montanero2007/runs/{run}/batch{batch}.nc",
-    log:
-        "logs/montanero2007/simulate/{run}/batch{batch}.log",
-    benchmark:
-        "logs/benchmarks/montanero2007/simulate/{run}/batch{batch}.tsv"
-    params:
-        run=montanero2007_run_parameters,
-        batch=montanero2007_batch,
-        seed=montanero2007_seed,
-    threads: 1
-    resources:
-        runtime=planned_runtime,
-        mem_mb=planned_mem_mb,
-    script:
-        "../scripts/montanero2007_simulate.py"
-
-
-# ---------------------------------------------------------------- figures and tables
 rule montanero2007_fig01:
     input:
         runs=montanero2007_field_pair,
@@ -201,13 +135,13 @@ rule montanero2007_fig01:
         pdf="results/montanero2007/fig01.pdf",
         png=report(
             "results/montanero2007/fig01.png",
-            caption="../report/montanero2007_fig01.rst",
+            caption="../../report/montanero2007_fig01.rst",
             category="montanero2007",
         ),
     log:
         "logs/montanero2007/fig01.log",
     script:
-        "../scripts/montanero2007_fig01.py"
+        "../../scripts/montanero2007_fig01.py"
 
 
 rule montanero2007_fig02:
@@ -219,13 +153,13 @@ rule montanero2007_fig02:
         pdf="results/montanero2007/fig02.pdf",
         png=report(
             "results/montanero2007/fig02.png",
-            caption="../report/montanero2007_fig02.rst",
+            caption="../../report/montanero2007_fig02.rst",
             category="montanero2007",
         ),
     log:
         "logs/montanero2007/fig02.log",
     script:
-        "../scripts/montanero2007_fig02.py"
+        "../../scripts/montanero2007_fig02.py"
 
 
 rule montanero2007_fig03:
@@ -246,7 +180,7 @@ rule montanero2007_fig03:
     log:
         "logs/montanero2007/fig03.log",
     script:
-        "../scripts/montanero2007_fig03.py"
+        "../../scripts/montanero2007_fig03.py"
 
 
 rule montanero2007_fig04:
@@ -267,7 +201,7 @@ rule montanero2007_fig04:
     log:
         "logs/montanero2007/fig04.log",
     script:
-        "../scripts/montanero2007_fig04.py"
+        "../../scripts/montanero2007_fig04.py"
 
 
 rule montanero2007_fig05:
@@ -279,7 +213,7 @@ rule montanero2007_fig05:
         pdf="results/montanero2007/fig05.pdf",
         png=report(
             "results/montanero2007/fig05.png",
-            caption="../report/montanero2007_fig05.rst",
+            caption="../../report/montanero2007_fig05.rst",
             category="montanero2007",
         ),
     log:
@@ -287,7 +221,7 @@ rule montanero2007_fig05:
     params:
         figures=montanero2007_figures,
     script:
-        "../scripts/montanero2007_phi.py"
+        "../../scripts/montanero2007_phi.py"
 
 
 rule montanero2007_fig06:
@@ -299,7 +233,7 @@ rule montanero2007_fig06:
         pdf="results/montanero2007/fig06.pdf",
         png=report(
             "results/montanero2007/fig06.png",
-            caption="../report/montanero2007_fig06.rst",
+            caption="../../report/montanero2007_fig06.rst",
             category="montanero2007",
         ),
     log:
@@ -307,7 +241,7 @@ rule montanero2007_fig06:
     params:
         figures=montanero2007_figures,
     script:
-        "../scripts/montanero2007_phi.py"
+        "../../scripts/montanero2007_phi.py"
 
 
 rule montanero2007_fig07:
@@ -330,7 +264,7 @@ rule montanero2007_fig07:
     params:
         figures=montanero2007_figures,
     script:
-        "../scripts/montanero2007_fig07.py"
+        "../../scripts/montanero2007_fig07.py"
 
 
 rule montanero2007_table1:
@@ -345,7 +279,7 @@ rule montanero2007_table1:
     log:
         "logs/montanero2007/table1.log",
     script:
-        "../scripts/montanero2007_table1.py"
+        "../../scripts/montanero2007_table1.py"
 
 
 rule montanero2007_error_vs_time:
@@ -357,7 +291,7 @@ rule montanero2007_error_vs_time:
         pdf="results/montanero2007/error_vs_time.pdf",
         png=report(
             "results/montanero2007/error_vs_time.png",
-            caption="../report/montanero2007_error_vs_time.rst",
+            caption="../../report/montanero2007_error_vs_time.rst",
             category="montanero2007",
         ),
         csv="results/montanero2007/error_vs_time.csv",
@@ -369,7 +303,7 @@ rule montanero2007_error_vs_time:
     params:
         section=montanero2007_section,
     script:
-        "../scripts/montanero2007_error_vs_time.py"
+        "../../scripts/montanero2007_error_vs_time.py"
 
 
 rule montanero2007_extreme:
@@ -381,7 +315,7 @@ rule montanero2007_extreme:
         pdf="results/montanero2007/extreme.pdf",
         png=report(
             "results/montanero2007/extreme.png",
-            caption="../report/montanero2007_extreme.rst",
+            caption="../../report/montanero2007_extreme.rst",
             category="montanero2007",
         ),
         csv="results/montanero2007/extreme.csv",
@@ -389,7 +323,7 @@ rule montanero2007_extreme:
     log:
         "logs/montanero2007/extreme.log",
     script:
-        "../scripts/montanero2007_extreme.py"
+        "../../scripts/montanero2007_extreme.py"
 
 
 rule montanero2007_checks:
@@ -406,4 +340,4 @@ rule montanero2007_checks:
     params:
         section=montanero2007_section,
     script:
-        "../scripts/montanero2007_checks.py"
+        "../../scripts/montanero2007_checks.py"

@@ -1,4 +1,4 @@
-"""One batch of cloning Monte Carlo runs (rule cloning_batch) -> netCDF."""
+"""One batch of cloning Monte Carlo runs (rule visco2008_simulate_cloning) -> netCDF."""
 
 from kinetic.cloning import simulate
 from kinetic.workflow_support import start, write_output
@@ -9,7 +9,7 @@ dataset = simulate(
     **parameters,
     label=f"cloning {snakemake.wildcards.kernel} "
     f"{snakemake.wildcards.point} {snakemake.wildcards.size} "
-    f"batch {snakemake.wildcards.batch}",
+    f"{snakemake.wildcards.batch}",
 )
 write_output(snakemake, dataset, parameters["seed"])
 log.info(

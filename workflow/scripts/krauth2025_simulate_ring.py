@@ -1,4 +1,4 @@
-"""Pins on a ring, krauth2025 Fig. 4.13 (rule krauth2025_ring): the pair density from
+"""Pins on a ring, krauth2025 Fig. 4.13 (rule krauth2025_simulate_ring): the pair density from
 independent Markov chains, with the exact density of the ring-to-line mapping averaged
 over the same bins (``pair_density_exact``) and on a fine grid (``pair_density_curve``)."""
 

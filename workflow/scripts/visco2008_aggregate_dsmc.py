@@ -1,4 +1,4 @@
-"""Combine the jobs of one visco2008 DSMC run (rule aggregate_visco2008_dsmc)."""
+"""Combine the jobs of one visco2008 DSMC run (rule visco2008_aggregate_dsmc)."""
 
 from kinetic.batches import read_batches
 from kinetic.dsmc.aggregate import combine_free_flights

@@ -1,4 +1,5 @@
-"""Deterministic solution of visco2008 Eq. 28 on a λ grid (rule cloning_reference)."""
+"""Deterministic solution of visco2008 Eq. 28 on a λ grid (rule
+visco2008_theory_cloning_reference)."""
 
 from kinetic.theory.visco2008_exact import reference_dataset
 from kinetic.workflow_support import start, write_output

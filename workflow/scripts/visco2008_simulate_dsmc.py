@@ -1,4 +1,4 @@
-"""One job of a visco2008 DSMC run: realizations -> netCDF (rule simulate_visco2008_dsmc)."""
+"""One job of a visco2008 DSMC run: realizations -> netCDF (rule visco2008_simulate_dsmc)."""
 
 from kinetic.dsmc import simulate_free_flights
 from kinetic.workflow_support import start, write_output

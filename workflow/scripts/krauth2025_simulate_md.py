@@ -1,4 +1,4 @@
-"""event-disks runs of krauth2025 (rule krauth2025_md): independent realizations of N
+"""event-disks runs of krauth2025 (rule krauth2025_simulate_md): independent realizations of N
 disks in a box with walls -> y-densities, wall and pair collision statistics."""
 
 from kinetic.edmd.disks import simulate_box

@@ -1,0 +1,89 @@
+# montanero2007 simulations: DSMC of the heat-flux-forced granular gas (kinetic.dsmc).
+#
+#   results/montanero2007/runs/<run>/batchNNNN.nc   one job: realizations of one run
+#   (readers combine the batches of a run in memory: kinetic.studies.montanero2007.load_runs)
+#
+# Run names come from kinetic.studies.montanero2007.run_plan(config["montanero2007"]).
+import functools
+
+from kinetic import batches
+from kinetic.studies.montanero2007 import run_plan
+
+
+@functools.cache
+def montanero2007_runs():
+    """{run name: parameters} of the config's plan (the protocol merged with each family's
+    overrides), computed once."""
+    try:
+        return run_plan(config["montanero2007"])
+    except ValueError as error:
+        raise WorkflowError(str(error)) from None
+
+
+montanero2007_runs()  # a bad plan is refused before any job
+
+
+def montanero2007_jobs(name):
+    """kinetic.batches plan of one run."""
+    run = montanero2007_runs()[name]
+    return batches.plan(
+        realizations=int(run["realizations"]),
+        realizations_per_job=int(run["realizations_per_job"]),
+    )
+
+
+def montanero2007_run_files(name):
+    """The batch files of one run (all its realizations)."""
+    return [
+        f"results/montanero2007/runs/{name}/{batches.batch_name(job.index)}.nc"
+        for job in montanero2007_jobs(name)
+    ]
+
+
+def montanero2007_run_parameters(wildcards):
+    """Parameters of the run named by the wildcard (protocol merged with overrides)."""
+    return montanero2007_runs()[wildcards.run]
+
+
+def montanero2007_batch(wildcards):
+    """(first realization, count) of one job."""
+    jobs = montanero2007_jobs(wildcards.run)
+    index = int(wildcards.batch.removeprefix("batch"))
+    if index >= len(jobs):
+        raise ValueError(f"run {wildcards.run} has {len(jobs)} jobs, not {wildcards.batch}")
+    return {"first": jobs[index].first_realization, "count": jobs[index].n_realizations}
+
+
+def montanero2007_seed(wildcards):
+    """One seed per run; realization k uses stream row k, whatever the batching."""
+    return job_seed(f"montanero2007/{wildcards.run}")
+
+
+def montanero2007_run_names():
+    """Wildcard constraint: the run names of the plan, nothing else."""
+    return "|".join(sorted(montanero2007_runs()))
+
+
+rule montanero2007_simulate_dsmc:
+    input:
+        warm=numba_warm("dsmc"),
+        code=engine_sources("dsmc") + package_files("studies"),
+    output:
+        "results/montanero2007/runs/{run}/{batch}.nc",
+    log:
+        "logs/montanero2007/runs/{run}/{batch}.log",
+    benchmark:
+        "logs/benchmarks/montanero2007/runs/{run}/{batch}.tsv"
+    params:
+        run=montanero2007_run_parameters,
+        batch=montanero2007_batch,
+        seed=montanero2007_seed,
+    threads: 1
+    wildcard_constraints:
+        run=montanero2007_run_names(),
+        batch=r"batch[0-9]{4}",
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
+    script:
+        "../../scripts/montanero2007_simulate_dsmc.py"

@@ -1,0 +1,352 @@
+# visco2008 simulations: molecular dynamics (kinetic.edmd, §IV.B), homogeneous DSMC
+# (kinetic.dsmc, Figs 1 and 12) and the cloning Monte Carlo (kinetic.cloning, §IV.A).
+# Every run is cut into jobs of independent realizations (kinetic.batches: one
+# results/visco2008/<engine>/<run>/batchNNNN.nc per job); realization k of a run always
+# uses stream k of the run's seed, so the data do not depend on the cut and a stopped run
+# resumes job by job. One aggregate per run joins its jobs.
+import math
+import re
+
+from kinetic import batches
+from kinetic.cloning import plan as cloning_plan
+
+BATCH = r"batch[0-9]{4}"
+"""Wildcard constraint of a batch file's stem (kinetic.batches.batch_name)."""
+
+
+# ---------------------------------------------------------------- molecular dynamics
+def visco2008_md():
+    """The config section visco2008.md (validated and filled with defaults)."""
+    return config["visco2008"]["md"]
+
+
+def _check_visco2008_md():
+    """Cross-key consistency of visco2008.md, checked before any job starts."""
+    md = visco2008_md()
+    windows = md["windows"]
+    problems = []
+    if any(b <= a for a, b in zip(windows, windows[1:])):
+        problems.append(f"windows {windows} must be strictly increasing")
+    if windows[-1] > md["duration"]:
+        problems.append(f"the longest window {windows[-1]} exceeds duration {md['duration']}")
+    for key in ("table_windows", "ldf_windows", "extrapolation_windows"):
+        missing = [t for t in md[key] if t not in windows]
+        if missing:
+            problems.append(f"{key} {missing} are not among windows {windows}")
+    if md["error_window"] not in windows:
+        problems.append(f"error_window {md['error_window']} is not among windows {windows}")
+    checkpoints = md["checkpoints"]
+    if any(b <= a for a, b in zip(checkpoints, checkpoints[1:])):
+        problems.append(f"checkpoints {checkpoints} must be strictly increasing")
+    if checkpoints[-1] != md["duration"]:
+        problems.append(f"the last checkpoint {checkpoints[-1]} must equal duration {md['duration']}")
+    if md["figure_run"] not in md["densities"]:
+        problems.append(f"figure_run {md['figure_run']!r} is not a key of densities {sorted(md['densities'])}")
+    if problems:
+        raise WorkflowError("config section visco2008.md: " + "; ".join(problems))
+
+
+_check_visco2008_md()
+
+
+def visco2008_md_jobs():
+    """kinetic.batches plan of one MD run (every run has the same)."""
+    md = visco2008_md()
+    return batches.plan(
+        realizations=md["realizations"], realizations_per_job=md["realizations_per_job"]
+    )
+
+
+def visco2008_md_data(run):
+    """Aggregated observers of one MD run (all realizations)."""
+    return f"results/visco2008/md/{run}.nc"
+
+
+def visco2008_md_cumulants(run):
+    """Scaled cumulants <N^p>_c/t with standard errors of one run (Table I input)."""
+    return f"results/visco2008/md/{run}_cumulants.nc"
+
+
+def visco2008_md_batch_files(wildcards):
+    """Input function: every batch file of the run named by the wildcard."""
+    return [
+        f"results/visco2008/md/{wildcards.run}/{batches.batch_name(job.index)}.nc"
+        for job in visco2008_md_jobs()
+    ]
+
+
+def visco2008_md_job(wildcards):
+    """Keyword arguments of kinetic.edmd.simulate for one job."""
+    md = visco2008_md()
+    job = visco2008_md_jobs()[int(wildcards.batch.removeprefix("batch"))]
+    return {
+        "n_particles": md["n_particles"],
+        "density": md["densities"][wildcards.run],
+        "seed": job_seed(f"visco2008/md/{wildcards.run}"),
+        "realizations": job.n_realizations,
+        "first_realization": job.first_realization,
+        "equilibration": md["equilibration"],
+        "duration": md["duration"],
+        "windows": md["windows"],
+        "checkpoints": md["checkpoints"],
+        "flight_time_max": md["flight_time_max"],
+        "flight_time_bins": md["flight_time_bins"],
+        "free_path_max": md["free_path_max"],
+        "free_path_bins": md["free_path_bins"],
+        "cell_occupancy": md["cell_occupancy"],
+        "label": f"visco2008 md {wildcards.run} {wildcards.batch}",
+    }
+
+
+def visco2008_md_table_windows(wildcards):
+    return visco2008_md()["table_windows"]
+
+
+def visco2008_md_extrapolation_windows(wildcards):
+    return visco2008_md()["extrapolation_windows"]
+
+
+def visco2008_md_runs():
+    """Wildcard constraint: the run names of the config, nothing else."""
+    return "|".join(re.escape(run) for run in visco2008_md()["densities"])
+
+
+rule visco2008_simulate_md:
+    input:
+        sources=engine_sources("edmd"),
+        warm=numba_warm("edmd"),
+    output:
+        "results/visco2008/md/{run}/{batch}.nc",
+    log:
+        "logs/visco2008/md/{run}/{batch}.log",
+    benchmark:
+        "logs/benchmarks/visco2008/md/{run}/{batch}.tsv"
+    params:
+        simulation=visco2008_md_job,
+    threads: 1
+    wildcard_constraints:
+        run=visco2008_md_runs(),
+        batch=BATCH,
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
+    script:
+        "../../scripts/visco2008_simulate_md.py"
+
+
+rule visco2008_aggregate_md:
+    input:
+        batches=visco2008_md_batch_files,
+        sources=package_files("analysis"),
+    output:
+        data="results/visco2008/md/{run}.nc",
+        cumulants="results/visco2008/md/{run}_cumulants.nc",
+    log:
+        "logs/visco2008/md/{run}_aggregate.log",
+    params:
+        table_windows=visco2008_md_table_windows,
+        extrapolation_windows=visco2008_md_extrapolation_windows,
+    wildcard_constraints:
+        run=visco2008_md_runs(),
+    script:
+        "../../scripts/visco2008_aggregate_md.py"
+
+
+# ---------------------------------------------------------------- homogeneous DSMC
+VISCO2008_DSMC_RUNS = ["free_flight_times", "maxwell_free_paths"]
+"""Runs of config visco2008.dsmc (the {run} wildcard takes exactly these config keys)."""
+
+
+def visco2008_dsmc_run(run):
+    """Config section of one visco2008 DSMC run."""
+    return config["visco2008"]["dsmc"][run]
+
+
+def visco2008_dsmc_jobs(run):
+    """kinetic.batches plan of one DSMC run."""
+    settings = visco2008_dsmc_run(run)
+    return batches.plan(
+        realizations=settings["realizations"],
+        realizations_per_job=settings["realizations_per_job"],
+    )
+
+
+def visco2008_dsmc_data(run):
+    """Aggregated free-flight densities of one DSMC run."""
+    return f"results/visco2008/dsmc/{run}.nc"
+
+
+def visco2008_dsmc_batch_files(wildcards):
+    """Input function of the aggregate: every batch file of the run."""
+    return [
+        f"results/visco2008/dsmc/{wildcards.run}/{batches.batch_name(job.index)}.nc"
+        for job in visco2008_dsmc_jobs(wildcards.run)
+    ]
+
+
+def visco2008_dsmc_job(wildcards):
+    """Keyword arguments of kinetic.dsmc.simulate_free_flights for one job."""
+    settings = visco2008_dsmc_run(wildcards.run)
+    jobs = visco2008_dsmc_jobs(wildcards.run)
+    index = int(wildcards.batch.removeprefix("batch"))
+    if index >= len(jobs):
+        raise ValueError(f"run {wildcards.run} has no job {index}")
+    return {
+        "kernel": settings["kernel"],
+        "dimension": settings["dimension"],
+        "n_particles": settings["n_particles"],
+        "duration": settings["duration"],
+        "seed": job_seed(f"visco2008/dsmc/{wildcards.run}"),
+        "first_realization": jobs[index].first_realization,
+        "n_realizations": jobs[index].n_realizations,
+        "max_flight_time": settings["max_flight_time"],
+        "n_time_bins": settings["time_bins"],
+        "max_free_path": settings["max_free_path"],
+        "n_path_bins": settings["path_bins"],
+        "label": f"visco2008 dsmc {wildcards.run} {wildcards.batch}",
+    }
+
+
+rule visco2008_simulate_dsmc:
+    input:
+        sources=engine_sources("dsmc"),
+        warm=numba_warm("dsmc"),
+    output:
+        "results/visco2008/dsmc/{run}/{batch}.nc",
+    log:
+        "logs/visco2008/dsmc/{run}/{batch}.log",
+    benchmark:
+        "logs/benchmarks/visco2008/dsmc/{run}/{batch}.tsv"
+    params:
+        job=visco2008_dsmc_job,
+    threads: 1
+    wildcard_constraints:
+        run="|".join(VISCO2008_DSMC_RUNS),
+        batch=BATCH,
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
+    script:
+        "../../scripts/visco2008_simulate_dsmc.py"
+
+
+rule visco2008_aggregate_dsmc:
+    input:
+        visco2008_dsmc_batch_files,
+    output:
+        "results/visco2008/dsmc/{run}.nc",
+    log:
+        "logs/visco2008/dsmc/{run}.log",
+    wildcard_constraints:
+        run="|".join(VISCO2008_DSMC_RUNS),
+    script:
+        "../../scripts/visco2008_aggregate_dsmc.py"
+
+
+# ---------------------------------------------------------------- cloning Monte Carlo
+# One job per batch of runs of a (kernel, λ, N_c) point; paths name points by tokens built
+# from the config (lam+1.000, N1000), which the helpers look up in the config, never parse.
+def visco2008_cloning():
+    """The config section visco2008.cloning."""
+    return config["visco2008"]["cloning"]
+
+
+def visco2008_cloning_batch_files(study):
+    """Every batch file of one study ('scan' or 'error_vs_time')."""
+    return [
+        f"results/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batches.batch_name(batch)}.nc"
+        for kernel, point, size, batch in cloning_plan.batch_keys(visco2008_cloning(), study)
+    ]
+
+
+def visco2008_cloning_scan_batches(wildcards):
+    return visco2008_cloning_batch_files("scan")
+
+
+def visco2008_cloning_error_batches(wildcards):
+    return visco2008_cloning_batch_files("error_vs_time")
+
+
+def visco2008_cloning_job(wildcards):
+    """Keyword arguments of kinetic.cloning.simulate for the batch named by the wildcards."""
+    key = cloning_plan.point_seed_key(
+        wildcards.study, wildcards.kernel, wildcards.point, wildcards.size
+    )
+    return cloning_plan.run_parameters(
+        visco2008_cloning(),
+        wildcards.study,
+        wildcards.kernel,
+        wildcards.point,
+        wildcards.size,
+        int(wildcards.batch.removeprefix("batch")),
+        job_seed(key),
+    )
+
+
+# what a batch's numbers depend on (aggregation and plotting code are not part of it)
+VISCO2008_CLONING_SOURCES = package_files(
+    "cloning/__init__",
+    "cloning/kernels",
+    "cloning/simulate",
+    "cloning/estimators",
+    "cloning/rates",
+    "theory/visco2008",
+    "rng",
+    "io",
+)
+
+
+rule visco2008_simulate_cloning:
+    input:
+        sources=VISCO2008_CLONING_SOURCES,
+        # ancient: the compiled cache must exist, but its age does not rerun batches
+        warm=ancient(numba_warm("cloning")),
+    output:
+        "results/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.nc",
+    log:
+        "logs/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.log",
+    benchmark:
+        "logs/benchmarks/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.tsv"
+    params:
+        run=visco2008_cloning_job,
+    threads: 1
+    wildcard_constraints:
+        study="scan|error_vs_time",
+        kernel="|".join(cloning_plan.KERNEL_SETTINGS),
+        point=r"lam[+-][0-9]+\.[0-9]{3}",
+        size=r"N[0-9]+",
+        batch=BATCH,
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
+    script:
+        "../../scripts/visco2008_simulate_cloning.py"
+
+
+rule visco2008_aggregate_cloning:
+    input:
+        batches=visco2008_cloning_scan_batches,
+        code=package_files("cloning/aggregate"),
+    output:
+        csv="results/visco2008/cloning.csv",
+        md="results/visco2008/cloning.md",
+        nc="results/visco2008/cloning.nc",
+    log:
+        "logs/visco2008/cloning_aggregate.log",
+    script:
+        "../../scripts/visco2008_aggregate_cloning.py"
+
+
+rule visco2008_aggregate_cloning_error:
+    input:
+        batches=visco2008_cloning_error_batches,
+        reference="results/visco2008/cloning/reference.nc",
+        code=package_files("cloning/aggregate"),
+    output:
+        csv="results/visco2008/cloning_error_vs_time.csv",
+        md="results/visco2008/cloning_error_vs_time.md",
+        nc="results/visco2008/cloning/error_vs_time.nc",
+    log:
+        "logs/visco2008/cloning_error_vs_time_aggregate.log",
+    script:
+        "../../scripts/visco2008_aggregate_cloning_error.py"
