@@ -7,8 +7,9 @@ For every table (``*.csv``) and dataset (``*.nc``) under either tree, by relativ
   (within ``--rtol``/``--atol``, exact by default), other cells identical;
 - datasets: the same data variables with the same dimensions and values (attributes,
   which carry provenance such as the git revision, are not compared). Variables that time
-  the run (names containing ``cpu`` or ``wall``, and ``--ignore`` patterns) are skipped:
-  they differ between any two runs of the same code.
+  the run (names containing ``cpu``, ``wall`` or ``inefficiency``, and ``--ignore``
+  patterns) are skipped, and so is the build's own record under ``workflow/``: they
+  differ between any two runs of the same code.
 
 Prints one line per differing file (the largest absolute and relative difference of each
 variable or column) and a summary; exits 1 when anything differs, 0 otherwise. Used to
@@ -28,7 +29,13 @@ import numpy as np
 
 __all__ = ["Report", "compare_trees", "main"]
 
-TIMING_PATTERNS = ("*cpu*", "*wall*")
+TIMING_PATTERNS = ("*cpu*", "*wall*", "*inefficiency*")
+"""Names of variables and columns that time the run, or derive from its timing (an
+inefficiency is an error squared times CPU seconds)."""
+
+RECORD_FILES = ("workflow/*",)
+"""Files that record the build itself (results/workflow/jobs.csv: rules, run times,
+memory), not results: they differ between any two builds."""
 
 
 @dataclass
@@ -117,7 +124,11 @@ def compare_trees(
     files = set()
     for root in (first, second):
         for suffix in ("*.csv", "*.nc"):
-            files |= {path.relative_to(root) for path in root.rglob(suffix)}
+            files |= {
+                path.relative_to(root)
+                for path in root.rglob(suffix)
+                if not _skipped(path.relative_to(root).as_posix(), RECORD_FILES)
+            }
     for relative in sorted(files):
         a, b = first / relative, second / relative
         if not a.exists() or not b.exists():

@@ -9,8 +9,13 @@ from kinetic.compare import compare_trees, main
 
 def _tree(root, value=1.0, cpu=3.0, extra=False):
     (root / "doc").mkdir(parents=True)
-    pd.DataFrame({"alpha": [0.5, 1.0], "k": [value, 2.0], "name": ["a", "b"]}).to_csv(
+    table = {"alpha": [0.5, 1.0], "k": [value, 2.0], "name": ["a", "b"]}
+    pd.DataFrame({**table, "inefficiency": [cpu, cpu]}).to_csv(
         root / "doc" / "table.csv", index=False
+    )
+    (root / "workflow").mkdir()
+    pd.DataFrame({"rule": [f"rule_{cpu}"], "measured_s": [cpu]}).to_csv(
+        root / "workflow" / "jobs.csv", index=False
     )
     xr.Dataset(
         {"mu": ("x", np.array([value, np.nan])), "cpu_seconds": ("x", np.array([cpu, cpu]))},
