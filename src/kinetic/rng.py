@@ -21,7 +21,8 @@ from __future__ import annotations
 import zlib
 
 import numpy as np
-from numba import njit
+
+from kinetic.jit import inline, kernel
 
 __all__ = [
     "derive_seed",
@@ -86,7 +87,7 @@ def stream_states(seed: int, n_streams: int) -> np.ndarray:
     return states
 
 
-@njit(error_model="numpy")
+@kernel
 def xoshiro_next(s0, s1, s2, s3):
     """One xoshiro256+ output from a state held in four scalars: ``(x, s0, s1, s2, s3)``.
 
@@ -106,21 +107,21 @@ def xoshiro_next(s0, s1, s2, s3):
     return x, s0, s1, s2, s3
 
 
-@njit(error_model="numpy")
+@kernel
 def xoshiro_uniform(s0, s1, s2, s3):
     """Uniform float64 in [0, 1) (upper 53 bits), as ``uniform``: ``(u, s0, s1, s2, s3)``."""
     x, s0, s1, s2, s3 = xoshiro_next(s0, s1, s2, s3)
     return float(x >> _SHIFT_11) * _TWO_M53, s0, s1, s2, s3
 
 
-@njit(error_model="numpy")
+@kernel
 def xoshiro_exponential(s0, s1, s2, s3):
     """Exponential variate of unit mean, as ``exponential``: ``(e, s0, s1, s2, s3)``."""
     x, s0, s1, s2, s3 = xoshiro_next(s0, s1, s2, s3)
     return -np.log((float(x >> _SHIFT_11) + 1.0) * _TWO_M53), s0, s1, s2, s3
 
 
-@njit(error_model="numpy")
+@kernel
 def xoshiro_unit_3d(s0, s1, s2, s3):
     """Uniform direction on the sphere (Marsaglia 1972, no trigonometry).
 
@@ -137,7 +138,7 @@ def xoshiro_unit_3d(s0, s1, s2, s3):
             return x * f, y * f, 1.0 - 2.0 * s, s0, s1, s2, s3
 
 
-@njit(error_model="numpy")
+@kernel
 def xoshiro_unit_2d(s0, s1, s2, s3):
     """Uniform direction on the circle (von Neumann's rejection, no trigonometry).
 
@@ -153,7 +154,7 @@ def xoshiro_unit_2d(s0, s1, s2, s3):
             return (x * x - y * y) / s, 2.0 * x * y / s, s0, s1, s2, s3
 
 
-@njit(inline="always")
+@inline
 def _next_u64(state):
     result, s0, s1, s2, s3 = xoshiro_next(state[0], state[1], state[2], state[3])
     state[0] = s0
@@ -163,25 +164,25 @@ def _next_u64(state):
     return result
 
 
-@njit(inline="always")
+@inline
 def uniform(state):
     """Uniform float64 in [0, 1) from the upper 53 bits; advances ``state`` in place."""
     return float(_next_u64(state) >> _SHIFT_11) * _TWO_M53
 
 
-@njit(inline="always")
+@inline
 def uniform_open(state):
     """Uniform float64 in (0, 1]: safe under ``log``."""
     return (float(_next_u64(state) >> _SHIFT_11) + 1.0) * _TWO_M53
 
 
-@njit(inline="always")
+@inline
 def exponential(state):
     """Exponential variate of unit mean."""
     return -np.log(uniform_open(state))
 
 
-@njit(inline="always")
+@inline
 def disk_point(state):
     """Uniform point (x, y) in the open unit disk minus its centre, and r2 = x² + y²."""
     while True:
@@ -192,7 +193,7 @@ def disk_point(state):
             return x, y, r2
 
 
-@njit(inline="always")
+@inline
 def normal_pair(state):
     """Two independent standard normal variates (Marsaglia's polar method)."""
     x, y, r2 = disk_point(state)
@@ -200,7 +201,7 @@ def normal_pair(state):
     return x * factor, y * factor
 
 
-@njit(inline="always")
+@inline
 def unit_vector_3d(state):
     """Uniform direction on the sphere (Marsaglia 1972): returns ``(x, y, z)``."""
     x, y, r2 = disk_point(state)
@@ -208,13 +209,13 @@ def unit_vector_3d(state):
     return x * root, y * root, 1.0 - 2.0 * r2
 
 
-@njit(inline="always")
+@inline
 def normal(state):
     """One standard normal variate (the polar method's second variate is dropped)."""
     return normal_pair(state)[0]
 
 
-@njit(inline="always")
+@inline
 def random_unit_vector(state, out):
     """Fill ``out`` (length d = 2 or 3) with a direction uniform on the unit sphere."""
     d = out.shape[0]

@@ -21,8 +21,8 @@ def section():
                     "maxwell": {"lambdas": [1.0], "populations": [30]},
                 },
                 "collisions_per_run": 2.0e4,
-                "runs_per_batch": 2,
-                "batches": 2,
+                "realizations": 4,
+                "realizations_per_job": 2,
                 "n_blocks": 4,
                 "transient": 5.0,
                 "transient_kept_collisions": 2,
@@ -100,7 +100,7 @@ def test_table_has_the_contract_columns_and_extrapolation_rows(section):
         for kernel, grid in section["kernels"].items()
         for lam in grid["lambdas"]
         for n in grid["populations"]
-        for b in range(section["batches"])
+        for b in range(len(plan.jobs(section, "scan")))
     ]
     records = aggregate.combine_points(datasets)
     limits = aggregate.extrapolate_points(records)

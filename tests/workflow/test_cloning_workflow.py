@@ -20,8 +20,8 @@ visco2008:
       hard_disks: {lambdas: [0.5, 1.0], populations: [20, 40]}
       maxwell: {lambdas: [1.0], populations: [20]}
     collisions_per_run: 5.0e+3
-    runs_per_batch: 2
-    batches: 2
+    realizations: 4
+    realizations_per_job: 2
     n_blocks: 2
     transient: 5
 """

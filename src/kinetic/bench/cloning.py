@@ -17,11 +17,11 @@ import math
 import time
 
 import numpy as np
-from numba import njit
 
 from kinetic.bench import median_rate
 from kinetic.cloning import kernels
 from kinetic.cloning.rates import TABLE_STEP, rate_table
+from kinetic.jit import kernel
 from kinetic.rng import stream_states, uniform
 
 __all__ = ["run"]
@@ -30,7 +30,7 @@ TARGET_EVENTS_PER_SECOND = 5.0e6
 _POLAR_UNIFORMS = 2.0 * 4.0 / math.pi  # uniforms per accepted disk point (polar method)
 
 
-@njit(cache=True)
+@kernel
 def _draw_uniforms(state, count):
     total = 0.0
     for _ in range(count):

@@ -39,7 +39,6 @@ import time
 from typing import Any
 
 import numpy as np
-from numba import njit
 
 from kinetic.bench import median_rate
 from kinetic.dsmc import (
@@ -53,6 +52,7 @@ from kinetic.dsmc import (
     realization_streams,
 )
 from kinetic.dsmc.kernels import _pair, _uniform
+from kinetic.jit import kernel
 from kinetic.progress import logger
 
 TARGET_COLLISIONS_PER_SECOND = 5e6
@@ -63,7 +63,7 @@ DIMENSION = 3
 MARSAGLIA_DRAWS = 2 * 4 / math.pi  # uniforms per direction on the sphere (rejection)
 
 
-@njit(cache=True)
+@kernel
 def _candidate_floor(velocity, state, n_candidates, bound_sq):
     """The candidate loop of collide_range without collisions: draws, loads, test."""
     s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
@@ -81,7 +81,7 @@ def _candidate_floor(velocity, state, n_candidates, bound_sq):
     return accepted
 
 
-@njit(cache=True)
+@kernel
 def _generator_floor(state, n_draws):
     """n_draws uniforms from the scalar xoshiro256+ of the kernels."""
     s0, s1, s2, s3 = state[0], state[1], state[2], state[3]

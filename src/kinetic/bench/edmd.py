@@ -23,9 +23,9 @@ import time
 from typing import Any
 
 import numpy as np
-from numba import njit
 
 from kinetic.edmd import HardSphereSystem, kernels
+from kinetic.jit import kernel
 
 __all__ = ["run"]
 
@@ -91,7 +91,7 @@ def _cases(specs: list[tuple[int, int, float]], repeats: int) -> list[dict[str, 
 
 
 # ------------------------------------------------------------------ micro-benchmarks
-@njit(cache=True, error_model="numpy")
+@kernel
 def _pair_test_loop(phase, candidates, repeats):
     best = np.inf
     for r in range(repeats):
@@ -104,7 +104,7 @@ def _pair_test_loop(phase, candidates, repeats):
     return best
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def _calendar_updates(
     phase, ints, members, occupancy, last_collision, grid, calendar_arrays, increments, repeats
 ):
@@ -131,7 +131,7 @@ def _calendar_updates(
     return heap_time[0]
 
 
-@njit(cache=True)
+@kernel
 def _pointer_chase(successor, steps):
     j = 0
     for _ in range(steps):
@@ -139,7 +139,7 @@ def _pointer_chase(successor, steps):
     return j
 
 
-@njit(cache=True)
+@kernel
 def _prefetched_lines(rows, order, distance):
     """Read one cache line (row) per index of ``order``, each prefetched ``distance``
     reads ahead: the throughput of independent random lines (memory-level parallelism)."""

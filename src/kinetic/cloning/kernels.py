@@ -50,8 +50,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from kinetic.jit import inline, kernel
 from kinetic.rng import disk_point, normal_pair, uniform, uniform_open, unit_vector_3d
 
 __all__ = [
@@ -86,7 +86,7 @@ _SQRT_PI = math.sqrt(math.pi)
 _RATE_AT_REST = 1.0 / math.sqrt(2.0)  # r(0)/ω, visco2008 Eq. (36); also channel B's rate
 
 
-@njit(cache=True)
+@kernel
 def compensation_parameters(lam):
     """Rate factor c_λ and keep probability of a collision for the tilt ``lam``.
 
@@ -101,7 +101,7 @@ def compensation_parameters(lam):
     return factor, math.exp(-lam) / factor, True
 
 
-@njit(cache=True)
+@kernel
 def channel_a_rate(d):
     """K1 = √π β_d/Ω_d: channel-A rate per unit speed (1/√π in d = 2, √π/4 in d = 3)."""
     if d == 2:
@@ -109,7 +109,7 @@ def channel_a_rate(d):
     return _SQRT_PI / 4.0
 
 
-@njit(inline="always")
+@inline
 def _cached_normal(state, cache):
     """A standard normal variate; the polar method's second variate waits in ``cache``.
 
@@ -124,7 +124,7 @@ def _cached_normal(state, cache):
     return z0
 
 
-@njit(inline="always")
+@inline
 def _hard_sphere_proposal_2d(vx, vy, speed, use_channel_a, state, cache):
     """One hard-disk candidate of member with velocity (vx, vy) and |v| = ``speed``.
 
@@ -156,7 +156,7 @@ def _hard_sphere_proposal_2d(vx, vy, speed, use_channel_a, state, cache):
     return True, vx - gap * sx, vy - gap * sy
 
 
-@njit(inline="always")
+@inline
 def _hard_sphere_proposal_3d(vx, vy, vz, speed, use_channel_a, state, cache):
     """One hard-sphere candidate in d = 3; see ``_hard_sphere_proposal_2d``.
 
@@ -193,7 +193,7 @@ def _hard_sphere_proposal_3d(vx, vy, vz, speed, use_channel_a, state, cache):
     return True, vx - gap * sx, vy - gap * sy, vz - gap * sz
 
 
-@njit(inline="always")
+@inline
 def _maxwell_collision(velocity, i, state, cache):
     """Elastic Maxwell-molecule collision of member ``i``, in place.
 
@@ -229,7 +229,7 @@ def _maxwell_collision(velocity, i, state, cache):
     return vx * vx + vy * vy + vz * vz
 
 
-@njit(inline="always")
+@inline
 def _other_member(i, n, state):
     """A member index uniform over {0, ..., n-1} minus {i} (n >= 2)."""
     j = int(uniform(state) * (n - 1))
@@ -238,7 +238,7 @@ def _other_member(i, n, state):
     return j
 
 
-@njit(inline="always")
+@inline
 def _copy_member(velocity, speed, source, target):
     """Member ``target`` becomes a clone of member ``source``."""
     for k in range(velocity.shape[0]):
@@ -246,7 +246,7 @@ def _copy_member(velocity, speed, source, target):
     speed[target] = speed[source]
 
 
-@njit(cache=True)
+@kernel
 def draw_population(velocity, speed, state):
     """Fill ``velocity`` (d, n) with bath velocities N(0, T0 = 1) and ``speed`` with |v|."""
     d, n = velocity.shape
@@ -260,7 +260,7 @@ def draw_population(velocity, speed, state):
         speed[i] = math.sqrt(s2)
 
 
-@njit(inline="always")
+@inline
 def _tabulated_rate(speed, rate_table, table_step):
     """r(speed) by linear interpolation in ``rate_table`` (r at speeds k·table_step).
 
@@ -275,7 +275,7 @@ def _tabulated_rate(speed, rate_table, table_step):
     return rate_table[k] + fraction * (rate_table[k + 1] - rate_table[k])
 
 
-@njit(cache=True)
+@kernel
 def _population_sums(velocity, speed, rate_table, table_step):
     """Recompute ``speed`` from ``velocity``; return (Σ|v|², Σ|v|⁴, Σ r(|v|), max |v|)."""
     d, n = velocity.shape
@@ -295,7 +295,7 @@ def _population_sums(velocity, speed, rate_table, table_step):
     return sum2, sum4, sum_rate, largest
 
 
-@njit(cache=True)
+@kernel
 def _snapshot_histogram(velocity, weight, half_width, histogram):
     """Add ``weight`` to the bin of every velocity component in [-half_width, half_width)."""
     d, n = velocity.shape
@@ -308,7 +308,7 @@ def _snapshot_histogram(velocity, weight, half_width, histogram):
                 histogram[int(position)] += weight
 
 
-@njit(cache=True)
+@kernel
 def run_blocks(
     kernel,
     lam,

@@ -1,6 +1,7 @@
 """Job plan of the cloning simulations: names of points and the parameters of each job.
 
-The workflow splits every (kernel, λ, N_c) point into batches of independent runs. Paths
+The workflow splits the runs (realizations) of every (kernel, λ, N_c) point into jobs
+(``kinetic.batches``). Paths
 name points by tokens built from the config (``lam+1.000``, ``N1000``); the rules map a
 token back to its value by lookup in the config, never by parsing it. Run k of a point
 uses row k of the point's stream states, so results do not depend on the batching.
@@ -8,9 +9,9 @@ uses row k of the point's stream states, so results do not depend on the batchin
 Config section ``visco2008.cloning`` (schema: workflow/schemas/visco2008.cloning.schema.yaml)::
 
     kernels: {hard_disks: {lambdas: [...], populations: [...]}, maxwell: {...}}
-    collisions_per_run, runs_per_batch, batches, n_blocks, transient,
+    collisions_per_run, realizations, realizations_per_job, n_blocks, transient,
     transient_kept_collisions, histogram_bins, histogram_half_width
-    error_vs_time: {lambdas, populations, collisions_per_run, runs_per_batch, n_blocks}
+    error_vs_time: {lambdas, populations, collisions_per_run, realizations, n_blocks}
 """
 
 from __future__ import annotations
@@ -21,9 +22,12 @@ from typing import Any
 
 import numpy as np
 
+from kinetic import batches
+
 __all__ = [
     "KERNEL_SETTINGS",
     "batch_keys",
+    "jobs",
     "lambda_token",
     "point_seed_key",
     "population_token",
@@ -69,22 +73,30 @@ def study_points(section: Mapping[str, Any], study: str) -> list[tuple[str, floa
 
 
 def _study_settings(section: Mapping[str, Any], study: str) -> dict[str, Any]:
-    settings = {key: section[key] for key in ("collisions_per_run", "runs_per_batch", "n_blocks")}
-    settings["batches"] = section["batches"]
-    if study == "error_vs_time":
-        study_section = section["error_vs_time"]
-        settings.update({key: study_section[key] for key in settings if key != "batches"})
-        settings["batches"] = 1
+    keys = ("collisions_per_run", "realizations", "n_blocks")
+    settings = {key: section[key] for key in keys}
+    settings["realizations_per_job"] = section["realizations_per_job"]
+    if study == "error_vs_time":  # one job per point
+        settings.update({key: section["error_vs_time"][key] for key in keys})
+        settings["realizations_per_job"] = settings["realizations"]
     return settings
 
 
+def jobs(section: Mapping[str, Any], study: str) -> list[batches.Job]:
+    """The jobs of every point of ``study`` (every point has the same plan)."""
+    settings = _study_settings(section, study)
+    return batches.plan(
+        realizations=int(settings["realizations"]),
+        realizations_per_job=int(settings["realizations_per_job"]),
+    )
+
+
 def batch_keys(section: Mapping[str, Any], study: str) -> list[tuple[str, str, str, int]]:
-    """(kernel, λ token, N token, batch) of every job of ``study``."""
-    batches = _study_settings(section, study)["batches"]
+    """(kernel, λ token, N token, job index) of every job of ``study``."""
     return [
-        (kernel, lambda_token(lam), population_token(n), batch)
+        (kernel, lambda_token(lam), population_token(n), job.index)
         for kernel, lam, n in study_points(section, study)
-        for batch in range(batches)
+        for job in jobs(section, study)
     ]
 
 
@@ -126,8 +138,10 @@ def run_parameters(
             f"no cloning point {kernel}/{lam_token}/{n_token} in study {study!r} of the config"
         ) from None
     settings = _study_settings(section, study)
-    if not 0 <= int(batch) < settings["batches"]:
-        raise ValueError(f"batch {batch} outside 0..{settings['batches'] - 1}")
+    plan = jobs(section, study)
+    if not 0 <= int(batch) < len(plan):
+        raise ValueError(f"batch {batch} outside 0..{len(plan) - 1}")
+    job = plan[int(batch)]
     rate_factor = event_rate_factor(lam)
     duration = settings["collisions_per_run"] / (population * rate_factor)
     kernel_settings = KERNEL_SETTINGS[kernel]
@@ -140,8 +154,8 @@ def run_parameters(
         "duration": duration,
         "transient": max(float(section["transient"]), renewal),
         "n_blocks": int(settings["n_blocks"]),
-        "n_runs": int(settings["runs_per_batch"]),
-        "first_run": int(batch) * int(settings["runs_per_batch"]),
+        "n_runs": job.n_realizations,
+        "first_run": job.first_realization,
         "seed": int(seed),
         "histogram_bins": int(section["histogram_bins"]),
         "histogram_half_width": float(section["histogram_half_width"]),

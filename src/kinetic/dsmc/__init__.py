@@ -1,7 +1,9 @@
 """Homogeneous DSMC engine (Bird's method): hard spheres, Maxwell molecules, very hard
 particles, restitution α, the heat-flux force and thermostat of montanero2007, and a
-continuous-time variant with free-flight observers (visco2008). See ``simulate`` for the
-fronts and ``kernels`` for the numba kernels (shared with the inhomogeneous engine).
+continuous-time variant with free-flight observers (visco2008). Fronts: ``homogeneous``
+(``simulate_homogeneous``) and ``free_flights`` (``simulate_free_flights``); the gas
+state and stepping they share: ``state``; numba kernels: ``kernels`` (shared with the
+inhomogeneous engine).
 
 Inhomogeneous engine (costantini2010, d = 2): ``simulate_cooling_modes`` in
 ``inhomogeneous`` (front) and ``inhomogeneous_kernels`` (numba kernels): fictive
@@ -12,13 +14,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from kinetic.dsmc.free_flights import simulate_free_flights
+from kinetic.dsmc.homogeneous import simulate_homogeneous
 from kinetic.dsmc.inhomogeneous import (
     CoolingModesGas,
     CoolingModesSettings,
     new_cooling_gas,
     simulate_cooling_modes,
 )
-from kinetic.dsmc.simulate import (
+from kinetic.dsmc.state import (
     MOMENT_NAMES,
     HomogeneousGas,
     HomogeneousSettings,
@@ -26,8 +30,6 @@ from kinetic.dsmc.simulate import (
     advance_gas,
     new_gas,
     realization_streams,
-    simulate_free_flights,
-    simulate_homogeneous,
 )
 
 __all__ = [

@@ -37,8 +37,9 @@ import numpy as np
 
 from kinetic import io
 from kinetic.dsmc import inhomogeneous_kernels as kernels
-from kinetic.dsmc.simulate import _choice, _integer, _real, realization_streams
+from kinetic.dsmc.state import realization_streams
 from kinetic.progress import Progress, logger
+from kinetic.validate import choice, integer, real
 
 __all__ = [
     "COLLISION_RULES",
@@ -106,14 +107,14 @@ class CoolingModesSettings:
     collision_rule: str
 
     def __post_init__(self) -> None:
-        _integer("n_particles", self.n_particles, 2)
-        _real("density", self.density, 0.0, math.inf, low_open=True, high_open=True)
-        _real("restitution", self.restitution, 0.0, 1.0, low_open=True)
-        _real("drag_rate", self.drag_rate, 0.0, math.inf, high_open=True)
-        _integer("fictive_factor", self.fictive_factor, 1)
-        _integer("cells_per_side", self.cells_per_side, 1, MAX_CELLS_PER_SIDE)
-        _choice("collision_rule", self.collision_rule, COLLISION_RULES)
-        _real("time_step", self.time_step, 0.0, math.inf, low_open=True, high_open=True)
+        integer("n_particles", self.n_particles, 2)
+        real("density", self.density, 0.0, math.inf, low_open=True, high_open=True)
+        real("restitution", self.restitution, 0.0, 1.0, low_open=True)
+        real("drag_rate", self.drag_rate, 0.0, math.inf, high_open=True)
+        integer("fictive_factor", self.fictive_factor, 1)
+        integer("cells_per_side", self.cells_per_side, 1, MAX_CELLS_PER_SIDE)
+        choice("collision_rule", self.collision_rule, COLLISION_RULES)
+        real("time_step", self.time_step, 0.0, math.inf, low_open=True, high_open=True)
         for name in ("n_particles", "fictive_factor", "cells_per_side"):
             object.__setattr__(self, name, int(getattr(self, name)))
         for name in ("density", "restitution", "drag_rate", "time_step"):
@@ -259,7 +260,7 @@ class CoolingModesGas:
 
     def advance(self, n_steps: int) -> None:
         """``n_steps`` steps of length ``settings.time_step`` (CPU time accumulated)."""
-        _integer("n_steps", n_steps, 0)
+        integer("n_steps", n_steps, 0)
         s = self.settings
         start = time.process_time()
         kernels.advance(
@@ -412,11 +413,11 @@ def simulate_cooling_modes(
         time_step=time_step,
         collision_rule=collision_rule,
     )
-    equilibration = _real("equilibration", equilibration, 0.0, math.inf, high_open=True)
-    sample_interval = _real(
+    equilibration = real("equilibration", equilibration, 0.0, math.inf, high_open=True)
+    sample_interval = real(
         "sample_interval", sample_interval, 0.0, math.inf, low_open=True, high_open=True
     )
-    n_samples = _integer("n_samples", n_samples, 1)
+    n_samples = integer("n_samples", n_samples, 1)
     steps_before = _whole_steps("equilibration", equilibration, settings.time_step, 0)
     stride = _whole_steps("sample_interval", sample_interval, settings.time_step, 1)
     streams = realization_streams(seed, first_realization, n_realizations)

@@ -75,7 +75,6 @@ its loops, prints, or touches files.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
 from kinetic.dsmc.kernels import (
     BOUND_SAFETY,
@@ -87,6 +86,7 @@ from kinetic.dsmc.kernels import (
     _trial,
     maxwellian,
 )
+from kinetic.jit import inline, kernel
 from kinetic.rng import xoshiro_uniform as _uniform
 
 __all__ = [
@@ -133,7 +133,7 @@ N_OBSERVABLES = 9
 and Σ w_x², momentum x and y (Σ w/(n √T))."""
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def initial_state(position, velocity, labels, state, box_side):
     """Uniform positions in [0, L)², Gaussian velocities with zero total momentum and
     Σ|w|² = 2 n exactly (T0 = 1), identities 0..n-1, no previous partner.
@@ -160,7 +160,7 @@ def initial_state(position, velocity, labels, state, box_side):
     maxwellian(velocity[0], state, 1.0)
 
 
-@njit(inline="always")
+@inline
 def _cell_statistics(velocity, first, last):
     """Mean velocity, Σ|w - ū|² and the two largest |w - ū| of particles first..last-1."""
     n = last - first
@@ -188,7 +188,7 @@ def _cell_statistics(velocity, first, last):
     return m0, m1, total, np.sqrt(top1), np.sqrt(top2)
 
 
-@njit(inline="always")
+@inline
 def _accumulate(moments, c, wx, wy):
     """Add a particle of velocity (wx, wy) to row c of the cell moments: Σw_x, Σw_y,
     Σ|w|² and the two largest |w|² (columns 0..4)."""
@@ -204,7 +204,7 @@ def _accumulate(moments, c, wx, wy):
             moments[c, 4] = s
 
 
-@njit(inline="always")
+@inline
 def _cell_moments(velocity, cell_start, moments):
     """Fill ``moments`` (M², 5) from particles sorted by cell (as the sort does)."""
     for c in range(moments.shape[0]):
@@ -214,7 +214,7 @@ def _cell_moments(velocity, cell_start, moments):
             _accumulate(moments, c, velocity[0, i], velocity[1, i])
 
 
-@njit(inline="always")
+@inline
 def _collided(velocity, ident, partner, i, j, half, h0, h1, c0, c1, top1, top2):
     """Apply an accepted collision; returns (repeated, |h|², raised, top1, top2)."""
     sa, sb = _apply(velocity, i, j, 2, half, h0, h1, 0.0, c0, c1, 0.0)
@@ -227,7 +227,7 @@ def _collided(velocity, ident, partner, i, j, half, h0, h1, c0, c1, top1, top2):
     return repeated, h0 * h0 + h1 * h1, raised, top1, top2
 
 
-@njit(inline="always")
+@inline
 def _collide_cells(
     velocity,
     labels,
@@ -350,7 +350,7 @@ def _collide_cells(
     return s0, s1, s2, s3
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def collide_cells(
     velocity,
     labels,
@@ -397,7 +397,7 @@ def collide_cells(
     state[3] = s3
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def advance(
     position,
     velocity,
@@ -539,7 +539,7 @@ def advance(
     state[3] = s3
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def observe(position, velocity, parity, wavenumber, out):
     """Observables of the current buffer ``parity`` into ``out`` (N_OBSERVABLES,).
 
@@ -587,7 +587,7 @@ def observe(position, velocity, parity, wavenumber, out):
     out[8] = py * norm
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def run_samples(
     position,
     velocity,

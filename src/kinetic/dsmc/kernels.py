@@ -49,8 +49,8 @@ advanced in place. No kernel allocates inside its loops, prints, or touches file
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from kinetic.jit import inline, kernel
 from kinetic.rng import normal_pair
 from kinetic.rng import xoshiro_exponential as _exponential
 from kinetic.rng import xoshiro_next as _next
@@ -125,7 +125,7 @@ _LOW_32 = np.uint64(0xFFFFFFFF)
 # the loop runs about twice slower. The scalar draws are kinetic.rng's ``xoshiro_*``.
 
 
-@njit(error_model="numpy")
+@kernel
 def _pair(n, s0, s1, s2, s3):
     """Two distinct uniform indices in ``0..n-1`` from one 64-bit draw.
 
@@ -142,7 +142,7 @@ def _pair(n, s0, s1, s2, s3):
     return i, j, s0, s1, s2, s3
 
 
-@njit(error_model="numpy")
+@kernel
 def _candidate_rate(kernel, pair_coefficient, n_pairs, bound):
     """Candidates per unit time for a range: coefficient * pairs * bound**p."""
     if kernel == HARD_SPHERES:
@@ -152,7 +152,7 @@ def _candidate_rate(kernel, pair_coefficient, n_pairs, bound):
     return pair_coefficient * n_pairs
 
 
-@njit(inline="always")
+@inline
 def _trial(velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3):
     """Test one candidate pair; return ``(code, h0, h1, h2, s0, s1, s2, s3)``.
 
@@ -209,7 +209,7 @@ def _trial(velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3):
     return 1, gs * e0, gs * e1, gs * e2, s0, s1, s2, s3
 
 
-@njit(error_model="numpy")
+@kernel
 def _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2):
     """v_i -= (1+α)/2 h, v_j += (1+α)/2 h (``half`` = (1+α)/2).
 
@@ -241,7 +241,7 @@ def _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2):
     return sa, sb
 
 
-@njit(error_model="numpy")
+@kernel
 def _raise(sa, sb, top1, top2):
     """Update the speed bounds ``top1 >= top2`` with the new squared speeds sa, sb.
 
@@ -258,7 +258,7 @@ def _raise(sa, sb, top1, top2):
     return True, top1, a
 
 
-@njit(error_model="numpy")
+@kernel
 def _speed_sq(velocity, i, d, c0, c1, c2):
     """|v_i - c|²."""
     a = velocity[0, i] - c0
@@ -270,7 +270,7 @@ def _speed_sq(velocity, i, d, c0, c1, c2):
     return s
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def speed_bounds(velocity, first, last, bounds):
     """Fill ``bounds`` (length d + 2) for particles ``first..last-1``.
 
@@ -301,7 +301,7 @@ def speed_bounds(velocity, first, last, bounds):
     bounds[d + 1] = np.sqrt(top2)
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def members_speed_bounds(velocity, members, start, stop, bounds):
     """``speed_bounds`` for the particles ``members[start:stop]``."""
     d = velocity.shape[0]
@@ -331,21 +331,21 @@ def members_speed_bounds(velocity, members, start, stop, bounds):
 # ------------------------------------------------------------------- collision kernels
 
 
-@njit(inline="always")
+@inline
 def _bound_terms(bounds, d):
     """``(c0, c1, c2, top1, top2)`` of a ``bounds`` row (centre and the two top speeds)."""
     c2 = bounds[2] if d == 3 else 0.0
     return bounds[0], bounds[1], c2, bounds[d], bounds[d + 1]
 
 
-@njit(inline="always")
+@inline
 def _majorant(kernel, pair_coefficient, n_pairs, top1, top2):
     """``(bound², mean candidate spacing)`` for the relative-speed bound top1 + top2."""
     bound = (top1 + top2) * BOUND_SAFETY
     return bound * bound, 1.0 / _candidate_rate(kernel, pair_coefficient, n_pairs, bound)
 
 
-@njit(inline="always")
+@inline
 def _collide_loop(
     velocity,
     members,
@@ -432,7 +432,7 @@ def _collide_loop(
     tally[TALLY_ACCEPTED] += accepted
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def collide_range(
     velocity,
     first,
@@ -471,7 +471,7 @@ def collide_range(
         )  # fmt: skip
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def collide_members(
     velocity,
     members,
@@ -504,7 +504,7 @@ def collide_members(
         )  # fmt: skip
 
 
-@njit(inline="always")
+@inline
 def _weighted_loop(
     velocity,
     state,
@@ -616,7 +616,7 @@ def _weighted_loop(
     return draws
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def collide_weighted(
     velocity,
     state,
@@ -660,7 +660,7 @@ def collide_weighted(
     )  # fmt: skip
 
 
-@njit(error_model="numpy")
+@kernel
 def _record_flight(
     velocity,
     i,
@@ -698,7 +698,7 @@ def _record_flight(
     last_collision[i] = now
 
 
-@njit(inline="always")
+@inline
 def _collide_observed_loop(
     velocity,
     state,
@@ -793,7 +793,7 @@ def _collide_observed_loop(
     bounds[d + 1] = top2
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def collide_observed(
     velocity,
     state,
@@ -870,7 +870,7 @@ def collide_observed(
 # --------------------------------------------------------------- forcing and thermostat
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def force_and_thermostat(velocity, half_field_step, exact, target_energy, bounds):
     """Heat-flux force step then the thermostat of montanero2007 (Eqs. 4.1, 4.2).
 
@@ -958,10 +958,10 @@ def force_and_thermostat(velocity, half_field_step, exact, target_energy, bounds
 # ------------------------------------------------------------------------- observers
 
 N_MOMENTS = 14
-"""Entries of ``accumulate_moments``: see ``MOMENT_NAMES`` in :mod:`kinetic.dsmc.simulate`."""
+"""Entries of ``accumulate_moments``: see ``MOMENT_NAMES`` in :mod:`kinetic.dsmc.state`."""
 
 
-@njit(error_model="numpy")
+@kernel
 def _laguerre_123(p, x):
     """(L_1^(p)(x), L_2^(p)(x), L_3^(p)(x)), generalized Laguerre polynomials."""
     l1 = 1.0 + p - x
@@ -975,7 +975,7 @@ def _laguerre_123(p, x):
     return l1, l2, l3
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def accumulate_moments(velocity, inverse_v0, sums):
     """Add the particle averages of one snapshot to ``sums`` (N_MOMENTS,).
 
@@ -1027,7 +1027,7 @@ def accumulate_moments(velocity, inverse_v0, sums):
     sums[13] += m13 / n
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def accumulate_histograms(
     velocity, inverse_v0, cx_low, cx_width, cx_counts, cx_weights, speed_width, speed_counts
 ):
@@ -1066,7 +1066,7 @@ def accumulate_histograms(
 # ----------------------------------------------------------------------- composition
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def advance(
     velocity,
     state,
@@ -1179,7 +1179,7 @@ def advance(
     return STATUS_OK
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def maxwellian(velocity, state, temperature):
     """Fill velocity (d, N) with a Maxwellian of zero total momentum and exact energy.
 

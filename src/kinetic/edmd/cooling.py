@@ -33,10 +33,9 @@ from typing import Any
 import numpy as np
 
 from kinetic import io, rng
-from kinetic.dsmc.simulate import _integer as integer
-from kinetic.dsmc.simulate import _real as real
 from kinetic.edmd.system import HardSphereSystem
 from kinetic.progress import Progress
+from kinetic.validate import integer, real
 
 __all__ = ["simulate_cooling_modes", "transverse_modes"]
 

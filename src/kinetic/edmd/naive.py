@@ -26,12 +26,13 @@ Faces are numbered 2k + (1 if the wall is at L_k, 0 if at 0). Disks must start l
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from kinetic.jit import inline, kernel
 
 __all__ = ["observe", "trajectory"]
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@inline
 def _next_event(x, v, sigma, box):
     """(dt, k, l) of the earliest event from now: a pair (k, l) or a wall (k, −1 − face).
 
@@ -74,7 +75,7 @@ def _next_event(x, v, sigma, box):
     return best, best_k, best_l
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@inline
 def _execute(x, v, k, l):
     """Alg. 4.3 for a pair (k, l ≥ 0), a wall reflection for l = −1 − face. Returns the
     normal speed of the event: |v⊥| of the disk at a wall, |Δv·ê⊥| for a pair."""
@@ -96,7 +97,7 @@ def _execute(x, v, k, l):
     return abs(dv_e)
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@inline
 def _advance(x, v, dt):
     """Every disk moves straight for dt (no temporary array)."""
     for m in range(x.shape[0]):
@@ -104,7 +105,7 @@ def _advance(x, v, dt):
         x[m, 1] += v[m, 1] * dt
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def trajectory(x, v, sigma, box, events, event_time, event_pair, event_positions):
     """Run ``events`` events from time 0 (x, v updated in place, in their precision);
     record each event's time, pair (second member −1 − face for a wall) and positions."""
@@ -120,7 +121,7 @@ def trajectory(x, v, sigma, box, events, event_time, event_pair, event_positions
         event_positions[e] = x
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@inline
 def _flight_occupancy(y, vy, dt, histogram, lower, scale):
     """Add to ``histogram`` (bins of width 1/scale from ``lower``) the time a disk moving
     from y with velocity vy for dt spends in each bin."""
@@ -151,7 +152,7 @@ def _flight_occupancy(y, vy, dt, histogram, lower, scale):
         b += 1
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def observe(
     x,
     v,

@@ -1,6 +1,6 @@
 """A system of hard disks (d = 2) or spheres (d = 3) advanced by event-driven MD.
 
-``HardSphereSystem`` owns the preallocated state arrays of ``kinetic.edmd.kernels`` and
+``HardSphereSystem`` owns the preallocated state arrays of ``kinetic.edmd.layout`` and
 validates everything before any work; ``run`` advances it in chunks. Units: m = 1, the
 diameter and box in the same length unit, the temperature sets the velocity unit.
 
@@ -311,7 +311,7 @@ class HardSphereSystem:
         self.geometry[k.G_CONTACT] = contact_time
         self.geometry[k.G_COLLAPSE_TIME] = collapse_time
         self.phase = _aligned_zeros((n, 8))
-        # event data of each particle: see the layout in kinetic.edmd.kernels
+        # event data of each particle: see the layout in kinetic.edmd.layout
         self.ints = _aligned_zeros((n, 8), np.int64)
         self.n_cells = int(np.prod(counts))
         self.occupancy = np.zeros(self.n_cells, dtype=np.int32)
@@ -322,7 +322,7 @@ class HardSphereSystem:
             while cell_capacity < cell_occupancy + 7.0 * math.sqrt(cell_occupancy):
                 cell_capacity *= 2
         self._allocate_rows(cell_capacity)
-        # event calendar: see kinetic.edmd.kernels (N buckets + the overflow list)
+        # event calendar: see kinetic.edmd.calendar (N buckets + the overflow list)
         self.links = _aligned_zeros((n, 4), np.int32)
         self.heads = np.full(n + 1, -1, dtype=np.int32)
         self.heap_time = np.full(n, np.inf)

@@ -18,14 +18,14 @@ it in place, and adds its samples to a histogram (counts per bin of equal width 
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from kinetic.jit import inline, kernel
 from kinetic.rng import uniform, xoshiro_uniform
 
 __all__ = ["direct_pin", "naive_pin", "ring_markov"]
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@inline
 def _add(histogram, value, lower, scale):
     """Count ``value`` in its bin (bins of width 1/scale from ``lower``); ignore values
     outside the histogram."""
@@ -34,7 +34,7 @@ def _add(histogram, value, lower, scale):
         histogram[int(position)] += 1
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def naive_pin(n, length, sigma, samples, state, positions, histogram, lower, upper):
     """Add ``samples`` accepted naive-pin configurations to ``histogram`` (pin centres);
     ``positions`` is work space of length ≥ n. Returns the number of configurations
@@ -65,7 +65,7 @@ def naive_pin(n, length, sigma, samples, state, positions, histogram, lower, upp
     return started, draws
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@inline
 def _direct_configuration(n, free, sigma, positions, s0, s1, s2, s3):
     """One direct-pin configuration in ``positions[:n]`` (increasing) from the generator
     state held in scalars; returns the advanced state."""
@@ -83,7 +83,7 @@ def _direct_configuration(n, free, sigma, positions, s0, s1, s2, s3):
     return s0, s1, s2, s3
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def direct_pin_configuration(n, length, sigma, state, positions):
     """One direct-pin configuration in ``positions[:n]``, in increasing order."""
     state[0], state[1], state[2], state[3] = _direct_configuration(
@@ -91,7 +91,7 @@ def direct_pin_configuration(n, length, sigma, state, positions):
     )
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def direct_pin(n, length, sigma, samples, state, positions, histogram, lower, upper):
     """Add ``samples`` direct-pin configurations to ``histogram`` (pin centres). The
     generator state stays in registers through the loop (``kinetic.rng.xoshiro_next``)."""
@@ -105,7 +105,7 @@ def direct_pin(n, length, sigma, samples, state, positions, histogram, lower, up
     state[0], state[1], state[2], state[3] = s0, s1, s2, s3
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def ring_markov(n, length, sigma, step, sweeps, burn_in, state, positions, histogram):
     """Run ``burn_in`` then ``sweeps`` sweeps of N attempted moves from the legal
     configuration ``positions[:n]`` (centres in [0, L), updated in place); after each of
@@ -147,7 +147,7 @@ def ring_markov(n, length, sigma, step, sweeps, burn_in, state, positions, histo
 # ----------------------------------------------------------------------------- hard disks
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@inline
 def _disk_fits(x, y, k, positions, sigma):
     """True if a disk at (x, y) overlaps none of disks 0..k−1 of ``positions``."""
     reach2 = 4.0 * sigma * sigma
@@ -159,7 +159,7 @@ def _disk_fits(x, y, k, positions, sigma):
     return True
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def direct_disks_configuration(n, sigma, box_x, box_y, state, positions, max_starts):
     """One direct-disks configuration (Alg. 4.4: uniform centres in [σ, L − σ]², the whole
     configuration restarted at the first overlap) in ``positions[:n]``. Returns the number
@@ -179,7 +179,7 @@ def direct_disks_configuration(n, sigma, box_x, box_y, state, positions, max_sta
     return -1
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def direct_disks(n, sigma, box_x, box_y, samples, state, positions, histogram, lower, upper):
     """Add the y of every disk of ``samples`` direct-disks configurations to
     ``histogram``. Returns the configurations started (−1: one needed more than 10^9)."""
@@ -195,7 +195,7 @@ def direct_disks(n, sigma, box_x, box_y, samples, state, positions, histogram, l
     return started
 
 
-@njit(cache=True, error_model="numpy")
+@kernel
 def markov_disks(
     n, sigma, box_x, box_y, step, sweeps, burn_in, state, positions, histogram, lower, upper
 ):
