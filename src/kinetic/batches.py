@@ -59,10 +59,15 @@ def batch_name(job: int) -> str:
     return f"batch{job:04d}"
 
 
+COUNTS = ("n_realizations", "realizations")
+"""Parameter names under which an engine records how many realizations a dataset holds
+(the EDMD front takes ``realizations``, the others ``n_realizations``)."""
+
+
 def _parameters(dataset: xr.Dataset) -> dict:
     """The physics parameters of a batch, without the ones that differ between batches."""
     parameters = json.loads(dataset.attrs.get("parameters_json", "{}"))
-    for key in ("first_realization", "n_realizations"):
+    for key in ("first_realization", *COUNTS):
         parameters.pop(key, None)
     return parameters
 
@@ -132,6 +137,9 @@ def combine(datasets: Sequence[xr.Dataset], *, names: Sequence[str] | None = Non
     attrs.update(whole_run)
     if "parameters_json" in attrs:
         parameters = json.loads(attrs["parameters_json"])
-        parameters.update(whole_run)
+        parameters["first_realization"] = whole_run["first_realization"]
+        for key in COUNTS:
+            if key in parameters or key == "n_realizations":
+                parameters[key] = whole_run["n_realizations"]
         attrs["parameters_json"] = json.dumps(parameters, sort_keys=True, default=str)
     return combined.assign_attrs(attrs)

@@ -41,7 +41,7 @@ def test_foreign_or_overlapping_batches_are_refused():
     denser = simulate_free_flights(
         n_realizations=2, first_realization=2, **{**RUN, "n_particles": 50}
     )
-    with pytest.raises(ValueError, match=r"batches differ in \['n_particles'\]"):
+    with pytest.raises(ValueError, match=r"parameters \['n_particles'\] differ"):
         combine_free_flights([first, denser])
     with pytest.raises(ValueError, match="overlap"):
         combine_free_flights([first, first])

@@ -290,47 +290,12 @@ def error_against_cpu_time(dataset, window: float = 10.0) -> dict:
 
 
 def combine_realizations(datasets) -> xr.Dataset:
-    """Join batches of ``kinetic.edmd.simulate`` along ``realization``.
+    """Join batches of ``kinetic.edmd.simulate`` along ``realization``
+    (:func:`kinetic.batches.combine`: one run's parameters and seed, distinct realizations,
+    sorted; its parameters say how many realizations it holds)."""
+    from kinetic import batches
 
-    Checks that they share their parameters (apart from the batch bookkeeping) and that the
-    realization numbers are distinct; the result is sorted by realization number and its
-    parameters say how many realizations it holds.
-    """
-    datasets = list(datasets)
-    if not datasets:
-        raise ValueError("no batch to combine")
-    bookkeeping = {"first_realization", "realizations"}
-
-    def physics(dataset):
-        parameters = io.parameters_of(dataset)
-        return {k: v for k, v in parameters.items() if k not in bookkeeping}
-
-    reference = physics(datasets[0])
-    for dataset in datasets[1:]:
-        if physics(dataset) != reference:
-            raise ValueError("batches with different parameters cannot be combined")
-    combined = xr.concat(
-        datasets,
-        dim="realization",
-        data_vars="minimal",
-        coords="minimal",
-        compat="override",
-        combine_attrs="override",
-    ).sortby("realization")
-    numbers = combined["realization"].values
-    if np.unique(numbers).size != numbers.size:
-        raise ValueError(f"realization numbers repeat across batches: {sorted(numbers)}")
-    parameters = {
-        **reference,
-        "first_realization": int(numbers.min()),
-        "realizations": int(numbers.size),
-    }
-    return io.stamp(
-        combined,
-        parameters=parameters,
-        seed=int(combined.attrs["seed"]),
-        config=json.loads(combined.attrs.get("config", "{}")),
-    )
+    return batches.combine(list(datasets))
 
 
 def cumulant_dataset(dataset, windows=None, extrapolation_windows=None) -> xr.Dataset:

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-import numpy as np
 import xarray as xr
 
 from kinetic import io
 from kinetic.analysis.statistics import mean_and_sem
+from kinetic.batches import combine
 
 __all__ = ["combine_free_flights"]
 
@@ -23,29 +23,11 @@ def combine_free_flights(batches: Sequence[xr.Dataset]) -> xr.Dataset:
     ``free_path`` (l), the per-realization densities, the measured collision frequency
     (mean and sem), and totals of flights, unresolved paths and CPU seconds.
     """
-    if not batches:
-        raise ValueError("no batch to combine")
-    reference = io.parameters_of(batches[0])
-    ignored = {"first_realization", "n_realizations"}
-    for batch in batches[1:]:
-        other = io.parameters_of(batch)
-        differing = sorted(
-            k
-            for k in reference.keys() | other.keys()
-            if k not in ignored and reference.get(k) != other.get(k)
-        )
-        if differing:
-            raise ValueError(f"batches differ in {differing}: they are not one run")
-    seeds = {int(batch.attrs["seed"]) for batch in batches}
-    if len(seeds) != 1:
-        raise ValueError(f"batches come from different seeds {sorted(seeds)}")
-    realizations = np.concatenate([batch.realization.values for batch in batches])
-    if len(np.unique(realizations)) != len(realizations):
-        raise ValueError("batches overlap: a realization appears twice")
-    order = np.argsort(realizations)
-    time_pdf = np.concatenate([batch.time_pdf.values for batch in batches])[order]
-    path_pdf = np.concatenate([batch.path_pdf.values for batch in batches])[order]
-    frequency = np.concatenate([batch.collision_frequency.values for batch in batches])[order]
+    run = combine(list(batches))  # one run's parameters and seed, distinct realizations
+    realizations = run.realization.values
+    time_pdf = run.time_pdf.values
+    path_pdf = run.path_pdf.values
+    frequency = run.collision_frequency.values
     time_mean, time_sem = mean_and_sem(time_pdf)
     path_mean, path_sem = mean_and_sem(path_pdf)
     frequency_mean, frequency_sem = mean_and_sem(frequency)
@@ -53,7 +35,7 @@ def combine_free_flights(batches: Sequence[xr.Dataset]) -> xr.Dataset:
     def total(name: str):
         return sum(batch[name].values.sum() for batch in batches)
 
-    first = batches[0]
+    first = run
     dataset = io.make_dataset(
         {
             "time_pdf": (
@@ -111,7 +93,7 @@ def combine_free_flights(batches: Sequence[xr.Dataset]) -> xr.Dataset:
             "cpu_seconds": ((), total("cpu_seconds"), "s", "CPU time of all realizations"),
         },
         coords={
-            "realization": ("realization", realizations[order], "1", "realization index"),
+            "realization": ("realization", realizations, "1", "realization index"),
             "flight_time": (
                 "flight_time",
                 first.flight_time.values,
@@ -129,6 +111,6 @@ def combine_free_flights(batches: Sequence[xr.Dataset]) -> xr.Dataset:
         },
         attrs={"engine": "kinetic.dsmc", "units": first.attrs["units"]},
     )
-    parameters = {key: value for key, value in reference.items() if key not in ignored}
-    parameters["n_realizations"] = len(realizations)
-    return io.stamp(dataset, parameters=parameters, seed=seeds.pop())
+    parameters = io.parameters_of(run)
+    parameters.pop("first_realization", None)
+    return io.stamp(dataset, parameters=parameters, seed=int(run.attrs["seed"]))
