@@ -176,3 +176,66 @@ def test_error_budget_separates_lie_and_strang_splittings():
     by_setting = {s["setting"]: s for s in settings}
     assert by_setting["s0.3"]["relative_bias"] == pytest.approx(0.045, rel=1e-6)
     assert by_setting["s0.3"]["splitting"] == "strang"
+
+
+def _summary(alpha, family="scan", **changes):
+    row = {
+        "run": f"{family}_{alpha}",
+        "alpha": alpha,
+        "family": family,
+        "realizations": 48,
+        "reduced_field": 0.025,
+        "kappa_ratio": theory.KAPPA_ELASTIC_HIGHER_SONINE,
+        "kappa_ratio_err": 0.006,
+        "a2": float(theory.hcs_a2(alpha)),
+        "a2_err": 0.001,
+        "thermostat_rate": 0.0,
+        "thermostat_rate_err": 0.0,
+        "max_abs_cx": 1e-15,
+        "max_abs_energy_error": 1e-15,
+    }
+    for k in (1, 2, 3):
+        row[f"b{k}_route_difference"] = 0.0
+        row[f"b{k}_route_difference_err"] = 0.01
+    return {**row, **changes}
+
+
+TOLERANCES = {
+    "sigmas": 4,
+    "a2_relative_tolerance": 0.05,
+    "a2_absolute_floor": 0.001,
+    "a2_alpha_min": 0.5,
+    "thermostat_tolerance": 1e-12,
+}
+
+
+def test_checks_pass_agreeing_rows_and_fail_each_kind_of_disagreement():
+    good = [_summary(1.0), _summary(0.5, "hcs"), _summary(1.0, "field", reduced_field=0.05)]
+    table = analysis.checks(good, TOLERANCES)
+    assert {row["passed"] for row in table} <= {"yes", ""}
+    assert {row["check"] for row in table} >= {
+        "elastic kappa",
+        "two routes",
+        "linear response",
+        "HCS a2 (Eq. 2.16)",
+        "thermostat momentum",
+        "thermostat energy",
+    }
+    # the Student-t factor at 47 dof is about 4.3: 5 errors off fails, 3 passes
+    kappa = theory.KAPPA_ELASTIC_HIGHER_SONINE
+    for shift, verdict in ((3 * 0.006, "yes"), (5 * 0.006, "NO")):
+        rows = [_summary(1.0, kappa_ratio=kappa + shift)]
+        (elastic,) = [r for r in analysis.checks(rows, TOLERANCES) if r["check"] == "elastic kappa"]
+        assert elastic["passed"] == verdict
+    bad = [
+        _summary(1.0, b2_route_difference=0.1),
+        _summary(0.5, "hcs", a2=float(theory.hcs_a2(0.5)) + 0.05, max_abs_cx=1e-9),
+    ]
+    failed = {
+        (r["check"], r["quantity"]) for r in analysis.checks(bad, TOLERANCES) if r["passed"] == "NO"
+    }
+    assert failed == {
+        ("two routes", "b'_2 (3.10) - b'_2 (3.12)"),
+        ("HCS a2 (Eq. 2.16)", "a2"),
+        ("thermostat momentum", "max |<c_x>|"),
+    }
