@@ -48,3 +48,18 @@ def test_dataset_follows_the_conventions_and_counts_add_up():
     # counts in windows never exceed twice the collisions (each involves two particles)
     assert np.all((histogram * counts).sum(axis=-1) <= 2 * dataset["collisions"].values[:, :, None])
     assert dataset["window_overflow"].values.sum() == 0
+
+
+def test_bad_systems_are_refused_without_building_one(monkeypatch):
+    import pytest
+
+    from kinetic.edmd.system import HardSphereSystem
+
+    def built(*args, **kwargs):
+        raise AssertionError("a system was built before the arguments were validated")
+
+    monkeypatch.setattr(HardSphereSystem, "__init__", built)
+    with pytest.raises(ValueError, match="close packing"):
+        simulate(realizations=1, **{**PROTOCOL, "density": 5.0})
+    with pytest.raises(TypeError, match="n_particles must be an integer"):
+        simulate(realizations=1, **{**PROTOCOL, "n_particles": 100.5})

@@ -32,6 +32,7 @@ from kinetic.edmd.observers import Observers
 from kinetic.edmd.system import (
     DEFAULT_CELL_OCCUPANCY,
     HardSphereSystem,
+    cell_grid,
     enskog_collision_frequency,
     packing_fraction,
 )
@@ -141,14 +142,21 @@ def simulate(
     )
     if not math.isclose(checkpoints[-1], duration, rel_tol=1e-12):
         raise ValueError(f"the last checkpoint {checkpoints[-1]} must equal duration {duration}")
-    # the system constructor validates N, the packing fraction and the cell grid: build one
-    # throw-away system now so that bad input fails before any work
-    HardSphereSystem(
+    # N, the packing fraction and the cells: the system's own checks, nothing built
+    arguments = HardSphereSystem.validated(
         n_particles=n_particles,
         density=density,
         dimension=dimension,
         seed=0,
         cell_occupancy=cell_occupancy,
+    )
+    cell_grid(
+        arguments.box,
+        arguments.diameter,
+        arguments.density,
+        dimension,
+        arguments.cell_occupancy,
+        arguments.walls,
     )
 
     # ------------------------------------------------------------------ set-up

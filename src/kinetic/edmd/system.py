@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -135,6 +136,33 @@ def _finite_positive(name, value):
     return float(value)
 
 
+class SystemArguments(NamedTuple):
+    """The constructor's arguments after ``HardSphereSystem.validated``: box side lengths
+    from the density, walls per axis, the random stream, cell settings, and the packing
+    fraction ``eta`` of the accessible volume."""
+
+    n_particles: Any
+    dimension: Any
+    density: Any
+    box: Any
+    diameter: Any
+    walls: Any
+    restitution: Any
+    contact_time: Any
+    collapse_time: Any
+    collapse_streak: Any
+    rescale_every: Any
+    temperature: Any
+    positions: Any
+    velocities: Any
+    stream: Any
+    cell_occupancy: Any
+    cell_capacity: Any
+    sort_every: Any
+    prefetch: Any
+    eta: Any
+
+
 class HardSphereSystem:
     """N hard disks/spheres in a box, periodic or with hard walls, restitution α.
 
@@ -175,8 +203,8 @@ class HardSphereSystem:
         (``PREFETCH_MIN_PARTICLES``). Hints only: the dynamics do not depend on it.
     """
 
-    def __init__(
-        self,
+    @staticmethod
+    def validated(
         *,
         n_particles: int,
         dimension: int = 2,
@@ -198,8 +226,11 @@ class HardSphereSystem:
         cell_capacity: int | None = None,
         sort_every: int = 0,
         prefetch: int | None = None,
-    ):
-        # ----------------------------------------------------------- validation
+    ) -> SystemArguments:
+        """Check every argument of the constructor (same names and defaults) and return
+        them normalized (box from the density, walls per axis, the random stream, the
+        packing fraction ``eta``, ...), allocating nothing: fronts call it to refuse bad
+        input before any work. Raises ``TypeError``/``ValueError`` naming the argument."""
         if isinstance(n_particles, bool) or not isinstance(n_particles, int | np.integer):
             raise TypeError(f"n_particles must be an integer, got {n_particles!r}")
         if n_particles < 2:
@@ -279,6 +310,99 @@ class HardSphereSystem:
         stream = np.ascontiguousarray(stream, dtype=np.uint64).copy()
         if stream.shape != (4,):
             raise ValueError(f"stream must be one xoshiro state of 4 uint64, got {stream.shape}")
+
+        return SystemArguments(
+            n_particles,
+            dimension,
+            density,
+            box,
+            diameter,
+            walls,
+            restitution,
+            contact_time,
+            collapse_time,
+            collapse_streak,
+            rescale_every,
+            temperature,
+            positions,
+            velocities,
+            stream,
+            cell_occupancy,
+            cell_capacity,
+            sort_every,
+            prefetch,
+            eta,
+        )
+
+    def __init__(
+        self,
+        *,
+        n_particles: int,
+        dimension: int = 2,
+        density: float | None = None,
+        box: Sequence[float] | None = None,
+        diameter: float = 1.0,
+        walls: bool | Sequence[bool] = False,
+        restitution: float = 1.0,
+        contact_time: float = 0.0,
+        collapse_time: float | None = None,
+        collapse_streak: int = 64,
+        rescale_every: int = 0,
+        temperature: float = 1.0,
+        positions=None,
+        velocities=None,
+        seed: int | None = None,
+        stream: np.ndarray | None = None,
+        cell_occupancy: float | None = None,
+        cell_capacity: int | None = None,
+        sort_every: int = 0,
+        prefetch: int | None = None,
+    ):
+        # ----------------------------------------------------------- validation
+        arguments = self.validated(
+            n_particles=n_particles,
+            dimension=dimension,
+            density=density,
+            box=box,
+            diameter=diameter,
+            walls=walls,
+            restitution=restitution,
+            contact_time=contact_time,
+            collapse_time=collapse_time,
+            collapse_streak=collapse_streak,
+            rescale_every=rescale_every,
+            temperature=temperature,
+            positions=positions,
+            velocities=velocities,
+            seed=seed,
+            stream=stream,
+            cell_occupancy=cell_occupancy,
+            cell_capacity=cell_capacity,
+            sort_every=sort_every,
+            prefetch=prefetch,
+        )
+        (
+            n_particles,
+            dimension,
+            density,
+            box,
+            diameter,
+            walls,
+            restitution,
+            contact_time,
+            collapse_time,
+            collapse_streak,
+            rescale_every,
+            temperature,
+            positions,
+            velocities,
+            stream,
+            cell_occupancy,
+            cell_capacity,
+            sort_every,
+            prefetch,
+            eta,
+        ) = arguments
 
         self.n_particles = int(n_particles)
         self.dimension = int(dimension)
