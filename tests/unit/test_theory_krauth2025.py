@@ -113,3 +113,19 @@ def test_eqs_4_13_and_4_14_against_sampled_velocities(n):
             assert abs(mean - expected) < 4.5 * error
         mean, error = weighted(1 / relative, relative)
         assert abs(mean - pair["inverse_printed"]) > 50 * error
+
+
+def test_figure_curves_hold_every_pin_on_the_samplers_bins():
+    """The exact curves the figures draw (theory rule): N pins on the line and N - 1 other
+    pins around the ring, bin by bin on the samplers' bins; the naive-pin acceptance is
+    Eq. 4.6 and tends to 1 as the pins shrink."""
+    line = theory.line_dataset(10, 40.0, 1.0, bins=76)
+    width = np.diff(line["bin_edges"].values)
+    assert np.sum(line["density_exact"].values * width) == pytest.approx(10.0, rel=1e-6)
+    assert line["x"].values[0] == pytest.approx(1.0 + 0.5 * width[0])
+    assert float(line["acceptance_exact"]) == pytest.approx((20.0 / 38.0) ** 10)
+    ring = theory.ring_dataset(8, 30.0, 1.0, bins=60)
+    width = np.diff(ring["bin_edges"].values)
+    assert np.sum(ring["pair_density_exact"].values * width) == pytest.approx(7.0, rel=1e-6)
+    # no other pin within one pin width (2 sigma) of a pin
+    assert np.all(ring["pair_density_curve"].values[ring["r_curve"].values < 1.999] == 0.0)

@@ -12,6 +12,7 @@ from kinetic.workflow_support import start
 
 start(snakemake)
 runs = [io.read_dataset(path) for path in snakemake.input.lines]
+theory = {float(ds.attrs["length"]): ds for ds in map(io.read_dataset, snakemake.input.theory)}
 lengths = sorted({float(run.attrs["length"]) for run in runs})
 style = {"direct": ("direct", "direct-pin"), "naive": ("markov", "naive-pin")}
 WALL_ZONE = 2.0  # two pin widths from each post
@@ -20,10 +21,9 @@ fig, axes = plotting.figure(1, len(lengths), figsize=(6.4, 2.6), sharey=False)
 axes = list(axes) if len(lengths) > 1 else [axes]
 for ax, length in zip(axes, lengths, strict=True):
     here = [run for run in runs if float(run.attrs["length"]) == length]
-    first = here[0]
     ax.plot(
-        first["x_curve"],
-        first["density_curve"],
+        theory[length]["x_curve"],
+        theory[length]["density_curve"],
         **plotting.METHOD_STYLE["theory"],
         lw=0.8,
         label="Eq. (4.7)",
@@ -45,6 +45,6 @@ for ax, length in zip(axes, lengths, strict=True):
         )
     ax.set_xlabel("$x$")
     ax.set_ylabel(r"density of pins $N\pi(x)$")
-    ax.set_title(f"$N = {first.attrs['n_pins']}$, $L = {length:g}$", fontsize=8)
+    ax.set_title(f"$N = {here[0].attrs['n_pins']}$, $L = {length:g}$", fontsize=8)
     ax.legend(loc="upper center")
 plotting.save(fig, snakemake.output.pdf)

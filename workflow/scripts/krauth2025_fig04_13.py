@@ -8,11 +8,12 @@ from kinetic.workflow_support import start
 
 start(snakemake)
 data = io.read_dataset(snakemake.input.ring)
+theory = io.read_dataset(snakemake.input.theory)
 attrs = data.attrs
 fig, ax = plotting.figure()
 ax.plot(
-    data["r_curve"],
-    data["pair_density_curve"],
+    theory["r_curve"],
+    theory["pair_density_curve"],
     "-",
     color="k",
     lw=0.8,

@@ -26,6 +26,7 @@ from kinetic.workflow_support import start
 start(snakemake)
 
 rows = []
+theory = {float(ds.attrs["length"]): ds for ds in map(io.read_dataset, snakemake.input.theory)}
 for path in snakemake.input.lines:
     run = io.read_dataset(path)
     length, samples = float(run.attrs["length"]), int(run.attrs["samples"])
@@ -44,11 +45,11 @@ for path in snakemake.input.lines:
     ratio_sem = abs(ratio) * math.sqrt(
         (wall_sem / wall) ** 2 + (bulk_sem / bulk) ** 2 - 2 * covariance / (wall * bulk)
     )
-    exact = run["density_exact"].values
+    exact = theory[length]["density_exact"].values
     naive = run.attrs["method"] == "naive"
     acceptance, acceptance_sem = mean_and_sem(samples / run["started"].values)
-    curve = run["density_curve"].values
-    at_post = curve[0] / np.interp(0.5 * length, run["x_curve"].values, curve)
+    curve = theory[length]["density_curve"].values
+    at_post = curve[0] / np.interp(0.5 * length, theory[length]["x_curve"].values, curve)
     edges = run["bin_edges"].values
     contact_b = np.array([contact_density(edges, row) for row in per_batch])
     contact, contact_sem = mean_and_sem(contact_b)
@@ -73,7 +74,7 @@ for path in snakemake.input.lines:
             "post_over_centre_exact": at_post,
             "acceptance": acceptance if naive else math.nan,
             "acceptance_sem": acceptance_sem if naive else math.nan,
-            "acceptance_exact": float(run["acceptance_exact"]) if naive else math.nan,
+            "acceptance_exact": float(theory[length]["acceptance_exact"]) if naive else math.nan,
             "cpu_seconds": float(run["cpu_seconds"].sum()),
             "beta_p_wall_rift": contact,
             "beta_p_wall_rift_sem": contact_sem,

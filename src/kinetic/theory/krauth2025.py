@@ -34,9 +34,11 @@ from scipy.special import gammaln
 __all__ = [
     "bin_average",
     "check_pins",
+    "line_dataset",
     "pair_speed_averages",
     "partition_function",
     "pin_density",
+    "ring_dataset",
     "ring_pair_density",
     "wall_speed_averages",
     "wall_value",
@@ -194,3 +196,82 @@ def wall_value(edges, averages, terms: int = 3, bins: int = 4) -> float:
     design = np.array([(b ** (k + 1) - a ** (k + 1)) / ((k + 1) * (b - a)) for k in range(terms)]).T
     coefficients = np.linalg.lstsq(design, np.asarray(averages, dtype=float)[:bins], rcond=None)[0]
     return float(coefficients[0])
+
+
+# ------------------------------------------------------------------ curves for the figures
+def line_dataset(n_pins: int, length: float, sigma: float, bins: int, curve_points: int = 2001):
+    """The exact pin density of N pins on a line (Eq. 4.7) on the samplers' bins
+    (``density_exact``, bin averages over [σ, L − σ) cut in ``bins``) and on a fine grid
+    (``density_curve``), with the naive-pin acceptance (Eq. 4.6): what Figs 4.11 and the
+    pins table draw beside the samples."""
+    from kinetic import io
+    from kinetic.samplers import naive_acceptance
+
+    check_pins(n_pins, length, sigma)
+    edges = np.linspace(sigma, length - sigma, bins + 1)
+    curve = np.linspace(sigma, length - sigma, curve_points)
+
+    def exact(x):
+        return n_pins * pin_density(x, n_pins, length, sigma)
+
+    return io.make_dataset(
+        {
+            "density_exact": (
+                "x",
+                bin_average(exact, edges),
+                "1/length",
+                "N pi(x) of Eq. 4.7 averaged over the bin",
+            ),
+            "density_curve": ("x_curve", exact(curve), "1/length", "N pi(x) of Eq. 4.7"),
+            "acceptance_exact": (
+                (),
+                naive_acceptance(n_pins, length, sigma),
+                "1",
+                "naive-pin acceptance Z_{N,L} / (L - 2 sigma)^N (Eq. 4.6)",
+            ),
+            "bin_edges": ("edge", edges, "length", "bin edges"),
+        },
+        {
+            "x": ("x", 0.5 * (edges[1:] + edges[:-1]), "length", "pin centre (bin middle)"),
+            "x_curve": ("x_curve", curve, "length", "pin centre"),
+            "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
+        },
+        attrs={"n_pins": n_pins, "length": float(length), "sigma": float(sigma)},
+    )
+
+
+def ring_dataset(n_pins: int, length: float, sigma: float, bins: int, curve_points: int = 4001):
+    """The exact density of the other pins at forward distance r from a pin on a ring of
+    length L, (N − 1) π_{N−1, L−2σ}(r − σ), on the ring sampler's bins over [0, L)
+    (``pair_density_exact``) and on a fine grid (``pair_density_curve``): Fig. 4.13."""
+    from kinetic import io
+
+    edges = np.linspace(0.0, length, bins + 1)
+    curve = np.linspace(0.0, length, curve_points)
+
+    def exact(r):
+        return ring_pair_density(r, n_pins, length, sigma)
+
+    return io.make_dataset(
+        {
+            "pair_density_exact": (
+                "r",
+                bin_average(exact, edges),
+                "1/length",
+                "(N - 1) pi_{N-1, L-2 sigma}(r - sigma) averaged over the bin",
+            ),
+            "pair_density_curve": (
+                "r_curve",
+                exact(curve),
+                "1/length",
+                "(N - 1) pi_{N-1, L-2 sigma}(r - sigma)",
+            ),
+            "bin_edges": ("edge", edges, "length", "bin edges"),
+        },
+        {
+            "r": ("r", 0.5 * (edges[1:] + edges[:-1]), "length", "forward distance (bin middle)"),
+            "r_curve": ("r_curve", curve, "length", "forward distance"),
+            "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
+        },
+        attrs={"n_pins": n_pins, "length": float(length), "sigma": float(sigma)},
+    )

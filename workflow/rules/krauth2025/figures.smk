@@ -28,6 +28,7 @@ rule krauth2025_fig04_10:
 rule krauth2025_fig04_11:
     input:
         lines=krauth2025_line_files(),
+        theory=krauth2025_line_theory_files(),
         script=figure_script("krauth2025_fig04_11"),
     output:
         pdf="results/krauth2025/fig04_11.pdf",
@@ -45,6 +46,7 @@ rule krauth2025_fig04_11:
 rule krauth2025_fig04_13:
     input:
         ring="results/krauth2025/pins/ring.nc",
+        theory="results/krauth2025/theory/ring.nc",
         script=figure_script("krauth2025_fig04_13"),
     output:
         pdf="results/krauth2025/fig04_13.pdf",
@@ -62,6 +64,7 @@ rule krauth2025_fig04_13:
 rule krauth2025_pins_table:
     input:
         lines=krauth2025_line_files(),
+        theory=krauth2025_line_theory_files(),
         script=figure_script("krauth2025_pins_table"),
     output:
         csv="results/krauth2025/pins_table.csv",

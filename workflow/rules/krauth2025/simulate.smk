@@ -1,8 +1,8 @@
 # krauth2025 simulations: the random clothes-pins of section 4.4.1 (kinetic.samplers:
 # direct-pin and naive-pin on a washing line, Markov chains on a ring, snapshots) and the
 # hard disks in a box of sections 4.1-4.4 (kinetic.edmd event-disks, direct-disks and
-# markov-disks, the chaos run). Each job writes one netCDF file holding its histograms,
-# their standard errors and the exact densities; figures.smk only reads them.
+# markov-disks, the chaos run). Each job writes one netCDF file holding its histograms and
+# their standard errors; the exact curves beside them come from theory.smk.
 
 def krauth2025_pins():
     return config["krauth2025"]["pins"]
@@ -16,20 +16,40 @@ def krauth2025_line_files():
     ]
 
 
-def krauth2025_line_job(wildcards):
-    """Keyword arguments of kinetic.samplers.sample_line for one line file: the length is
-    the config value whose token the path carries (looked up, not parsed)."""
+def krauth2025_line_length(method, token):
+    """The config length of a line run whose path carries ``token`` (looked up among the
+    runs of kinetic.plan.LINE_RUNS, not parsed); ``method`` None: any sampler."""
     pins = krauth2025_pins()
     lengths = {
-        (method, f"{pins[key]:g}"): float(pins[key]) for method, key in job_plan.LINE_RUNS
+        (run_method, f"{pins[key]:g}"): float(pins[key])
+        for run_method, key in job_plan.LINE_RUNS
+        if method in (None, run_method)
     }
-    try:
-        length = lengths[(wildcards.method, wildcards.length)]
-    except KeyError:
+    matches = {value for (_, known), value in lengths.items() if known == token}
+    if not matches:
         raise ValueError(
-            f"no krauth2025 pin run {wildcards.method} at length {wildcards.length}: the "
-            f"config asks for {sorted(lengths)}"
-        ) from None
+            f"no krauth2025 pin run {method or ''} at length {token}: the config asks for "
+            f"{sorted(lengths)}"
+        )
+    return matches.pop()
+
+
+def krauth2025_line_bins(length):
+    """Bins of the line histograms over [sigma, length - sigma): width about bin_width."""
+    pins = krauth2025_pins()
+    return max(1, round((length - 2 * pins["sigma"]) / pins["bin_width"]))
+
+
+def krauth2025_ring_bins():
+    """Bins of the ring histogram over [0, length): width about bin_width."""
+    ring = config["krauth2025"]["ring"]
+    return max(1, round(ring["length"] / ring["bin_width"]))
+
+
+def krauth2025_line_job(wildcards):
+    """Keyword arguments of kinetic.samplers.sample_line for one line file."""
+    pins = krauth2025_pins()
+    length = krauth2025_line_length(wildcards.method, wildcards.length)
     return {
         "method": wildcards.method,
         "n_pins": pins["n_pins"],
@@ -37,7 +57,7 @@ def krauth2025_line_job(wildcards):
         "sigma": pins["sigma"],
         "samples": pins[f"{wildcards.method}_samples"],
         "batches": pins["batches"],
-        "bins": max(1, round((length - 2 * pins["sigma"]) / pins["bin_width"])),
+        "bins": krauth2025_line_bins(length),
         "seed": job_seed(f"krauth2025/pins/{wildcards.method}_L{wildcards.length}"),
     }
 
@@ -46,7 +66,7 @@ def krauth2025_ring_job(wildcards):
     ring = config["krauth2025"]["ring"]
     keys = ("n_pins", "length", "sigma", "step", "sweeps", "burn_in", "chains")
     job = {key: ring[key] for key in keys}
-    job["bins"] = max(1, round(ring["length"] / ring["bin_width"]))
+    job["bins"] = krauth2025_ring_bins()
     job["seed"] = job_seed("krauth2025/pins/ring")
     return job
 

@@ -1,0 +1,61 @@
+# krauth2025 theory: the exact pin densities beside the samples (Eq. 4.7 on a line, the
+# ring-to-line mapping on a ring), on the samplers' bins and on fine grids. The sampling
+# jobs and the figures compute none of it.
+
+
+def krauth2025_line_theory_files():
+    """One exact-density file per line length of the pins runs."""
+    pins = krauth2025_pins()
+    lengths = sorted({f"{pins[key]:g}" for _, key in job_plan.LINE_RUNS})
+    return [f"results/krauth2025/theory/line_L{token}.nc" for token in lengths]
+
+
+def krauth2025_line_theory(wildcards):
+    """Arguments of kinetic.theory.krauth2025.line_dataset for one length."""
+    pins = krauth2025_pins()
+    length = krauth2025_line_length(None, wildcards.length)
+    return {
+        "n_pins": pins["n_pins"],
+        "length": length,
+        "sigma": pins["sigma"],
+        "bins": krauth2025_line_bins(length),
+    }
+
+
+def krauth2025_ring_theory(wildcards):
+    """Arguments of kinetic.theory.krauth2025.ring_dataset."""
+    ring = config["krauth2025"]["ring"]
+    return {
+        "n_pins": ring["n_pins"],
+        "length": ring["length"],
+        "sigma": ring["sigma"],
+        "bins": krauth2025_ring_bins(),
+    }
+
+
+rule krauth2025_theory_line:
+    input:
+        package_files("theory/krauth2025"),
+    output:
+        "results/krauth2025/theory/line_L{length}.nc",
+    log:
+        "logs/krauth2025/theory/line_L{length}.log",
+    params:
+        curves=krauth2025_line_theory,
+    wildcard_constraints:
+        length="[0-9.]+",
+    script:
+        "../../scripts/krauth2025_theory.py"
+
+
+rule krauth2025_theory_ring:
+    input:
+        package_files("theory/krauth2025"),
+    output:
+        "results/krauth2025/theory/ring.nc",
+    log:
+        "logs/krauth2025/theory/ring.log",
+    params:
+        curves=krauth2025_ring_theory,
+    script:
+        "../../scripts/krauth2025_theory.py"
