@@ -85,6 +85,21 @@ def test_bad_config_is_refused_before_any_job(tmp_path):
 
 
 @pytest.mark.workflow
+def test_md_config_is_refused_by_the_fronts_own_checks_before_any_job(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(
+        "seed: 1\nvisco2008:\n  md:\n    duration: 30\n    checkpoints: [10, 30]\n"
+        "    windows: [1, 10, 50]\n    table_windows: [10]\n    ldf_windows: [10]\n"
+        "    extrapolation_windows: [1, 10]\n    error_window: 10\n"
+    )
+    result = _snakemake(tmp_path, "--configfile", str(bad), "--cores", "1", check=False)
+    assert result.returncode != 0
+    output = result.stdout + result.stderr
+    assert "config section visco2008.md: run rho1e-3: the longest window 50" in output
+    assert not (tmp_path / "results").exists()
+
+
+@pytest.mark.workflow
 @pytest.mark.slow
 def test_ci_config_builds_every_target_with_provenance(tmp_path):
     _snakemake(tmp_path, "--configfile", str(REPOSITORY / "config" / "ci.yaml"), "--cores", "2")

@@ -39,7 +39,7 @@ from kinetic.edmd.system import (
 from kinetic.gas import mean_speed
 from kinetic.progress import Progress
 
-__all__ = ["count_bins_for", "simulate"]
+__all__ = ["check_arguments", "count_bins_for", "simulate"]
 
 logger = logging.getLogger("kinetic")
 
@@ -61,7 +61,7 @@ def _sequence(name, values, *, minimum=0.0, strictly_increasing=False):
     return array
 
 
-def simulate(
+def check_arguments(
     *,
     n_particles: int,
     density: float,
@@ -79,34 +79,11 @@ def simulate(
     free_path_bins: int = 200,
     cell_occupancy: float | None = None,
     label: str | None = None,
-):
-    """Equilibrium MD realizations with collision-count, free-flight and free-path observers.
-
-    Parameters (keyword-only)
-    -------------------------
-    n_particles : N ≥ 2.
-    density : ρσ^d > 0 (packing fraction below 0.45 in d = 2, 0.30 in d = 3).
-    seed : root seed of the realization streams (integer ≥ 0).
-    realizations : number of independent realizations in this call (≥ 1), numbered
-        ``first_realization`` ... ``first_realization + realizations − 1``.
-    dimension : 2 or 3.
-    equilibration : collisions per particle before observing (≥ 1); the mean free time
-        τ_eq measured during it is the unit of ``windows``, ``duration`` and ``checkpoints``.
-    duration : production length in mean free times (≥ the longest window).
-    windows : window lengths t in mean free times (each > 0, ≤ duration).
-    checkpoints : increasing production lengths (mean free times, last one = duration) at
-        which the cumulative count histograms, collisions and CPU time are saved (default:
-        only ``duration``).
-    flight_time_max, flight_time_bins : range (Enskog mean free times) and number of bins
-        of the free-flight-time histogram; free_path_max, free_path_bins likewise in Enskog
-        mean free paths l = ⟨v⟩/ω.
-    cell_occupancy : mean particles per cell (speed only; default by dimension).
-    label : prefix of the progress lines.
-
-    Returns an ``xarray.Dataset`` (dims realization, checkpoint, window, count, flight_time,
-    free_path), every variable with units and long_name, parameters and seed stamped.
-    """
-    # ------------------------------------------------------------------ validation
+) -> tuple[np.ndarray, np.ndarray]:
+    """Check every argument of :func:`simulate` (same names and defaults) before any work:
+    raises ``TypeError``/``ValueError`` naming the argument; returns the windows and
+    checkpoints as arrays. The workflow calls it when it reads the config, so a bad
+    config is refused before any job."""
     if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
         raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
     for name, value in (
@@ -157,6 +134,73 @@ def simulate(
         dimension,
         arguments.cell_occupancy,
         arguments.walls,
+    )
+    return windows, checkpoints
+
+
+def simulate(
+    *,
+    n_particles: int,
+    density: float,
+    seed: int,
+    realizations: int,
+    first_realization: int = 0,
+    dimension: int = 2,
+    equilibration: float = 10.0,
+    duration: float,
+    windows: Sequence[float] = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0),
+    checkpoints: Sequence[float] | None = None,
+    flight_time_max: float = 20.0,
+    flight_time_bins: int = 200,
+    free_path_max: float = 20.0,
+    free_path_bins: int = 200,
+    cell_occupancy: float | None = None,
+    label: str | None = None,
+):
+    """Equilibrium MD realizations with collision-count, free-flight and free-path observers.
+
+    Parameters (keyword-only)
+    -------------------------
+    n_particles : N ≥ 2.
+    density : ρσ^d > 0 (packing fraction below 0.45 in d = 2, 0.30 in d = 3).
+    seed : root seed of the realization streams (integer ≥ 0).
+    realizations : number of independent realizations in this call (≥ 1), numbered
+        ``first_realization`` ... ``first_realization + realizations − 1``.
+    dimension : 2 or 3.
+    equilibration : collisions per particle before observing (≥ 1); the mean free time
+        τ_eq measured during it is the unit of ``windows``, ``duration`` and ``checkpoints``.
+    duration : production length in mean free times (≥ the longest window).
+    windows : window lengths t in mean free times (each > 0, ≤ duration).
+    checkpoints : increasing production lengths (mean free times, last one = duration) at
+        which the cumulative count histograms, collisions and CPU time are saved (default:
+        only ``duration``).
+    flight_time_max, flight_time_bins : range (Enskog mean free times) and number of bins
+        of the free-flight-time histogram; free_path_max, free_path_bins likewise in Enskog
+        mean free paths l = ⟨v⟩/ω.
+    cell_occupancy : mean particles per cell (speed only; default by dimension).
+    label : prefix of the progress lines.
+
+    Returns an ``xarray.Dataset`` (dims realization, checkpoint, window, count, flight_time,
+    free_path), every variable with units and long_name, parameters and seed stamped.
+    """
+    # ------------------------------------------------------------------ validation
+    windows, checkpoints = check_arguments(
+        n_particles=n_particles,
+        density=density,
+        seed=seed,
+        realizations=realizations,
+        first_realization=first_realization,
+        dimension=dimension,
+        equilibration=equilibration,
+        duration=duration,
+        windows=windows,
+        checkpoints=checkpoints,
+        flight_time_max=flight_time_max,
+        flight_time_bins=flight_time_bins,
+        free_path_max=free_path_max,
+        free_path_bins=free_path_bins,
+        cell_occupancy=cell_occupancy,
+        label=label,
     )
 
     # ------------------------------------------------------------------ set-up
