@@ -137,9 +137,8 @@ def combine(datasets: Sequence[xr.Dataset], *, names: Sequence[str] | None = Non
     attrs.update(whole_run)
     if "parameters_json" in attrs:
         parameters = json.loads(attrs["parameters_json"])
-        parameters["first_realization"] = whole_run["first_realization"]
-        for key in COUNTS:
-            if key in parameters or key == "n_realizations":
-                parameters[key] = whole_run["n_realizations"]
+        parameters.update(whole_run)
+        if "realizations" in parameters:  # the EDMD front's name for the count
+            parameters["realizations"] = whole_run["n_realizations"]
         attrs["parameters_json"] = json.dumps(parameters, sort_keys=True, default=str)
     return combined.assign_attrs(attrs)

@@ -35,7 +35,6 @@ def combine_free_flights(batches: Sequence[xr.Dataset]) -> xr.Dataset:
     def total(name: str):
         return sum(batch[name].values.sum() for batch in batches)
 
-    first = run
     dataset = io.make_dataset(
         {
             "time_pdf": (
@@ -66,11 +65,11 @@ def combine_free_flights(batches: Sequence[xr.Dataset]) -> xr.Dataset:
             ),
             "time_edges": (
                 "flight_time_edge",
-                first.time_edges.values,
+                run.time_edges.values,
                 "1/omega",
                 "flight-time bin edges",
             ),
-            "path_edges": ("free_path_edge", first.path_edges.values, "l", "free-path bin edges"),
+            "path_edges": ("free_path_edge", run.path_edges.values, "l", "free-path bin edges"),
             "collision_frequency": (
                 (),
                 frequency_mean,
@@ -96,20 +95,20 @@ def combine_free_flights(batches: Sequence[xr.Dataset]) -> xr.Dataset:
             "realization": ("realization", realizations, "1", "realization index"),
             "flight_time": (
                 "flight_time",
-                first.flight_time.values,
+                run.flight_time.values,
                 "1/omega",
                 "free-flight time (bin centre)",
             ),
-            "free_path": ("free_path", first.free_path.values, "l", "free path (bin centre)"),
+            "free_path": ("free_path", run.free_path.values, "l", "free path (bin centre)"),
             "flight_time_edge": (
                 "flight_time_edge",
-                first.flight_time_edge.values,
+                run.flight_time_edge.values,
                 "1/omega",
                 "bin edge",
             ),
-            "free_path_edge": ("free_path_edge", first.free_path_edge.values, "l", "bin edge"),
+            "free_path_edge": ("free_path_edge", run.free_path_edge.values, "l", "bin edge"),
         },
-        attrs={"engine": "kinetic.dsmc", "units": first.attrs["units"]},
+        attrs={"engine": "kinetic.dsmc", "units": run.attrs["units"]},
     )
     parameters = io.parameters_of(run)
     parameters.pop("first_realization", None)

@@ -184,24 +184,8 @@ def simulate(
     free_path), every variable with units and long_name, parameters and seed stamped.
     """
     # ------------------------------------------------------------------ validation
-    windows, checkpoints = check_arguments(
-        n_particles=n_particles,
-        density=density,
-        seed=seed,
-        realizations=realizations,
-        first_realization=first_realization,
-        dimension=dimension,
-        equilibration=equilibration,
-        duration=duration,
-        windows=windows,
-        checkpoints=checkpoints,
-        flight_time_max=flight_time_max,
-        flight_time_bins=flight_time_bins,
-        free_path_max=free_path_max,
-        free_path_bins=free_path_bins,
-        cell_occupancy=cell_occupancy,
-        label=label,
-    )
+    # the parameters are the only locals yet: check them all with the same names
+    windows, checkpoints = check_arguments(**locals())
 
     # ------------------------------------------------------------------ set-up
     from kinetic.edmd import warmup

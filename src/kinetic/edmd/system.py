@@ -359,28 +359,8 @@ class HardSphereSystem:
         prefetch: int | None = None,
     ):
         # ----------------------------------------------------------- validation
-        arguments = self.validated(
-            n_particles=n_particles,
-            dimension=dimension,
-            density=density,
-            box=box,
-            diameter=diameter,
-            walls=walls,
-            restitution=restitution,
-            contact_time=contact_time,
-            collapse_time=collapse_time,
-            collapse_streak=collapse_streak,
-            rescale_every=rescale_every,
-            temperature=temperature,
-            positions=positions,
-            velocities=velocities,
-            seed=seed,
-            stream=stream,
-            cell_occupancy=cell_occupancy,
-            cell_capacity=cell_capacity,
-            sort_every=sort_every,
-            prefetch=prefetch,
-        )
+        # the parameters are the only locals yet besides self: check them all by name
+        arguments = self.validated(**{k: v for k, v in locals().items() if k != "self"})
         (
             n_particles,
             dimension,
