@@ -5,6 +5,7 @@ import pytest
 
 from kinetic import rng
 from kinetic.dsmc import kernels
+from kinetic.dsmc.speed_classes import SpeedClasses, collide_speed_classes
 from kinetic.gas import candidate_coefficient
 
 
@@ -179,15 +180,17 @@ def test_exact_force_step_composes_like_the_flow_it_integrates():
     assert vy1 * half1 == pytest.approx(vy * full, rel=1e-14)
 
 
-@pytest.mark.parametrize("weighted", [False, True])
-def test_collisions_follow_the_hard_sphere_rate_in_a_heavy_tailed_gas(weighted):
+@pytest.mark.parametrize("selection", ["uniform", "speed_classes"])
+def test_collisions_follow_the_hard_sphere_rate_in_a_heavy_tailed_gas(selection):
     """Pair selection is exact whatever the velocities: in a gas with a heavy tail (a
     Maxwellian plus 3 % of particles five times faster), short Poisson runs from the same
     frozen start collide each particle at the rate C Σ_j |v_i - v_j| (C = pair_coefficient).
     Over 400 runs of ~25 collisions among 600 particles (the start changes little), the
     participations per speed class against that expectation: χ² with p > 1e-3, and the
     total within 4.5 standard errors; both for ``collide_range`` (uniform pairs under the
-    largest relative speed) and ``collide_weighted`` (a majorant per pair)."""
+    largest relative speed) and ``collide_speed_classes`` (a majorant per pair; it returns
+    the particles in another order, so a particle that collided is one whose velocity is
+    no longer among the output's)."""
     from scipy import stats
 
     d, n, runs, coefficient = 3, 600, 400, 1.0e-4
@@ -203,23 +206,25 @@ def test_collisions_follow_the_hard_sphere_rate_in_a_heavy_tailed_gas(weighted):
     edges[-1] += 1.0
     classes = np.digitize(speed, edges[1:-1])
     observed = np.zeros(8)
-    speeds = np.empty(n, dtype=np.float32)
+    work = SpeedClasses(n)
     states = rng.stream_states(77, runs)
     for r in range(runs):
         v = velocity.copy()
         b = bounds.copy()
         tally = np.zeros(4, dtype=np.int64)
-        if weighted:
-            kernels.collide_weighted(
-                v, states[r], 1.0, coefficient, duration, True, b, np.zeros(1), tally, speeds
-            )
+        if selection == "speed_classes":
+            collide_speed_classes(
+                v, states[r], 1.0, coefficient, duration, True, b, np.zeros(1), tally,
+                *work.arrays(),
+            )  # fmt: skip
+            assert np.allclose(v.sum(axis=1), velocity.sum(axis=1), atol=1e-10)
         else:
             kernels.collide_range(
                 v, 0, n, states[r], kernels.HARD_SPHERES, 1.0, coefficient, duration, True, b,
                 np.zeros(1), tally,
             )  # fmt: skip
         assert tally[kernels.TALLY_EXCEEDED] == 0
-        changed = np.any(v != velocity, axis=0)
+        changed = ~np.isin(velocity[0], v[0])
         observed += np.bincount(classes[changed], minlength=8)
     # a particle hit twice in a run counts once: expectation 1 - exp(-rate t), nearly rate t
     expected = runs * np.bincount(classes, weights=-np.expm1(-rate * duration), minlength=8)
@@ -229,3 +234,36 @@ def test_collisions_follow_the_hard_sphere_rate_in_a_heavy_tailed_gas(weighted):
     # power: a selection blind to the speeds (the same rate for every particle) fails
     blind = observed.sum() * np.bincount(classes, minlength=8) / n
     assert stats.chi2.sf(float(np.sum((observed - blind) ** 2 / blind)), 8) < 1e-12
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_speed_classes_conserve_the_particles_through_new_layouts(d):
+    """One call of about 20 collision times: the elastic gas (α = 1) keeps momentum and
+    energy to round-off; the cooling gas (α = 0.5, no thermostat) loses 98 % of its
+    energy, so its speeds fall by about 11 classes and the slow classes overflow and are
+    laid out again: momentum is still conserved, no particle is lost or duplicated in the
+    moves (finite velocities, the same count, conserved momentum) and the reported
+    largest speed still bounds every speed."""
+    n = 3000
+    for alpha in (1.0, 0.5):
+        velocity, state, bounds = _gas(d, n, seed=11)
+        energy = float(np.sum(velocity**2))
+        momentum = velocity.sum(axis=1)
+        tally = np.zeros(4, dtype=np.int64)
+        coefficient = 1.0 / (n - 1)  # each particle collides at about <|g|> ~ 2
+        collide_speed_classes(
+            velocity, state, alpha, coefficient, 20.0, False,
+            bounds, np.zeros(1), tally, *SpeedClasses(n).arrays(),
+        )  # fmt: skip
+        assert velocity.shape == (d, n) and np.all(np.isfinite(velocity))
+        assert tally[kernels.TALLY_EXCEEDED] == 0
+        assert tally[kernels.TALLY_ACCEPTED] > 4 * n
+        assert np.allclose(velocity.sum(axis=1), momentum, atol=1e-9)
+        after = float(np.sum(velocity**2))
+        if alpha == 1.0:
+            assert after == pytest.approx(energy, rel=1e-11)
+        else:
+            assert after < 0.1 * energy
+        # the class bounds stay valid: the largest speeds reported bound every speed
+        speeds = np.linalg.norm(velocity - bounds[:d, None], axis=0)
+        assert bounds[d] >= speeds.max() * (1 - 1e-12)

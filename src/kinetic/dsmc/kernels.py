@@ -77,7 +77,6 @@ __all__ = [
     "collide_members",
     "collide_observed",
     "collide_range",
-    "collide_weighted",
     "force_and_thermostat",
     "maxwellian",
     "members_speed_bounds",
@@ -100,10 +99,6 @@ STATUS_NONFINITE = 3
 
 BOUND_SAFETY = 1.0 + 1e-12
 """Relative margin on the relative-speed bound, above floating-point rounding of g."""
-
-STORED_SPEED_SAFETY = 1.0 + 1e-6
-"""Relative margin on the speeds of ``collide_weighted``, above the rounding of a float32
-store (2^-24): the stored speed bounds the true one."""
 
 EULER_LIMIT = 0.5
 """Largest |ε V_x δt / 2| the Euler force step accepts (beyond it the step is not small)."""
@@ -154,7 +149,19 @@ def _candidate_rate(kernel, pair_coefficient, n_pairs, bound):
 
 @inline
 def _trial(velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3):
-    """Test one candidate pair; return ``(code, h0, h1, h2, s0, s1, s2, s3)``.
+    """Test the candidate pair (i, j) of ``velocity``: ``_trial_relative`` of v_i - v_j."""
+    g0 = velocity[0, i] - velocity[0, j]
+    g1 = velocity[1, i] - velocity[1, j]
+    g2 = 0.0
+    if d == 3:
+        g2 = velocity[2, i] - velocity[2, j]
+    return _trial_relative(g0, g1, g2, d, kernel, bound_sq, s0, s1, s2, s3)
+
+
+@inline
+def _trial_relative(g0, g1, g2, d, kernel, bound_sq, s0, s1, s2, s3):
+    """Test one candidate pair of relative velocity g; return
+    ``(code, h0, h1, h2, s0, s1, s2, s3)``.
 
     h = (g·σ̂)σ̂ with g = v_i - v_j. code 0: rejected; 1: accepted; 2: the pair's rate
     exceeds the bound (stale bound; nothing drawn). Hard spheres are accepted with
@@ -164,11 +171,6 @@ def _trial(velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3):
     Very hard particles: σ̂ uniform, accepted with probability (g·σ̂)²/B². Maxwell
     molecules: σ̂ uniform, always accepted.
     """
-    g0 = velocity[0, i] - velocity[0, j]
-    g1 = velocity[1, i] - velocity[1, j]
-    g2 = 0.0
-    if d == 3:
-        g2 = velocity[2, i] - velocity[2, j]
     gg = g0 * g0 + g1 * g1 + g2 * g2
     if kernel == HARD_SPHERES:
         if gg > bound_sq:
@@ -502,162 +504,6 @@ def collide_members(
             velocity, members, start, stop, state, kernel, restitution, pair_coefficient,
             duration, poisson, bounds, carry, tally, 2, True,
         )  # fmt: skip
-
-
-@inline
-def _weighted_loop(
-    velocity,
-    state,
-    restitution,
-    pair_coefficient,
-    duration,
-    poisson,
-    bounds,
-    carry,
-    tally,
-    speeds,
-    d,
-):
-    """Body of ``collide_weighted`` for a literal dimension ``d``; returns the index draws."""
-    n = velocity.shape[1]
-    if n < 2 or duration <= 0.0:
-        return 0
-    half = 0.5 * (1.0 + restitution)
-    c0, c1, c2, top1, top2 = _bound_terms(bounds, d)
-    total = 0.0
-    fastest = 0.0
-    for i in range(n):
-        s = np.sqrt(_speed_sq(velocity, i, d, c0, c1, c2)) * STORED_SPEED_SAFETY
-        speeds[i] = s
-        s = speeds[i]  # the stored value (float32 storage rounds it)
-        total += s
-        fastest = max(fastest, s)
-    if total <= 0.0:
-        return 0
-    coefficient = pair_coefficient * (n - 1.0)
-    spacing = 1.0 / (coefficient * total)
-    budget = duration
-    if not poisson:
-        budget += carry[0] * spacing
-    nu = np.uint64(n)
-    num = np.uint64(n - 1)
-    s0 = state[0]
-    s1 = state[1]
-    s2 = state[2]
-    s3 = state[3]
-    candidates = 0
-    accepted = 0
-    draws = 0
-    raised = 0
-    while True:
-        if poisson:
-            e, s0, s1, s2, s3 = _exponential(s0, s1, s2, s3)
-            step = e * spacing
-        else:
-            step = spacing
-        if step > budget:
-            break
-        budget -= step
-        candidates += 1
-        # i with probability speeds[i] / total: uniform index, kept with speeds[i]/fastest
-        while True:
-            x, s0, s1, s2, s3 = _next(s0, s1, s2, s3)
-            draws += 1
-            i = np.int64(((x >> _SHIFT_32) * nu) >> _SHIFT_32)
-            u = np.float64((x >> _SHIFT_11) & _LOW_32) * 2.3283064365386963e-10
-            if u * fastest < speeds[i]:
-                break
-        x, s0, s1, s2, s3 = _next(s0, s1, s2, s3)
-        j = np.int64(((x >> _SHIFT_32) * num) >> _SHIFT_32)
-        if j >= i:
-            j += 1
-        bound = np.float64(speeds[i]) + np.float64(speeds[j])
-        code, h0, h1, h2, s0, s1, s2, s3 = _trial(
-            velocity, i, j, d, HARD_SPHERES, bound * bound, s0, s1, s2, s3
-        )
-        if code == 2:  # cannot happen: |v_i - v_j| <= |v_i - c| + |v_j - c|
-            tally[TALLY_EXCEEDED] += 1
-            continue
-        if code == 0:
-            continue
-        sa, sb = _apply(velocity, i, j, d, half, h0, h1, h2, c0, c1, c2)
-        accepted += 1
-        total -= speeds[i] + speeds[j]
-        speeds[i] = np.sqrt(sa) * STORED_SPEED_SAFETY
-        speeds[j] = np.sqrt(sb) * STORED_SPEED_SAFETY
-        a = speeds[i]
-        b = speeds[j]
-        total += a + b
-        if a > fastest or b > fastest:
-            fastest = max(a, b)
-            raised += 1
-        spacing = 1.0 / (coefficient * total)
-    state[0] = s0
-    state[1] = s1
-    state[2] = s2
-    state[3] = s3
-    if not poisson:
-        carry[0] = budget / spacing
-    # the two largest speeds, for callers that use the pair bound of collide_range next
-    top1 = 0.0
-    top2 = 0.0
-    for i in range(n):
-        s = speeds[i]
-        if s > top1:
-            top2 = top1
-            top1 = s
-        elif s > top2:
-            top2 = s
-    bounds[d] = top1
-    bounds[d + 1] = top2
-    tally[TALLY_CANDIDATES] += candidates
-    tally[TALLY_ACCEPTED] += accepted
-    tally[TALLY_RAISED] += raised
-    return draws
-
-
-@kernel
-def collide_weighted(
-    velocity,
-    state,
-    restitution,
-    pair_coefficient,
-    duration,
-    poisson,
-    bounds,
-    carry,
-    tally,
-    speeds,
-):
-    """``collide_range`` over all particles for hard spheres, with a majorant per pair.
-
-    Exactness: with s_i = |v_i - c| (any fixed centre c, here ``bounds[:d]``), every
-    relative speed obeys |v_i - v_j| <= s_i + s_j. Candidates arrive at the total rate
-    C Σ_{i<j} (s_i + s_j) = C (n - 1) Σ_i s_i (C = ``pair_coefficient``); a candidate takes
-    i with probability s_i / Σ s (a uniform index kept with probability s_i / max s) and
-    j uniformly among the other n - 1, so the unordered pair {i, j} is drawn with
-    probability (s_i + s_j) / ((n - 1) Σ s), and it is accepted with probability
-    |g| / (s_i + s_j). The accepted pairs thus arrive at C |g_ij| each, the hard-sphere
-    rate, whatever the velocity distribution; σ̂ then follows its conditional law as in
-    ``collide_range``. After a collision s_i, s_j, Σ s and max s are updated, and the rate
-    with them (the rate of a Poisson clock may change at events; the NTC clock takes the
-    new spacing from there). The pair acceptance is E|g| / (2 E s), 1/√2 for a Maxwellian,
-    against E|g| / (s_max + s_second) for the uniform pairs of ``collide_range``.
-
-    speeds: (N,) float32 work array (the s_i, rounded up; float32 keeps the array that the
-    selection of i reads at random in the cache: 0.8 MB at N = 2e5). Returns the number
-    of index draws (candidates plus the rejected draws of i). Other arguments, ``bounds``
-    (refilled with the two largest speeds) and ``tally`` as in ``collide_range``.
-    """
-    if velocity.shape[0] == 3:
-        return _weighted_loop(
-            velocity, state, restitution, pair_coefficient, duration, poisson, bounds,
-            carry, tally, speeds, 3,
-        )  # fmt: skip
-    return _weighted_loop(
-        velocity, state, restitution, pair_coefficient, duration, poisson, bounds,
-        carry, tally, speeds, 2,
-    )  # fmt: skip
 
 
 @kernel
