@@ -23,7 +23,6 @@ temperature and collision count at requested times.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
 from kinetic.edmd.calendar import (
     calendar_build,
@@ -69,7 +68,7 @@ from kinetic.edmd.layout import (
     STATUS_TIME,
     cell_flat,
 )
-from kinetic.jit import FLAGS, inline, kernel
+from kinetic.jit import inline, kernel, refcount_free
 
 # ----------------------------------------------------------------------------- observers
 
@@ -207,7 +206,7 @@ def collide(i, j, t, phase, geometry, grid, last_collision):
     return gn, alpha
 
 
-@njit(**FLAGS, _nrt=False)
+@refcount_free
 def advance(
     t_stop,
     max_collisions,
