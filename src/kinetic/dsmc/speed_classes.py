@@ -345,7 +345,7 @@ def _classes_loop(
         ring_b[r], s0, s1, s2, s3 = _draw_j(records, slots, s0, s1, s2, s3)
     head_i = 0
     head_j = 0
-    coefficient = pair_coefficient * (n - 1.0)
+    coefficient = pair_coefficient * (n - 1.0) * BOUND_SAFETY  # the pair bounds carry it too
     spacing = 1.0 / (coefficient * total)
     budget = duration
     if not poisson:
