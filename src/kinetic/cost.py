@@ -336,19 +336,19 @@ def cloning_batch(
     duration: float,
     transient: float,
     n_blocks: int,
-    n_runs: int,
+    n_realizations: int,
     histogram_bins: int = 120,
     **_: object,
 ) -> Estimate:
-    """``n_runs`` runs of kinetic.cloning.simulate: N_c c_λ events per unit time (c_λ =
-    1 for λ >= 0, 2e^{-λ} - 1 below) over the transient, rounded up to whole blocks, and
+    """``n_realizations`` realizations of kinetic.cloning.simulate: N_c c_λ events per unit
+    time (c_λ = 1 for λ >= 0, 2e^{-λ} - 1 below) over the transient, rounded up to whole blocks, and
     the measured ``duration``. At large λ the transient (e^λ mean free times for a member
     to keep a few collisions) dominates."""
     rate_factor = 1.0 if lam >= 0 else 2.0 * math.exp(-lam) - 1.0
     block = duration / n_blocks
     transient_blocks = math.ceil(transient / block - 1e-9) if block > 0 else 0
     elapsed = duration + transient_blocks * block
-    events = n_runs * population * rate_factor * elapsed
+    events = n_realizations * population * rate_factor * elapsed
     seconds = events / _interpolate(population, CLONING_EVENTS_PER_SECOND)
     memory = _mb(CLONING_BYTES_PER_MEMBER * population + 8.0 * histogram_bins * n_blocks * 4)
     return Estimate(seconds, memory, f"{events:.2e} collision events")

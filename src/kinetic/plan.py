@@ -122,7 +122,7 @@ def _visco2008(config: Mapping[str, Any]) -> list[Job]:
 
         for study in ("scan", "error_vs_time"):
             for kernel, point, size, batch in cloning_plan.batch_keys(cloning, study):
-                parameters = cloning_plan.run_parameters(
+                parameters = cloning_plan.job_parameters(
                     cloning, study, kernel, point, size, batch, seed=0
                 )
                 name = (

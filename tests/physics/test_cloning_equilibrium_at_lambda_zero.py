@@ -20,7 +20,7 @@ def equilibrium(request):
         duration=200.0,
         transient=5.0,
         n_blocks=5,
-        n_runs=6,
+        n_realizations=6,
         seed=77,
     )
 
@@ -39,10 +39,10 @@ def test_velocity_histogram_is_the_maxwellian(equilibrium):
     # members are independent at λ = 0 and snapshots are 40 collision times apart, so
     # the pooled counts are multinomial: a chi-square goodness-of-fit test on |v| < 3
     ds = equilibrium
-    snapshots = int(ds.measured.sum()) * ds.sizes["run"]
+    snapshots = int(ds.measured.sum()) * ds.sizes["realization"]
     width = float(ds.velocity[1] - ds.velocity[0])
     samples = snapshots * int(ds.attrs["dimension"]) * int(ds.attrs["population"])
-    counts = ds.velocity_density.mean("run").values * samples * width
+    counts = ds.velocity_density.mean("realization").values * samples * width
     v = ds.velocity.values
     bin_probability = np.diff(erf_cdf(np.append(v - width / 2, v[-1] + width / 2)))
     inside = np.abs(v) < 3.0

@@ -46,7 +46,7 @@ def scan():
             duration=500.0,
             transient=10.0,
             n_blocks=5,
-            n_runs=6,
+            n_realizations=6,
             seed=2008,
         )
         for lam in LAMBDAS

@@ -21,7 +21,7 @@ def measured():
             duration=300.0,
             transient=20.0,
             n_blocks=5,
-            n_runs=6,
+            n_realizations=6,
             seed=303,
         )
         for lam in LAMBDAS

@@ -26,7 +26,7 @@ BIAS = {4.0: 0.004, 8.0: 0.008}  # stated accuracy (finite N_c and time), see do
 
 @pytest.fixture(scope="module")
 def large():
-    common = {"kernel": "hard_spheres", "dimension": 2, "n_blocks": 5, "n_runs": 4}
+    common = {"kernel": "hard_spheres", "dimension": 2, "n_blocks": 5, "n_realizations": 4}
     return {
         1.0: simulate(lam=1.0, population=1000, duration=200.0, transient=20.0, seed=31, **common),
         2.0: simulate(lam=2.0, population=1000, duration=200.0, transient=50.0, seed=32, **common),

@@ -22,7 +22,7 @@ def run(lam):
         duration=100.0,
         transient=transient,
         n_blocks=5,
-        n_runs=6,
+        n_realizations=6,
         seed=404,
     )
 
@@ -54,7 +54,7 @@ def test_three_dimensions_too():
         duration=100.0,
         transient=5.0,
         n_blocks=5,
-        n_runs=6,
+        n_realizations=6,
         seed=405,
     )
     assert abs(float(ds.mu) - math.expm1(1.0)) < 4 * float(ds.mu_err)

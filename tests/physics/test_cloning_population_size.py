@@ -35,7 +35,7 @@ def strong_duplication():
             duration=1.0e5 / n,
             transient=20.0,
             n_blocks=5,
-            n_runs=8,
+            n_realizations=8,
             seed=56,
         )
         for n in SIZES
@@ -78,7 +78,7 @@ def test_maxwell_strong_duplication_is_exact():
         duration=200.0,
         transient=5.0,
         n_blocks=5,
-        n_runs=6,
+        n_realizations=6,
         seed=57,
     )
     assert abs(float(ds.mu) - math.expm1(1.5)) < 4 * float(ds.mu_err)

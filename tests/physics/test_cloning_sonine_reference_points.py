@@ -46,7 +46,7 @@ def measured():
             duration=400.0,
             transient=20.0,
             n_blocks=5,
-            n_runs=6,
+            n_realizations=6,
             seed=1961,
         )
         for lam in SONINE

@@ -16,7 +16,7 @@ SMALL = {
     "duration": 4.0,
     "transient": 4.0,
     "n_blocks": 4,
-    "n_runs": 2,
+    "n_realizations": 2,
     "seed": 3,
 }
 
@@ -37,7 +37,7 @@ SMALL = {
         ({"kernel": "vhp"}, "kernel must be one of"),
         ({"dimension": 4}, "dimension must be >= 2 and <= 3"),
         ({"seed": -1}, "seed must be >= 0"),
-        ({"n_runs": 1, "n_blocks": 1}, "n_blocks >= 2"),
+        ({"n_realizations": 1, "n_blocks": 1}, "n_blocks >= 2"),
         ({"lam": 8.0, "transient": 100.0}, "transient=100 is too short at lam=8"),
     ],
 )
@@ -58,10 +58,10 @@ def test_lambda_refusal_names_the_range_and_reason():
 
 def test_same_seed_gives_identical_data_and_batches_do_not_matter():
     # arrange / act
-    whole = simulate(**{**SMALL, "n_runs": 4})
-    again = simulate(**{**SMALL, "n_runs": 4})
-    first = simulate(**{**SMALL, "n_runs": 2, "first_run": 0})
-    second = simulate(**{**SMALL, "n_runs": 2, "first_run": 2})
+    whole = simulate(**{**SMALL, "n_realizations": 4})
+    again = simulate(**{**SMALL, "n_realizations": 4})
+    first = simulate(**{**SMALL, "n_realizations": 2, "first_realization": 0})
+    second = simulate(**{**SMALL, "n_realizations": 2, "first_realization": 2})
     # assert
     np.testing.assert_array_equal(whole.net_compensations, again.net_compensations)
     np.testing.assert_array_equal(whole.integral_v2.values[:2], first.integral_v2.values)
@@ -81,8 +81,8 @@ def test_dataset_follows_conventions_and_stores_parameters():
     assert np.allclose(ds.velocity_density.sum("velocity") * width, 1.0, atol=1e-3)
 
 
-def test_single_run_uses_block_errors():
-    ds = simulate(**{**SMALL, "n_runs": 1, "n_blocks": 10})
+def test_single_realization_uses_block_errors():
+    ds = simulate(**{**SMALL, "n_realizations": 1, "n_blocks": 10})
     assert ds.attrs["error_method"] == "blocks"
     assert float(ds.mu_err) > 0
 

@@ -20,7 +20,7 @@ def section():
                     "hard_disks": {"lambdas": [-1.0, 0.5, 8.0], "populations": [20, 40]},
                     "maxwell": {"lambdas": [1.0], "populations": [30]},
                 },
-                "collisions_per_run": 2.0e4,
+                "collisions_per_realization": 2.0e4,
                 "realizations": 4,
                 "realizations_per_job": 2,
                 "n_blocks": 4,
@@ -40,13 +40,13 @@ def test_plan_lists_every_batch(section):
     assert len(plan.batch_keys(section, "error_vs_time")) == 2 * 7  # schema defaults
 
 
-def test_run_parameters_follow_the_config(section):
-    p = plan.run_parameters(section, "scan", "hard_disks", "lam-1.000", "N40", 1, seed=9)
+def test_job_parameters_follow_the_config(section):
+    p = plan.job_parameters(section, "scan", "hard_disks", "lam-1.000", "N40", 1, seed=9)
     rate_factor = 2 * math.e - 1  # Eq. 56 at λ = -1
     assert p["duration"] == pytest.approx(2.0e4 / (40 * rate_factor))
-    assert p["first_run"] == 2 and p["n_runs"] == 2 and p["seed"] == 9
+    assert p["first_realization"] == 2 and p["n_realizations"] == 2 and p["seed"] == 9
     assert p["transient"] == 5.0
-    large = plan.run_parameters(section, "scan", "hard_disks", "lam+8.000", "N20", 0, seed=9)
+    large = plan.job_parameters(section, "scan", "hard_disks", "lam+8.000", "N20", 0, seed=9)
     assert large["transient"] == pytest.approx(2 * math.exp(8.0) * math.sqrt(2))
     simulate_arguments = set(simulate.__kwdefaults__) | {
         "lam",
@@ -60,9 +60,9 @@ def test_run_parameters_follow_the_config(section):
 
 def test_unknown_point_or_batch_is_refused(section):
     with pytest.raises(ValueError, match="no cloning point"):
-        plan.run_parameters(section, "scan", "hard_disks", "lam+0.700", "N20", 0, seed=1)
+        plan.job_parameters(section, "scan", "hard_disks", "lam+0.700", "N20", 0, seed=1)
     with pytest.raises(ValueError, match="batch 2 outside"):
-        plan.run_parameters(section, "scan", "hard_disks", "lam+0.500", "N20", 2, seed=1)
+        plan.job_parameters(section, "scan", "hard_disks", "lam+0.500", "N20", 2, seed=1)
 
 
 def test_reference_grid_contains_every_simulated_lambda(section):
@@ -73,21 +73,21 @@ def test_reference_grid_contains_every_simulated_lambda(section):
 
 
 def batch(section, kernel, lam, n, index):
-    parameters = plan.run_parameters(
+    parameters = plan.job_parameters(
         section, "scan", kernel, plan.lambda_token(lam), plan.population_token(n), index, 5
     )
     return simulate(**parameters)
 
 
-def test_batches_pool_into_the_single_run_result(section):
-    # arrange: two batches of one point, and the same four runs in one call
+def test_batches_pool_into_the_single_call_result(section):
+    # arrange: two batches of one point, and the same four realizations in one call
     parts = [batch(section, "hard_disks", 0.5, 20, b) for b in (1, 0)]
-    p = plan.run_parameters(section, "scan", "hard_disks", "lam+0.500", "N20", 0, 5)
-    whole = simulate(**{**p, "n_runs": 4})
+    p = plan.job_parameters(section, "scan", "hard_disks", "lam+0.500", "N20", 0, 5)
+    whole = simulate(**{**p, "n_realizations": 4})
     # act
     (record,) = aggregate.combine_points(parts)
     # assert
-    assert record["n_runs"] == 4
+    assert record["n_realizations"] == 4
     assert record["mu"] == pytest.approx(float(whole.mu), rel=1e-12)
     assert record["a2_err"] == pytest.approx(float(whole.a2_err), rel=1e-12)
     with pytest.raises(ValueError, match=r"appears in both a\.nc and b\.nc"):

@@ -30,7 +30,12 @@ def test_cloning_cost_grows_like_e_to_the_lambda_through_the_transient():
     def seconds(lam):
         transient = max(10.0, 2 * math.exp(lam) * math.sqrt(2))
         return cost.cloning_batch(
-            lam=lam, population=1000, duration=100.0, transient=transient, n_blocks=10, n_runs=4
+            lam=lam,
+            population=1000,
+            duration=100.0,
+            transient=transient,
+            n_blocks=10,
+            n_realizations=4,
         ).cpu_seconds
 
     assert seconds(20.0) / seconds(19.0) == pytest.approx(math.e, rel=1e-3)

@@ -19,7 +19,7 @@ visco2008:
     kernels:
       hard_disks: {lambdas: [0.5, 1.0], populations: [20, 40]}
       maxwell: {lambdas: [1.0], populations: [20]}
-    collisions_per_run: 5.0e+3
+    collisions_per_realization: 5.0e+3
     realizations: 4
     realizations_per_job: 2
     n_blocks: 2

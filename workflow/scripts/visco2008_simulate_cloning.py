@@ -1,10 +1,10 @@
-"""One batch of cloning Monte Carlo runs (rule visco2008_simulate_cloning) -> netCDF."""
+"""One batch of cloning Monte Carlo realizations (rule visco2008_simulate_cloning) -> netCDF."""
 
 from kinetic.cloning import simulate
 from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
-parameters = dict(snakemake.params.run)
+parameters = dict(snakemake.params.job)
 dataset = simulate(
     **parameters,
     label=f"cloning {snakemake.wildcards.kernel} "

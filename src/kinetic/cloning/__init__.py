@@ -45,6 +45,6 @@ def warmup() -> None:
                     duration=0.2,
                     transient=3.0,
                     n_blocks=2,
-                    n_runs=2,
+                    n_realizations=2,
                     seed=0,
                 )

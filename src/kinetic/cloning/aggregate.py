@@ -1,10 +1,11 @@
 """Combine batch datasets of the cloning Monte Carlo into tables and datasets.
 
-- ``combine_points``: batches of one (kernel, λ, N_c) point -> one record (all runs);
+- ``combine_points``: batches of one (kernel, λ, N_c) point -> one record (all its
+  realizations, joined by ``kinetic.batches.combine``);
 - ``extrapolate_points``: per (kernel, λ), the weighted 1/N_c -> 0 fit of μ, μ_rate, T, a2;
 - ``scan_table`` / ``scan_dataset``: results/visco2008/cloning.csv and .nc;
 - ``error_versus_cpu`` / ``error_table`` / ``error_dataset``: statistical error and
-  finite-N_c bias against CPU time (error-against-run-time study).
+  finite-N_c bias against CPU time (error-against-CPU-time study).
 
 T and a2 of a point whose population collapsed onto a few clones (large λ, flag
 ``diversity_collapse`` of the front) are not estimates of the eigenfunction: they are
@@ -19,8 +20,13 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from kinetic import io
-from kinetic.cloning.estimators import extrapolate_population, observables_from_sums, summarize_runs
+from kinetic import batches, io
+from kinetic.batches import REALIZATION
+from kinetic.cloning.estimators import (
+    extrapolate_population,
+    observables_from_sums,
+    summarize_realizations,
+)
 from kinetic.cloning.kernels import BLOCK_FIELDS
 from kinetic.cloning.simulate import is_collapsed
 
@@ -40,73 +46,50 @@ TABLE_COLUMNS = ["kernel", "lambda", "mu", "mu_err", "T", "T_err", "a2", "a2_err
 """Columns of results/visco2008/cloning.csv (read by other tools: keep the names)."""
 
 OBSERVABLES = ("mu", "mu_rate", "temperature", "a2")
-_SHAPE_KEYS = ("kernel", "dimension", "lam", "population", "duration", "transient", "n_blocks")
-
-
-def _attribute(dataset, key):
-    return io.parameters_of(dataset)[key]
 
 
 def combine_points(datasets, names=None) -> list[dict[str, Any]]:
-    """Group batch datasets by point and pool their runs.
+    """Group batch datasets by point and join each point's batches.
 
-    Batches of one point must share every parameter except ``first_run``/``n_runs`` and
-    must not repeat a run index (the error names both batches, by ``names``, e.g. their
-    paths, or by position). Returns records sorted by (kernel, λ, N_c).
+    The batches of one (kernel, λ, N_c) point are joined by ``kinetic.batches.combine``
+    (same parameters and seed, no realization in two batches; the error names both
+    batches, by ``names``, e.g. their paths, or by position). Returns one record per
+    point, sorted by (kernel, λ, N_c).
     """
     datasets = list(datasets)
     names = list(names) if names is not None else [f"batch {i}" for i in range(len(datasets))]
     groups = defaultdict(list)
-    sources = defaultdict(dict)
     for name, dataset in zip(names, datasets, strict=True):
         parameters = io.parameters_of(dataset)
         key = (parameters["kernel_label"], float(parameters["lam"]), int(parameters["population"]))
-        groups[key].append(dataset)
-        for run in np.asarray(dataset["run"].values).tolist():
-            if run in sources[key]:
-                raise ValueError(
-                    f"run {run} of {key[0]} lam={key[1]} N={key[2]} appears in both "
-                    f"{sources[key][run]} and {name}: the batches overlap; delete the stale one"
-                )
-            sources[key][run] = name
+        groups[key].append((name, dataset))
     records = []
     for (label, lam, population), members in sorted(groups.items()):
-        first = io.parameters_of(members[0])
-        for other in members[1:]:
-            parameters = io.parameters_of(other)
-            different = [k for k in _SHAPE_KEYS if parameters[k] != first[k]]
-            if different:
-                raise ValueError(
-                    f"batches of {label} lam={lam} N={population} differ in {different}"
-                )
-        runs = np.concatenate([m["run"].values for m in members])
-        if np.unique(runs).size != runs.size:
-            raise ValueError(f"batches of {label} lam={lam} N={population} repeat run indices")
-        order = np.argsort(runs)
-        blocks = np.concatenate(
-            [np.stack([m[name].values for name in BLOCK_FIELDS], axis=-1) for m in members]
-        )[order]
-        measured = members[0]["measured"].values.astype(bool)
-        dimension = int(first["dimension"])
-        summary = summarize_runs(blocks, measured, population, dimension, lam)
-        density = np.concatenate([m["velocity_density"].values for m in members])[order]
-        distinct = np.concatenate([m["distinct_velocities"].values for m in members])
+        joined = batches.combine([m for _, m in members], names=[n for n, _ in members])
+        parameters = io.parameters_of(joined)
+        count = joined.sizes[REALIZATION]
+        blocks = np.stack([joined[name].values for name in BLOCK_FIELDS], axis=-1)
+        measured = joined["measured"].values.astype(bool)
+        dimension = int(parameters["dimension"])
+        summary = summarize_realizations(blocks, measured, population, dimension, lam)
+        density = joined["velocity_density"].values
+        distinct = joined["distinct_velocities"].values
         records.append(
             {
                 "kernel": label,
                 "lam": lam,
                 "population": population,
                 "dimension": dimension,
-                "n_runs": int(runs.size),
-                "duration": float(first["duration"]),
-                "transient": float(first["transient"]),
+                "n_realizations": int(count),
+                "duration": float(parameters["duration"]),
+                "transient": float(parameters["transient"]),
                 "blocks": blocks,
                 "measured": measured,
-                "cpu_seconds": np.concatenate([m["cpu_seconds"].values for m in members])[order],
-                "velocity": members[0]["velocity"].values,
+                "cpu_seconds": joined["cpu_seconds"].values,
+                "velocity": joined["velocity"].values,
                 "density": density.mean(axis=0),
-                "density_err": density.std(axis=0, ddof=1) / np.sqrt(runs.size)
-                if runs.size > 1
+                "density_err": density.std(axis=0, ddof=1) / np.sqrt(count)
+                if count > 1
                 else np.full(density.shape[1], np.nan),
                 "distinct_min": int(distinct.min()),
                 "collapsed": is_collapsed(distinct.min(), population),
@@ -237,26 +220,41 @@ def scan_dataset(records, extrapolations):
         "point_kernel": ("point", column("kernel").astype(str), "1", "collision kernel"),
         "point_lambda": ("point", column("lam"), "1", "counting field lambda"),
         "point_population": ("point", column("population"), "1", "population size N_c"),
-        "point_runs": ("point", column("n_runs"), "1", "independent runs"),
-        "point_duration": ("point", column("duration"), "1/omega", "measured time per run"),
-        "point_transient": ("point", column("transient"), "1/omega", "discarded time per run"),
+        "point_realizations": (
+            "point",
+            column("n_realizations"),
+            "1",
+            "independent realizations",
+        ),
+        "point_duration": (
+            "point",
+            column("duration"),
+            "1/omega",
+            "measured time per realization",
+        ),
+        "point_transient": (
+            "point",
+            column("transient"),
+            "1/omega",
+            "discarded time per realization",
+        ),
         "point_collapse": (
             "point",
             column("collapsed").astype(np.int8),
             "1",
-            "1 if a run ended as a few clones (T, a2 not estimable)",
+            "1 if a realization ended as a few clones (T, a2 not estimable)",
         ),
         "point_distinct_min": (
             "point",
             column("distinct_min"),
             "1",
-            "fewest distinct velocities at the end of a run",
+            "fewest distinct velocities at the end of a realization",
         ),
         "velocity_density": (
             ("point", "velocity"),
             np.stack(column("density")),
             "1/sqrt(T0/m)",
-            "density of a velocity component, mean of runs",
+            "density of a velocity component, mean of the realizations",
         ),
         "velocity_density_err": (
             ("point", "velocity"),
@@ -326,9 +324,9 @@ def scan_dataset(records, extrapolations):
 def error_versus_cpu(record, steps: int = 12):
     """Statistical error of μ and μ_rate against total CPU time for one point.
 
-    Uses the first k measured blocks of every run (k spread geometrically up to all of
-    them); the CPU time of k blocks is the runs' process time prorated by simulated time,
-    with the transient included. Returns (cpu_seconds, mu_err, mu_rate_err), each of
+    Uses the first k measured blocks of every realization (k spread geometrically up to
+    all of them); the CPU time of k blocks is the realizations' process time prorated by
+    simulated time, with the transient included. Returns (cpu_seconds, mu_err, mu_rate_err), each of
     length <= steps.
     """
     blocks, measured = record["blocks"], record["measured"]
@@ -400,7 +398,7 @@ def error_dataset(records, exact):
         return out
 
     data = {
-        "cpu_seconds": (("point", "step"), padded(0), "s", "CPU time spent on the runs"),
+        "cpu_seconds": (("point", "step"), padded(0), "s", "CPU time spent on the realizations"),
         "mu_err": (("point", "step"), padded(1), "omega", "standard error of mu (compensations)"),
         "mu_rate_err": (
             ("point", "step"),
@@ -419,13 +417,13 @@ def error_dataset(records, exact):
             "point",
             np.array([r["mu_rate"] for r in records]),
             "omega",
-            "mu(lambda) from all runs, (e^-lambda - 1)<r>",
+            "mu(lambda) from all realizations, (e^-lambda - 1)<r>",
         ),
         "mu_rate_final_err": (
             "point",
             np.array([r["mu_rate_err"] for r in records]),
             "omega",
-            "standard error of mu_rate from all runs",
+            "standard error of mu_rate from all realizations",
         ),
         "mu_exact": (
             "point",
@@ -436,6 +434,6 @@ def error_dataset(records, exact):
     }
     coords = {
         "point": ("point", np.arange(len(records)), "1", "index of a (lambda, N_c) point"),
-        "step": ("step", np.arange(steps), "1", "index along the run length"),
+        "step": ("step", np.arange(steps), "1", "index along the realization length"),
     }
     return io.make_dataset(data, coords, {"title": "cloning error against CPU time"})

@@ -1,7 +1,7 @@
 """Estimators of the cloning Monte Carlo: μ(λ), T(λ), a2(λ) with error bars, and the
 extrapolation of finite-population results to 1/N_c → 0.
 
-From one run's measured blocks (after the discarded transient), with n members, d
+From one realization's measured blocks (after the discarded transient), with n members, d
 dimensions, total measured time t and the block sums of ``kernels.BLOCK_FIELDS``:
 
 - μ = (duplications - annihilations) / (n t): minus (plus) the compensation rate;
@@ -16,8 +16,9 @@ dimensions, total measured time t and the block sums of ``kernels.BLOCK_FIELDS``
   (the same finite-n bias) and μ_rate lacks the counting noise (its error bar is several
   times smaller at small |λ|). ``mu`` stays the compensation rate of the paper.
 
-Error bars: with several independent runs, the standard error of the per-run values;
-with a single run, block averaging over its measured blocks.
+Error bars: with several independent realizations, the standard error of the
+per-realization values; with a single realization, block averaging over its measured
+blocks.
 """
 
 from __future__ import annotations
@@ -32,8 +33,8 @@ __all__ = [
     "Extrapolation",
     "extrapolate_population",
     "observables_from_sums",
-    "run_observables",
-    "summarize_runs",
+    "realization_observables",
+    "summarize_realizations",
 ]
 
 
@@ -57,30 +58,33 @@ def observables_from_sums(sums, population, dimension, lam):
     return mu, temperature, a2, mu_rate
 
 
-def run_observables(blocks, measured, population, dimension, lam):
-    """Per-run μ, T, a2, μ_rate from ``blocks`` of shape (run, block, field) summed over
+def realization_observables(blocks, measured, population, dimension, lam):
+    """Per-realization μ, T, a2, μ_rate from ``blocks`` of shape (realization, block,
+    field) summed over
     the blocks where ``measured`` is true."""
     kept = np.asarray(blocks)[:, np.asarray(measured, dtype=bool), :].sum(axis=1)
     return observables_from_sums(kept, population, dimension, lam)
 
 
-def summarize_runs(blocks, measured, population, dimension, lam, n_error_blocks=10):
-    """Mean and standard error of μ, T, a2, μ_rate over runs (or blocks of a single run).
+def summarize_realizations(blocks, measured, population, dimension, lam, n_error_blocks=10):
+    """Mean and standard error of μ, T, a2, μ_rate over realizations (or over blocks of a
+    single realization).
 
     Returns a dict with keys ``mu``, ``mu_err``, ``temperature``, ``temperature_err``,
-    ``a2``, ``a2_err``, ``mu_rate``, ``mu_rate_err`` and ``error_method`` ('runs' or
-    'blocks'; a single run's measured blocks are grouped into ``n_error_blocks``).
+    ``a2``, ``a2_err``, ``mu_rate``, ``mu_rate_err`` and ``error_method``
+    ('realizations' or 'blocks'; a single realization's measured blocks are grouped into
+    ``n_error_blocks``).
     """
     blocks = np.asarray(blocks, dtype=float)
     measured = np.asarray(measured, dtype=bool)
     if blocks.shape[0] >= 2:
-        values = run_observables(blocks, measured, population, dimension, lam)
-        method = "runs"
+        values = realization_observables(blocks, measured, population, dimension, lam)
+        method = "realizations"
     else:
         series = blocks[0, measured, :]
         groups = min(n_error_blocks, series.shape[0])
         if groups < 2:
-            raise ValueError("need at least 2 runs or 2 measured blocks for an error bar")
+            raise ValueError("need at least 2 realizations or 2 measured blocks for an error bar")
         usable = series.shape[0] - series.shape[0] % groups
         grouped = series[:usable].reshape(groups, -1, series.shape[1]).sum(axis=1)
         values = observables_from_sums(grouped, population, dimension, lam)

@@ -1,17 +1,18 @@
 """Job plan of the cloning simulations: names of points and the parameters of each job.
 
-The workflow splits the runs (realizations) of every (kernel, λ, N_c) point into jobs
+The workflow splits the realizations of every (kernel, λ, N_c) point into jobs
 (``kinetic.batches``). Paths
 name points by tokens built from the config (``lam+1.000``, ``N1000``); the rules map a
-token back to its value by lookup in the config, never by parsing it. Run k of a point
+token back to its value by lookup in the config, never by parsing it. Realization k of a
+point
 uses row k of the point's stream states, so results do not depend on the batching.
 
 Config section ``visco2008.cloning`` (schema: workflow/schemas/visco2008.cloning.schema.yaml)::
 
     kernels: {hard_disks: {lambdas: [...], populations: [...]}, maxwell: {...}}
-    collisions_per_run, realizations, realizations_per_job, n_blocks, transient,
+    collisions_per_realization, realizations, realizations_per_job, n_blocks, transient,
     transient_kept_collisions, histogram_bins, histogram_half_width
-    error_vs_time: {lambdas, populations, collisions_per_run, realizations, n_blocks}
+    error_vs_time: {lambdas, populations, collisions_per_realization, realizations, n_blocks}
 """
 
 from __future__ import annotations
@@ -27,12 +28,12 @@ from kinetic import batches
 __all__ = [
     "KERNEL_SETTINGS",
     "batch_keys",
+    "job_parameters",
     "jobs",
     "lambda_token",
     "point_seed_key",
     "population_token",
     "reference_lambdas",
-    "run_parameters",
     "study_points",
 ]
 
@@ -73,7 +74,7 @@ def study_points(section: Mapping[str, Any], study: str) -> list[tuple[str, floa
 
 
 def _study_settings(section: Mapping[str, Any], study: str) -> dict[str, Any]:
-    keys = ("collisions_per_run", "realizations", "n_blocks")
+    keys = ("collisions_per_realization", "realizations", "n_blocks")
     settings = {key: section[key] for key in keys}
     settings["realizations_per_job"] = section["realizations_per_job"]
     if study == "error_vs_time":  # one job per point
@@ -111,7 +112,7 @@ def event_rate_factor(lam: float) -> float:
     return 1.0 if lam >= 0.0 else 2.0 * math.exp(-lam) - 1.0
 
 
-def run_parameters(
+def job_parameters(
     section: Mapping[str, Any],
     study: str,
     kernel: str,
@@ -122,10 +123,11 @@ def run_parameters(
 ) -> dict[str, Any]:
     """Keyword arguments of ``kinetic.cloning.simulate`` for one batch job.
 
-    The measured time is ``collisions_per_run / (N_c c_λ)`` mean free times (c_λ = 1 for
-    λ >= 0, 2e^{-λ} - 1 below: about ``collisions_per_run`` collision events a run), and
-    the transient is the longer of ``transient`` and the time in which a member keeps
-    ``transient_kept_collisions`` collisions at the slowest rate (e^{λ}/r_min per one).
+    The measured time is ``collisions_per_realization / (N_c c_λ)`` mean free times
+    (c_λ = 1 for λ >= 0, 2e^{-λ} - 1 below: about ``collisions_per_realization`` collision
+    events a realization), and the transient is the longer of ``transient`` and the time in
+    which a member keeps ``transient_kept_collisions`` collisions at the slowest rate
+    (e^{λ}/r_min per one).
     """
     by_token = {
         (k, lambda_token(lam), population_token(n)): (lam, n)
@@ -143,7 +145,7 @@ def run_parameters(
         raise ValueError(f"batch {batch} outside 0..{len(plan) - 1}")
     job = plan[int(batch)]
     rate_factor = event_rate_factor(lam)
-    duration = settings["collisions_per_run"] / (population * rate_factor)
+    duration = settings["collisions_per_realization"] / (population * rate_factor)
     kernel_settings = KERNEL_SETTINGS[kernel]
     renewal = section["transient_kept_collisions"] * math.exp(lam) / kernel_settings["slowest_rate"]
     return {
@@ -154,8 +156,8 @@ def run_parameters(
         "duration": duration,
         "transient": max(float(section["transient"]), renewal),
         "n_blocks": int(settings["n_blocks"]),
-        "n_runs": job.n_realizations,
-        "first_run": job.first_realization,
+        "n_realizations": job.n_realizations,
+        "first_realization": job.first_realization,
         "seed": int(seed),
         "histogram_bins": int(section["histogram_bins"]),
         "histogram_half_width": float(section["histogram_half_width"]),

@@ -2,11 +2,12 @@
 
     from kinetic.cloning import simulate
     ds = simulate(kernel="hard_spheres", dimension=2, lam=1.0, population=1000,
-                  duration=200.0, transient=20.0, n_runs=4, seed=7)
-    ds["mu"], ds["mu_err"]          # μ(λ) and its standard error over the runs
+                  duration=200.0, transient=20.0, n_realizations=4, seed=7)
+    ds["mu"], ds["mu_err"]          # μ(λ) and its standard error over the realizations
 
 Realisation k uses row k of ``kinetic.rng.stream_states(seed, ...)``, so a batch with
-``first_run = k0`` reproduces exactly the runs k0, k0+1, ... of a single larger call.
+``first_realization = k0`` reproduces exactly the realizations k0, k0+1, ... of a single
+larger call.
 """
 
 from __future__ import annotations
@@ -19,8 +20,9 @@ import time
 import numpy as np
 
 from kinetic import io
+from kinetic.batches import REALIZATION
 from kinetic.cloning import kernels
-from kinetic.cloning.estimators import run_observables, summarize_runs
+from kinetic.cloning.estimators import realization_observables, summarize_realizations
 from kinetic.cloning.rates import TABLE_STEP, rate_table
 from kinetic.progress import Progress
 from kinetic.rng import stream_states
@@ -51,7 +53,7 @@ been validated against the reference solution."""
 
 LAMBDA_MAX = 30.0
 """Largest supported tilt: beyond it the keep probability e^{-λ} < 1e-13 is below what
-the transient criterion (``MIN_KEPT_COLLISIONS``) can reach in any affordable run."""
+the transient criterion (``MIN_KEPT_COLLISIONS``) can reach in any affordable realization."""
 
 MIN_KEPT_COLLISIONS = 1.0
 """Each member must keep at least this many collisions on average during the discarded
@@ -62,15 +64,15 @@ over (diversity collapse); without renewal it still remembers its initial bath s
 
 MIN_DISTINCT_VELOCITIES = 10
 MIN_DISTINCT_FRACTION = 0.03
-"""A run that ends with fewer distinct velocities than both 10 and 3% of its members has
+"""A realization that ends with fewer distinct velocities than both 10 and 3% of its members has
 collapsed onto a few clones (diversity collapse, large λ): T and a2 are flagged
-(``diversity_collapse`` attribute). Calibration, 8 runs of 1000 Maxwell molecules: with
+(``diversity_collapse`` attribute). Calibration, 8 realizations of 1000 Maxwell molecules: with
 10 distinct velocities (λ = 6) T came out 0.74 ± 0.08 instead of 1; with 31 (λ = 5),
 1.08 ± 0.11. Hard disks at N_c = 1000: 75 distinct at λ = 3, 25 at λ = 4."""
 
 
 def is_collapsed(distinct_velocities, population):
-    """True if a run ending with ``distinct_velocities`` distinct member velocities out of
+    """True if a realization ending with ``distinct_velocities`` distinct member velocities out of
     ``population`` members has collapsed onto a few clones."""
     threshold = max(MIN_DISTINCT_VELOCITIES, MIN_DISTINCT_FRACTION * population)
     return bool(distinct_velocities < threshold)
@@ -125,8 +127,8 @@ def validate_parameters(
     duration,
     transient,
     n_blocks,
-    n_runs,
-    first_run,
+    n_realizations,
+    first_realization,
     seed,
     histogram_half_width,
     histogram_bins,
@@ -150,11 +152,11 @@ def validate_parameters(
     duration = _check_real("duration", duration, strictly_positive=True)
     transient = _check_real("transient", transient, minimum=0.0)
     n_blocks = _check_integer("n_blocks", n_blocks, 1, 10**6)
-    n_runs = _check_integer("n_runs", n_runs, 1, 10**6)
-    first_run = _check_integer("first_run", first_run, 0)
+    n_realizations = _check_integer("n_realizations", n_realizations, 1, 10**6)
+    first_realization = _check_integer("first_realization", first_realization, 0)
     seed = _check_integer("seed", seed, 0)
-    if n_runs == 1 and n_blocks < 2:
-        raise ValueError("a single run needs n_blocks >= 2 for a block error bar, got 1")
+    if n_realizations == 1 and n_blocks < 2:
+        raise ValueError("a single realization needs n_blocks >= 2 for a block error bar, got 1")
     histogram_half_width = _check_real(
         "histogram_half_width", histogram_half_width, strictly_positive=True
     )
@@ -177,8 +179,8 @@ def validate_parameters(
         "duration": duration,
         "transient": transient,
         "n_blocks": n_blocks,
-        "n_runs": n_runs,
-        "first_run": first_run,
+        "n_realizations": n_realizations,
+        "first_realization": first_realization,
         "seed": seed,
         "histogram_half_width": histogram_half_width,
         "histogram_bins": histogram_bins,
@@ -194,8 +196,8 @@ def simulate(
     duration: float,
     transient: float,
     n_blocks: int = 20,
-    n_runs: int = 4,
-    first_run: int = 0,
+    n_realizations: int = 4,
+    first_realization: int = 0,
     seed: int,
     histogram_half_width: float = 6.0,
     histogram_bins: int = 120,
@@ -213,19 +215,21 @@ def simulate(
     population : int
         Number of members N_c >= 2.
     duration : float > 0
-        Measured time per run, cut into ``n_blocks`` blocks.
+        Measured time per realization, cut into ``n_blocks`` blocks.
     transient : float >= 0
-        Discarded time per run before measuring (rounded up to whole blocks); must let
+        Discarded time per realization before measuring (rounded up to whole blocks); must let
         each member keep ``MIN_KEPT_COLLISIONS`` collisions (see that constant).
-    n_blocks, n_runs, first_run, seed : int
-        Blocks per run; independent runs, which use rows ``first_run ...`` of
+    n_blocks, n_realizations, first_realization, seed : int
+        Blocks per realization; independent realizations, which use rows
+        ``first_realization ...`` of
         ``stream_states(seed, ...)``; root seed of the streams.
     histogram_half_width, histogram_bins
         Range [-w, w) and bin count of the velocity-component histogram.
     label : str, optional
         Prefix of the progress lines.
 
-    Returns a Dataset with per-block sums (dims ``run``, ``block``), per-run estimates,
+    Returns a Dataset with per-block sums (dims ``realization``, ``block``), estimates
+    per realization,
     the population's velocity-component density, and the summary ``mu``, ``mu_err``,
     ``temperature``, ``temperature_err``, ``a2``, ``a2_err``.
     """
@@ -237,8 +241,8 @@ def simulate(
         duration=duration,
         transient=transient,
         n_blocks=n_blocks,
-        n_runs=n_runs,
-        first_run=first_run,
+        n_realizations=n_realizations,
+        first_realization=first_realization,
         seed=seed,
         histogram_half_width=histogram_half_width,
         histogram_bins=histogram_bins,
@@ -253,13 +257,14 @@ def simulate(
     durations = np.where(np.arange(total_blocks) < n_transient, transient_block, block_duration)
     rate_factor, _, _ = kernels.compensation_parameters(p["lam"])
 
-    states = stream_states(p["seed"], p["first_run"] + p["n_runs"])[p["first_run"] :]
-    blocks = np.zeros((p["n_runs"], total_blocks, len(kernels.BLOCK_FIELDS)))
-    histograms = np.zeros((p["n_runs"], p["histogram_bins"]))
-    distinct = np.zeros(p["n_runs"])
-    cpu_seconds = np.zeros(p["n_runs"])
+    first, count = p["first_realization"], p["n_realizations"]
+    states = stream_states(p["seed"], first + count)[first:]
+    blocks = np.zeros((count, total_blocks, len(kernels.BLOCK_FIELDS)))
+    histograms = np.zeros((count, p["histogram_bins"]))
+    distinct = np.zeros(count)
+    cpu_seconds = np.zeros(count)
     label = label or f"cloning {kernel_label(kernel, d)} lam={p['lam']:g} N={n}"
-    progress = Progress(p["n_runs"] * durations.sum(), label=label, unit="collision times")
+    progress = Progress(count * durations.sum(), label=label, unit="collision times")
     code = KERNELS[p["kernel"]]
     table = rate_table(p["kernel"], d)
     segments = []  # (first block, end block, block duration, measured?)
@@ -272,9 +277,9 @@ def simulate(
             (start, min(start + chunk, hi), duration, measured_segment)
             for start in range(lo, hi, chunk)
         ]
-    for run in range(p["n_runs"]):
+    for r in range(count):
         cpu_start = time.process_time()
-        state = np.ascontiguousarray(states[run])
+        state = np.ascontiguousarray(states[r])
         velocity = np.empty((d, n))
         speed = np.empty(n)
         kernels.draw_population(velocity, speed, state)
@@ -288,9 +293,9 @@ def simulate(
                 speed,
                 state,
                 duration,
-                blocks[run, lo:hi],
+                blocks[r, lo:hi],
                 p["histogram_half_width"],
-                histograms[run] if measured_segment else scratch,
+                histograms[r] if measured_segment else scratch,
                 table,
                 TABLE_STEP,
             )
@@ -298,17 +303,17 @@ def simulate(
                 weight += added
             progress.update((hi - lo) * duration)
         bin_width = 2.0 * p["histogram_half_width"] / p["histogram_bins"]
-        histograms[run] /= weight * d * n * bin_width
-        distinct[run] = np.unique(velocity[0]).size
-        cpu_seconds[run] = time.process_time() - cpu_start
+        histograms[r] /= weight * d * n * bin_width
+        distinct[r] = np.unique(velocity[0]).size
+        cpu_seconds[r] = time.process_time() - cpu_start
 
     measured = np.arange(total_blocks) >= n_transient
-    mu_run, temperature_run, a2_run, mu_rate_run = run_observables(blocks, measured, n, d, p["lam"])
-    summary = summarize_runs(blocks, measured, n, d, p["lam"])
+    per_realization = realization_observables(blocks, measured, n, d, p["lam"])
+    summary = summarize_realizations(blocks, measured, n, d, p["lam"])
     collapsed = is_collapsed(min(distinct), n)
     if collapsed:
         logger.warning(
-            "[%s] diversity collapse: a run ended with only %d distinct velocities among "
+            "[%s] diversity collapse: a realization ended with only %d distinct velocities among "
             "%d members; T and a2 describe a few clones and are not estimates of the "
             "eigenfunction, mu stays usable (biased low by r(v*) - r(0) of the surviving "
             "clone, a few 1e-3 at lam = 8)",
@@ -325,10 +330,7 @@ def simulate(
         histograms,
         distinct,
         cpu_seconds,
-        mu_run,
-        temperature_run,
-        a2_run,
-        mu_rate_run,
+        per_realization,
         summary,
     )
     dataset.attrs["diversity_collapse"] = int(collapsed)
@@ -346,10 +348,7 @@ def _to_dataset(
     histograms,
     distinct,
     cpu_seconds,
-    mu_run,
-    temperature_run,
-    a2_run,
-    mu_rate_run,
+    per_realization,
     summary,
 ):
     field_meta = {
@@ -365,33 +364,39 @@ def _to_dataset(
         "max_speed": ("sqrt(T0/m)", "largest speed bound used in the block"),
     }
     data_vars = {
-        name: (("run", "block"), blocks[:, :, k], *field_meta[name])
+        name: ((REALIZATION, "block"), blocks[:, :, k], *field_meta[name])
         for k, name in enumerate(kernels.BLOCK_FIELDS)
     }
     data_vars.update(
         measured=("block", measured.astype(np.int8), "1", "1 after the discarded transient"),
         velocity_density=(
-            ("run", "velocity"),
+            (REALIZATION, "velocity"),
             histograms,
             "1/sqrt(T0/m)",
             "time-averaged density of a velocity component of the population",
         ),
         cpu_seconds=(
-            "run",
+            REALIZATION,
             cpu_seconds,
             "s",
-            "process time of the run, transient included (machine-dependent, not reproducible)",
+            "process time of the realization, transient included (machine-dependent, not "
+            "reproducible)",
         ),
         distinct_velocities=(
-            "run",
+            REALIZATION,
             distinct,
             "1",
-            "number of distinct member velocities at the end of the run (lineages)",
+            "number of distinct member velocities at the end of the realization (lineages)",
         ),
-        mu_run=("run", mu_run, "omega", "mu(lambda) of each run"),
-        temperature_run=("run", temperature_run, "T0", "T(lambda) of each run"),
-        a2_run=("run", a2_run, "1", "a2(lambda) of each run"),
-        mu_rate_run=("run", mu_rate_run, "omega", "(e^-lambda - 1) <r> of each run"),
+        mu_per_realization=(REALIZATION, per_realization[0], "omega", "mu(lambda)"),
+        temperature_per_realization=(REALIZATION, per_realization[1], "T0", "T(lambda)"),
+        a2_per_realization=(REALIZATION, per_realization[2], "1", "a2(lambda)"),
+        mu_rate_per_realization=(
+            REALIZATION,
+            per_realization[3],
+            "omega",
+            "(e^-lambda - 1) <r>",
+        ),
         mu=((), summary["mu"], "omega", "mu(lambda): net compensation rate per member"),
         mu_err=((), summary["mu_err"], "omega", "standard error of mu"),
         temperature=(
@@ -415,9 +420,9 @@ def _to_dataset(
         -p["histogram_half_width"], p["histogram_half_width"], p["histogram_bins"] + 1
     )
     coords = {
-        "run": (
-            "run",
-            np.arange(p["first_run"], p["first_run"] + p["n_runs"]),
+        REALIZATION: (
+            REALIZATION,
+            np.arange(p["first_realization"], p["first_realization"] + p["n_realizations"]),
             "1",
             "realisation index (row of the seed's stream states)",
         ),

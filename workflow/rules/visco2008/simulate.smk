@@ -275,7 +275,7 @@ def visco2008_cloning_job(wildcards):
     key = cloning_plan.point_seed_key(
         wildcards.study, wildcards.kernel, wildcards.point, wildcards.size
     )
-    return cloning_plan.run_parameters(
+    return cloning_plan.job_parameters(
         visco2008_cloning(),
         wildcards.study,
         wildcards.kernel,
@@ -311,7 +311,7 @@ rule visco2008_simulate_cloning:
     benchmark:
         "logs/benchmarks/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.tsv"
     params:
-        run=visco2008_cloning_job,
+        job=visco2008_cloning_job,
     threads: 1
     wildcard_constraints:
         study="scan|error_vs_time",
