@@ -16,10 +16,12 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Sequence
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
-import xarray as xr
+
+if TYPE_CHECKING:  # the workflow plans jobs from this module while parsing: no xarray then
+    import xarray as xr
 
 __all__ = ["Job", "batch_name", "check_disjoint", "combine", "plan", "read_batches"]
 
@@ -105,6 +107,8 @@ def combine(datasets: Sequence[xr.Dataset], *, names: Sequence[str] | None = Non
     dimension are taken from the first batch. The result's attributes are the first
     batch's, with ``n_realizations`` and ``first_realization`` of the whole run.
     """
+    import xarray as xr
+
     if not datasets:
         raise ValueError("combine needs at least one batch")
     names = list(names) if names is not None else [f"batch {i}" for i in range(len(datasets))]

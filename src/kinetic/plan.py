@@ -10,7 +10,7 @@ The workflow uses the same job list: every simulation rule asks SLURM for the
 ``runtime`` and ``mem_mb`` of its output's entry (:func:`jobs_by_output`, through
 kinetic.cost), and before any job the workflow refuses a config with a job above the
 ``limits`` section (:func:`check_limits`) and prints the total (:func:`summary_line`).
-The paths and parameters here mirror the rule files' job plans (kinetic.cloning.plan
+The paths and parameters here mirror the rule files' job plans (kinetic.studies.visco2008_cloning
 and kinetic.studies.montanero2007 are shared with them); a workflow test compares this
 list with the jobs of a Snakemake dry run.
 """
@@ -118,7 +118,7 @@ def _visco2008(config: Mapping[str, Any]) -> list[Job]:
             )
     cloning = section.get("cloning")
     if cloning:
-        from kinetic.cloning import plan as cloning_plan
+        from kinetic.studies import visco2008_cloning as cloning_plan
 
         for study in ("scan", "error_vs_time"):
             for kernel, point, size, batch in cloning_plan.batch_keys(cloning, study):

@@ -120,6 +120,6 @@ def test_table_has_the_contract_columns_and_extrapolation_rows(section):
 @pytest.mark.parametrize("lam", [-2.0, -0.3, 0.0, 0.7])
 def test_planned_event_rate_factor_is_the_kernels(lam):
     from kinetic.cloning import kernels
-    from kinetic.cloning.plan import event_rate_factor
+    from kinetic.studies.visco2008_cloning import event_rate_factor
 
     assert event_rate_factor(lam) == pytest.approx(kernels.compensation_parameters(lam)[0])

@@ -59,6 +59,7 @@ def test_ring_figure_plans_only_the_ring(tmp_path):
         ("ring", {"step": 15}, "exceeds half the ring length"),
         ("pins", {"naive_length": 20}, "naive-pin on naive_length = 20"),
         ("disks", {"n_disks": 40}, "cover more than 90 %"),
+        ("disks", {"sigma": 0.245}, "too dense for tabula-rasa sampling"),
     ],
 )
 def test_impossible_pin_configs_stop_before_any_job(tmp_path, section, changes, message):

@@ -5,7 +5,7 @@ from pathlib import Path
 from snakemake.exceptions import WorkflowError
 
 from kinetic.config import ConfigError, validate_config
-from kinetic.rng import derive_seed
+from kinetic.seeds import derive_seed
 
 try:
     validate_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")

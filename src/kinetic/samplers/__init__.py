@@ -30,7 +30,7 @@ from kinetic.analysis.statistics import mean_and_sem
 from kinetic.progress import Progress
 from kinetic.rng import stream_states
 from kinetic.samplers import kernels
-from kinetic.theory.krauth2025 import check_pins
+from kinetic.theory.krauth2025 import MAX_NAIVE_STARTS, check_pins, naive_acceptance
 
 __all__ = [
     "MAX_NAIVE_STARTS",
@@ -43,19 +43,11 @@ __all__ = [
     "warmup",
 ]
 
-#: most configurations naive-pin may be expected to start in one call (about an hour)
-MAX_NAIVE_STARTS = 1e10
-
 
 def _positive_int(name: str, value, minimum: int = 1) -> int:
     if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
     return int(value)
-
-
-def naive_acceptance(n_pins: int, length: float, sigma: float) -> float:
-    """Probability that a naive-pin configuration gets through: Z_{N,L} / (L − 2σ)^N."""
-    return ((length - 2 * n_pins * sigma) / (length - 2 * sigma)) ** n_pins
 
 
 def _density_dataset(

@@ -32,9 +32,11 @@ import numpy as np
 from scipy.special import gammaln
 
 __all__ = [
+    "MAX_NAIVE_STARTS",
     "bin_average",
     "check_pins",
     "line_dataset",
+    "naive_acceptance",
     "pair_speed_averages",
     "partition_function",
     "pin_density",
@@ -43,6 +45,9 @@ __all__ = [
     "wall_speed_averages",
     "wall_value",
 ]
+
+#: most configurations naive-pin may be expected to start in one call (about an hour)
+MAX_NAIVE_STARTS = 1e10
 
 
 def check_pins(n_pins: int, length: float, sigma: float) -> None:
@@ -57,6 +62,11 @@ def check_pins(n_pins: int, length: float, sigma: float) -> None:
             f"a line of length {length!r} cannot hold {n_pins} pins of width 2 sigma = "
             f"{2 * sigma:g}: it needs length > {2 * n_pins * sigma:g}"
         )
+
+
+def naive_acceptance(n_pins: int, length: float, sigma: float) -> float:
+    """Probability that a naive-pin configuration gets through: Z_{N,L} / (L − 2σ)^N."""
+    return ((length - 2 * n_pins * sigma) / (length - 2 * sigma)) ** n_pins
 
 
 def _log_partition(n: int, length, sigma: float) -> np.ndarray:
@@ -205,7 +215,6 @@ def line_dataset(n_pins: int, length: float, sigma: float, bins: int, curve_poin
     (``density_curve``), with the naive-pin acceptance (Eq. 4.6): what Figs 4.11 and the
     pins table draw beside the samples."""
     from kinetic import io
-    from kinetic.samplers import naive_acceptance
 
     check_pins(n_pins, length, sigma)
     edges = np.linspace(sigma, length - sigma, bins + 1)

@@ -85,8 +85,7 @@ def krauth2025_snapshots_job(wildcards):
 def krauth2025_check_config():
     """Stop before any job on values the schema cannot judge alone: lines and rings too
     short for their pins, or a naive-pin run that would take forever."""
-    from kinetic.samplers import MAX_NAIVE_STARTS, naive_acceptance
-    from kinetic.theory.krauth2025 import check_pins
+    from kinetic.theory.krauth2025 import MAX_NAIVE_STARTS, check_pins, naive_acceptance
 
     pins, ring = krauth2025_pins(), config["krauth2025"]["ring"]
     try:
@@ -235,18 +234,10 @@ def krauth2025_chaos_job(wildcards):
 
 def krauth2025_check_disks():
     """Stop before any job on a box that cannot hold the disks."""
-    from kinetic.samplers import disk_configuration
-    from kinetic.rng import stream_states
+    from kinetic.studies.krauth2025 import check_disks
 
-    disks = krauth2025_disks()
     try:
-        disk_configuration(
-            disks["n_disks"],
-            disks["sigma"],
-            disks["box"],
-            state=stream_states(0, 1)[0],
-            max_starts=10**6,
-        )
+        check_disks(krauth2025_disks())
     except ValueError as error:
         raise WorkflowError(f"config krauth2025.disks: {error}") from None
 

@@ -8,7 +8,7 @@ import math
 import re
 
 from kinetic import batches
-from kinetic.cloning import plan as cloning_plan
+from kinetic.studies import visco2008_cloning as cloning_plan
 
 BATCH = r"batch[0-9]{4}"
 """Wildcard constraint of a batch file's stem (kinetic.batches.batch_name)."""

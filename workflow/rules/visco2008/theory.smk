@@ -1,7 +1,7 @@
 # visco2008 theory: the curves of the paper's equations on the config's grids (one netCDF
 # per family under results/visco2008/theory/) and the deterministic solution of Eq. 28
 # drawn beside the cloning data. Figures read these files; they compute no theory.
-from kinetic.cloning import plan as cloning_plan
+from kinetic.studies import visco2008_cloning as cloning_plan
 
 VISCO2008_THEORY_FAMILIES = [
     "large_deviations",

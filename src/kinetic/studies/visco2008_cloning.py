@@ -1,11 +1,10 @@
-"""Job plan of the cloning simulations: names of points and the parameters of each job.
+"""visco2008's cloning study: names of its points and the parameters of each job.
 
 The workflow splits the realizations of every (kernel, λ, N_c) point into jobs
-(``kinetic.batches``). Paths
-name points by tokens built from the config (``lam+1.000``, ``N1000``); the rules map a
-token back to its value by lookup in the config, never by parsing it. Realization k of a
-point
-uses row k of the point's stream states, so results do not depend on the batching.
+(``kinetic.batches``). Paths name points by tokens built from the config (``lam+1.000``,
+``N1000``); the rules map a token back to its value by lookup in the config, never by
+parsing it. Realization k of a point uses row k of the point's stream states, so results
+do not depend on the batching. Imports no engine: the workflow reads it while parsing.
 
 Config section ``visco2008.cloning`` (schema: workflow/schemas/visco2008.cloning.schema.yaml)::
 
