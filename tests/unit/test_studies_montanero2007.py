@@ -103,13 +103,19 @@ def test_batching_does_not_change_the_data(tmp_path):
         batch = study.simulate_batch(run, seed=11, first=first, count=count, label="part")
         batch = io.stamp(batch, parameters={**io.parameters_of(batch), "run": "x"}, seed=11)
         paths.append(io.write_dataset(batch, tmp_path / f"batch{index}.nc"))
-    combined = study.load_runs(paths[::-1])["x"]
+    combined = study.join_run(paths[::-1])
     assert list(combined.realization.values) == [0, 1, 2]
     np.testing.assert_array_equal(combined["moments"].values, whole["moments"].values)
     np.testing.assert_array_equal(combined["cx_counts"].values, whole["cx_counts"].values)
     # the histograms start at the first window boundary at or after steady_from
     assert combined.attrs["steady_from_tau"] == pytest.approx(1.2)
     assert io.parameters_of(combined)["n_realizations"] == 3
+    # the joined run, written once, is what the figures read back, named by its run
+    joined = io.write_dataset(combined, tmp_path / "x.nc")
+    assert list(study.load_runs([joined])) == ["x"]
+    np.testing.assert_array_equal(study.load_runs([joined])["x"]["moments"], whole["moments"])
+    with pytest.raises(ValueError, match="read twice"):
+        study.load_runs([joined, joined])
 
 
 def test_schema_defaults_are_the_default_config():

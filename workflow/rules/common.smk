@@ -107,7 +107,7 @@ def package_files(*modules):
 
 def engine_sources(engine):
     """Files whose change must rebuild a simulation of ``engine``."""
-    return package_files(engine, "rng", "jit", "validate", "gas")
+    return package_files(engine, "rng", "seeds", "jit", "validate", "gas")
 
 
 def numba_warm(engine):

@@ -33,6 +33,7 @@ from typing import Any
 __all__ = [
     "PROTOCOL_KEYS",
     "alpha_key",
+    "join_run",
     "load_runs",
     "run_plan",
     "simulate_batch",
@@ -275,23 +276,30 @@ def simulate_batch(run: Mapping[str, Any], *, seed: int, first: int, count: int,
     return dataset.assign_attrs(steady_from_tau=float(histogram_start))
 
 
+def join_run(paths: Sequence[Any]) -> Any:
+    """Read the batch files of one run and join them along ``realization``
+    (``kinetic.batches.combine``; the order of ``paths`` does not matter)."""
+    from kinetic import batches
+
+    paths = [str(path) for path in paths]
+    return batches.combine(batches.read_batches(paths), names=paths)
+
+
 def load_runs(paths: Sequence[Any]) -> dict[str, Any]:
-    """Read batch files and combine them per run: ``{run name: dataset}``.
+    """Read joined runs (one file a run, written from ``join_run``): ``{run name: dataset}``.
 
-    The run of a batch is the ``run`` parameter the workflow stamped into it; runs keep
-    the order of their first batch in ``paths``.
+    The name of a run is the ``run`` parameter the workflow stamped into its batches; runs
+    keep the order of ``paths``.
     """
-    from kinetic import batches, io
+    from kinetic import io
 
-    grouped: dict[str, list[Any]] = {}
-    files: dict[str, list[str]] = {}
+    runs: dict[str, Any] = {}
     for path in paths:
         dataset = io.read_dataset(path)
         name = io.parameters_of(dataset).get("run")
         if not name:
             raise ValueError(f"{path} has no 'run' parameter: not written by the workflow")
-        grouped.setdefault(name, []).append(dataset)
-        files.setdefault(name, []).append(str(path))
-    return {
-        name: batches.combine(datasets, names=files[name]) for name, datasets in grouped.items()
-    }
+        if name in runs:
+            raise ValueError(f"run {name!r} is read twice (again from {path})")
+        runs[name] = dataset
+    return runs

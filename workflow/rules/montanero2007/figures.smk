@@ -23,18 +23,17 @@ provide("montanero2007/checks", *table_files("montanero2007", "checks"))
 
 
 def montanero2007_runs_of(family):
-    """Batch files of every run of one family, in plan order."""
+    """The joined runs of one family, in plan order."""
     return [
-        path
+        montanero2007_run_file(name)
         for name, run in montanero2007_runs().items()
         if run["family"] == family
-        for path in montanero2007_run_files(name)
     ]
 
 
 def montanero2007_scan(alphas):
-    """Batch files of the scan runs at these restitution coefficients."""
-    return [path for alpha in alphas for path in montanero2007_run_files(alpha_key(alpha))]
+    """The joined scan runs at these restitution coefficients."""
+    return [montanero2007_run_file(alpha_key(alpha)) for alpha in alphas]
 
 
 def montanero2007_section(wildcards):
@@ -53,17 +52,15 @@ def montanero2007_field_pair(wildcards):
     field = config["montanero2007"]["field_check"]
     files = montanero2007_scan([alpha])
     if field["restitution"] == alpha:
-        files += montanero2007_run_files(f"field_{alpha_key(alpha)}")
+        files.append(montanero2007_run_file(f"field_{alpha_key(alpha)}"))
     return files
 
 
 def montanero2007_field_partners(alphas):
-    """Batch files of the larger-field partner of each scan run at these restitutions:
-    the O(eps*^2) bias and the extrapolation eps* -> 0 of Figs 3, 4, 7 and Table 1."""
+    """The joined larger-field partner of each scan run at these restitutions: the
+    O(eps*^2) bias and the extrapolation eps* -> 0 of Figs 3, 4, 7 and Table 1."""
     section = config["montanero2007"]
-    return [
-        path for alpha in alphas for path in montanero2007_run_files(field_partner(section, alpha))
-    ]
+    return [montanero2007_run_file(field_partner(section, alpha)) for alpha in alphas]
 
 
 def montanero2007_scan_partners(wildcards):
@@ -96,7 +93,7 @@ def montanero2007_check_inputs(wildcards):
 
 
 def montanero2007_figure_runs(key):
-    """Scan runs listed by the config key figures.<key>."""
+    """Joined scan runs listed by the config key figures.<key>."""
     return montanero2007_scan(config["montanero2007"]["figures"][key])
 
 

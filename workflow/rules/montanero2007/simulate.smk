@@ -1,7 +1,7 @@
 # montanero2007 simulations: DSMC of the heat-flux-forced granular gas (kinetic.dsmc).
 #
 #   results/montanero2007/runs/<run>/batchNNNN.nc   one job: realizations of one run
-#   (readers combine the batches of a run in memory: kinetic.studies.montanero2007.load_runs)
+#   results/montanero2007/runs/<run>.nc              the run's batches joined (what figures read)
 #
 # Run names come from kinetic.studies.montanero2007.run_plan(config["montanero2007"]).
 import functools
@@ -32,12 +32,21 @@ def montanero2007_jobs(name):
     )
 
 
-def montanero2007_run_files(name):
+def montanero2007_batch_files(name):
     """The batch files of one run (all its realizations)."""
     return [
         f"results/montanero2007/runs/{name}/{batches.batch_name(job.index)}.nc"
         for job in montanero2007_jobs(name)
     ]
+
+
+def montanero2007_run_file(name):
+    """One run, its batches joined (rule montanero2007_aggregate_run)."""
+    return f"results/montanero2007/runs/{name}.nc"
+
+
+def montanero2007_run_batches(wildcards):
+    return montanero2007_batch_files(wildcards.run)
 
 
 def montanero2007_run_parameters(wildcards):
@@ -87,3 +96,17 @@ rule montanero2007_simulate_dsmc:
         mem_mb=planned_mem_mb,
     script:
         "../../scripts/montanero2007_simulate_dsmc.py"
+
+
+rule montanero2007_aggregate_run:
+    input:
+        batches=montanero2007_run_batches,
+        code=package_files("batches", "studies/montanero2007"),
+    output:
+        "results/montanero2007/runs/{run}.nc",
+    log:
+        "logs/montanero2007/runs/{run}.log",
+    wildcard_constraints:
+        run=montanero2007_run_names(),
+    script:
+        "../../scripts/montanero2007_aggregate.py"

@@ -295,6 +295,8 @@ VISCO2008_CLONING_SOURCES = package_files(
     "cloning/rates",
     "theory/visco2008",
     "rng",
+    "seeds",
+    "jit",
     "io",
 )
 
