@@ -6,6 +6,8 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 CORES ?= all
+# pytest-xdist workers of make test / test-fast (each with its own numba cache)
+TEST_WORKERS ?= 2
 CONFIG ?= config/config.yaml
 # extra snakemake options, e.g. SNAKEMAKE_ARGS=-n for a dry run
 SNAKEMAKE_ARGS ?=
@@ -30,10 +32,10 @@ lint: install
 	$(BIN)/ruff format --check src workflow tests
 
 test: lint
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n $(TEST_WORKERS)
 
 test-fast: lint
-	$(BIN)/python -m pytest -m "not slow and not cluster"
+	$(BIN)/python -m pytest -n $(TEST_WORKERS) -m "not slow and not cluster"
 
 clean-results:
 	rm -rf results logs .snakemake

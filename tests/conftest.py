@@ -1,5 +1,7 @@
-"""Shared fixtures: the repository root and a headless matplotlib."""
+"""Shared fixtures: the repository root and a headless matplotlib; under pytest-xdist,
+one numba cache per worker and the longest tests first."""
 
+import os
 from pathlib import Path
 
 import matplotlib
@@ -8,6 +10,25 @@ import pytest
 matplotlib.use("Agg")
 
 REPOSITORY = Path(__file__).resolve().parents[1]
+
+# Two processes compiling the same kernel into one numba cache can corrupt it (numba
+# issue 4807). Each xdist worker (and every Snakemake build a workflow test starts from
+# it, which inherits the variable) gets a cache of its own, set before numba is imported.
+_WORKER = os.environ.get("PYTEST_XDIST_WORKER")
+if _WORKER:
+    os.environ["NUMBA_CACHE_DIR"] = str(REPOSITORY / ".pytest_cache" / "numba" / _WORKER)
+
+
+def pytest_collection_modifyitems(config, items):
+    """End-to-end builds first, then the other slow tests: with two workers the longest
+    test starts at once instead of after everything else."""
+
+    def rank(item):
+        slow = item.get_closest_marker("slow") is not None
+        workflow = item.get_closest_marker("workflow") is not None
+        return 0 if slow and workflow else 1 if slow else 2
+
+    items.sort(key=rank)
 
 
 @pytest.fixture(scope="session")
