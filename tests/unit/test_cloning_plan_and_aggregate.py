@@ -6,8 +6,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from kinetic.cloning import aggregate, plan, simulate
+from kinetic.cloning import aggregate, simulate
 from kinetic.config import validate_config
+from kinetic.studies import visco2008_cloning as plan
 
 
 @pytest.fixture(scope="module")
