@@ -3,7 +3,13 @@
 import numpy as np
 import pytest
 
-from kinetic.analysis.statistics import block_sem, count_cumulants, mean_and_sem
+from kinetic.analysis.statistics import (
+    block_sem,
+    count_cumulants,
+    cpu_for_error,
+    error_against_cpu,
+    mean_and_sem,
+)
 
 
 def test_mean_and_sem_of_known_samples():
@@ -36,3 +42,33 @@ def test_block_sem_covers_the_true_mean_of_a_correlated_series():
     naive = series.std() / np.sqrt(series.size)
     assert abs(mean) < 5 * sem
     assert sem > 2 * naive  # correlations make the honest error larger
+
+
+def test_error_against_cpu_falls_as_one_over_root_cpu_and_predicts_the_cost():
+    """Independent unit-variance samples costing 2 CPU-s each: the standard error of the
+    first n falls as 1/√n (within the spread of a standard error from n samples), and the
+    CPU time predicted for an error of 0.01 from the first 100 samples is 2 σ²/0.01², the
+    cost of the 10^4 samples that error takes."""
+    samples = np.random.default_rng(5).normal(size=4000)
+    parts = [10, 100, 1000, 4000]
+    curve = error_against_cpu(
+        parts, lambda n: mean_and_sem(samples[:n]) if n >= 2 else None, lambda n: 2.0 * n
+    )
+    np.testing.assert_array_equal(curve.part, parts)
+    np.testing.assert_array_equal(curve.cpu_seconds, 2.0 * np.array(parts))
+    for n, error in zip(parts, curve.error, strict=True):
+        assert abs(error * np.sqrt(n) - 1.0) < 4.0 / np.sqrt(2.0 * (n - 1))
+    needed = cpu_for_error(curve.cpu_seconds[1], curve.error[1], 0.01)
+    assert needed == pytest.approx(2.0 * 1e4, rel=4.0 / np.sqrt(2.0 * 99))
+
+
+def test_error_against_cpu_stops_where_a_part_has_no_error_bar():
+    curve = error_against_cpu([5, 1, 3], lambda n: (n, 1.0) if n > 1 else None, float)
+    np.testing.assert_array_equal(curve.part, [5])
+
+
+def test_a_bias_as_large_as_the_target_cannot_be_averaged_away():
+    assert cpu_for_error(10.0, 0.1, 0.05, bias=0.05) == np.inf
+    assert cpu_for_error(10.0, 0.1, 0.05, bias=0.03) == pytest.approx(
+        10.0 * 0.01 / (0.05**2 - 0.03**2)
+    )

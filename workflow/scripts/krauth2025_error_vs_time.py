@@ -15,7 +15,7 @@ from matplotlib import colormaps
 
 from kinetic import io, plotting
 from kinetic.analysis.krauth2025 import contact_pressure, wall_pressures
-from kinetic.analysis.statistics import mean_and_sem
+from kinetic.analysis.statistics import cpu_for_error, error_against_cpu, mean_and_sem
 from kinetic.workflow_support import start
 
 start(snakemake)
@@ -78,9 +78,13 @@ fig, ax = plotting.figure(figsize=(6.4, 3.4))
 colours = colormaps["tab10"].colors
 for index, (method, quantity, values, cpu) in enumerate(series):
     groups = values.size
-    k = np.arange(2, groups + 1)
-    errors = np.array([mean_and_sem(values[:m])[1] for m in k])
-    times = np.cumsum(cpu)[1:]
+    spent = np.cumsum(cpu)
+    curve = error_against_cpu(
+        range(2, groups + 1),
+        lambda m, values=values: mean_and_sem(values[:m]),
+        lambda m, spent=spent: spent[m - 1],
+    )
+    errors, times = curve.error, curve.cpu_seconds
     mean = values.mean()
     relative = errors / abs(mean)
     colour = colours[index % len(colours)]
@@ -97,7 +101,7 @@ for index, (method, quantity, values, cpu) in enumerate(series):
             "cpu_seconds": float(times[-1]),
             "sem": errors[-1],
             "relative_error_at_1_cpu_second": merit,
-            "cpu_seconds_for_0.1_percent": (merit / 1e-3) ** 2,
+            "cpu_seconds_for_0.1_percent": cpu_for_error(times[-1], relative[-1], 1e-3),
         }
     )
 ax.set_xlabel("CPU time (s)")

@@ -20,7 +20,7 @@ import numpy as np
 import xarray as xr
 
 from kinetic import io
-from kinetic.analysis.statistics import mean_and_sem
+from kinetic.analysis.statistics import error_against_cpu, mean_and_sem
 
 __all__ = [
     "bin_averaged_density",
@@ -262,31 +262,25 @@ def error_against_cpu_time(dataset, window: float = 10.0) -> dict:
     standard error; the CPU time is the sum over realizations (equilibration included).
     """
     index = int(np.argmin(np.abs(dataset["window"].values - window)))
-    rows = {
-        key: []
-        for key in (
-            "production_length",
-            "realizations",
-            "collisions",
-            "cpu_time",
-            "k2",
-            "k2_sem",
-            "k3",
-            "k3_sem",
-        )
+    checkpoints = np.arange(dataset.sizes["checkpoint"])
+
+    def estimate(c):
+        mean, sem = mean_and_sem(scaled_cumulants(dataset, c)[:, index, :], axis=0)
+        return mean[1:], sem[1:]
+
+    curve = error_against_cpu(
+        checkpoints, estimate, lambda c: dataset["cpu_time"].values[:, c].sum()
+    )
+    return {
+        "production_length": dataset["checkpoint"].values.astype(float),
+        "realizations": np.full(checkpoints.size, dataset.sizes["realization"]),
+        "collisions": dataset["collisions"].values.sum(axis=0).astype(int),
+        "cpu_time": curve.cpu_seconds,
+        "k2": curve.value[:, 0],
+        "k2_sem": curve.error[:, 0],
+        "k3": curve.value[:, 1],
+        "k3_sem": curve.error[:, 1],
     }
-    for c, length in enumerate(dataset["checkpoint"].values):
-        values = scaled_cumulants(dataset, c)[:, index, :]
-        mean, sem = mean_and_sem(values, axis=0)
-        rows["production_length"].append(float(length))
-        rows["realizations"].append(int(values.shape[0]))
-        rows["collisions"].append(int(dataset["collisions"].values[:, c].sum()))
-        rows["cpu_time"].append(float(dataset["cpu_time"].values[:, c].sum()))
-        rows["k2"].append(float(mean[1]))
-        rows["k2_sem"].append(float(sem[1]))
-        rows["k3"].append(float(mean[2]))
-        rows["k3_sem"].append(float(sem[2]))
-    return {key: np.asarray(value) for key, value in rows.items()}
 
 
 def combine_realizations(datasets) -> xr.Dataset:

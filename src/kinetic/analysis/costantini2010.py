@@ -35,6 +35,7 @@ import numpy as np
 import xarray as xr
 
 from kinetic import io
+from kinetic.analysis.statistics import error_against_cpu
 from kinetic.theory import costantini2010 as theory
 
 __all__ = [
@@ -281,26 +282,36 @@ def analyse_run(
 
     # error against CPU time: the first 1/k of every realization's blocks
     cpu_total = float(dataset.cpu_seconds.sum())
-    fractions, cpu, nu_err, nu_bar_err = [], [], [], []
-    for k in range(1, error_subsets + 1):
-        kept = blocks_per_realization // k
-        if kept < 1 or kept * steady.sizes["realization"] < 2:
-            break
+    n_realizations = steady.sizes["realization"]
+
+    def kept_blocks(k):
+        return blocks_per_realization // k
+
+    def subset_errors(k):
+        kept = kept_blocks(k)
+        if kept < 1 or kept * n_realizations < 2:
+            return None
         rows = np.concatenate(
             [
                 np.arange(r * blocks_per_realization, r * blocks_per_realization + kept)
-                for r in range(steady.sizes["realization"])
+                for r in range(n_realizations)
             ]
         )
         try:
-            _, subset_error = jackknife(samples[rows], statistic)
+            subset_estimate, subset_error = jackknife(samples[rows], statistic)
         except ValueError:
-            break
-        fraction = kept / blocks_per_realization
-        fractions.append(fraction)
-        cpu.append(cpu_total * fraction)
-        nu_err.append(subset_error[2])
-        nu_bar_err.append(subset_error[3])
+            return None
+        return subset_estimate[2:4], subset_error[2:4]
+
+    curve = error_against_cpu(
+        range(1, error_subsets + 1),
+        subset_errors,
+        lambda k: cpu_total * (kept_blocks(k) / blocks_per_realization),
+    )
+    cpu = curve.cpu_seconds
+    fractions = [kept_blocks(k) / blocks_per_realization for k in curve.part]
+    nu_err = curve.error[:, 0] if cpu.size else cpu
+    nu_bar_err = curve.error[:, 1] if cpu.size else cpu
 
     time_reduced = dataset.time.values * density * math.sqrt(2.0 * temperature_s)
     temperature_mean = dataset.temperature.mean("realization").values

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from kinetic.analysis.statistics import mean_and_sem
+from kinetic.analysis.statistics import cpu_for_error, mean_and_sem
 from kinetic.io import parameters_of
 from kinetic.theory import montanero2007 as theory
 
@@ -558,9 +558,9 @@ def error_budget(rows, n_reference: int, target_errors):
         )
 
     def needed_cpu(setting, target):
+        # the inefficiency is the CPU time of a relative standard error of 1
         bound = abs(setting["relative_bias"]) + 2.0 * setting["relative_bias_err"]
-        margin = target**2 - bound**2
-        return setting["inefficiency"] / margin if margin > 0 else float("inf")
+        return cpu_for_error(setting["inefficiency"], 1.0, target, bound)
 
     targets = []
     for target in target_errors:

@@ -1,15 +1,28 @@
-"""Means, standard errors and cumulants with error bars.
+"""Means, standard errors and cumulants with error bars; error against CPU time.
 
 Every simulated number that reaches a figure or table carries a standard error: either
 from independent realizations (``mean_and_sem`` over the realization axis) or, for one
-correlated time series, from block averages (``block_sem``).
+correlated time series, from block averages (``block_sem``). Every document's
+error-against-run-time study draws the error of an estimate made from parts of its data
+against the CPU time those parts cost (``error_against_cpu``), and asks what CPU time a
+target error would take (``cpu_for_error``).
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
+from typing import NamedTuple
+
 import numpy as np
 
-__all__ = ["block_sem", "count_cumulants", "mean_and_sem"]
+__all__ = [
+    "ErrorCurve",
+    "block_sem",
+    "count_cumulants",
+    "cpu_for_error",
+    "error_against_cpu",
+    "mean_and_sem",
+]
 
 
 def mean_and_sem(samples, axis: int = 0) -> tuple[np.ndarray, np.ndarray]:
@@ -52,3 +65,47 @@ def count_cumulants(counts, axis: int = -1) -> np.ndarray:
     second = (centred**2).mean(axis=axis)
     third = (centred**3).mean(axis=axis)
     return np.stack([np.squeeze(mean, axis=axis), second, third])
+
+
+class ErrorCurve(NamedTuple):
+    """Estimates from parts of the data against what the parts cost: one row per part."""
+
+    part: np.ndarray  # the parts kept (whatever ``error_against_cpu`` was given)
+    cpu_seconds: np.ndarray  # CPU time of each part
+    value: np.ndarray  # (parts, ...) estimates
+    error: np.ndarray  # (parts, ...) their standard errors
+
+
+def error_against_cpu(
+    parts: Iterable,
+    estimate: Callable[[object], tuple[np.ndarray, np.ndarray] | None],
+    cpu_seconds: Callable[[object], float],
+) -> ErrorCurve:
+    """The error-against-run-time curve of an estimate.
+
+    ``parts`` names growing (or shrinking) parts of the data: the first k blocks of every
+    realization, the first k realizations, a checkpoint. ``estimate(part)`` returns the
+    estimates and their standard errors from that part alone, or ``None`` where the part is
+    too small for an error bar (the curve stops there); ``cpu_seconds(part)`` the CPU time
+    the part cost.
+    """
+    kept, cpu, values, errors = [], [], [], []
+    for part in parts:
+        result = estimate(part)
+        if result is None:
+            break
+        kept.append(part)
+        cpu.append(float(cpu_seconds(part)))
+        values.append(np.asarray(result[0], dtype=float))
+        errors.append(np.asarray(result[1], dtype=float))
+    return ErrorCurve(np.array(kept), np.array(cpu), np.array(values), np.array(errors))
+
+
+def cpu_for_error(cpu_seconds, error, target, bias=0.0):
+    """CPU time at which a standard error ``error`` measured after ``cpu_seconds``, falling
+    as 1/√(CPU time), brings the total error √(σ² + b²) down to ``target``, with a bias b
+    that more statistics do not remove: C σ² / (E² − b²); infinite where |b| ≥ E."""
+    margin = np.square(target) - np.square(bias)
+    with np.errstate(divide="ignore"):
+        needed = np.where(margin > 0, cpu_seconds * np.square(error) / margin, np.inf)
+    return float(needed) if needed.ndim == 0 else needed

@@ -21,6 +21,7 @@ import numpy as np
 import pandas as pd
 
 from kinetic import batches, io
+from kinetic.analysis.statistics import cpu_for_error, error_against_cpu, mean_and_sem
 from kinetic.batches import REALIZATION
 from kinetic.cloning.estimators import (
     extrapolate_population,
@@ -338,18 +339,23 @@ def error_versus_cpu(record, steps: int = 12):
     transient_time = elapsed[:n_transient].sum()
     measured_time = np.cumsum(elapsed[n_transient:])
     counts = np.unique(np.geomspace(1, n_measured, steps).round().astype(int))
-    cpu, mu_err, rate_err = [], [], []
-    for k in counts:
+
+    def estimate(k):
         sums = blocks[:, n_transient : n_transient + k, :].sum(axis=1)
         mu, _, _, mu_rate = observables_from_sums(
             sums, record["population"], record["dimension"], record["lam"]
         )
         if mu.size < 2:
-            break
-        cpu.append(cpu_per_time * (transient_time + measured_time[k - 1]))
-        mu_err.append(mu.std(ddof=1) / np.sqrt(mu.size))
-        rate_err.append(mu_rate.std(ddof=1) / np.sqrt(mu_rate.size))
-    return np.array(cpu), np.array(mu_err), np.array(rate_err)
+            return None
+        (mu_mean, mu_sem), (rate_mean, rate_sem) = mean_and_sem(mu), mean_and_sem(mu_rate)
+        return (mu_mean, rate_mean), (mu_sem, rate_sem)
+
+    curve = error_against_cpu(
+        counts, estimate, lambda k: cpu_per_time * (transient_time + measured_time[k - 1])
+    )
+    if curve.part.size == 0:
+        return np.array([]), np.array([]), np.array([])
+    return curve.cpu_seconds, curve.error[:, 0], curve.error[:, 1]
 
 
 def error_table(records, exact: dict[float, float]) -> pd.DataFrame:
@@ -365,7 +371,7 @@ def error_table(records, exact: dict[float, float]) -> pd.DataFrame:
         limit = extrapolated[lam]["mu_rate"] or {"value": np.nan, "err": np.nan}
         bias = record["mu_rate"] - exact[lam]
         resolved = abs(bias) > 2 * record["mu_rate_err"]
-        crossover = cpu * (record["mu_rate_err"] / abs(bias)) ** 2 if resolved else np.nan
+        crossover = cpu_for_error(cpu, record["mu_rate_err"], abs(bias)) if resolved else np.nan
         rows.append(
             {
                 "lambda": lam,

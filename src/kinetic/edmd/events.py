@@ -207,59 +207,56 @@ def collide(i, j, t, phase, geometry, grid, last_collision):
 
 
 @refcount_free
-def advance(
-    t_stop,
-    max_collisions,
-    max_events,
-    clock,
-    target_temperature,
-    observing,
-    phase,
-    ints,
-    members,
-    occupancy,
-    links,
-    heads,
-    heap_time,
-    heap_index,
-    calendar,
-    cursor,
-    last_collision,
-    streak,
-    label,
-    scratch,
-    images,
-    geometry,
-    grid,
-    counters,
-    window_length,
-    window_end,
-    window_count,
-    window_histogram,
-    window_overflow,
-    flight_histogram,
-    path_histogram,
-    bin_widths,
-    flight_sums,
-    wall_statistics,
-    sample_times,
-    sample_temperature,
-    sample_collisions,
-    sample_cursor,
-    record_time,
-    record_pair,
-    record_normal_speed,
-):
+def advance(run, state, queue, observers):
     """Run the event loop from ``clock[0]`` until ``t_stop`` or ``max_collisions`` more
     collisions (or a failure status), then set ``clock[0]`` and return a status code.
 
-    Observers: ``window_*`` (W window lengths, zero-size arrays disable them),
+    Arguments are the named tuples of ``kinetic.edmd.layout``: ``run`` (``Run``: limits
+    and settings of this call), ``state`` (``State``), ``queue`` (``Calendar``) and
+    ``observers`` (``ObserverBuffers``). Observers: ``window_*`` (W window lengths,
+    zero-size arrays disable them),
     ``flight_*``/``path_histogram`` (only when ``observing``), ``wall_statistics`` (2d, 3)
     [hits, Σ|v⊥|, Σ 1/|v⊥|] per face 2k + upwards, ``sample_*`` temperature and collision
     count at the increasing times ``sample_times`` (``sample_cursor[0]`` = next one), and
     ``record_*`` a ring buffer of the last collisions (time, pair of labels ``label[i]``,
     normal relative speed).
     """
+    t_stop, max_collisions, max_events, target_temperature, observing = run
+    (
+        clock,
+        phase,
+        ints,
+        members,
+        occupancy,
+        last_collision,
+        streak,
+        label,
+        scratch,
+        images,
+        geometry,
+        grid,
+        counters,
+    ) = state
+    links, heads, heap_time, heap_index, calendar, cursor = queue
+    (
+        window_length,
+        window_end,
+        window_count,
+        window_histogram,
+        window_overflow,
+        flight_histogram,
+        path_histogram,
+        bin_widths,
+        flight_sums,
+        wall_statistics,
+        sample_times,
+        sample_temperature,
+        sample_collisions,
+        sample_cursor,
+        record_time,
+        record_pair,
+        record_normal_speed,
+    ) = observers
     dim = grid[I_DIM]
     pipeline = grid[I_PREFETCH] > 0 and cursor.shape[0] >= N_CURSOR
     streak_limit = grid[I_STREAK]

@@ -69,7 +69,80 @@ Parameters
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
+import numpy as np
+
 from kinetic.jit import inline
+
+
+class Run(NamedTuple):
+    """What one call of ``advance`` may do: stop at time ``t_stop`` (on the clock that
+    ``clock[0]`` reads), after ``max_collisions`` collisions or ``max_events`` events;
+    the thermostat's ``target_temperature``; ``observing`` (1: feed the flight and path
+    histograms)."""
+
+    t_stop: float
+    max_collisions: int
+    max_events: int
+    target_temperature: float
+    observing: int
+
+
+class State(NamedTuple):
+    """The particles and cells (see the module docstring for each array), with the
+    parameter vectors ``geometry`` and ``grid`` and the ``counters``."""
+
+    clock: np.ndarray
+    phase: np.ndarray
+    ints: np.ndarray
+    members: np.ndarray
+    occupancy: np.ndarray
+    last_collision: np.ndarray
+    streak: np.ndarray
+    label: np.ndarray
+    scratch: np.ndarray
+    images: np.ndarray
+    geometry: np.ndarray
+    grid: np.ndarray
+    counters: np.ndarray
+
+
+class Calendar(NamedTuple):
+    """The event calendar: bucket lists, the heap of the current bucket, its origin and
+    width, the cursor (and prefetch pipeline)."""
+
+    links: np.ndarray
+    heads: np.ndarray
+    heap_time: np.ndarray
+    heap_index: np.ndarray
+    calendar: np.ndarray
+    cursor: np.ndarray
+
+
+class ObserverBuffers(NamedTuple):
+    """What the observers fill during ``advance`` (``kinetic.edmd.observers.Observers``):
+    counting windows, flight and path histograms, wall statistics, timed samples and
+    the ring buffer of the last collisions."""
+
+    window_length: np.ndarray
+    window_end: np.ndarray
+    window_count: np.ndarray
+    window_histogram: np.ndarray
+    window_overflow: np.ndarray
+    flight_histogram: np.ndarray
+    path_histogram: np.ndarray
+    bin_widths: np.ndarray
+    flight_sums: np.ndarray
+    wall_statistics: np.ndarray
+    sample_times: np.ndarray
+    sample_temperature: np.ndarray
+    sample_collisions: np.ndarray
+    sample_cursor: np.ndarray
+    record_time: np.ndarray
+    record_pair: np.ndarray
+    record_normal_speed: np.ndarray
+
 
 # status codes returned by ``advance``
 STATUS_TIME = 0  # reached the requested time

@@ -26,6 +26,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from kinetic.edmd.layout import ObserverBuffers
+
 __all__ = ["Observers"]
 
 
@@ -140,9 +142,9 @@ class Observers:
         ):
             array[...] = 0
 
-    def kernel_arguments(self) -> tuple:
-        """The observer arguments of ``kernels.advance`` in order."""
-        return (
+    def kernel_arguments(self) -> ObserverBuffers:
+        """The observer buffers as ``kernels.advance`` takes them."""
+        return ObserverBuffers(
             self.window_length,
             self.window_end,
             self.window_count,

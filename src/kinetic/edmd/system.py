@@ -572,26 +572,10 @@ class HardSphereSystem:
             t_stop = np.inf if until is None else until - self.time_origin
             before = self.collisions
             status = k.advance(
-                t_stop,
-                chunk,
-                max_events,
-                self.clock,
-                self.temperature,
-                int(observers.observing),
-                self.phase,
-                self.ints,
-                self.members,
-                self.occupancy,
-                *self._calendar_arrays(),
-                self.last_collision,
-                self.streak,
-                self.label,
-                self.scratch,
-                self.images,
-                self.geometry,
-                self.grid,
-                self.counters_array,
-                *observers.kernel_arguments(),
+                k.Run(t_stop, chunk, max_events, self.temperature, int(observers.observing)),
+                self._state(),
+                k.Calendar(*self._calendar_arrays()),
+                observers.kernel_arguments(),
             )
             self._rebase(observers)
             if status == k.STATUS_CELL_FULL:
@@ -641,6 +625,24 @@ class HardSphereSystem:
         """(Re)allocate the cell rows with ``capacity`` slots each (and the scan scratch)."""
         self.members = np.zeros((self.n_cells, int(capacity)), dtype=np.int32)
         self.scratch = np.zeros(self.n_particles + int(capacity), dtype=np.int64)
+
+    def _state(self) -> k.State:
+        """The particles, cells, parameters and counters as the event loop takes them."""
+        return k.State(
+            self.clock,
+            self.phase,
+            self.ints,
+            self.members,
+            self.occupancy,
+            self.last_collision,
+            self.streak,
+            self.label,
+            self.scratch,
+            self.images,
+            self.geometry,
+            self.grid,
+            self.counters_array,
+        )
 
     def _calendar_arrays(self) -> tuple[np.ndarray, ...]:
         """The event calendar's arrays in the order the kernels take them."""
