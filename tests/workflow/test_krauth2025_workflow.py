@@ -57,7 +57,7 @@ def test_ring_figure_plans_only_the_ring(tmp_path):
     [
         ("pins", {"length": 12}, "cannot hold 15 pins"),
         ("ring", {"step": 15}, "exceeds half the ring length"),
-        ("pins", {"naive_length": 20}, "naive-pin on naive_length = 20"),
+        ("pins", {"naive_length": 20}, "(naive_length): naive-pin would start about"),
         ("disks", {"n_disks": 40}, "cover more than 90 %"),
         ("disks", {"sigma": 0.245}, "too dense for tabula-rasa sampling"),
     ],

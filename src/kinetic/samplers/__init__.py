@@ -30,7 +30,12 @@ from kinetic.analysis.statistics import mean_and_sem
 from kinetic.progress import Progress
 from kinetic.rng import stream_states
 from kinetic.samplers import kernels
-from kinetic.theory.krauth2025 import MAX_NAIVE_STARTS, check_pins, naive_acceptance
+from kinetic.theory.krauth2025 import (
+    MAX_NAIVE_STARTS,
+    check_naive_starts,
+    check_pins,
+    naive_acceptance,
+)
 
 __all__ = [
     "MAX_NAIVE_STARTS",
@@ -119,14 +124,7 @@ def sample_line(
     batches = _positive_int("batches", batches, 2)
     bins = _positive_int("bins", bins)
     if method == "naive":
-        expected = samples * batches / naive_acceptance(n_pins, length, sigma)
-        if expected > MAX_NAIVE_STARTS:
-            raise ValueError(
-                f"naive-pin would start about {expected:.2g} configurations for "
-                f"{samples * batches} samples of {n_pins} pins on length {length} (acceptance "
-                f"{naive_acceptance(n_pins, length, sigma):.2g}); use direct-pin, fewer "
-                f"samples or a longer line"
-            )
+        check_naive_starts(n_pins, length, sigma, samples * batches)
     lower, upper = sigma, length - sigma
     states = stream_states(seed, batches)
     counts = np.zeros((batches, bins), dtype=np.int64)

@@ -34,6 +34,7 @@ from scipy.special import gammaln
 __all__ = [
     "MAX_NAIVE_STARTS",
     "bin_average",
+    "check_naive_starts",
     "check_pins",
     "line_dataset",
     "naive_acceptance",
@@ -67,6 +68,19 @@ def check_pins(n_pins: int, length: float, sigma: float) -> None:
 def naive_acceptance(n_pins: int, length: float, sigma: float) -> float:
     """Probability that a naive-pin configuration gets through: Z_{N,L} / (L − 2σ)^N."""
     return ((length - 2 * n_pins * sigma) / (length - 2 * sigma)) ** n_pins
+
+
+def check_naive_starts(n_pins: int, length: float, sigma: float, samples: int) -> None:
+    """Raise ``ValueError`` if naive-pin would be expected to start more than
+    ``MAX_NAIVE_STARTS`` configurations for ``samples`` accepted ones."""
+    acceptance = naive_acceptance(n_pins, length, sigma)
+    expected = samples / acceptance
+    if expected > MAX_NAIVE_STARTS:
+        raise ValueError(
+            f"naive-pin would start about {expected:.2g} configurations for {samples} "
+            f"samples of {n_pins} pins on length {length} (acceptance {acceptance:.2g}); "
+            f"use direct-pin, fewer samples or a longer line"
+        )
 
 
 def _log_partition(n: int, length, sigma: float) -> np.ndarray:

@@ -85,7 +85,7 @@ def krauth2025_snapshots_job(wildcards):
 def krauth2025_check_config():
     """Stop before any job on values the schema cannot judge alone: lines and rings too
     short for their pins, or a naive-pin run that would take forever."""
-    from kinetic.theory.krauth2025 import MAX_NAIVE_STARTS, check_pins, naive_acceptance
+    from kinetic.theory.krauth2025 import check_naive_starts, check_pins
 
     pins, ring = krauth2025_pins(), config["krauth2025"]["ring"]
     try:
@@ -98,17 +98,11 @@ def krauth2025_check_config():
         raise WorkflowError(
             f"config krauth2025.ring.step = {ring['step']} exceeds half the ring length"
         )
-    starts = (
-        pins["naive_samples"]
-        * pins["batches"]
-        / naive_acceptance(pins["n_pins"], pins["naive_length"], pins["sigma"])
-    )
-    if starts > MAX_NAIVE_STARTS:
-        raise WorkflowError(
-            f"config krauth2025.pins: naive-pin on naive_length = {pins['naive_length']} "
-            f"would start about {starts:.2g} configurations; lengthen the line or lower "
-            f"naive_samples"
-        )
+    try:
+        samples = pins["naive_samples"] * pins["batches"]
+        check_naive_starts(pins["n_pins"], pins["naive_length"], pins["sigma"], samples)
+    except ValueError as error:
+        raise WorkflowError(f"config krauth2025.pins (naive_length): {error}") from None
 
 
 krauth2025_check_config()
