@@ -362,7 +362,8 @@ def benchmark_overruns(directory: str | Path, jobs: Iterable[Job]) -> tuple[int,
     (its ``runtime`` request before rounding up to minutes) or whose peak memory
     (``max_rss``, MB) exceeds its ``mem_mb`` request. CPU time, not wall time: on a
     cluster every job has its core to itself and the two agree, while on a shared machine
-    the wall time also counts the waits for a core, which no estimate can know.
+    the wall time also counts the waits for a core, which no estimate can know (the wall
+    time stands in where a job ended before Snakemake sampled its CPU time).
     """
     import csv
 
@@ -376,7 +377,8 @@ def benchmark_overruns(directory: str | Path, jobs: Iterable[Job]) -> tuple[int,
         if not rows:
             continue
         checked += 1
-        seconds = max(float(row["cpu_time"]) for row in rows)
+        cpu = [float(row["cpu_time"]) for row in rows if row.get("cpu_time", "NA") != "NA"]
+        seconds = max(cpu) if cpu else max(float(row["s"]) for row in rows)
         memory = max(float(row["max_rss"]) for row in rows if row["max_rss"] != "NA")
         # the request before its rounding to whole minutes (at least 2): overhead + margin
         runtime = cost.JOB_OVERHEAD_SECONDS + cost.RUNTIME_SAFETY * job.estimate.cpu_seconds

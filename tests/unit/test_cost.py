@@ -124,3 +124,22 @@ def test_jobs_killed_for_time_or_memory_are_told_which_resource_to_raise():
     assert "logs/visco2008/cloning/scan/a/batch0.log" in hints[0]
     assert "montanero2007_simulate_dsmc" in hints[1] and "raise its mem_mb" in hints[1]
     assert plan.resource_hints("nothing failed") == ""
+
+
+def test_overruns_compare_the_cpu_time_a_job_used_with_its_request(tmp_path):
+    """A job that waited for a core (wall time above its request, CPU time below) is not an
+    overrun; one whose CPU time exceeds the request is; without a CPU sample the wall time
+    stands in."""
+    limit = cost.JOB_OVERHEAD_SECONDS + cost.RUNTIME_SAFETY * 10.0
+    header = "s\th:m:s\tmax_rss\tmax_vms\tmax_uss\tmax_pss\tio_in\tio_out\tmean_load\tcpu_time\n"
+    cases = {"waited": (limit + 50, limit - 1), "overran": (limit + 50, limit + 1)}
+    cases["unsampled"] = (limit + 50, "NA")
+    jobs = []
+    for name, (wall, cpu) in cases.items():
+        (tmp_path / f"{name}.tsv").write_text(
+            header + f"{wall}\t0:00:00\t10\t0\t0\t0\t0\t0\t0\t{cpu}\n"
+        )
+        jobs.append(plan.Job("d", "rule", name, Estimate(10.0, 0.0, "work"), f"{name}.tsv"))
+    checked, overruns = plan.benchmark_overruns(tmp_path, jobs)
+    assert checked == 3
+    assert [line.split(":")[0] for line in overruns] == ["overran", "unsampled"]
