@@ -10,9 +10,9 @@ The workflow uses the same job list: every simulation rule asks SLURM for the
 ``runtime`` and ``mem_mb`` of its output's entry (:func:`jobs_by_output`, through
 kinetic.cost), and before any job the workflow refuses a config with a job above the
 ``limits`` section (:func:`check_limits`) and prints the total (:func:`summary_line`).
-The paths and parameters here mirror the rule files' job plans (kinetic.studies.visco2008_cloning
-and kinetic.studies.montanero2007 are shared with them); a workflow test compares this
-list with the jobs of a Snakemake dry run.
+The paths and parameters here mirror the rule files' job plans (the study modules
+kinetic.studies.visco2008_cloning and kinetic.studies.montanero2007 are shared with
+them); a workflow test compares this list with the jobs of a Snakemake dry run.
 """
 
 from __future__ import annotations

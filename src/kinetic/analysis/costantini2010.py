@@ -310,8 +310,7 @@ def analyse_run(
     )
     cpu = curve.cpu_seconds
     fractions = [kept_blocks(k) / blocks_per_realization for k in curve.part]
-    nu_err = curve.error[:, 0] if cpu.size else cpu
-    nu_bar_err = curve.error[:, 1] if cpu.size else cpu
+    nu_err, nu_bar_err = curve.error_of(0), curve.error_of(1)
 
     time_reduced = dataset.time.values * density * math.sqrt(2.0 * temperature_s)
     temperature_mean = dataset.temperature.mean("realization").values

@@ -75,6 +75,10 @@ class ErrorCurve(NamedTuple):
     value: np.ndarray  # (parts, ...) estimates
     error: np.ndarray  # (parts, ...) their standard errors
 
+    def error_of(self, k: int) -> np.ndarray:
+        """Standard errors of the k-th estimate along the curve (empty for an empty curve)."""
+        return self.error[:, k] if self.part.size else np.empty(0)
+
 
 def error_against_cpu(
     parts: Iterable,

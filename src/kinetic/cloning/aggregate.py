@@ -353,9 +353,7 @@ def error_versus_cpu(record, steps: int = 12):
     curve = error_against_cpu(
         counts, estimate, lambda k: cpu_per_time * (transient_time + measured_time[k - 1])
     )
-    if curve.part.size == 0:
-        return np.array([]), np.array([]), np.array([])
-    return curve.cpu_seconds, curve.error[:, 0], curve.error[:, 1]
+    return curve.cpu_seconds, curve.error_of(0), curve.error_of(1)
 
 
 def error_table(records, exact: dict[float, float]) -> pd.DataFrame:

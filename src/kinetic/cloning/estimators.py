@@ -60,8 +60,7 @@ def observables_from_sums(sums, population, dimension, lam):
 
 def realization_observables(blocks, measured, population, dimension, lam):
     """Per-realization μ, T, a2, μ_rate from ``blocks`` of shape (realization, block,
-    field) summed over
-    the blocks where ``measured`` is true."""
+    field) summed over the blocks where ``measured`` is true."""
     kept = np.asarray(blocks)[:, np.asarray(measured, dtype=bool), :].sum(axis=1)
     return observables_from_sums(kept, population, dimension, lam)
 

@@ -221,17 +221,15 @@ def simulate(
         each member keep ``MIN_KEPT_COLLISIONS`` collisions (see that constant).
     n_blocks, n_realizations, first_realization, seed : int
         Blocks per realization; independent realizations, which use rows
-        ``first_realization ...`` of
-        ``stream_states(seed, ...)``; root seed of the streams.
+        ``first_realization ...`` of ``stream_states(seed, ...)``; root seed of the streams.
     histogram_half_width, histogram_bins
         Range [-w, w) and bin count of the velocity-component histogram.
     label : str, optional
         Prefix of the progress lines.
 
     Returns a Dataset with per-block sums (dims ``realization``, ``block``), estimates
-    per realization,
-    the population's velocity-component density, and the summary ``mu``, ``mu_err``,
-    ``temperature``, ``temperature_err``, ``a2``, ``a2_err``.
+    per realization, the population's velocity-component density, and the summary
+    ``mu``, ``mu_err``, ``temperature``, ``temperature_err``, ``a2``, ``a2_err``.
     """
     p = validate_parameters(
         kernel=kernel,

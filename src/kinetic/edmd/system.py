@@ -574,7 +574,7 @@ class HardSphereSystem:
             status = k.advance(
                 k.Run(t_stop, chunk, max_events, self.temperature, int(observers.observing)),
                 self._state(),
-                k.Calendar(*self._calendar_arrays()),
+                self._calendar_arrays(),
                 observers.kernel_arguments(),
             )
             self._rebase(observers)
@@ -644,9 +644,9 @@ class HardSphereSystem:
             self.counters_array,
         )
 
-    def _calendar_arrays(self) -> tuple[np.ndarray, ...]:
+    def _calendar_arrays(self) -> k.Calendar:
         """The event calendar's arrays in the order the kernels take them."""
-        return (
+        return k.Calendar(
             self.links,
             self.heads,
             self.heap_time,

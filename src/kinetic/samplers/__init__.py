@@ -31,14 +31,13 @@ from kinetic.progress import Progress
 from kinetic.rng import stream_states
 from kinetic.samplers import kernels
 from kinetic.theory.krauth2025 import (
-    MAX_NAIVE_STARTS,
+    check_disk_box,
     check_naive_starts,
     check_pins,
     naive_acceptance,
 )
 
 __all__ = [
-    "MAX_NAIVE_STARTS",
     "disk_configuration",
     "naive_acceptance",
     "pin_snapshots",
@@ -276,26 +275,12 @@ def pin_snapshots(*, n_pins: int, length: float, sigma: float, count: int, seed:
     return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
 
 
-def _check_disks(n_disks: int, sigma: float, box) -> tuple[float, float]:
-    n_disks = _positive_int("n_disks", n_disks)
-    if not (math.isfinite(sigma) and sigma > 0):
-        raise ValueError(f"sigma (disk radius) must be finite and > 0, got {sigma!r}")
-    box_x, box_y = (float(side) for side in box)
-    if not (math.isfinite(box_x) and math.isfinite(box_y) and min(box_x, box_y) > 2 * sigma):
-        raise ValueError(f"box {box!r} cannot hold a disk of radius {sigma}")
-    if n_disks * math.pi * sigma**2 > 0.9 * box_x * box_y:
-        raise ValueError(
-            f"{n_disks} disks of radius {sigma} cover more than 90 % of the box {box!r}"
-        )
-    return box_x, box_y
-
-
 def disk_configuration(
     n_disks: int, sigma: float, box=(1.0, 1.0), *, state: np.ndarray, max_starts: int = 10**8
 ) -> np.ndarray:
     """(N, 2) centres of one direct-disks configuration drawn with the stream ``state``;
     ``ValueError`` if ``max_starts`` tries do not produce one (too dense for Alg. 4.4)."""
-    box_x, box_y = _check_disks(n_disks, sigma, box)
+    box_x, box_y = check_disk_box(n_disks, sigma, box)
     n_disks, sigma = int(n_disks), float(sigma)
     positions = np.zeros((n_disks, 2))
     if (
@@ -331,7 +316,7 @@ def sample_disks(
     [−step, step]², after ``burn_in`` sweeps from a direct-disks start)."""
     if method not in ("direct", "markov"):
         raise ValueError(f"method must be 'direct' or 'markov', got {method!r}")
-    box_x, box_y = _check_disks(n_disks, sigma, box)
+    box_x, box_y = check_disk_box(n_disks, sigma, box)
     n_disks, sigma, step = int(n_disks), float(sigma), float(step)
     samples = _positive_int("samples", samples)
     batches = _positive_int("batches", batches, 2)

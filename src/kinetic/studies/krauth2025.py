@@ -2,19 +2,21 @@
 
 The direct-disks sampler (Alg. 4.4) draws every disk uniformly and starts again on any
 overlap; when legal configurations are too rare it never returns. ``check_disks`` proves
-that the box of the config is samplable before any job starts, with numpy alone (the
-workflow calls it while parsing the Snakefile, where loading numba would cost a second):
-it draws candidate configurations in vectorized chunks, disk by disk, and keeps those
-still free of overlaps.
+that the box of the config is samplable before any job starts: after the geometric checks
+the sampler's front makes too (``theory.krauth2025.check_disk_box``), it draws candidate
+configurations in vectorized chunks, disk by disk, and keeps those still free of
+overlaps, with numpy alone (the workflow calls it while parsing the Snakefile, where
+loading numba would cost a second).
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
+
+from kinetic.theory.krauth2025 import check_disk_box
 
 __all__ = ["check_disks"]
 
@@ -40,12 +42,8 @@ def _legal_configuration(n_disks, sigma, box, tries, rng, chunk=20_000) -> bool:
 def check_disks(disks: Mapping[str, Any], tries: int = 10**6, seed: int = 0) -> None:
     """Raise ``ValueError`` unless direct-disks can sample ``disks`` (config
     ``krauth2025.disks``: ``n_disks``, ``sigma``, ``box``) within ``tries`` draws."""
-    n_disks, sigma = int(disks["n_disks"]), float(disks["sigma"])
-    box = tuple(float(side) for side in disks["box"])
-    if min(box) <= 2 * sigma:
-        raise ValueError(f"box {list(box)} cannot hold a disk of radius {sigma}")
-    if n_disks * math.pi * sigma**2 > 0.9 * box[0] * box[1]:
-        raise ValueError(f"{n_disks} disks of radius {sigma} cover more than 90 % of the box")
+    n_disks, sigma = disks["n_disks"], float(disks["sigma"])
+    box = check_disk_box(n_disks, sigma, disks["box"])
     if not _legal_configuration(n_disks, sigma, box, tries, np.random.default_rng(seed)):
         raise ValueError(
             f"direct-disks found no legal configuration of {n_disks} disks of radius "

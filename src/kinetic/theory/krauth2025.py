@@ -34,6 +34,7 @@ from scipy.special import gammaln
 __all__ = [
     "MAX_NAIVE_STARTS",
     "bin_average",
+    "check_disk_box",
     "check_naive_starts",
     "check_pins",
     "line_dataset",
@@ -63,6 +64,24 @@ def check_pins(n_pins: int, length: float, sigma: float) -> None:
             f"a line of length {length!r} cannot hold {n_pins} pins of width 2 sigma = "
             f"{2 * sigma:g}: it needs length > {2 * n_pins * sigma:g}"
         )
+
+
+def check_disk_box(n_disks: int, sigma: float, box) -> tuple[float, float]:
+    """Raise ``ValueError`` unless N ≥ 1 disks of radius σ > 0 can stand in the box with
+    walls ``box`` = (L_x, L_y) (each side above 2σ, the disks covering at most 90 % of the
+    area); returns the sides as floats."""
+    if isinstance(n_disks, bool) or not isinstance(n_disks, int | np.integer) or n_disks < 1:
+        raise ValueError(f"n_disks must be an integer >= 1, got {n_disks!r}")
+    if not (math.isfinite(sigma) and sigma > 0):
+        raise ValueError(f"sigma (disk radius) must be finite and > 0, got {sigma!r}")
+    box_x, box_y = (float(side) for side in box)
+    if not (math.isfinite(box_x) and math.isfinite(box_y) and min(box_x, box_y) > 2 * sigma):
+        raise ValueError(f"box {box!r} cannot hold a disk of radius {sigma}")
+    if n_disks * math.pi * sigma**2 > 0.9 * box_x * box_y:
+        raise ValueError(
+            f"{n_disks} disks of radius {sigma} cover more than 90 % of the box {box!r}"
+        )
+    return box_x, box_y
 
 
 def naive_acceptance(n_pins: int, length: float, sigma: float) -> float:
