@@ -11,6 +11,9 @@ For every table (``*.csv``) and dataset (``*.nc``) under either tree, by relativ
   patterns) are skipped, and so is the build's own record under ``workflow/``: they
   differ between any two runs of the same code.
 
+``--rename old=new`` maps a dimension or variable name of the first tree to its name in
+the second, for a refactor that renamed a dimension but no number.
+
 Prints one line per differing file (the largest absolute and relative difference of each
 variable or column) and a summary; exits 1 when anything differs, 0 otherwise. Used to
 show that a refactor changed no number: build the same config with the same seed before
@@ -93,10 +96,17 @@ def _compare_tables(path_a: Path, path_b: Path, rtol, atol, patterns) -> list[st
     return problems
 
 
-def _compare_datasets(path_a: Path, path_b: Path, rtol, atol, patterns) -> list[str]:
+def _compare_datasets(path_a: Path, path_b: Path, rtol, atol, patterns, renames=None) -> list[str]:
     import xarray as xr
 
     with xr.open_dataset(path_a) as a, xr.open_dataset(path_b) as b:
+        a = a.rename(
+            {
+                old: new
+                for old, new in (renames or {}).items()
+                if old in a.variables or old in a.dims
+            }
+        )
         names_a = {n for n in a.variables if not _skipped(str(n), patterns)}
         names_b = {n for n in b.variables if not _skipped(str(n), patterns)}
         problems = [f"variable {n} only in the first" for n in sorted(names_a - names_b, key=str)]
@@ -114,10 +124,18 @@ def _compare_datasets(path_a: Path, path_b: Path, rtol, atol, patterns) -> list[
 
 
 def compare_trees(
-    first: Path, second: Path, *, rtol: float = 0.0, atol: float = 0.0, ignore=()
+    first: Path,
+    second: Path,
+    *,
+    rtol: float = 0.0,
+    atol: float = 0.0,
+    ignore=(),
+    renames=None,
 ) -> Report:
     """Compare every ``*.csv`` and ``*.nc`` under ``first`` and ``second`` (see the module
-    docstring); ``ignore`` adds glob patterns of variable or column names to skip."""
+    docstring); ``ignore`` adds glob patterns of variable or column names to skip;
+    ``renames`` maps dataset dimension and variable names of ``first`` to those of
+    ``second``."""
     first, second = Path(first), Path(second)
     patterns = TIMING_PATTERNS + tuple(p.lower() for p in ignore)
     report = Report()
@@ -135,8 +153,11 @@ def compare_trees(
             report.differences.append(f"{relative}: only in {first if a.exists() else second}")
             continue
         report.compared += 1
-        compare = _compare_tables if relative.suffix == ".csv" else _compare_datasets
-        for problem in compare(a, b, rtol, atol, patterns):
+        if relative.suffix == ".csv":
+            problems = _compare_tables(a, b, rtol, atol, patterns)
+        else:
+            problems = _compare_datasets(a, b, rtol, atol, patterns, renames)
+        for problem in problems:
             report.differences.append(f"{relative}: {problem}")
     return report
 
@@ -152,12 +173,30 @@ def main(argv=None) -> int:
     parser.add_argument(
         "--ignore", action="append", default=[], help="glob of variable/column names to skip"
     )
+    parser.add_argument(
+        "--rename",
+        action="append",
+        default=[],
+        metavar="OLD=NEW",
+        help="a dataset dimension or variable named OLD in the first tree is NEW in the second",
+    )
     args = parser.parse_args(argv)
+    renames = {}
+    for pair in args.rename:
+        old, sep, new = pair.partition("=")
+        if not (sep and old and new):
+            parser.error(f"--rename takes OLD=NEW, got {pair!r}")
+        renames[old] = new
     for directory in (args.first, args.second):
         if not directory.is_dir():
             parser.error(f"{directory} is not a directory")
     report = compare_trees(
-        args.first, args.second, rtol=args.rtol, atol=args.atol, ignore=args.ignore
+        args.first,
+        args.second,
+        rtol=args.rtol,
+        atol=args.atol,
+        ignore=args.ignore,
+        renames=renames,
     )
     for line in report.differences:
         print(line)

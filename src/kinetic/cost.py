@@ -379,11 +379,11 @@ def sampler_line(
     length: float,
     sigma: float,
     samples: int,
-    batches: int,
+    realizations: int,
     **_: object,
 ) -> Estimate:
-    """kinetic.samplers.sample_line: ``samples`` x ``batches`` configurations."""
-    configurations = samples * batches
+    """kinetic.samplers.sample_line: ``samples`` x ``realizations`` configurations."""
+    configurations = samples * realizations
     if method == "naive":
         free = length - 2 * n_pins * sigma
         acceptance = (free / (length - 2 * sigma)) ** n_pins if free > 0 else 0.0
@@ -394,9 +394,11 @@ def sampler_line(
     return Estimate(seconds, 10.0, f"{configurations:.2e} configurations")
 
 
-def sampler_ring(*, n_pins: int, sweeps: int, burn_in: int, chains: int, **_: object) -> Estimate:
-    """kinetic.samplers.sample_ring: ``chains`` x (burn_in + sweeps) sweeps."""
-    total = chains * (sweeps + burn_in)
+def sampler_ring(
+    *, n_pins: int, sweeps: int, burn_in: int, realizations: int, **_: object
+) -> Estimate:
+    """kinetic.samplers.sample_ring: ``realizations`` x (burn_in + sweeps) sweeps."""
+    total = realizations * (sweeps + burn_in)
     seconds = total / RING_SWEEPS_PER_SECOND * n_pins / 15.0
     return Estimate(seconds, 10.0, f"{total:.2e} sweeps")
 
@@ -406,16 +408,16 @@ def sampler_disks(
     *,
     n_disks: int,
     samples: int,
-    batches: int,
+    realizations: int,
     burn_in: int = 0,
     **_: object,
 ) -> Estimate:
     """kinetic.samplers.sample_disks: direct-disks configurations or markov-disks sweeps."""
     if method == "markov":
-        total = batches * (samples + burn_in)
+        total = realizations * (samples + burn_in)
         seconds = total / MARKOV_DISKS_SWEEPS_PER_SECOND * n_disks / 4.0
         return Estimate(seconds, 10.0, f"{total:.2e} sweeps")
-    total = batches * samples
+    total = realizations * samples
     seconds = total / DIRECT_DISKS_PER_SECOND * (n_disks / 4.0) ** 2
     return Estimate(seconds, 10.0, f"{total:.2e} configurations")
 

@@ -211,7 +211,7 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
             length=float(pins[key]),
             sigma=pins["sigma"],
             samples=pins[f"{method}_samples"],
-            batches=pins["batches"],
+            realizations=pins["realizations"],
         )
     for name, estimate in lines.items():
         jobs.append(
@@ -263,7 +263,7 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
                     method,
                     n_disks=disks["n_disks"],
                     samples=disks[samples],
-                    batches=disks["batches"],
+                    realizations=disks["sampler_realizations"],
                     burn_in=disks["burn_in"] if method == "markov" else 0,
                 ),
                 f"logs/benchmarks/krauth2025/disks/{method}.tsv",

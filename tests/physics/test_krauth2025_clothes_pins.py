@@ -1,7 +1,7 @@
 """Clothes-pin samplers (krauth2025 §4.4.1) against the exact densities of Eqs. (4.6, 4.7).
 
 Each test runs fixed seeds; the tolerances are the samples' own standard errors (from
-the spread of B = 16 independent batches or chains, so a bin's z-score follows Student's
+the spread of B = 16 independent realizations (runs or chains), so a bin's z-score follows Student's
 t with 15 degrees of freedom): every bin within 4.5 standard errors (P(|t| > 4.5) =
 4e-4 per bin), and the mean of z² over the bins within 4 of its own standard deviations
 of its expectation (bins on the line are nearly independent).
@@ -22,11 +22,11 @@ def _z_scores(measured, error, exact):
     return (measured[filled] - exact[filled]) / error[filled]
 
 
-def _check(z, batches):
+def _check(z, realizations):
     assert np.abs(z).max() < 4.5
     # t with ν = B − 1 degrees of freedom: E[t²] = ν/(ν − 2), Var[t²] =
     # 2ν²(ν − 1)/((ν − 2)²(ν − 4)); the mean over the bins has Var[t²]/bins
-    nu = batches - 1
+    nu = realizations - 1
     mean_square = nu / (nu - 2)
     variance = 2 * nu**2 * (nu - 1) / ((nu - 2) ** 2 * (nu - 4))
     assert np.mean(z**2) < mean_square + 4 * np.sqrt(variance / z.size)
@@ -37,23 +37,23 @@ def _check(z, batches):
     [("direct", 20.0, 50_000), ("naive", 40.0, 500), ("direct", 40.0, 50_000)],
 )
 def test_line_density_matches_eq_4_7(method, length, samples):
-    n, sigma, batches = 15, 0.5, 16
+    n, sigma, realizations = 15, 0.5, 16
     data = sample_line(
         method,
         n_pins=n,
         length=length,
         sigma=sigma,
         samples=samples,
-        batches=batches,
+        realizations=realizations,
         bins=78,
         seed=11,
     )
     exact = theory.bin_average(
         lambda x: n * theory.pin_density(x, n, length, sigma), data.bin_edges.values
     )
-    _check(_z_scores(data.density.values, data.density_sem.values, exact), batches)
+    _check(_z_scores(data.density.values, data.density_sem.values, exact), realizations)
     # every configuration puts its N pins inside [σ, L − σ]
-    assert int(data.counts.sum()) == n * samples * batches
+    assert int(data.counts.sum()) == n * samples * realizations
 
 
 @pytest.mark.parametrize(("method", "samples"), [("direct", 20_000), ("naive", 500)])
@@ -61,21 +61,21 @@ def test_wall_rift_pressure_is_the_contact_density(method, samples):
     """§4.4.3 in one dimension: the pin density at contact with a post is βP, exactly
     N/(L − 2Nσ) = 0.6 for 15 pins of width 1 on L = 40; the extrapolation to the post
     leaves no visible bias on the exact bin averages."""
-    n, length, sigma, batches = 15, 40.0, 0.5, 12
+    n, length, sigma, realizations = 15, 40.0, 0.5, 12
     data = sample_line(
         method,
         n_pins=n,
         length=length,
         sigma=sigma,
         samples=samples,
-        batches=batches,
+        realizations=realizations,
         bins=390,
         seed=13,
     )
     edges = data.bin_edges.values
     width = edges[1] - edges[0]
-    per_batch = data.counts.values / (samples * width)
-    contact, sem = mean_and_sem([pin_contact_density(edges, row) for row in per_batch])
+    per_realization = data.counts.values / (samples * width)
+    contact, sem = mean_and_sem([pin_contact_density(edges, row) for row in per_realization])
     beta_p = n / (length - 2 * n * sigma)
     assert abs(contact - beta_p) < 4.5 * sem
     assert sem < 0.05 * beta_p  # the check has power
@@ -86,19 +86,19 @@ def test_wall_rift_pressure_is_the_contact_density(method, samples):
 def test_naive_acceptance_is_the_ratio_of_partition_functions():
     """Tabula-rasa rejection keeps a started configuration with probability
     Z_{N,L}/(L − 2σ)^N (Eq. 4.6): the counted fraction agrees within 4 standard errors."""
-    n, length, sigma, samples, batches = 10, 25.0, 0.5, 2000, 16
+    n, length, sigma, samples, realizations = 10, 25.0, 0.5, 2000, 16
     data = sample_line(
         "naive",
         n_pins=n,
         length=length,
         sigma=sigma,
         samples=samples,
-        batches=batches,
+        realizations=realizations,
         bins=10,
         seed=5,
     )
-    per_batch = samples / data.started.values
-    mean, error = per_batch.mean(), per_batch.std(ddof=1) / np.sqrt(batches)
+    per_realization = samples / data.started.values
+    mean, error = per_realization.mean(), per_realization.std(ddof=1) / np.sqrt(realizations)
     expected = theory.partition_function(n, length, sigma) / (length - 2 * sigma) ** n
     assert expected == pytest.approx(naive_acceptance(n, length, sigma))
     assert abs(mean - expected) < 4 * error
@@ -106,7 +106,7 @@ def test_naive_acceptance_is_the_ratio_of_partition_functions():
 
 
 def test_ring_pair_density_matches_the_mapping():
-    n, length, sigma, chains = 15, 20.0, 0.5, 16
+    n, length, sigma, realizations = 15, 20.0, 0.5, 16
     data = sample_ring(
         n_pins=n,
         length=length,
@@ -114,7 +114,7 @@ def test_ring_pair_density_matches_the_mapping():
         step=0.5,
         sweeps=5000,
         burn_in=500,
-        chains=chains,
+        realizations=realizations,
         bins=80,
         seed=3,
     )
@@ -155,7 +155,7 @@ def test_markov_moves_never_create_an_overlap():
     [
         ({"method": "naive", "length": 20.0, "samples": 10_000}, "naive-pin would start"),
         ({"method": "direct", "length": 7.0}, "cannot hold"),
-        ({"method": "direct", "batches": 1}, "batches"),
+        ({"method": "direct", "realizations": 1}, "realizations"),
         ({"method": "direct", "samples": -5}, "samples"),
         ({"method": "rejection"}, "method"),
     ],
@@ -166,7 +166,7 @@ def test_bad_line_arguments_fail_before_sampling(kwargs, message):
         "length": 20.0,
         "sigma": 0.5,
         "samples": 10,
-        "batches": 4,
+        "realizations": 4,
         "bins": 10,
         "seed": 1,
     }
@@ -182,10 +182,17 @@ def test_fronts_compile_one_signature_per_kernel():
     (a job compiling a new signature into the shared numba cache could corrupt it)."""
     for length, sigma in ((20, 1), (20.0, 0.5)):
         sample_line(
-            "direct", n_pins=3, length=length, sigma=sigma, samples=2, batches=2, bins=4, seed=0
+            "direct",
+            n_pins=3,
+            length=length,
+            sigma=sigma,
+            samples=2,
+            realizations=2,
+            bins=4,
+            seed=0,
         )
         sample_line(
-            "naive", n_pins=3, length=length, sigma=sigma, samples=2, batches=2, bins=4, seed=0
+            "naive", n_pins=3, length=length, sigma=sigma, samples=2, realizations=2, bins=4, seed=0
         )
         sample_ring(
             n_pins=3,
@@ -194,7 +201,7 @@ def test_fronts_compile_one_signature_per_kernel():
             step=1,
             sweeps=2,
             burn_in=0,
-            chains=2,
+            realizations=2,
             bins=4,
             seed=0,
         )

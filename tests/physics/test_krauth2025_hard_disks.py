@@ -3,7 +3,7 @@ cell/calendar engine, equal probability (MD against direct-disks and markov-disk
 pressure estimators and the finite-N averages of Eqs. (4.13, 4.14).
 
 Fixed seeds; tolerances are 4.5 standard errors of the runs themselves (spread of
-independent realizations or batches), combined when two estimates are compared.
+independent realizations), combined when two estimates are compared.
 """
 
 import math
@@ -42,7 +42,7 @@ def md():
 @pytest.fixture(scope="module")
 def direct():
     return sample_disks(
-        "direct", n_disks=N, sigma=SIGMA, samples=40_000, batches=12, bins=35, seed=22
+        "direct", n_disks=N, sigma=SIGMA, samples=40_000, realizations=12, bins=35, seed=22
     )
 
 
@@ -97,7 +97,7 @@ def test_molecular_dynamics_samples_the_equal_probability_distribution(md, direc
     """Eq. (4.3) along the trajectories, the stroboscopic snapshots, direct-disks and
     markov-disks give the same y-density (it is not flat)."""
     markov = sample_disks(
-        "markov", n_disks=N, sigma=SIGMA, samples=40_000, batches=12, bins=35, seed=23
+        "markov", n_disks=N, sigma=SIGMA, samples=40_000, realizations=12, bins=35, seed=23
     )
     reference, reference_sem = direct["density"].values, direct["density_sem"].values
     for name in ("density_trajectory", "density_snapshots"):

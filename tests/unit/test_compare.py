@@ -46,3 +46,18 @@ def test_a_changed_number_or_a_missing_file_is_reported(tmp_path):
     assert main([str(a), str(b)]) == 1
     # within a tolerance the numbers agree; the extra file still differs
     assert len(compare_trees(a, b, rtol=1e-9).differences) == 1
+
+
+def test_a_renamed_dimension_is_the_same_numbers_only_when_mapped(tmp_path):
+    a = _tree(tmp_path / "a")
+    b = _tree(tmp_path / "b")
+    renamed = xr.open_dataset(b / "doc" / "run.nc").load().rename({"x": "realization"})
+    renamed.to_netcdf(b / "doc" / "run.nc")
+    assert "dimensions ('x',) against ('realization',)" in "\n".join(
+        compare_trees(a, b).differences
+    )
+    assert compare_trees(a, b, renames={"x": "realization"}).identical
+    assert main([str(a), str(b), "--rename", "x=realization"]) == 0
+    # the map renames names only: a changed number still shows
+    c = _tree(tmp_path / "c", value=2.0)
+    assert not compare_trees(c, b, renames={"x": "realization"}).identical

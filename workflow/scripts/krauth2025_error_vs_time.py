@@ -1,7 +1,7 @@
 """krauth2025 error against CPU time, for every method of the document (rule
 krauth2025_error_vs_time), from the runs the figures use: for each method a headline
-quantity is measured once per independent batch (realization, chain); the standard error
-of the first k batches is drawn against their summed CPU time (points), with the
+quantity is measured once per independent realization (a run or a chain); the standard
+error of the first k realizations is drawn against their summed CPU time (points), with the
 1/√(CPU time) law through the full run (line). The table gives, per method, the total CPU
 time, the standard error, the error at one CPU-second (σ √t) and the CPU time a relative
 error of 0.1 % would take, so a user can pick the cheapest method and run length. All the
@@ -22,7 +22,7 @@ start(snakemake)
 
 
 def middle(data, name, axis):
-    """Per-group mean of a histogrammed density over the middle fifth of its range."""
+    """Per-realization mean of a histogrammed density over the middle fifth of its range."""
     centres = data[axis].values
     span = data["bin_edges"].values[[0, -1]]
     inside = np.abs(centres - span.mean()) < 0.1 * (span[1] - span[0])

@@ -2,7 +2,7 @@
 four disks in a box, from event-disks trajectories (Eq. 4.3: time spent per bin, i.e.
 Σ 1/|v_y| over the crossings of a strip, over T) and from their stroboscopic snapshots,
 against direct-disks (Alg. 4.4) and markov-disks (Alg. 4.5); standard errors across
-independent realizations or batches. It is not flat: the walls attract the disks."""
+independent realizations. It is not flat: the walls attract the disks."""
 
 from kinetic import io, plotting
 from kinetic.analysis.statistics import mean_and_sem

@@ -26,7 +26,7 @@ plotting.errorbar(
     data["pair_density"].values[::every],
     data["pair_density_sem"].values[::every],
     ms=2.5,
-    label=f"Markov chains ({int(attrs['chains'])})",
+    label=f"Markov chains ({int(attrs['realizations'])})",
 )
 ax.set_xlabel("forward distance $r$ on the ring")
 ax.set_ylabel("density of the other pins")

@@ -1,13 +1,13 @@
 """krauth2025 §4.4.1 in numbers (rule krauth2025_pins_table): for each washing-line sample,
 the pin density in the bins at the posts and in the middle fifth of the line, their ratio
 ("the density there is 4 times larger than in the bulk") and naive-pin's acceptance, each
-with its standard error across batches, beside the exact values (Eqs. 4.6, 4.7 averaged
+with its standard error across realizations, beside the exact values (Eqs. 4.6, 4.7 averaged
 over the same bins; ``post_over_centre_exact`` is Eq. 4.7 at the post over its value at
 the centre, the lecture's "4 times"). Acceptance columns are naive-pin's only.
 
 The 1-D check of the wall-rift pressure (§4.4.3): removing a slab at a wall eliminates the
 configurations with a pin touching it, so βP is the pin density at contact, here
-extrapolated to the post from the first bins of each batch
+extrapolated to the post from the first bins of each realization
 (``analysis.krauth2025.pin_contact_density``), against the exact βP = N/(L − 2Nσ) of N
 pins of width 2σ between hard walls (columns beta_p_*); beta_p_extrapolation_bias is the
 same fit applied to the exact bin averages minus the exact βP, the part of the difference
@@ -32,16 +32,16 @@ for path in snakemake.input.lines:
     length, samples = float(run.attrs["length"]), int(run.attrs["samples"])
     x = run["x"].values
     width = float(run["bin_edges"][1] - run["bin_edges"][0])
-    per_batch = run["counts"].values / (samples * width)
+    per_realization = run["counts"].values / (samples * width)
     walls = [0, x.size - 1]
     middle = np.abs(x - 0.5 * length) < 0.1 * length
-    wall_b = per_batch[:, walls].mean(axis=1)
-    bulk_b = per_batch[:, middle].mean(axis=1)
-    wall, wall_sem = mean_and_sem(wall_b)
-    bulk, bulk_sem = mean_and_sem(bulk_b)
+    wall_r = per_realization[:, walls].mean(axis=1)
+    bulk_r = per_realization[:, middle].mean(axis=1)
+    wall, wall_sem = mean_and_sem(wall_r)
+    bulk, bulk_sem = mean_and_sem(bulk_r)
     ratio = wall / bulk
-    n_batches = wall_b.size
-    covariance = np.cov(wall_b, bulk_b)[0, 1] / n_batches
+    n_realizations = wall_r.size
+    covariance = np.cov(wall_r, bulk_r)[0, 1] / n_realizations
     ratio_sem = abs(ratio) * math.sqrt(
         (wall_sem / wall) ** 2 + (bulk_sem / bulk) ** 2 - 2 * covariance / (wall * bulk)
     )
@@ -51,8 +51,8 @@ for path in snakemake.input.lines:
     curve = theory[length]["density_curve"].values
     at_post = curve[0] / np.interp(0.5 * length, theory[length]["x_curve"].values, curve)
     edges = run["bin_edges"].values
-    contact_b = np.array([contact_density(edges, row) for row in per_batch])
-    contact, contact_sem = mean_and_sem(contact_b)
+    contact_r = np.array([contact_density(edges, row) for row in per_realization])
+    contact, contact_sem = mean_and_sem(contact_r)
     n_pins, sigma = int(run.attrs["n_pins"]), float(run.attrs["sigma"])
     beta_p_exact = n_pins / (length - 2 * n_pins * sigma)
     rows.append(
@@ -61,7 +61,7 @@ for path in snakemake.input.lines:
             "n_pins": int(run.attrs["n_pins"]),
             "length": length,
             "bin_width": width,
-            "configurations": samples * n_batches,
+            "configurations": samples * n_realizations,
             "wall_density": wall,
             "wall_density_sem": wall_sem,
             "wall_density_exact": exact[walls].mean(),

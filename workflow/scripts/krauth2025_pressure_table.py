@@ -7,8 +7,8 @@ pair collisions against their finite-N values; then βP from the rate of wall hi
 (4.9b) times the finite-N flux average (4.9c, = β times 4.10c) and times its N → ∞ limit
 (4.9d, = β times 4.10d corrected): at N = 4 the two differ by Γ(N+1/2)/(Γ(N)√N) = 0.969,
 and the z-scores say which the measured pressure follows. Each measured row: mean and standard error
-across independent realizations (batches for direct-disks); ``z`` = (value − reference) /
-standard error, with the reference's own standard error (direct-disks batches) combined.
+across independent realizations (runs or chains for the samplers); ``z`` = (value − reference) /
+standard error, with the reference's own standard error (direct-disks realizations) combined.
 (4.14a) is compared with its corrected value; the printed one is listed."""
 
 import math

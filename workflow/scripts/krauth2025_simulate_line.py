@@ -1,5 +1,6 @@
 """One washing-line sample of krauth2025 §4.4.1 (rule krauth2025_simulate_line): the pin
-density by naive-pin or direct-pin, with standard errors across batches (the exact
+density by naive-pin or direct-pin, with standard errors across
+realizations (the exact
 density beside it comes from rule krauth2025_theory_line)."""
 
 from kinetic.samplers import sample_line
@@ -12,7 +13,7 @@ write_output(snakemake, data, job["seed"])
 log.info(
     "wrote %s: %d configurations (%d started) in %.1f CPU s",
     snakemake.output[0],
-    job["samples"] * job["batches"],
+    job["samples"] * job["realizations"],
     int(data.started.sum()),
     float(data.cpu_seconds.sum()),
 )

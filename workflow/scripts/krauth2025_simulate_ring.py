@@ -12,7 +12,7 @@ write_output(snakemake, data, job["seed"])
 log.info(
     "wrote %s: %d chains, acceptance %.3f, %.1f CPU s",
     snakemake.output[0],
-    job["chains"],
+    job["realizations"],
     float(data.acceptance.mean()),
     float(data.cpu_seconds.sum()),
 )

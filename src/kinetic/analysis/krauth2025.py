@@ -1,7 +1,7 @@
 """Pressure of hard disks in a box with walls from the krauth2025 runs (§4.4.3).
 
-Per independent realization (or batch), from the datasets of ``kinetic.edmd.disks`` and
-``kinetic.samplers.sample_disks``:
+Per independent realization (an MD run, a sampler's run or chain), from the datasets of
+``kinetic.edmd.disks`` and ``kinetic.samplers.sample_disks``:
 
 - ``wall_pressures``: βP by the wall rift, Eq. (4.9a), (1/(2 L τ)) Σ 2/|v⊥| over the hits
   of the chosen walls of total length 2L, and by the kinematic estimator, Eq. (4.10a)
@@ -73,7 +73,7 @@ def rate_pressures(md: xr.Dataset, faces: str) -> tuple[np.ndarray, np.ndarray]:
 
 
 def contact_pressure(data: xr.Dataset) -> np.ndarray:
-    """βP = η(σ)/L_x per realization (MD: its Eq. 4.3 density) or per batch (a sampler:
+    """βP = η(σ)/L_x per realization (MD: its Eq. 4.3 density; a sampler:
     its counts)."""
     edges = data["bin_edges"].values
     if "density_trajectory" in data:

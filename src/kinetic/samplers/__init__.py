@@ -1,9 +1,9 @@
 """Direct and Markov-chain samplers of krauth2025 (§4.4.1: random clothes-pins).
 
 Fronts that validate their arguments, run the numba kernels of
-``kinetic.samplers.kernels`` in independent seeded batches and return an
-``xarray.Dataset`` (conventions of ``kinetic.io``) whose densities carry the standard
-error of the batch means:
+``kinetic.samplers.kernels`` in independent seeded realizations (a run of one sampler,
+or one Markov chain) and return an ``xarray.Dataset`` (conventions of ``kinetic.io``)
+whose densities carry the standard error of the realization means:
 
 - ``sample_line``: pin-centre density n(x) = N π(x) of N pins on a washing line [0, L],
   by naive-pin (Alg. 4.6) or direct-pin (Alg. 4.7);
@@ -62,18 +62,17 @@ def _density_dataset(
     *,
     name: str,
     axis: str,
-    group: str,
     what: str,
     extra: dict,
     parameters: dict,
     seed: int,
 ) -> xr.Dataset:
-    """Dataset of a histogrammed density from independent groups (batches or chains):
-    ``counts`` (groups, bins) on [lower, upper), each group of ``per_sample`` samples
-    times its members; ``name`` (per unit length, mean of the groups) and ``name_sem``
-    (standard error from their spread), the counts, the bin edges and ``extra``
-    variables (on the group dimension)."""
-    groups, bins = counts.shape
+    """Dataset of a histogrammed density from independent realizations: ``counts``
+    (realizations, bins) on [lower, upper), each realization of ``per_sample`` samples
+    times its members; ``name`` (per unit length, mean of the realizations) and
+    ``name_sem`` (standard error from their spread), the counts, the bin edges and
+    ``extra`` variables (on the realization dimension)."""
+    realizations, bins = counts.shape
     width = (upper - lower) / bins
     mean, sem = mean_and_sem(counts / (per_sample * width))
     edges = np.linspace(lower, upper, bins + 1)
@@ -83,15 +82,15 @@ def _density_dataset(
             axis,
             sem,
             "1/length",
-            f"standard error of the {name.replace('_', ' ')} (spread of the {group} means)",
+            f"standard error of the {name.replace('_', ' ')} (spread of the realization means)",
         ),
-        "counts": ((group, axis), counts, "1", f"samples counted per bin and {group}"),
+        "counts": (("realization", axis), counts, "1", "samples counted per bin and realization"),
         "bin_edges": ("edge", edges, "length", "bin edges"),
         **extra,
     }
     coords = {
         axis: (axis, 0.5 * (edges[1:] + edges[:-1]), "length", f"{axis} (bin middle)"),
-        group: (group, np.arange(groups), "1", f"independent {group}"),
+        "realization": ("realization", np.arange(realizations), "1", "independent realization"),
         "edge": ("edge", np.arange(bins + 1), "1", "bin edge index"),
     }
     return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
@@ -104,45 +103,48 @@ def sample_line(
     length: float,
     sigma: float,
     samples: int,
-    batches: int,
+    realizations: int,
     bins: int,
     seed: int,
 ) -> xr.Dataset:
-    """Pin-centre density on [σ, L − σ] from ``batches`` independent batches of
+    """Pin-centre density on [σ, L − σ] from ``realizations`` independent runs of
     ``samples`` configurations each (``method`` 'naive' or 'direct').
 
-    Returns ``density`` (pins per unit length, the mean of the batches), its standard
-    error ``density_sem``, the per-batch ``counts`` and, for naive-pin, the configurations
-    ``started`` per batch (their accepted fraction estimates Z_{N,L}/(L − 2σ)^N).
+    Returns ``density`` (pins per unit length, the mean of the realizations), its
+    standard error ``density_sem``, the ``counts`` per realization and, for naive-pin,
+    the configurations ``started`` per realization (their accepted fraction estimates
+    Z_{N,L}/(L − 2σ)^N).
     """
     if method not in ("naive", "direct"):
         raise ValueError(f"method must be 'naive' or 'direct', got {method!r}")
     check_pins(n_pins, length, sigma)
     n_pins, length, sigma = int(n_pins), float(length), float(sigma)  # the compiled types
     samples = _positive_int("samples", samples)
-    batches = _positive_int("batches", batches, 2)
+    realizations = _positive_int("realizations", realizations, 2)
     bins = _positive_int("bins", bins)
     if method == "naive":
-        check_naive_starts(n_pins, length, sigma, samples * batches)
+        check_naive_starts(n_pins, length, sigma, samples * realizations)
     lower, upper = sigma, length - sigma
-    states = stream_states(seed, batches)
-    counts = np.zeros((batches, bins), dtype=np.int64)
-    started = np.zeros(batches, dtype=np.int64)
+    states = stream_states(seed, realizations)
+    counts = np.zeros((realizations, bins), dtype=np.int64)
+    started = np.zeros(realizations, dtype=np.int64)
     positions = np.zeros(n_pins)
-    cpu = np.zeros(batches)
-    progress = Progress(batches, label=f"{method}-pin N={n_pins} L={length:g}", unit="batches")
+    cpu = np.zeros(realizations)
+    progress = Progress(
+        realizations, label=f"{method}-pin N={n_pins} L={length:g}", unit="realizations"
+    )
     # load the compiled kernel before the clock runs (no samples, no draws)
     kernel = kernels.naive_pin if method == "naive" else kernels.direct_pin
     kernel(n_pins, length, sigma, 0, states[0].copy(), positions, counts[0], lower, upper)
-    for b in range(batches):
+    for r in range(realizations):
         begin = time.process_time()
-        arguments = (n_pins, length, sigma, samples, states[b], positions, counts[b], lower, upper)
+        arguments = (n_pins, length, sigma, samples, states[r], positions, counts[r], lower, upper)
         if method == "naive":
-            started[b] = kernels.naive_pin(*arguments)[0]
+            started[r] = kernels.naive_pin(*arguments)[0]
         else:
             kernels.direct_pin(*arguments)
-            started[b] = samples
-        cpu[b] = time.process_time() - begin
+            started[r] = samples
+        cpu[r] = time.process_time() - begin
         progress.update(1)
     parameters = {
         "method": method,
@@ -150,12 +152,17 @@ def sample_line(
         "length": float(length),
         "sigma": float(sigma),
         "samples": samples,
-        "batches": batches,
+        "realizations": realizations,
         "bins": bins,
     }
     extra = {
-        "started": ("batch", started, "1", "configurations started (naive-pin: incl. rejected)"),
-        "cpu_seconds": ("batch", cpu, "s", "CPU time per batch"),
+        "started": (
+            "realization",
+            started,
+            "1",
+            "configurations started (naive-pin: incl. rejected)",
+        ),
+        "cpu_seconds": ("realization", cpu, "s", "CPU time per realization"),
     }
     return _density_dataset(
         counts,
@@ -164,7 +171,6 @@ def sample_line(
         upper,
         name="density",
         axis="x",
-        group="batch",
         what="pin centres per unit length",
         extra=extra,
         parameters=parameters,
@@ -180,17 +186,17 @@ def sample_ring(
     step: float,
     sweeps: int,
     burn_in: int,
-    chains: int,
+    realizations: int,
     bins: int,
     seed: int,
 ) -> xr.Dataset:
-    """Pair density on a ring from ``chains`` independent Markov chains.
+    """Pair density on a ring from ``realizations`` independent Markov chains.
 
     Each chain starts from equally spaced pins, runs ``burn_in`` sweeps (N attempted moves
     of a uniform step in [−δ, δ], δ = ``step``), then ``sweeps`` sweeps after each of which
     it records every forward pair distance. Returns ``pair_density`` (other pins per unit
     length at distance r from a pin, integrating to N − 1; the mean of the chains), its
-    standard error ``pair_density_sem`` and the chains' ``acceptance``.
+    standard error ``pair_density_sem`` and each chain's ``acceptance``.
     """
     check_pins(n_pins, length, sigma)
     if n_pins < 2:
@@ -200,13 +206,13 @@ def sample_ring(
     n_pins, length, sigma, step = int(n_pins), float(length), float(sigma), float(step)
     sweeps = _positive_int("sweeps", sweeps)
     burn_in = _positive_int("burn_in", burn_in, 0)
-    chains = _positive_int("chains", chains, 2)
+    realizations = _positive_int("realizations", realizations, 2)
     bins = _positive_int("bins", bins)
-    states = stream_states(seed, chains)
-    counts = np.zeros((chains, bins), dtype=np.int64)
-    acceptance = np.zeros(chains)
-    cpu = np.zeros(chains)
-    progress = Progress(chains, label=f"ring N={n_pins} L={length:g}", unit="chains")
+    states = stream_states(seed, realizations)
+    counts = np.zeros((realizations, bins), dtype=np.int64)
+    acceptance = np.zeros(realizations)
+    cpu = np.zeros(realizations)
+    progress = Progress(realizations, label=f"ring N={n_pins} L={length:g}", unit="realizations")
     kernels.ring_markov(  # load the compiled kernel before the clock runs
         n_pins,
         length,
@@ -218,14 +224,14 @@ def sample_ring(
         np.arange(n_pins) * (length / n_pins),
         counts[0],
     )
-    for c in range(chains):
+    for r in range(realizations):
         positions = np.arange(n_pins) * (length / n_pins)
         begin = time.process_time()
         accepted = kernels.ring_markov(
-            n_pins, length, sigma, step, sweeps, burn_in, states[c], positions, counts[c]
+            n_pins, length, sigma, step, sweeps, burn_in, states[r], positions, counts[r]
         )
-        cpu[c] = time.process_time() - begin
-        acceptance[c] = accepted / ((sweeps + burn_in) * n_pins)
+        cpu[r] = time.process_time() - begin
+        acceptance[r] = accepted / ((sweeps + burn_in) * n_pins)
         progress.update(1)
     parameters = {
         "method": "markov",
@@ -235,12 +241,12 @@ def sample_ring(
         "step": float(step),
         "sweeps": sweeps,
         "burn_in": burn_in,
-        "chains": chains,
+        "realizations": realizations,
         "bins": bins,
     }
     extra = {
-        "acceptance": ("chain", acceptance, "1", "accepted fraction of the moves"),
-        "cpu_seconds": ("chain", cpu, "s", "CPU time per chain"),
+        "acceptance": ("realization", acceptance, "1", "accepted fraction of the moves"),
+        "cpu_seconds": ("realization", cpu, "s", "CPU time per realization"),
     }
     return _density_dataset(
         counts,
@@ -249,7 +255,6 @@ def sample_ring(
         length,
         name="pair_density",
         axis="r",
-        group="chain",
         what="other pins per unit length at forward distance r from a pin",
         extra=extra,
         parameters=parameters,
@@ -303,15 +308,15 @@ def sample_disks(
     sigma: float,
     box=(1.0, 1.0),
     samples: int,
-    batches: int,
+    realizations: int,
     bins: int,
     seed: int,
     step: float = 0.1,
     burn_in: int = 1000,
 ) -> xr.Dataset:
     """Projected density η(y) (disk centres per unit length of y, summed over x) of N
-    disks of radius σ in a box with walls, on [σ, L_y − σ], from ``batches`` independent
-    batches: ``samples`` direct-disks configurations (``method`` 'direct') or ``samples``
+    disks of radius σ in a box with walls, on [σ, L_y − σ], from ``realizations``
+    independent runs: ``samples`` direct-disks configurations (``method`` 'direct') or ``samples``
     recorded sweeps of one markov-disks chain (``method`` 'markov', moves uniform in
     [−step, step]², after ``burn_in`` sweeps from a direct-disks start)."""
     if method not in ("direct", "markov"):
@@ -319,17 +324,17 @@ def sample_disks(
     box_x, box_y = check_disk_box(n_disks, sigma, box)
     n_disks, sigma, step = int(n_disks), float(sigma), float(step)
     samples = _positive_int("samples", samples)
-    batches = _positive_int("batches", batches, 2)
+    realizations = _positive_int("realizations", realizations, 2)
     bins = _positive_int("bins", bins)
     burn_in = _positive_int("burn_in", burn_in, 0)
     if method == "markov" and not (math.isfinite(step) and 0 < step <= min(box_x, box_y)):
         raise ValueError(f"step must be in (0, box side], got {step!r}")
     lower, upper = sigma, box_y - sigma
-    states = stream_states(seed, batches)
-    counts = np.zeros((batches, bins), dtype=np.int64)
-    started = np.zeros(batches, dtype=np.int64)
-    cpu = np.zeros(batches)
-    progress = Progress(batches, label=f"{method}-disks N={n_disks}", unit="batches")
+    states = stream_states(seed, realizations)
+    counts = np.zeros((realizations, bins), dtype=np.int64)
+    started = np.zeros(realizations, dtype=np.int64)
+    cpu = np.zeros(realizations)
+    progress = Progress(realizations, label=f"{method}-disks N={n_disks}", unit="realizations")
 
     def run(count, burn, state, positions, histogram):
         """``count`` samples (recorded sweeps) into ``histogram``: configurations started or
@@ -353,14 +358,14 @@ def sample_disks(
             upper,
         )
 
-    for b in range(batches):
+    for r in range(realizations):
         # the start and the loading of the compiled kernel stay out of the CPU time
-        positions = disk_configuration(n_disks, sigma, (box_x, box_y), state=states[b])
-        if b == 0:
+        positions = disk_configuration(n_disks, sigma, (box_x, box_y), state=states[r])
+        if r == 0:
             run(0, 0, states[0].copy(), positions.copy(), counts[0])
         begin = time.process_time()
-        started[b] = run(samples, burn_in, states[b], positions, counts[b])
-        cpu[b] = time.process_time() - begin
+        started[r] = run(samples, burn_in, states[r], positions, counts[r])
+        cpu[r] = time.process_time() - begin
         progress.update(1)
     parameters = {
         "method": method,
@@ -369,19 +374,19 @@ def sample_disks(
         "box_x": box_x,
         "box_y": box_y,
         "samples": samples,
-        "batches": batches,
+        "realizations": realizations,
         "bins": bins,
         "step": float(step),
         "burn_in": burn_in,
     }
     extra = {
         "work": (
-            "batch",
+            "realization",
             started,
             "1",
             "configurations started (direct) or moves accepted (markov)",
         ),
-        "cpu_seconds": ("batch", cpu, "s", "CPU time per batch"),
+        "cpu_seconds": ("realization", cpu, "s", "CPU time per realization"),
     }
     return _density_dataset(
         counts,
@@ -390,7 +395,6 @@ def sample_disks(
         upper,
         name="density",
         axis="y",
-        group="batch",
         what="disk centres per unit length of y",
         extra=extra,
         parameters=parameters,
@@ -400,11 +404,21 @@ def sample_disks(
 
 def warmup() -> None:
     """Compile every kernel with the argument types production uses (numba cache=True)."""
-    sample_line("direct", n_pins=2, length=4.0, sigma=0.5, samples=2, batches=2, bins=4, seed=0)
-    sample_line("naive", n_pins=2, length=4.0, sigma=0.5, samples=2, batches=2, bins=4, seed=0)
+    sample_line(
+        "direct", n_pins=2, length=4.0, sigma=0.5, samples=2, realizations=2, bins=4, seed=0
+    )
+    sample_line("naive", n_pins=2, length=4.0, sigma=0.5, samples=2, realizations=2, bins=4, seed=0)
     sample_ring(
-        n_pins=2, length=4.0, sigma=0.5, step=0.5, sweeps=2, burn_in=1, chains=2, bins=4, seed=0
+        n_pins=2,
+        length=4.0,
+        sigma=0.5,
+        step=0.5,
+        sweeps=2,
+        burn_in=1,
+        realizations=2,
+        bins=4,
+        seed=0,
     )
     pin_snapshots(n_pins=2, length=4.0, sigma=0.5, count=1, seed=0)
     for method in ("direct", "markov"):
-        sample_disks(method, n_disks=2, sigma=0.1, samples=2, batches=2, bins=4, seed=0)
+        sample_disks(method, n_disks=2, sigma=0.1, samples=2, realizations=2, bins=4, seed=0)

@@ -56,7 +56,7 @@ def krauth2025_line_job(wildcards):
         "length": length,
         "sigma": pins["sigma"],
         "samples": pins[f"{wildcards.method}_samples"],
-        "batches": pins["batches"],
+        "realizations": pins["realizations"],
         "bins": krauth2025_line_bins(length),
         "seed": job_seed(f"krauth2025/pins/{wildcards.method}_L{wildcards.length}"),
     }
@@ -64,7 +64,7 @@ def krauth2025_line_job(wildcards):
 
 def krauth2025_ring_job(wildcards):
     ring = config["krauth2025"]["ring"]
-    keys = ("n_pins", "length", "sigma", "step", "sweeps", "burn_in", "chains")
+    keys = ("n_pins", "length", "sigma", "step", "sweeps", "burn_in", "realizations")
     job = {key: ring[key] for key in keys}
     job["bins"] = krauth2025_ring_bins()
     job["seed"] = job_seed("krauth2025/pins/ring")
@@ -99,7 +99,7 @@ def krauth2025_check_config():
             f"config krauth2025.ring.step = {ring['step']} exceeds half the ring length"
         )
     try:
-        samples = pins["naive_samples"] * pins["batches"]
+        samples = pins["naive_samples"] * pins["realizations"]
         check_naive_starts(pins["n_pins"], pins["naive_length"], pins["sigma"], samples)
     except ValueError as error:
         raise WorkflowError(f"config krauth2025.pins (naive_length): {error}") from None
@@ -205,7 +205,7 @@ def krauth2025_sampler_job(wildcards):
         "sigma": disks["sigma"],
         "box": disks["box"],
         "samples": disks["markov_sweeps" if markov else "direct_samples"],
-        "batches": disks["batches"],
+        "realizations": disks["sampler_realizations"],
         "bins": krauth2025_disk_bins(),
         "step": disks["markov_step"],
         "burn_in": disks["burn_in"],
