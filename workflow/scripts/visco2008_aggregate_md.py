@@ -2,11 +2,11 @@
 visco2008_aggregate_md)."""
 
 from kinetic.analysis import collision_statistics
-from kinetic.batches import read_batches
+from kinetic.batches import combine, read_batches
 from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
-data = collision_statistics.combine_realizations(read_batches(snakemake.input.batches))
+data = combine(read_batches(snakemake.input.batches))
 write_output(snakemake, data, int(data.attrs["seed"]), output="data")
 cumulants = collision_statistics.cumulant_dataset(
     data,

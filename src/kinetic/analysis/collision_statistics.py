@@ -26,7 +26,6 @@ __all__ = [
     "bin_averaged_density",
     "bin_edges",
     "collision_frequency",
-    "combine_realizations",
     "count_large_deviation",
     "count_ldf_estimate",
     "cumulant_dataset",
@@ -281,15 +280,6 @@ def error_against_cpu_time(dataset, window: float = 10.0) -> dict:
         "k3": curve.value[:, 1],
         "k3_sem": curve.error[:, 1],
     }
-
-
-def combine_realizations(datasets) -> xr.Dataset:
-    """Join batches of ``kinetic.edmd.simulate`` along ``realization``
-    (:func:`kinetic.batches.combine`: one run's parameters and seed, distinct realizations,
-    sorted; its parameters say how many realizations it holds)."""
-    from kinetic import batches
-
-    return batches.combine(list(datasets))
 
 
 def cumulant_dataset(dataset, windows=None, extrapolation_windows=None) -> xr.Dataset:
