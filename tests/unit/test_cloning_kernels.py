@@ -65,3 +65,27 @@ def test_compensation_parameters_implement_eq56():
     assert factor * keep == pytest.approx(math.e)
     assert factor * (1 - keep) == pytest.approx(math.e - 1)
     assert kernels.compensation_parameters(0.7)[:2] == pytest.approx((1.0, math.exp(-0.7)))
+
+
+def test_the_bound_follows_the_fastest_member_down():
+    """One member starts 30 times faster than thermal; its first collisions slow it down.
+    Within one long block the hard-disk bound K1 v_max + 1/√2 must follow the population's
+    current maximum (rescanned every n/4 events), not keep v_max = 30: with the stale
+    bound a collision event would cost about (K1·30 + 1/√2)/ω ≈ 18 candidates, with a
+    tracked one about 3 (K1·v_max + 1/√2 at the Maxwellian's largest of 1000 speeds, ≈ 4)."""
+    population, lam = 1000, 0.0
+    state = stream_states(5, 1)[0]
+    velocity = np.empty((2, population))
+    speed = np.empty(population)
+    kernels.draw_population(velocity, speed, state)
+    velocity[:, 0] = (30.0, 0.0)
+    blocks = np.zeros((1, len(kernels.BLOCK_FIELDS)))
+    kernels.run_blocks(
+        kernels.HARD_SPHERES, lam, velocity, speed, state, 50.0, blocks, 6.0, np.zeros(10),
+        rate_table("hard_spheres", 2), TABLE_STEP,
+    )  # fmt: skip
+    fields = kernels.BLOCK_FIELDS
+    row = blocks[0]
+    assert row[fields.index("max_speed")] >= 30.0  # the bound started at the fast member
+    assert row[fields.index("collision_events")] > 10 * population
+    assert row[fields.index("candidates")] / row[fields.index("collision_events")] < 5.0

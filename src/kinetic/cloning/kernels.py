@@ -28,7 +28,9 @@ proposed with the majorant K[(v·σ̂)⁺ + (-u)⁺] ≥ K(v·σ̂ - u)⁺, spli
 and accepted with probability (v·σ̂ - u)⁺ / [(v·σ̂)⁺ + (-u)⁺]. At population level the
 particle is chosen uniformly and channel A/B/rejection is decided against the global
 bound K1·v_max + 1/√2, where v_max ≥ max_i |v_i| is recomputed at every block start and
-raised the moment a collision produces a faster particle. Velocities change only at
+every n/4 collision events (an O(n) scan per O(n) events: the bound follows the fastest
+member down when it slows or is replaced) and raised the moment a collision produces a
+faster particle. Velocities change only at
 events, so the bound is predictable and the thinning is exact (uniformisation).
 
 Maxwell molecules: constant rate ω = 1 per particle, σ̂ uniform, u ~ N(0, 1), same
@@ -84,6 +86,9 @@ BLOCK_FIELDS = (
 
 _SQRT_PI = math.sqrt(math.pi)
 _RATE_AT_REST = 1.0 / math.sqrt(2.0)  # r(0)/ω, visco2008 Eq. (36); also channel B's rate
+#: the hard-sphere bound's v_max is rescanned from the population every
+#: ``_REBUILD_EVENTS_PER_MEMBER`` x n collision events (an O(n) scan per O(n) events)
+_REBUILD_EVENTS_PER_MEMBER = 0.25
 
 
 @kernel
@@ -295,6 +300,14 @@ def _population_sums(velocity, speed, rate_table, table_step):
     return sum2, sum4, sum_rate, largest
 
 
+@inline
+def _largest(values):
+    largest = 0.0
+    for x in values:
+        largest = max(largest, x)
+    return largest
+
+
 @kernel
 def _snapshot_histogram(velocity, weight, half_width, histogram):
     """Add ``weight`` to the bin of every velocity component in [-half_width, half_width)."""
@@ -401,6 +414,8 @@ def _run_blocks(
         events = 0
         candidates = 0
         proposals = 0
+        rebuild_every = max(1, int(_REBUILD_EVENTS_PER_MEMBER * n))
+        next_rebuild = rebuild_every
         integral2 = 0.0
         integral4 = 0.0
         integral_rate = 0.0
@@ -442,6 +457,13 @@ def _run_blocks(
                 if not accepted:
                     continue
                 events += 1
+                if events >= next_rebuild:
+                    # the fastest member may have changed: scan for the current maximum
+                    # (the bound only ever has to cover the speeds of now)
+                    next_rebuild = events + rebuild_every
+                    v_max = _largest(speed)
+                    bound = k1 * v_max + _RATE_AT_REST
+                    dt = 1.0 / (rate_factor * n * bound)
                 if always_keep or uniform(state) < keep:
                     old2 = speed[i] * speed[i]
                     velocity[0, i] = nx
