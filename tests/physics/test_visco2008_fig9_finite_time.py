@@ -7,7 +7,7 @@ import pytest
 import xarray as xr
 
 from kinetic.analysis import collision_statistics
-from kinetic.edmd.simulate import simulate
+from kinetic.edmd import simulate
 from kinetic.theory import visco2008
 
 

@@ -3,8 +3,8 @@
 - ``HardSphereSystem``: the state and its event loop (periodic or hard-wall box,
   restitution, velocity-rescaling thermostat, inelastic-collapse report);
 - ``Observers``: collision counts in windows, free flights, samples, wall hits, records;
-- ``simulate``: the equilibrium protocol of visco2008 (independent realizations ->
-  ``xarray.Dataset``);
+- ``simulate`` (module ``equilibrium``): the equilibrium protocol of visco2008 (independent
+  realizations -> ``xarray.Dataset``);
 - ``warmup``: compile (or load from numba's cache) every kernel with production types.
 
 Beside them, for a few disks in a box with walls (krauth2025): ``kinetic.edmd.naive``,
@@ -12,12 +12,18 @@ the lecture's O(N²)-per-event event-disks in float32 or float64, and its front
 ``kinetic.edmd.disks`` (observed runs, the chaos comparison).
 """
 
-import numpy as np
+import importlib
 
-from kinetic.edmd.cooling import simulate_cooling_modes
-from kinetic.edmd.observers import Observers
-from kinetic.edmd.simulate import simulate
-from kinetic.edmd.system import HardSphereSystem, InelasticCollapseError
+_EXPORTS = {
+    "HardSphereSystem": "system",
+    "InelasticCollapseError": "system",
+    "Observers": "observers",
+    "simulate": "equilibrium",
+    "simulate_cooling_modes": "cooling",
+}
+"""Public names and the module that defines each: loaded on first use, so that importing
+``kinetic.edmd.arguments`` (the numpy-only checks the workflow runs while it reads the
+config) loads neither numba nor the kernels."""
 
 __all__ = [
     "HardSphereSystem",
@@ -29,9 +35,28 @@ __all__ = [
 ]
 
 
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(f"kinetic.edmd.{_EXPORTS[name]}"), name)
+    else:
+        try:  # a submodule, e.g. kinetic.edmd.kernels after a bare ``import kinetic.edmd``
+            value = importlib.import_module(f"kinetic.edmd.{name}")
+        except ModuleNotFoundError:
+            raise AttributeError(f"module 'kinetic.edmd' has no attribute {name!r}") from None
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))
+
+
 def warmup() -> None:
     """Compile every kernel with the argument types production uses (numba cache=True:
     later processes load the machine code instead of compiling)."""
+    from kinetic.edmd.observers import Observers
+    from kinetic.edmd.system import HardSphereSystem
+
     for dimension, walls in ((2, False), (2, True), (3, False)):
         n = 8 if dimension == 2 else 27
         system = HardSphereSystem(
@@ -64,6 +89,8 @@ def warmup() -> None:
 def _warm_naive() -> None:
     """Compile event-disks (``kinetic.edmd.naive``) for float64 and float32 arrays, without
     the direct-disks start of ``kinetic.edmd.disks`` (compiled by ``kinetic.samplers``)."""
+    import numpy as np
+
     from kinetic.edmd import naive
 
     for dtype in (np.float64, np.float32):

@@ -73,6 +73,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from kinetic.edmd.arguments import GATHER_HEAD  # noqa: F401  (defined with the checks)
 from kinetic.jit import inline
 
 
@@ -206,8 +207,6 @@ C_STAGE2 = 2  # next particle of stage 2 (−1: none)
 C_STAGE1 = 3  # next particle of stage 1
 C_WALKS = 4  # PREFETCH_WALKS list walks of stage 3
 N_CURSOR = C_WALKS + PREFETCH_WALKS
-#: entries copied unconditionally from each cell row by the neighbour scan (≤ row capacity)
-GATHER_HEAD = 4
 
 
 # ---------------------------------------------------------------- index helpers

@@ -22,11 +22,11 @@ def visco2008_md():
 
 def _check_visco2008_md():
     """The config section visco2008.md, checked before any job starts: every run's first
-    job by the MD front's own checks (kinetic.edmd.simulate.check_arguments), then what
+    job by the MD front's own checks (kinetic.edmd.arguments.check_simulate, numpy only), then what
     only the config knows (the windows the table and figures use, the figure's run)."""
     from types import SimpleNamespace
 
-    from kinetic.edmd.simulate import check_arguments
+    from kinetic.edmd.arguments import check_simulate
 
     md = visco2008_md()
     windows = md["windows"]
@@ -34,7 +34,7 @@ def _check_visco2008_md():
     for run in md["densities"]:
         job = visco2008_md_job(SimpleNamespace(run=run, batch=batches.batch_name(0)))
         try:
-            check_arguments(**job)
+            check_simulate(**job)
         except (TypeError, ValueError) as error:
             problems.append(f"run {run}: {error}")
     for key in ("table_windows", "ldf_windows", "extrapolation_windows"):

@@ -28,18 +28,13 @@ from collections.abc import Sequence
 import numpy as np
 
 from kinetic import io, rng
+from kinetic.edmd.arguments import DEFAULT_CELL_OCCUPANCY, check_simulate, packing_fraction
 from kinetic.edmd.observers import Observers
-from kinetic.edmd.system import (
-    DEFAULT_CELL_OCCUPANCY,
-    HardSphereSystem,
-    cell_grid,
-    enskog_collision_frequency,
-    packing_fraction,
-)
+from kinetic.edmd.system import HardSphereSystem, enskog_collision_frequency
 from kinetic.gas import mean_speed
 from kinetic.progress import Progress
 
-__all__ = ["check_arguments", "count_bins_for", "simulate"]
+__all__ = ["count_bins_for", "simulate"]
 
 logger = logging.getLogger("kinetic")
 
@@ -48,94 +43,6 @@ def count_bins_for(longest_window: float) -> int:
     """Histogram size for the counts in windows up to ``longest_window`` mean free times:
     far beyond any count that occurs (the large-deviation tails decay like e^{-t π(n)})."""
     return int(3.0 * longest_window + 12.0 * math.sqrt(longest_window) + 40.0)
-
-
-def _sequence(name, values, *, minimum=0.0, strictly_increasing=False):
-    array = np.asarray(values, dtype=float).reshape(-1)
-    if array.size == 0:
-        raise ValueError(f"{name} must not be empty")
-    if not np.all(np.isfinite(array)) or np.any(array <= minimum):
-        raise ValueError(f"{name} must be finite and > {minimum}, got {list(array)}")
-    if strictly_increasing and np.any(np.diff(array) <= 0):
-        raise ValueError(f"{name} must be strictly increasing, got {list(array)}")
-    return array
-
-
-def check_arguments(
-    *,
-    n_particles: int,
-    density: float,
-    seed: int,
-    realizations: int,
-    first_realization: int = 0,
-    dimension: int = 2,
-    equilibration: float = 10.0,
-    duration: float,
-    windows: Sequence[float] = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0),
-    checkpoints: Sequence[float] | None = None,
-    flight_time_max: float = 20.0,
-    flight_time_bins: int = 200,
-    free_path_max: float = 20.0,
-    free_path_bins: int = 200,
-    cell_occupancy: float | None = None,
-    label: str | None = None,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Check every argument of :func:`simulate` (same names and defaults) before any work:
-    raises ``TypeError``/``ValueError`` naming the argument; returns the windows and
-    checkpoints as arrays. The workflow calls it when it reads the config, so a bad
-    config is refused before any job."""
-    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
-        raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
-    for name, value in (
-        ("realizations", realizations),
-        ("first_realization", first_realization),
-        ("flight_time_bins", flight_time_bins),
-        ("free_path_bins", free_path_bins),
-    ):
-        if isinstance(value, bool) or not isinstance(value, int | np.integer):
-            raise TypeError(f"{name} must be an integer, got {value!r}")
-    if realizations < 1:
-        raise ValueError(f"realizations must be >= 1, got {realizations}")
-    if first_realization < 0:
-        raise ValueError(f"first_realization must be >= 0, got {first_realization}")
-    if flight_time_bins < 1 or free_path_bins < 1:
-        raise ValueError("histogram bin counts must be >= 1")
-    if dimension not in (2, 3):
-        raise ValueError(f"dimension must be 2 or 3, got {dimension!r}")
-    if not (isinstance(density, int | float) and math.isfinite(density) and density > 0):
-        raise ValueError(f"density must be finite and > 0, got {density!r}")
-    if not (math.isfinite(equilibration) and equilibration >= 1.0):
-        raise ValueError(f"equilibration must be >= 1 collision per particle, got {equilibration}")
-    if not (math.isfinite(duration) and duration > 0):
-        raise ValueError(f"duration must be finite and > 0 mean free times, got {duration}")
-    for name, value in (("flight_time_max", flight_time_max), ("free_path_max", free_path_max)):
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be finite and > 0, got {value}")
-    windows = _sequence("windows", windows, strictly_increasing=True)
-    if windows[-1] > duration:
-        raise ValueError(f"the longest window {windows[-1]} exceeds duration {duration}")
-    checkpoints = _sequence(
-        "checkpoints", [duration] if checkpoints is None else checkpoints, strictly_increasing=True
-    )
-    if not math.isclose(checkpoints[-1], duration, rel_tol=1e-12):
-        raise ValueError(f"the last checkpoint {checkpoints[-1]} must equal duration {duration}")
-    # N, the packing fraction and the cells: the system's own checks, nothing built
-    arguments = HardSphereSystem.validated(
-        n_particles=n_particles,
-        density=density,
-        dimension=dimension,
-        seed=0,
-        cell_occupancy=cell_occupancy,
-    )
-    cell_grid(
-        arguments.box,
-        arguments.diameter,
-        arguments.density,
-        dimension,
-        arguments.cell_occupancy,
-        arguments.walls,
-    )
-    return windows, checkpoints
 
 
 def simulate(
@@ -185,7 +92,7 @@ def simulate(
     """
     # ------------------------------------------------------------------ validation
     # the parameters are the only locals yet: check them all with the same names
-    windows, checkpoints = check_arguments(**locals())
+    windows, checkpoints = check_simulate(**locals())
 
     # ------------------------------------------------------------------ set-up
     from kinetic.edmd import warmup
