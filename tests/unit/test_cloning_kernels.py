@@ -72,7 +72,8 @@ def test_the_bound_follows_the_fastest_member_down():
     Within one long block the hard-disk bound K1 v_max + 1/√2 must follow the population's
     current maximum (rescanned every n/4 events), not keep v_max = 30: with the stale
     bound a collision event would cost about (K1·30 + 1/√2)/ω ≈ 18 candidates, with a
-    tracked one about 3 (K1·v_max + 1/√2 at the Maxwellian's largest of 1000 speeds, ≈ 4)."""
+    tracked one about 3 (v_max ≈ 3.7, the largest of 1000 Maxwellian speeds: K1·v_max + 1/√2
+    ≈ 2.8 candidates per unit collision rate)."""
     population, lam = 1000, 0.0
     state = stream_states(5, 1)[0]
     velocity = np.empty((2, population))

@@ -302,6 +302,8 @@ def _population_sums(velocity, speed, rate_table, table_step):
 
 @inline
 def _largest(values):
+    """max(values, 0) by a loop: ``ndarray.max`` does not lower in the loop compiled
+    without reference counting."""
     largest = 0.0
     for x in values:
         largest = max(largest, x)
