@@ -12,14 +12,71 @@ the event loops and the random-number generator).
 
     @kernel
     def step(...): ...
+
+Cached machine code is keyed on the source of the whole package. Numba checks only the
+file that defines the compiled function, so a kernel whose inlined helpers live in other
+files (the EDMD event loop and ``kinetic.edmd.cells``, every engine and ``kinetic.rng``)
+would otherwise keep running the old helpers after they are edited, or after a checkout
+that changed only those files. Here any change to a source file of ``kinetic``
+invalidates the cached kernels of the package, which recompile on their next use.
 """
+
+import functools
+import hashlib
+from pathlib import Path
 
 from llvmlite import ir
 from numba import njit, types
-from numba.core import cgutils
+from numba.core import caching, cgutils
 from numba.extending import intrinsic
 
-__all__ = ["FLAGS", "inline", "kernel", "prefetch", "refcount_free"]
+__all__ = ["FLAGS", "inline", "kernel", "package_source_stamp", "prefetch", "refcount_free"]
+
+PACKAGE = Path(__file__).resolve().parent
+"""The ``kinetic`` package directory: its ``*.py`` files make the cache's source stamp."""
+
+
+@functools.cache
+def package_source_stamp() -> str:
+    """SHA-256 over the relative path and the bytes of every ``*.py`` file of the package
+    (read once per process, about 100 files)."""
+    digest = hashlib.sha256()
+    for path in sorted(PACKAGE.rglob("*.py")):
+        digest.update(path.relative_to(PACKAGE).as_posix().encode())
+        digest.update(b"\0")
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+class _PackageStamp:
+    """Locator mixin: the package's functions are fresh only if no file of the package
+    changed; functions of other packages keep numba's own locators."""
+
+    def get_source_stamp(self):
+        return package_source_stamp()
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        if not Path(py_file).resolve().is_relative_to(PACKAGE):
+            return None
+        return super().from_function(py_func, py_file)
+
+
+class _PackageUserDirLocator(_PackageStamp, caching.UserProvidedCacheLocator):
+    """``NUMBA_CACHE_DIR`` set: the cache there, stamped with the package source."""
+
+
+class _PackageInTreeLocator(_PackageStamp, caching.InTreeCacheLocator):
+    """Otherwise the ``__pycache__`` beside the source, stamped with the package source."""
+
+
+# numba tries its locators in order and takes the first that accepts the function
+_LOCATORS = caching.CacheImpl._locator_classes
+_LOCATORS[:] = [
+    _PackageUserDirLocator,
+    _PackageInTreeLocator,
+    *(c for c in _LOCATORS if not issubclass(c, _PackageStamp)),
+]
 
 FLAGS = {"cache": True, "error_model": "numpy"}
 """Options of numba.njit shared by every kernel of the package."""
