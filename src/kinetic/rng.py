@@ -35,9 +35,12 @@ __all__ = [
     "uniform",
     "uniform_open",
     "unit_vector_3d",
+    "xoshiro_disk_point",
     "xoshiro_exponential",
     "xoshiro_next",
+    "xoshiro_normal_pair",
     "xoshiro_uniform",
+    "xoshiro_uniform_open",
     "xoshiro_unit_2d",
     "xoshiro_unit_3d",
 ]
@@ -75,6 +78,36 @@ def xoshiro_uniform(s0, s1, s2, s3):
     """Uniform float64 in [0, 1) (upper 53 bits), as ``uniform``: ``(u, s0, s1, s2, s3)``."""
     x, s0, s1, s2, s3 = xoshiro_next(s0, s1, s2, s3)
     return float(x >> _SHIFT_11) * _TWO_M53, s0, s1, s2, s3
+
+
+@kernel
+def xoshiro_uniform_open(s0, s1, s2, s3):
+    """Uniform float64 in (0, 1], as ``uniform_open``: ``(u, s0, s1, s2, s3)``."""
+    x, s0, s1, s2, s3 = xoshiro_next(s0, s1, s2, s3)
+    return (float(x >> _SHIFT_11) + 1.0) * _TWO_M53, s0, s1, s2, s3
+
+
+@kernel
+def xoshiro_disk_point(s0, s1, s2, s3):
+    """Uniform point in the open unit disk minus its centre, as ``disk_point``:
+    ``(x, y, r2, s0, s1, s2, s3)`` with r2 = x² + y²."""
+    while True:
+        a, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+        b, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+        x = 2.0 * a - 1.0
+        y = 2.0 * b - 1.0
+        r2 = x * x + y * y
+        if 0.0 < r2 < 1.0:
+            return x, y, r2, s0, s1, s2, s3
+
+
+@kernel
+def xoshiro_normal_pair(s0, s1, s2, s3):
+    """Two independent standard normal variates, as ``normal_pair`` (polar method):
+    ``(z0, z1, s0, s1, s2, s3)``."""
+    x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(s0, s1, s2, s3)
+    factor = np.sqrt(-2.0 * np.log(r2) / r2)
+    return x * factor, y * factor, s0, s1, s2, s3
 
 
 @kernel

@@ -6,13 +6,18 @@ from numba import njit
 
 from kinetic.rng import (
     derive_seed,
+    disk_point,
     exponential,
     normal_pair,
     random_unit_vector,
     stream_states,
     uniform,
+    uniform_open,
     unit_vector_3d,
+    xoshiro_disk_point,
+    xoshiro_normal_pair,
     xoshiro_uniform,
+    xoshiro_uniform_open,
     xoshiro_unit_2d,
     xoshiro_unit_3d,
 )
@@ -50,6 +55,29 @@ def _scalar_uniforms(state, n):
     out = np.empty(n)
     for k in range(n):
         out[k], s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+    return out
+
+
+@njit(cache=False)
+def _mixed_array(state, n):
+    """A sequence of the array-state draws whose scalar twins exist."""
+    out = np.empty((n, 6))
+    for k in range(n):
+        out[k, 0] = uniform_open(state)
+        out[k, 1], out[k, 2], out[k, 3] = disk_point(state)
+        out[k, 4], out[k, 5] = normal_pair(state)
+    return out
+
+
+@njit(cache=False)
+def _mixed_scalar(state, n):
+    s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
+    out = np.empty((n, 6))
+    for k in range(n):
+        out[k, 0], s0, s1, s2, s3 = xoshiro_uniform_open(s0, s1, s2, s3)
+        out[k, 1], out[k, 2], out[k, 3], s0, s1, s2, s3 = xoshiro_disk_point(s0, s1, s2, s3)
+        out[k, 4], out[k, 5], s0, s1, s2, s3 = xoshiro_normal_pair(s0, s1, s2, s3)
+    state[0], state[1], state[2], state[3] = s0, s1, s2, s3
     return out
 
 
@@ -100,6 +128,19 @@ def test_generator_is_xoshiro256plus_in_both_state_layouts():
     expected = [(x >> 11) * 2.0**-53 for x in _xoshiro256plus(state, 1000)]
     assert _array_uniforms(state.copy(), 1000).tolist() == expected
     assert _scalar_uniforms(state.copy(), 1000).tolist() == expected
+
+
+def test_scalar_state_draws_follow_the_array_state_stream():
+    """The scalar twins (used by loops that keep the state in registers) draw exactly the
+    numbers of the array-state draws, rejections included, and leave the same state."""
+    array_state = stream_states(5, 1)[0].copy()
+    scalar_state = array_state.copy()
+    expected = _mixed_array(array_state, 2000)
+    drawn = _mixed_scalar(scalar_state, 2000)
+    np.testing.assert_array_equal(drawn, expected)
+    np.testing.assert_array_equal(scalar_state, array_state)
+    assert np.all(drawn[:, 0] > 0.0) and np.all(drawn[:, 0] <= 1.0)
+    assert np.all((drawn[:, 3] > 0.0) & (drawn[:, 3] < 1.0))
 
 
 @pytest.mark.parametrize(("kind", "d"), [(0, 2), (1, 3), (2, 3)])

@@ -54,7 +54,13 @@ import math
 import numpy as np
 
 from kinetic.jit import inline, kernel, refcount_free
-from kinetic.rng import disk_point, normal_pair, uniform, uniform_open, unit_vector_3d
+from kinetic.rng import (
+    normal_pair,
+    xoshiro_disk_point,
+    xoshiro_normal_pair,
+    xoshiro_uniform,
+    xoshiro_uniform_open,
+)
 
 __all__ = [
     "BLOCK_FIELDS",
@@ -130,25 +136,38 @@ def _cached_normal(state, cache):
 
 
 @inline
-def _hard_sphere_proposal_2d(vx, vy, speed, use_channel_a, state, cache):
+def _normal(s0, s1, s2, s3, waiting, held):
+    """``_cached_normal`` with the stream and the cache in scalars (the event loop keeps
+    them in registers): the polar method's second variate is ``held`` while ``waiting``.
+    Returns ``(z, s0, s1, s2, s3, waiting, held)``."""
+    if waiting:
+        return held, s0, s1, s2, s3, False, held
+    z0, z1, s0, s1, s2, s3 = xoshiro_normal_pair(s0, s1, s2, s3)
+    return z0, s0, s1, s2, s3, True, z1
+
+
+@inline
+def _hard_sphere_proposal_2d(vx, vy, speed, use_channel_a, s0, s1, s2, s3, waiting, held):
     """One hard-disk candidate of member with velocity (vx, vy) and |v| = ``speed``.
 
     Channel A (``use_channel_a``): σ̂ at angle θ from v̂ with sin θ uniform on (-1, 1)
     (density ∝ cos θ), u ~ N(0, 1). Channel B: σ̂ uniform and u = -Rayleigh from one
-    disk point. Returns ``(accepted, new_vx, new_vy)``.
+    disk point. The stream and the normal cache are scalars (see ``_normal``).
+    Returns ``(accepted, new_vx, new_vy, s0, s1, s2, s3, waiting, held)``.
     """
     if use_channel_a:
-        sin_t = 2.0 * uniform(state) - 1.0
+        w, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+        sin_t = 2.0 * w - 1.0
         cos_t = math.sqrt(1.0 - sin_t * sin_t)
         nx = vx / speed
         ny = vy / speed
         sx = cos_t * nx - sin_t * ny
         sy = cos_t * ny + sin_t * nx
         a = speed * cos_t
-        u = _cached_normal(state, cache)
+        u, s0, s1, s2, s3, waiting, held = _normal(s0, s1, s2, s3, waiting, held)
         majorant = a + max(-u, 0.0)
     else:
-        x, y, r2 = disk_point(state)
+        x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(s0, s1, s2, s3)
         inv = 1.0 / math.sqrt(r2)
         sx = x * inv
         sy = y * inv
@@ -156,20 +175,31 @@ def _hard_sphere_proposal_2d(vx, vy, speed, use_channel_a, state, cache):
         a = vx * sx + vy * sy
         majorant = max(a, 0.0) - u
     gap = a - u
-    if gap <= 0.0 or uniform(state) * majorant >= gap:
-        return False, vx, vy
-    return True, vx - gap * sx, vy - gap * sy
+    if gap <= 0.0:
+        return False, vx, vy, s0, s1, s2, s3, waiting, held
+    w, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+    if w * majorant >= gap:
+        return False, vx, vy, s0, s1, s2, s3, waiting, held
+    return True, vx - gap * sx, vy - gap * sy, s0, s1, s2, s3, waiting, held
 
 
 @inline
-def _hard_sphere_proposal_3d(vx, vy, vz, speed, use_channel_a, state, cache):
+def _unit_vector_3d(s0, s1, s2, s3):
+    """``kinetic.rng.unit_vector_3d`` on a scalar stream: ``(x, y, z, s0, s1, s2, s3)``."""
+    x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(s0, s1, s2, s3)
+    root = 2.0 * np.sqrt(1.0 - r2)
+    return x * root, y * root, 1.0 - 2.0 * r2, s0, s1, s2, s3
+
+
+@inline
+def _hard_sphere_proposal_3d(vx, vy, vz, speed, use_channel_a, s0, s1, s2, s3, waiting, held):
     """One hard-sphere candidate in d = 3; see ``_hard_sphere_proposal_2d``.
 
     Channel A draws σ̂ = (v̂ + w)/|v̂ + w| with w uniform on S², which has density ∝
     (v̂·σ̂)⁺ (Lambert's law); channel B draws σ̂ uniform and u = -√(-2 ln U).
-    Returns ``(accepted, new_vx, new_vy, new_vz)``.
+    Returns ``(accepted, new_vx, new_vy, new_vz, s0, s1, s2, s3, waiting, held)``.
     """
-    wx, wy, wz = unit_vector_3d(state)
+    wx, wy, wz, s0, s1, s2, s3 = _unit_vector_3d(s0, s1, s2, s3)
     if use_channel_a:
         inv_speed = 1.0 / speed
         px = vx * inv_speed + wx
@@ -177,38 +207,42 @@ def _hard_sphere_proposal_3d(vx, vy, vz, speed, use_channel_a, state, cache):
         pz = vz * inv_speed + wz
         norm2 = px * px + py * py + pz * pz
         if norm2 <= 0.0:  # w = -v̂ exactly: probability zero, treat as a rejection
-            return False, vx, vy, vz
+            return False, vx, vy, vz, s0, s1, s2, s3, waiting, held
         inv = 1.0 / math.sqrt(norm2)
         sx = px * inv
         sy = py * inv
         sz = pz * inv
-        u = _cached_normal(state, cache)
+        u, s0, s1, s2, s3, waiting, held = _normal(s0, s1, s2, s3, waiting, held)
         a = vx * sx + vy * sy + vz * sz
         majorant = max(a, 0.0) + max(-u, 0.0)
     else:
         sx = wx
         sy = wy
         sz = wz
-        u = -math.sqrt(-2.0 * math.log(uniform_open(state)))
+        w, s0, s1, s2, s3 = xoshiro_uniform_open(s0, s1, s2, s3)
+        u = -math.sqrt(-2.0 * math.log(w))
         a = vx * sx + vy * sy + vz * sz
         majorant = max(a, 0.0) - u
     gap = a - u
-    if gap <= 0.0 or uniform(state) * majorant >= gap:
-        return False, vx, vy, vz
-    return True, vx - gap * sx, vy - gap * sy, vz - gap * sz
+    if gap <= 0.0:
+        return False, vx, vy, vz, s0, s1, s2, s3, waiting, held
+    w, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+    if w * majorant >= gap:
+        return False, vx, vy, vz, s0, s1, s2, s3, waiting, held
+    return True, vx - gap * sx, vy - gap * sy, vz - gap * sz, s0, s1, s2, s3, waiting, held
 
 
 @inline
-def _maxwell_collision(velocity, i, state, cache):
+def _maxwell_collision(velocity, i, s0, s1, s2, s3, waiting, held):
     """Elastic Maxwell-molecule collision of member ``i``, in place.
 
     σ̂ uniform, bath normal velocity u ~ N(0, 1): the component of v_i along σ̂ becomes u.
-    Returns the new squared speed.
+    Returns ``(new squared speed, s0, s1, s2, s3, waiting, held)``.
     """
     d = velocity.shape[0]
-    u = _cached_normal(state, cache)
+    u, s0, s1, s2, s3, waiting, held = _normal(s0, s1, s2, s3, waiting, held)
     if d == 2:
-        x, y, r2 = disk_point(state)
+        x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(s0, s1, s2, s3)
         inv = 1.0 / math.sqrt(r2)
         sx = x * inv
         sy = y * inv
@@ -219,8 +253,8 @@ def _maxwell_collision(velocity, i, state, cache):
         vy -= gap * sy
         velocity[0, i] = vx
         velocity[1, i] = vy
-        return vx * vx + vy * vy
-    sx, sy, sz = unit_vector_3d(state)
+        return vx * vx + vy * vy, s0, s1, s2, s3, waiting, held
+    sx, sy, sz, s0, s1, s2, s3 = _unit_vector_3d(s0, s1, s2, s3)
     vx = velocity[0, i]
     vy = velocity[1, i]
     vz = velocity[2, i]
@@ -231,16 +265,18 @@ def _maxwell_collision(velocity, i, state, cache):
     velocity[0, i] = vx
     velocity[1, i] = vy
     velocity[2, i] = vz
-    return vx * vx + vy * vy + vz * vz
+    return vx * vx + vy * vy + vz * vz, s0, s1, s2, s3, waiting, held
 
 
 @inline
-def _other_member(i, n, state):
-    """A member index uniform over {0, ..., n-1} minus {i} (n >= 2)."""
-    j = int(uniform(state) * (n - 1))
+def _other_member(i, n, s0, s1, s2, s3):
+    """A member index uniform over {0, ..., n-1} minus {i} (n >= 2):
+    ``(j, s0, s1, s2, s3)``."""
+    w, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+    j = int(w * (n - 1))
     if j >= i:
         j += 1
-    return j
+    return j, s0, s1, s2, s3
 
 
 @inline
@@ -303,11 +339,23 @@ def _population_sums(velocity, speed, rate_table, table_step):
 @inline
 def _largest(values):
     """max(values, 0) by a loop: ``ndarray.max`` does not lower in the loop compiled
-    without reference counting."""
-    largest = 0.0
-    for x in values:
-        largest = max(largest, x)
-    return largest
+    without reference counting. Four running maxima, so that the comparisons do not wait
+    for each other (one chain is latency-bound; the compiler may not reorder a max of
+    floats)."""
+    a = 0.0
+    b = 0.0
+    c = 0.0
+    e = 0.0
+    n = values.shape[0]
+    top = n - n % 4
+    for k in range(0, top, 4):
+        a = max(a, values[k])
+        b = max(b, values[k + 1])
+        c = max(c, values[k + 2])
+        e = max(e, values[k + 3])
+    for k in range(top, n):
+        a = max(a, values[k])
+    return max(max(a, b), max(c, e))
 
 
 @kernel
@@ -398,12 +446,21 @@ def _run_blocks(
 
     Compiled without reference counting (``kinetic.jit.refcount_free``): 17 % more
     hard-sphere events and 20-30 % more Maxwell events per second, the same numbers.
+    The stream (``state``) and the normal cache (``cache``) live in scalars during the
+    loop and are stored back at the end: in memory, every velocity store would force them
+    to be reloaded (numba cannot prove that the arrays do not alias), on the critical path
+    of every draw.
     """
     d, n = velocity.shape
     rate_factor, keep, duplicating = compensation_parameters(lam)
     always_keep = keep >= 1.0
     k1 = channel_a_rate(d)
-    cache[0] = 0.0
+    s0 = state[0]
+    s1 = state[1]
+    s2 = state[2]
+    s3 = state[3]
+    waiting = False
+    held = 0.0
     histogram_weight = 0.0
     for block in range(blocks.shape[0]):
         sum2, sum4, sum_rate, v_max = _population_sums(velocity, speed, rate_table, table_step)
@@ -428,7 +485,8 @@ def _run_blocks(
             integral_rate += sum_rate * dt
             elapsed += dt
             candidates += 1
-            position = uniform(state) * n
+            w, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+            position = w * n
             i = int(position)
             if i >= n:  # guard against rounding of uniform * n
                 i = n - 1
@@ -442,20 +500,18 @@ def _run_blocks(
                     continue  # thinned: no event
                 proposals += 1
                 if d == 2:
-                    accepted, nx, ny = _hard_sphere_proposal_2d(
-                        velocity[0, i], velocity[1, i], speed[i], use_a, state, cache
-                    )
+                    accepted, nx, ny, s0, s1, s2, s3, waiting, held = _hard_sphere_proposal_2d(
+                        velocity[0, i], velocity[1, i], speed[i], use_a, s0, s1, s2, s3, waiting,
+                        held,
+                    )  # fmt: skip
                     nz = 0.0
                 else:
-                    accepted, nx, ny, nz = _hard_sphere_proposal_3d(
-                        velocity[0, i],
-                        velocity[1, i],
-                        velocity[2, i],
-                        speed[i],
-                        use_a,
-                        state,
-                        cache,
-                    )
+                    accepted, nx, ny, nz, s0, s1, s2, s3, waiting, held = (
+                        _hard_sphere_proposal_3d(
+                            velocity[0, i], velocity[1, i], velocity[2, i], speed[i], use_a,
+                            s0, s1, s2, s3, waiting, held,
+                        )
+                    )  # fmt: skip
                 if not accepted:
                     continue
                 events += 1
@@ -466,7 +522,11 @@ def _run_blocks(
                     v_max = _largest(speed)
                     bound = k1 * v_max + _RATE_AT_REST
                     dt = 1.0 / (rate_factor * n * bound)
-                if always_keep or uniform(state) < keep:
+                kept = always_keep
+                if not kept:
+                    w, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+                    kept = w < keep
+                if kept:
                     old2 = speed[i] * speed[i]
                     velocity[0, i] = nx
                     velocity[1, i] = ny
@@ -480,9 +540,15 @@ def _run_blocks(
             else:
                 proposals += 1
                 events += 1
-                if always_keep or uniform(state) < keep:
+                kept = always_keep
+                if not kept:
+                    w, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
+                    kept = w < keep
+                if kept:
                     old2 = speed[i] * speed[i]
-                    new2 = _maxwell_collision(velocity, i, state, cache)
+                    new2, s0, s1, s2, s3, waiting, held = _maxwell_collision(
+                        velocity, i, s0, s1, s2, s3, waiting, held
+                    )
                     elastic += 1
                 else:
                     old2 = -1.0
@@ -501,7 +567,7 @@ def _run_blocks(
                     dt = 1.0 / (rate_factor * n * bound)
                     block_max = max(block_max, v_max)
                 continue
-            j = _other_member(i, n, state)
+            j, s0, s1, s2, s3 = _other_member(i, n, s0, s1, s2, s3)
             if duplicating:
                 source = i
                 target = j
@@ -531,4 +597,10 @@ def _run_blocks(
         row[9] = block_max
         histogram_weight += dt
         _snapshot_histogram(velocity, dt, half_width, histogram)
+    state[0] = s0
+    state[1] = s1
+    state[2] = s2
+    state[3] = s3
+    cache[0] = 1.0 if waiting else 0.0
+    cache[1] = held
     return histogram_weight
