@@ -119,45 +119,36 @@ def xoshiro_exponential(s0, s1, s2, s3):
 
 @kernel
 def xoshiro_unit_3d(s0, s1, s2, s3):
-    """Uniform direction on the sphere (Marsaglia 1972, no trigonometry).
-
-    Returns ``(e0, e1, e2, s0, s1, s2, s3)``.
+    """Uniform direction on the sphere (Marsaglia 1972, no trigonometry) from one disk
+    point. Returns ``(e0, e1, e2, s0, s1, s2, s3)``.
     """
-    while True:
-        a, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
-        b, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
-        x = 2.0 * a - 1.0
-        y = 2.0 * b - 1.0
-        s = x * x + y * y
-        if s < 1.0:
-            f = 2.0 * np.sqrt(1.0 - s)
-            return x * f, y * f, 1.0 - 2.0 * s, s0, s1, s2, s3
+    x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(s0, s1, s2, s3)
+    f = 2.0 * np.sqrt(1.0 - r2)
+    return x * f, y * f, 1.0 - 2.0 * r2, s0, s1, s2, s3
 
 
 @kernel
 def xoshiro_unit_2d(s0, s1, s2, s3):
-    """Uniform direction on the circle (von Neumann's rejection, no trigonometry).
-
-    Returns ``(e0, e1, s0, s1, s2, s3)``.
+    """Uniform direction on the circle (von Neumann's rejection, no trigonometry): the
+    doubled angle of one disk point. Returns ``(e0, e1, s0, s1, s2, s3)``.
     """
-    while True:
-        a, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
-        b, s0, s1, s2, s3 = xoshiro_uniform(s0, s1, s2, s3)
-        x = 2.0 * a - 1.0
-        y = 2.0 * b - 1.0
-        s = x * x + y * y
-        if 0.0 < s < 1.0:
-            return (x * x - y * y) / s, 2.0 * x * y / s, s0, s1, s2, s3
+    x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(s0, s1, s2, s3)
+    return (x * x - y * y) / r2, 2.0 * x * y / r2, s0, s1, s2, s3
 
 
 @inline
 def _next_u64(state):
     result, s0, s1, s2, s3 = xoshiro_next(state[0], state[1], state[2], state[3])
+    _store(state, s0, s1, s2, s3)
+    return result
+
+
+@inline
+def _store(state, s0, s1, s2, s3):
     state[0] = s0
     state[1] = s1
     state[2] = s2
     state[3] = s3
-    return result
 
 
 @inline
@@ -181,28 +172,25 @@ def exponential(state):
 @inline
 def disk_point(state):
     """Uniform point (x, y) in the open unit disk minus its centre, and r2 = x² + y²."""
-    while True:
-        x = 2.0 * uniform(state) - 1.0
-        y = 2.0 * uniform(state) - 1.0
-        r2 = x * x + y * y
-        if 0.0 < r2 < 1.0:
-            return x, y, r2
+    x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(state[0], state[1], state[2], state[3])
+    _store(state, s0, s1, s2, s3)
+    return x, y, r2
 
 
 @inline
 def normal_pair(state):
     """Two independent standard normal variates (Marsaglia's polar method)."""
-    x, y, r2 = disk_point(state)
-    factor = np.sqrt(-2.0 * np.log(r2) / r2)
-    return x * factor, y * factor
+    z0, z1, s0, s1, s2, s3 = xoshiro_normal_pair(state[0], state[1], state[2], state[3])
+    _store(state, s0, s1, s2, s3)
+    return z0, z1
 
 
 @inline
 def unit_vector_3d(state):
     """Uniform direction on the sphere (Marsaglia 1972): returns ``(x, y, z)``."""
-    x, y, r2 = disk_point(state)
-    root = 2.0 * np.sqrt(1.0 - r2)
-    return x * root, y * root, 1.0 - 2.0 * r2
+    x, y, z, s0, s1, s2, s3 = xoshiro_unit_3d(state[0], state[1], state[2], state[3])
+    _store(state, s0, s1, s2, s3)
+    return x, y, z
 
 
 @inline

@@ -60,6 +60,7 @@ from kinetic.rng import (
     xoshiro_normal_pair,
     xoshiro_uniform,
     xoshiro_uniform_open,
+    xoshiro_unit_3d,
 )
 
 __all__ = [
@@ -184,14 +185,6 @@ def _hard_sphere_proposal_2d(vx, vy, speed, use_channel_a, s0, s1, s2, s3, waiti
 
 
 @inline
-def _unit_vector_3d(s0, s1, s2, s3):
-    """``kinetic.rng.unit_vector_3d`` on a scalar stream: ``(x, y, z, s0, s1, s2, s3)``."""
-    x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(s0, s1, s2, s3)
-    root = 2.0 * np.sqrt(1.0 - r2)
-    return x * root, y * root, 1.0 - 2.0 * r2, s0, s1, s2, s3
-
-
-@inline
 def _hard_sphere_proposal_3d(vx, vy, vz, speed, use_channel_a, s0, s1, s2, s3, waiting, held):
     """One hard-sphere candidate in d = 3; see ``_hard_sphere_proposal_2d``.
 
@@ -199,7 +192,7 @@ def _hard_sphere_proposal_3d(vx, vy, vz, speed, use_channel_a, s0, s1, s2, s3, w
     (v̂·σ̂)⁺ (Lambert's law); channel B draws σ̂ uniform and u = -√(-2 ln U).
     Returns ``(accepted, new_vx, new_vy, new_vz, s0, s1, s2, s3, waiting, held)``.
     """
-    wx, wy, wz, s0, s1, s2, s3 = _unit_vector_3d(s0, s1, s2, s3)
+    wx, wy, wz, s0, s1, s2, s3 = xoshiro_unit_3d(s0, s1, s2, s3)
     if use_channel_a:
         inv_speed = 1.0 / speed
         px = vx * inv_speed + wx
@@ -254,7 +247,7 @@ def _maxwell_collision(velocity, i, s0, s1, s2, s3, waiting, held):
         velocity[0, i] = vx
         velocity[1, i] = vy
         return vx * vx + vy * vy, s0, s1, s2, s3, waiting, held
-    sx, sy, sz, s0, s1, s2, s3 = _unit_vector_3d(s0, s1, s2, s3)
+    sx, sy, sz, s0, s1, s2, s3 = xoshiro_unit_3d(s0, s1, s2, s3)
     vx = velocity[0, i]
     vy = velocity[1, i]
     vz = velocity[2, i]
