@@ -202,6 +202,9 @@ def _collision_stage(n: int, alpha: float, repeats: int, collisions_per_particle
             "ns_per_collision_kernel": 1e9 / accepted_rate,
             "ns_per_collision_random_numbers_only": 1e9 * draws_per_collision / generator,
             "collision_work_ns": 1e9 / accepted_rate - 1e9 / (floor * acceptance),
+            # uniform pairs with free collisions: the candidate loop's rate times the
+            # acceptance (the bound of this selection on this machine and N)
+            "accepted_collisions_bound_per_cpu_second": floor * acceptance,
         },
         "meets_target": bool(n < 100_000 or accepted_rate >= TARGET_COLLISIONS_PER_SECOND),
         "candidates_per_collision": float(1.0 / acceptance),
@@ -440,6 +443,12 @@ def run(quick: bool) -> dict[str, Any]:
             ),
             "rate_met": all(
                 m["accepted_collisions_per_cpu_second"] >= TARGET_MAJORANT_RATE for m in majorants
+            ),
+            # what the uniform pairs could reach at N = 2e5 if a collision cost nothing
+            # beyond its candidates: below the target means the memory of the candidates
+            # alone rules it out for that selection on this machine
+            "uniform_pairs_bound_at_n_200000": min(
+                c["floors"]["accepted_collisions_bound_per_cpu_second"] for c in large
             ),
         },
         "forcing_stage": forcing,
