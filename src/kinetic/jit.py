@@ -13,12 +13,14 @@ the event loops and the random-number generator).
     @kernel
     def step(...): ...
 
-Cached machine code is keyed on the source of the whole package. Numba checks only the
-file that defines the compiled function, so a kernel whose inlined helpers live in other
-files (the EDMD event loop and ``kinetic.edmd.cells``, every engine and ``kinetic.rng``)
-would otherwise keep running the old helpers after they are edited, or after a checkout
-that changed only those files. Here any change to a source file of ``kinetic``
-invalidates the cached kernels of the package, which recompile on their next use.
+Cached machine code is keyed on every file the kernel depends on
+(``kinetic.sources.kernel_sources``: its engine's package and the shared modules). Numba
+checks only the file that defines the compiled function, so a kernel whose inlined
+helpers live in other files (the EDMD event loop and ``kinetic.edmd.cells``, every engine
+and ``kinetic.rng``) would otherwise keep running the old helpers after they are edited,
+or after a checkout that changed only those files. Here such a change invalidates the
+cached kernels, which recompile on their next use (rule ``warm_numba`` reruns on the same
+files).
 """
 
 import functools
@@ -30,30 +32,33 @@ from numba import njit, types
 from numba.core import caching, cgutils
 from numba.extending import intrinsic
 
-__all__ = ["FLAGS", "inline", "kernel", "package_source_stamp", "prefetch", "refcount_free"]
+from kinetic.sources import PACKAGE, kernel_sources
 
-PACKAGE = Path(__file__).resolve().parent
-"""The ``kinetic`` package directory: its ``*.py`` files make the cache's source stamp."""
+__all__ = ["FLAGS", "inline", "kernel", "prefetch", "refcount_free", "source_stamp"]
 
 
 @functools.cache
-def package_source_stamp() -> str:
-    """SHA-256 over the relative path and the bytes of every ``*.py`` file of the package
-    (read once per process, about 100 files)."""
+def _digest(files: tuple[Path, ...]) -> str:
     digest = hashlib.sha256()
-    for path in sorted(PACKAGE.rglob("*.py")):
+    for path in files:
         digest.update(path.relative_to(PACKAGE).as_posix().encode())
         digest.update(b"\0")
         digest.update(path.read_bytes())
     return digest.hexdigest()
 
 
+def source_stamp(py_file: str | Path) -> str:
+    """SHA-256 over the relative paths and the bytes of ``kernel_sources(py_file)`` (read
+    once per process and set of files)."""
+    return _digest(tuple(kernel_sources(py_file)))
+
+
 class _PackageStamp:
-    """Locator mixin: the package's functions are fresh only if no file of the package
-    changed; functions of other packages keep numba's own locators."""
+    """Locator mixin: the package's functions are fresh only if none of the files they
+    depend on changed; functions of other packages keep numba's own locators."""
 
     def get_source_stamp(self):
-        return package_source_stamp()
+        return source_stamp(self._py_file)
 
     @classmethod
     def from_function(cls, py_func, py_file):
@@ -63,11 +68,11 @@ class _PackageStamp:
 
 
 class _PackageUserDirLocator(_PackageStamp, caching.UserProvidedCacheLocator):
-    """``NUMBA_CACHE_DIR`` set: the cache there, stamped with the package source."""
+    """``NUMBA_CACHE_DIR`` set: the cache there, stamped with the kernel's sources."""
 
 
 class _PackageInTreeLocator(_PackageStamp, caching.InTreeCacheLocator):
-    """Otherwise the ``__pycache__`` beside the source, stamped with the package source."""
+    """Otherwise the ``__pycache__`` beside the source, stamped with the kernel's sources."""
 
 
 # numba tries its locators in order and takes the first that accepts the function

@@ -1,9 +1,10 @@
-"""numba's on-disk cache must not run stale helpers.
+"""numba's on-disk cache must not run stale helpers, nor recompile for nothing.
 
 numba stamps a cached function with the source of the file that defines it. The
 population draw of the cloning engine (``kinetic.cloning.kernels.draw_population``)
 inlines ``kinetic.rng.normal_pair`` from another file; after an edit of that file alone,
-the next process must run the edited helper, not the machine code cached before."""
+the next process must run the edited helper, not the machine code cached before. An edit
+of a file the kernel does not depend on (the plotting helpers) keeps the cache."""
 
 import os
 import shutil
@@ -11,6 +12,8 @@ import subprocess
 import sys
 
 import pytest
+
+from kinetic.sources import ENGINES, PACKAGE, SHARED, engine_sources, kernel_sources
 
 PROBE = """
 import numpy as np
@@ -60,8 +63,29 @@ def test_an_edited_helper_in_another_file_invalidates_the_cached_kernel(reposito
     assert loaded, "an unchanged package must load its kernels from the cache"
     assert again == drawn
 
+    with open(tmp_path / "kinetic" / "plotting" / "__init__.py", "a") as source:
+        source.write("\n# an edit outside the engines' sources\n")
+    unrelated, loaded = _run(tmp_path, cache)
+    assert loaded, "an edit the kernel does not depend on recompiled it"
+    assert unrelated == drawn
+
     with open(tmp_path / "kinetic" / "rng.py", "a") as source:
         source.write(EDIT)
     edited, loaded = _run(tmp_path, cache)
     assert not loaded, "the kernel was loaded from a cache compiled before the edit"
     assert edited == 8 * 0.5
+
+
+def test_kernel_sources_cover_the_engine_and_the_shared_modules():
+    shared = {PACKAGE / f"{module}.py" for module in SHARED}
+    for engine in ENGINES:
+        files = set(engine_sources(engine))
+        assert shared <= files
+        assert PACKAGE / engine / "__init__.py" in files
+        assert not any(path.is_relative_to(PACKAGE / "plotting") for path in files)
+        assert set(kernel_sources(PACKAGE / engine / "kernels.py")) == files
+    assert set(kernel_sources(PACKAGE / "rng.py")) == shared
+    # compiled code outside the engines (the benchmarks) depends on everything
+    assert set(kernel_sources(PACKAGE / "bench" / "edmd.py")) == set(PACKAGE.rglob("*.py"))
+    with pytest.raises(ValueError, match="unknown engine"):
+        engine_sources("plotting")

@@ -6,6 +6,7 @@ from snakemake.exceptions import WorkflowError
 
 from kinetic.config import ConfigError, validate_config
 from kinetic.seeds import derive_seed
+from kinetic.sources import SHARED as KERNEL_SHARED_SOURCES
 
 try:
     validate_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
@@ -106,8 +107,10 @@ def package_files(*modules):
 
 
 def engine_sources(engine):
-    """Files whose change must rebuild a simulation of ``engine``."""
-    return package_files(engine, "rng", "seeds", "jit", "validate", "gas")
+    """Files whose change must rebuild a simulation of ``engine``: the files its compiled
+    kernels are keyed on in numba's cache (``kinetic.sources``), so that rule warm_numba
+    recompiles whenever that cache went stale."""
+    return package_files(engine, *KERNEL_SHARED_SOURCES)
 
 
 def numba_warm(engine):
