@@ -75,11 +75,16 @@ class _PackageInTreeLocator(_PackageStamp, caching.InTreeCacheLocator):
     """Otherwise the ``__pycache__`` beside the source, stamped with the kernel's sources."""
 
 
+class _PackageUserWideLocator(_PackageStamp, caching.UserWideCacheLocator):
+    """A read-only installation: the user's cache directory, stamped the same way."""
+
+
 # numba tries its locators in order and takes the first that accepts the function
 _LOCATORS = caching.CacheImpl._locator_classes
 _LOCATORS[:] = [
     _PackageUserDirLocator,
     _PackageInTreeLocator,
+    _PackageUserWideLocator,
     *(c for c in _LOCATORS if not issubclass(c, _PackageStamp)),
 ]
 

@@ -28,15 +28,27 @@ print(repr(float(velocity.sum())))
 EDIT = "\n\n@inline\ndef normal_pair(state):\n    return 0.5, 0.5\n"
 
 
-def _run(package_root, cache):
-    environment = {
-        **os.environ,
-        "PYTHONPATH": str(package_root),
-        "NUMBA_CACHE_DIR": str(cache),
-        "NUMBA_DEBUG_CACHE": "1",
-    }
+#: run first in the probe of a read-only installation: no ``__pycache__`` can be written
+READ_ONLY_TREE = """
+from numba.core import caching
+_ensure = caching._CacheLocator.ensure_cache_path
+def _refuse_in_tree(self):
+    if "__pycache__" in self.get_cache_path():
+        raise OSError("read-only installation")
+    return _ensure(self)
+caching._CacheLocator.ensure_cache_path = _refuse_in_tree
+"""
+
+
+def _run(package_root, cache, read_only):
+    environment = {key: value for key, value in os.environ.items() if key != "NUMBA_CACHE_DIR"}
+    environment |= {"PYTHONPATH": str(package_root), "NUMBA_DEBUG_CACHE": "1"}
+    if read_only:  # numba falls back to the user's cache directory
+        environment["XDG_CACHE_HOME"] = str(cache)
+    else:
+        environment["NUMBA_CACHE_DIR"] = str(cache)
     result = subprocess.run(
-        [sys.executable, "-c", PROBE],
+        [sys.executable, "-c", (READ_ONLY_TREE if read_only else "") + PROBE],
         env=environment,
         capture_output=True,
         text=True,
@@ -48,7 +60,10 @@ def _run(package_root, cache):
 
 
 @pytest.mark.slow
-def test_an_edited_helper_in_another_file_invalidates_the_cached_kernel(repository, tmp_path):
+@pytest.mark.parametrize("read_only", [False, True], ids=["NUMBA_CACHE_DIR", "read-only tree"])
+def test_an_edited_helper_in_another_file_invalidates_the_cached_kernel(
+    repository, tmp_path, read_only
+):
     shutil.copytree(
         repository / "src" / "kinetic",
         tmp_path / "kinetic",
@@ -56,22 +71,24 @@ def test_an_edited_helper_in_another_file_invalidates_the_cached_kernel(reposito
     )
     cache = tmp_path / "cache"
 
-    drawn, loaded = _run(tmp_path, cache)
+    drawn, loaded = _run(tmp_path, cache, read_only)
     assert not loaded  # compiled: the cache was empty
     assert drawn != 4.0
-    again, loaded = _run(tmp_path, cache)
+    assert any(cache.rglob("*draw_population*.nbi")), "the kernel was not cached there"
+    assert not any((tmp_path / "kinetic").rglob("*.nbi"))
+    again, loaded = _run(tmp_path, cache, read_only)
     assert loaded, "an unchanged package must load its kernels from the cache"
     assert again == drawn
 
     with open(tmp_path / "kinetic" / "plotting" / "__init__.py", "a") as source:
         source.write("\n# an edit outside the engines' sources\n")
-    unrelated, loaded = _run(tmp_path, cache)
+    unrelated, loaded = _run(tmp_path, cache, read_only)
     assert loaded, "an edit the kernel does not depend on recompiled it"
     assert unrelated == drawn
 
     with open(tmp_path / "kinetic" / "rng.py", "a") as source:
         source.write(EDIT)
-    edited, loaded = _run(tmp_path, cache)
+    edited, loaded = _run(tmp_path, cache, read_only)
     assert not loaded, "the kernel was loaded from a cache compiled before the edit"
     assert edited == 8 * 0.5
 
