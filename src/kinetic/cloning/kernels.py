@@ -51,11 +51,8 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from kinetic.jit import inline, kernel, refcount_free
 from kinetic.rng import (
-    normal_pair,
     xoshiro_disk_point,
     xoshiro_normal_pair,
     xoshiro_uniform,
@@ -122,24 +119,9 @@ def channel_a_rate(d):
 
 
 @inline
-def _cached_normal(state, cache):
-    """A standard normal variate; the polar method's second variate waits in ``cache``.
-
-    ``cache`` is a float64[2] array: ``cache[0]`` = 1 when ``cache[1]`` holds a variate.
-    """
-    if cache[0] != 0.0:
-        cache[0] = 0.0
-        return cache[1]
-    z0, z1 = normal_pair(state)
-    cache[0] = 1.0
-    cache[1] = z1
-    return z0
-
-
-@inline
 def _normal(s0, s1, s2, s3, waiting, held):
-    """``_cached_normal`` with the stream and the cache in scalars (the event loop keeps
-    them in registers): the polar method's second variate is ``held`` while ``waiting``.
+    """A standard normal variate, the stream and the cache in scalars (loops keep them in
+    registers): the polar method's second variate is ``held`` while ``waiting``.
     Returns ``(z, s0, s1, s2, s3, waiting, held)``."""
     if waiting:
         return held, s0, s1, s2, s3, False, held
@@ -284,14 +266,17 @@ def _copy_member(velocity, speed, source, target):
 def draw_population(velocity, speed, state):
     """Fill ``velocity`` (d, n) with bath velocities N(0, T0 = 1) and ``speed`` with |v|."""
     d, n = velocity.shape
-    cache = np.zeros(2)
+    s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
+    waiting = False
+    held = 0.0
     for i in range(n):
-        s2 = 0.0
+        total = 0.0
         for k in range(d):
-            value = _cached_normal(state, cache)
+            value, s0, s1, s2, s3, waiting, held = _normal(s0, s1, s2, s3, waiting, held)
             velocity[k, i] = value
-            s2 += value * value
-        speed[i] = math.sqrt(s2)
+            total += value * value
+        speed[i] = math.sqrt(total)
+    state[0], state[1], state[2], state[3] = s0, s1, s2, s3
 
 
 @inline
@@ -364,7 +349,7 @@ def _snapshot_histogram(velocity, weight, half_width, histogram):
                 histogram[int(position)] += weight
 
 
-@kernel
+@refcount_free
 def run_blocks(
     kernel,
     lam,
@@ -413,36 +398,13 @@ def run_blocks(
     Returns the total weight added to ``histogram`` (sum of the snapshot weights).
     The polar-method variate cache is reset at each call, so results do not depend on
     how blocks are split into calls.
-    """
-    return _run_blocks(
-        kernel, lam, velocity, speed, state, block_duration, blocks, half_width, histogram,
-        rate_table, table_step, np.zeros(2),
-    )  # fmt: skip
-
-
-@refcount_free
-def _run_blocks(
-    kernel,
-    lam,
-    velocity,
-    speed,
-    state,
-    block_duration,
-    blocks,
-    half_width,
-    histogram,
-    rate_table,
-    table_step,
-    cache,
-):
-    """Body of ``run_blocks``, with the polar-method cache passed in.
 
     Compiled without reference counting (``kinetic.jit.refcount_free``): 17 % more
     hard-sphere events and 20-30 % more Maxwell events per second, the same numbers.
-    The stream (``state``) and the normal cache (``cache``) live in scalars during the
-    loop and are stored back at the end: in memory, every velocity store would force them
-    to be reloaded (numba cannot prove that the arrays do not alias), on the critical path
-    of every draw.
+    The stream (``state``) and the polar method's held variate live in scalars during the
+    loop, the stream stored back at the end: in memory, every velocity store would force
+    them to be reloaded (numba cannot prove that the arrays do not alias), on the critical
+    path of every draw.
     """
     d, n = velocity.shape
     rate_factor, keep, duplicating = compensation_parameters(lam)
@@ -594,6 +556,4 @@ def _run_blocks(
     state[1] = s1
     state[2] = s2
     state[3] = s3
-    cache[0] = 1.0 if waiting else 0.0
-    cache[1] = held
     return histogram_weight
