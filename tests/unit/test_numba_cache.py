@@ -2,7 +2,7 @@
 
 numba stamps a cached function with the source of the file that defines it. The
 population draw of the cloning engine (``kinetic.cloning.kernels.draw_population``)
-inlines ``kinetic.rng.normal_pair`` from another file; after an edit of that file alone,
+calls ``kinetic.rng.xoshiro_normal_pair`` from another file; after an edit of that file alone,
 the next process must run the edited helper, not the machine code cached before. An edit
 of a file the kernel does not depend on (the plotting helpers) keeps the cache."""
 
@@ -25,7 +25,9 @@ print(repr(float(velocity.sum())))
 """
 
 #: a helper that draws nothing: every component of the population becomes 0.5
-EDIT = "\n\n@inline\ndef normal_pair(state):\n    return 0.5, 0.5\n"
+EDIT = (
+    "\n\n@kernel\ndef xoshiro_normal_pair(s0, s1, s2, s3):\n    return 0.5, 0.5, s0, s1, s2, s3\n"
+)
 
 
 #: run first in the probe of a read-only installation: no ``__pycache__`` can be written
