@@ -1,0 +1,60 @@
+"""kinetic.trace: the pipeline of a figure is the one Snakemake plans, shown file by file."""
+
+import inspect
+import re
+
+import pytest
+
+from kinetic import dsmc, edmd
+from kinetic.trace import main, package_modules, trace
+
+pytestmark = pytest.mark.workflow
+
+
+def test_montanero2007_fig03_runs_simulation_then_join_then_figure(repository):
+    result = trace("results/montanero2007/fig03.pdf", ["config/ci.yaml"], repository)
+    rules = [step.rule for step in result.steps]
+    assert rules == [
+        "montanero2007_simulate_dsmc",
+        "montanero2007_aggregate_run",
+        "montanero2007_fig03",
+    ]  # warm_numba prepares the machine: not part of the figure's pipeline
+    simulate, _, figure = result.steps
+    assert simulate.script == "workflow/scripts/montanero2007_simulate_dsmc.py"
+    # the engine front behind the study module, where it is written
+    engine = inspect.getsourcefile(dsmc.simulate_homogeneous)
+    assert str(repository / simulate.modules[-1]) == engine
+    assert "src/kinetic/theory/montanero2007.py" in figure.modules
+    assert "src/kinetic/analysis/montanero2007.py" in figure.modules
+    assert result.files[0] == "config/ci.yaml"
+    assert len(result.files) == len(set(result.files))
+    config = (repository / "config/ci.yaml").read_text().splitlines()
+    assert config[result.config_line - 1].startswith("montanero2007:")
+
+
+def test_every_rule_of_the_whole_build_is_located(repository):
+    """Each rule of the ci build is found where the tracer says, with its script."""
+    result = trace("all", ["config/ci.yaml"], repository)
+    assert len(result.steps) > 40
+    for step in result.steps:
+        lines = (repository / step.rule_file).read_text().splitlines()
+        assert re.match(rf"(rule|checkpoint) {step.rule}:", lines[step.line - 1])
+        assert step.script is None or (repository / step.script).is_file()
+        assert all((repository / module).is_file() for module in step.modules)
+
+
+def test_re_exported_engine_fronts_resolve_to_their_defining_files(repository):
+    modules = package_modules(
+        repository / "workflow/scripts/costantini2010_simulate.py", repository
+    )
+    for front in (dsmc.simulate_cooling_modes, edmd.simulate_cooling_modes):
+        assert str(repository / "src" / "kinetic") in inspect.getsourcefile(front)
+        assert inspect.getsourcefile(front).endswith(tuple(modules))
+
+
+def test_command_prints_the_reading_list(repository, capsys, monkeypatch):
+    monkeypatch.chdir(repository)
+    assert main(["results/visco2008/fig03.pdf", "--configfile", "config/ci.yaml"]) == 0
+    out = capsys.readouterr().out
+    assert "rule     visco2008_theory" in out and "rule     visco2008_fig03" in out
+    assert re.search(r"^\d+ files:$", out, re.MULTILINE)
