@@ -6,7 +6,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from kinetic.cloning import aggregate, simulate
+from kinetic.analysis import cloning as aggregate
+from kinetic.cloning import simulate
 from kinetic.config import validate_config
 from kinetic.studies import visco2008_cloning as plan
 

@@ -114,8 +114,12 @@ def engine_sources(engine):
 
 
 def numba_warm(engine):
-    """Flag file of rule warm_numba: compiled kernels of ``engine`` are in numba's cache."""
-    return f"results/.cache/numba-{engine}.done"
+    """Flag file of rule warm_numba: compiled kernels of ``engine`` are in numba's cache.
+
+    Marked ancient: a simulation job needs the cache filled, but a newer flag (the cache
+    was filled again, e.g. after results/.cache was deleted) reruns no simulation. An edit
+    of the engine reruns them through their ``engine_sources`` inputs."""
+    return ancient(f"results/.cache/numba-{engine}.done")
 
 
 def engine_sources_of_wildcard(wildcards):

@@ -1,17 +1,17 @@
 """Pool the scan's batches (rule visco2008_aggregate_cloning) -> cloning.csv|md|nc."""
 
 from kinetic import io
-from kinetic.cloning import aggregate
+from kinetic.analysis import cloning as analysis
 from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 paths = list(snakemake.input.batches)
-records = aggregate.combine_points([io.read_dataset(path) for path in paths], names=paths)
-limits = aggregate.extrapolate_points(records)
-io.write_table(aggregate.scan_table(records, limits), snakemake.output.csv, snakemake.output.md)
+records = analysis.combine_points([io.read_dataset(path) for path in paths], names=paths)
+limits = analysis.extrapolate_points(records)
+io.write_table(analysis.scan_table(records, limits), snakemake.output.csv, snakemake.output.md)
 write_output(
     snakemake,
-    aggregate.scan_dataset(records, limits),
+    analysis.scan_dataset(records, limits),
     None,
     output="nc",
     parameters={"points": len(records)},

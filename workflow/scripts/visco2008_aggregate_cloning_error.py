@@ -3,22 +3,22 @@
 import numpy as np
 
 from kinetic import io
-from kinetic.cloning import aggregate
+from kinetic.analysis import cloning as analysis
 from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 paths = list(snakemake.input.batches)
-records = aggregate.combine_points([io.read_dataset(path) for path in paths], names=paths)
+records = analysis.combine_points([io.read_dataset(path) for path in paths], names=paths)
 reference = io.read_dataset(snakemake.input.reference)
 exact = {}
 for record in records:
     match = np.flatnonzero(np.isclose(reference["lam"].values, record["lam"], atol=1e-9))
     exact[record["lam"]] = float(reference["mu"].values[match[0]])
-table = aggregate.error_table(records, exact)
+table = analysis.error_table(records, exact)
 io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".4g")
 write_output(
     snakemake,
-    aggregate.error_dataset(records, exact),
+    analysis.error_dataset(records, exact),
     None,
     output="nc",
     parameters={"points": len(records)},

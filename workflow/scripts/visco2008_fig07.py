@@ -4,8 +4,12 @@ deterministic solution of Eq. (28). Crosses: T of populations that collapsed ont
 clones at large λ (not estimates of the eigenfunction; they only show T -> 0)."""
 
 from kinetic import io, plotting
-from kinetic.cloning.figures import collapsed_points, finite, scan_series
-from kinetic.studies.visco2008_cloning_figures import draw_series
+from kinetic.studies.visco2008_cloning_figures import (
+    collapsed_points,
+    draw_series,
+    finite,
+    scan_series,
+)
 from kinetic.workflow_support import start
 
 start(snakemake)

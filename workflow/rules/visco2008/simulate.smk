@@ -235,7 +235,8 @@ rule visco2008_simulate_dsmc:
 
 rule visco2008_aggregate_dsmc:
     input:
-        visco2008_dsmc_batch_files,
+        batches=visco2008_dsmc_batch_files,
+        code=package_files("analysis/collision_statistics"),
     output:
         "results/visco2008/dsmc/{run}.nc",
     log:
@@ -286,26 +287,11 @@ def visco2008_cloning_job(wildcards):
     )
 
 
-# what a batch's numbers depend on (aggregation and plotting code are not part of it)
-VISCO2008_CLONING_SOURCES = package_files(
-    "cloning/__init__",
-    "cloning/kernels",
-    "cloning/simulate",
-    "cloning/estimators",
-    "cloning/rates",
-    "theory/visco2008",
-    "rng",
-    "seeds",
-    "jit",
-    "io",
-)
-
-
 rule visco2008_simulate_cloning:
     input:
-        sources=VISCO2008_CLONING_SOURCES,
-        # ancient: the compiled cache must exist, but its age does not rerun batches
-        warm=ancient(numba_warm("cloning")),
+        # the engine and the collision rate it scales time by (kinetic.cloning.rates)
+        sources=engine_sources("cloning") + package_files("theory/visco2008"),
+        warm=numba_warm("cloning"),
     output:
         "results/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.nc",
     log:
@@ -331,7 +317,7 @@ rule visco2008_simulate_cloning:
 rule visco2008_aggregate_cloning:
     input:
         batches=visco2008_cloning_scan_batches,
-        code=package_files("cloning/aggregate"),
+        code=package_files("analysis/cloning"),
     output:
         csv="results/visco2008/cloning.csv",
         md="results/visco2008/cloning.md",
@@ -346,7 +332,7 @@ rule visco2008_aggregate_cloning_error:
     input:
         batches=visco2008_cloning_error_batches,
         reference="results/visco2008/cloning/reference.nc",
-        code=package_files("cloning/aggregate"),
+        code=package_files("analysis/cloning"),
     output:
         csv="results/visco2008/cloning_error_vs_time.csv",
         md="results/visco2008/cloning_error_vs_time.md",

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
+from kinetic.analysis.collision_statistics import combine_free_flights
 from kinetic.dsmc import simulate_free_flights
-from kinetic.dsmc.aggregate import combine_free_flights
 
 RUN = dict(
     n_particles=100,
