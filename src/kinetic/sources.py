@@ -13,13 +13,18 @@ One list serves two consumers that must agree:
 An engine's kernels depend on the files of its package and on the shared modules below.
 Compiled code elsewhere (the benchmarks call into several engines) depends on every file
 of ``kinetic``.
+
+The rules that join, analyse and plot results depend on the package files their script
+imports (``script_sources``), read from the import statements without importing anything.
 """
 
 from __future__ import annotations
 
+import ast
+from functools import cache
 from pathlib import Path
 
-__all__ = ["ENGINES", "PACKAGE", "SHARED", "engine_sources", "kernel_sources"]
+__all__ = ["ENGINES", "PACKAGE", "SHARED", "engine_sources", "kernel_sources", "script_sources"]
 
 PACKAGE = Path(__file__).resolve().parent
 """The ``kinetic`` package directory."""
@@ -50,3 +55,52 @@ def kernel_sources(py_file: str | Path) -> list[Path]:
     if len(relative.parts) == 1 and relative.stem in SHARED:
         return sorted(PACKAGE / f"{module}.py" for module in SHARED)
     return sorted(PACKAGE.rglob("*.py"))
+
+
+def _module_files(dotted: str) -> list[Path]:
+    """The files that ``import dotted`` runs inside the package: the ``__init__.py`` of
+    every package on the way, then the module itself (empty when it is not a module)."""
+    parts = dotted.split(".")[1:]
+    files = [PACKAGE / "__init__.py"]
+    for depth in range(1, len(parts) + 1):
+        path = PACKAGE.joinpath(*parts[:depth])
+        if (path / "__init__.py").is_file():
+            files.append(path / "__init__.py")
+        elif path.with_suffix(".py").is_file() and depth == len(parts):
+            files.append(path.with_suffix(".py"))
+        else:
+            return []
+    return files
+
+
+@cache
+def _imported_files(path: Path) -> tuple[Path, ...]:
+    """Package files imported by the import statements of ``path`` (anywhere in it,
+    function bodies included); ``from kinetic.x import name`` counts the submodule
+    ``kinetic.x.name`` when there is one."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(), filename=str(path))):
+        if isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] == "kinetic":
+            found += _module_files(node.module)
+            for alias in node.names:
+                found += _module_files(f"{node.module}.{alias.name}")[-1:]
+        elif isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name.split(".")[0] == "kinetic":
+                    found += _module_files(alias.name)
+    return tuple(dict.fromkeys(found))
+
+
+def script_sources(script: str | Path) -> list[Path]:
+    """Every package file a script runs: what it imports, and what those files import in
+    turn, sorted. Names that a package's ``__init__`` loads on first use
+    (``kinetic.edmd``'s lazy fronts) are not followed; scripts that join, analyse and plot
+    results do not call them."""
+    seen: set[Path] = set()
+    todo = list(_imported_files(Path(script).resolve()))
+    while todo:
+        path = todo.pop()
+        if path not in seen:
+            seen.add(path)
+            todo += _imported_files(path)
+    return sorted(seen)

@@ -7,6 +7,7 @@ from snakemake.exceptions import WorkflowError
 from kinetic.config import ConfigError, validate_config
 from kinetic.seeds import derive_seed
 from kinetic.sources import SHARED as KERNEL_SHARED_SOURCES
+from kinetic.sources import script_sources
 
 try:
     validate_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
@@ -127,9 +128,12 @@ def engine_sources_of_wildcard(wildcards):
     return engine_sources(wildcards.engine)
 
 
-def figure_script(name):
-    """Scripts are inputs of their rule, so editing one re-renders only its figure."""
-    return str(Path(workflow.basedir) / "workflow" / "scripts" / f"{name}.py")
+def script_code(name):
+    """workflow/scripts/<name>.py and every package file it runs (``kinetic.sources``,
+    read from its imports): inputs of the rules that join, analyse and plot results, so an
+    edit of a script or of the code it calls reruns exactly the rules that run it."""
+    script = Path(workflow.basedir) / "workflow" / "scripts" / f"{name}.py"
+    return [str(script), *map(str, script_sources(script))]
 
 
 def caption_template(name):

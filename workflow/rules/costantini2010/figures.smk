@@ -25,12 +25,6 @@ provide(
     "results/costantini2010/amplitudes.csv",
 )
 
-COSTANTINI2010_ANALYSIS_CODE = package_files(
-    "analysis/costantini2010", "theory/costantini2010", "studies/costantini2010", "plotting"
-)
-"""Package modules every figure and table of costantini2010 computes with."""
-
-
 def costantini2010_files(runs):
     return [costantini2010_study.run_file(run) for run in runs]
 
@@ -86,8 +80,7 @@ def costantini2010_caption(name):
 rule costantini2010_fig01:
     input:
         runs=costantini2010_figure_inputs,
-        script=figure_script("costantini2010_fig01"),
-        code=COSTANTINI2010_ANALYSIS_CODE,
+        code=script_code("costantini2010_fig01"),
     output:
         pdf="results/costantini2010/fig01.pdf",
         png=report("results/costantini2010/fig01.png", caption=costantini2010_caption("fig01"), category="costantini2010"),
@@ -102,8 +95,7 @@ rule costantini2010_fig01:
 rule costantini2010_fig02:
     input:
         runs=costantini2010_fig02_inputs,
-        script=figure_script("costantini2010_fig02"),
-        code=COSTANTINI2010_ANALYSIS_CODE,
+        code=script_code("costantini2010_fig02"),
     output:
         pdf="results/costantini2010/fig02.pdf",
         png=report("results/costantini2010/fig02.png", caption=costantini2010_caption("fig02"), category="costantini2010"),
@@ -118,8 +110,7 @@ rule costantini2010_fig02:
 rule costantini2010_fig03:
     input:
         runs=costantini2010_fig03_inputs,
-        script=figure_script("costantini2010_fig03"),
-        code=COSTANTINI2010_ANALYSIS_CODE,
+        code=script_code("costantini2010_fig03"),
     output:
         pdf="results/costantini2010/fig03.pdf",
         png=report("results/costantini2010/fig03.png", caption=costantini2010_caption("fig03"), category="costantini2010"),
@@ -134,8 +125,7 @@ rule costantini2010_fig03:
 rule costantini2010_table1:
     input:
         runs=costantini2010_table_inputs,
-        script=figure_script("costantini2010_table1"),
-        code=COSTANTINI2010_ANALYSIS_CODE,
+        code=script_code("costantini2010_table1"),
     output:
         csv="results/costantini2010/table1.csv",
         md="results/costantini2010/table1.md",
@@ -156,8 +146,7 @@ rule costantini2010_fig04_to_fig07:
         table="results/costantini2010/table1.csv",
         fits="results/costantini2010/extrapolation.csv",
         amplitudes="results/costantini2010/amplitudes.csv",
-        script=figure_script("costantini2010_transport"),
-        code=COSTANTINI2010_ANALYSIS_CODE,
+        code=script_code("costantini2010_transport"),
     output:
         fig04="results/costantini2010/fig04.pdf",
         fig05="results/costantini2010/fig05.pdf",
@@ -178,8 +167,7 @@ rule costantini2010_fig04_to_fig07:
 rule costantini2010_error_vs_time:
     input:
         runs=costantini2010_error_inputs,
-        script=figure_script("costantini2010_error_vs_time"),
-        code=COSTANTINI2010_ANALYSIS_CODE,
+        code=script_code("costantini2010_error_vs_time"),
     output:
         pdf="results/costantini2010/error_vs_time.pdf",
         png=report("results/costantini2010/error_vs_time.png", caption=costantini2010_caption("error_vs_time"), category="costantini2010"),
@@ -195,8 +183,7 @@ rule costantini2010_error_vs_time:
 rule costantini2010_convergence:
     input:
         runs=costantini2010_convergence_inputs,
-        script=figure_script("costantini2010_convergence"),
-        code=COSTANTINI2010_ANALYSIS_CODE,
+        code=script_code("costantini2010_convergence"),
     output:
         pdf="results/costantini2010/convergence.pdf",
         png=report("results/costantini2010/convergence.png", caption=costantini2010_caption("convergence"), category="costantini2010"),

@@ -117,7 +117,7 @@ rule costantini2010_simulate_md:
 rule costantini2010_aggregate_run:
     input:
         batches=costantini2010_batch_files,
-        code=package_files("analysis/costantini2010", "theory/costantini2010", "batches"),
+        code=script_code("costantini2010_aggregate"),
     output:
         "results/costantini2010/{engine}/{run}.nc",
     log:

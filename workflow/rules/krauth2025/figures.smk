@@ -11,7 +11,7 @@ provide("krauth2025/pins_table", *table_files("krauth2025", "pins_table"))
 rule krauth2025_fig04_10:
     input:
         snapshots="results/krauth2025/pins/snapshots.nc",
-        script=figure_script("krauth2025_fig04_10"),
+        code=script_code("krauth2025_fig04_10"),
     output:
         pdf="results/krauth2025/fig04_10.pdf",
         png=report(
@@ -29,7 +29,7 @@ rule krauth2025_fig04_11:
     input:
         lines=krauth2025_line_files(),
         theory=krauth2025_line_theory_files(),
-        script=figure_script("krauth2025_fig04_11"),
+        code=script_code("krauth2025_fig04_11"),
     output:
         pdf="results/krauth2025/fig04_11.pdf",
         png=report(
@@ -47,7 +47,7 @@ rule krauth2025_fig04_13:
     input:
         ring="results/krauth2025/pins/ring.nc",
         theory="results/krauth2025/theory/ring.nc",
-        script=figure_script("krauth2025_fig04_13"),
+        code=script_code("krauth2025_fig04_13"),
     output:
         pdf="results/krauth2025/fig04_13.pdf",
         png=report(
@@ -65,7 +65,7 @@ rule krauth2025_pins_table:
     input:
         lines=krauth2025_line_files(),
         theory=krauth2025_line_theory_files(),
-        script=figure_script("krauth2025_pins_table"),
+        code=script_code("krauth2025_pins_table"),
     output:
         csv="results/krauth2025/pins_table.csv",
         md="results/krauth2025/pins_table.md",
@@ -94,7 +94,7 @@ def krauth2025_snapshot_panels(wildcards):
 rule krauth2025_fig04_01:
     input:
         chaos="results/krauth2025/disks/chaos.nc",
-        script=figure_script("krauth2025_fig04_01"),
+        code=script_code("krauth2025_fig04_01"),
     output:
         pdf="results/krauth2025/fig04_01.pdf",
         png=report(
@@ -113,7 +113,7 @@ rule krauth2025_fig04_01:
 rule krauth2025_chaos:
     input:
         chaos="results/krauth2025/disks/chaos.nc",
-        script=figure_script("krauth2025_chaos"),
+        code=script_code("krauth2025_chaos"),
         template=caption_template("krauth2025_chaos"),
     output:
         pdf="results/krauth2025/chaos.pdf",
@@ -136,7 +136,7 @@ rule krauth2025_fig04_06:
         md="results/krauth2025/disks/md.nc",
         direct="results/krauth2025/disks/direct.nc",
         markov="results/krauth2025/disks/markov.nc",
-        script=figure_script("krauth2025_fig04_06"),
+        code=script_code("krauth2025_fig04_06"),
     output:
         pdf="results/krauth2025/fig04_06.pdf",
         png=report(
@@ -153,7 +153,7 @@ rule krauth2025_fig04_06:
 rule krauth2025_velocities:
     input:
         md="results/krauth2025/disks/md.nc",
-        script=figure_script("krauth2025_velocities"),
+        code=script_code("krauth2025_velocities"),
         template=caption_template("krauth2025_velocities"),
     output:
         pdf="results/krauth2025/velocities.pdf",
@@ -173,7 +173,7 @@ rule krauth2025_pressure_table:
     input:
         md="results/krauth2025/disks/md.nc",
         direct="results/krauth2025/disks/direct.nc",
-        script=figure_script("krauth2025_pressure_table"),
+        code=script_code("krauth2025_pressure_table"),
     output:
         csv="results/krauth2025/pressure_table.csv",
         md="results/krauth2025/pressure_table.md",
@@ -197,7 +197,7 @@ rule krauth2025_error_vs_time:
         md="results/krauth2025/disks/md.nc",
         direct="results/krauth2025/disks/direct.nc",
         markov="results/krauth2025/disks/markov.nc",
-        script=figure_script("krauth2025_error_vs_time"),
+        code=script_code("krauth2025_error_vs_time"),
     output:
         pdf="results/krauth2025/error_vs_time.pdf",
         png=report(

@@ -111,7 +111,7 @@ KRAUTH2025_SOURCES = engine_sources("samplers") + package_files("theory/krauth20
 
 rule krauth2025_simulate_line:
     input:
-        sources=KRAUTH2025_SOURCES,
+        code=KRAUTH2025_SOURCES,
         warm=numba_warm("samplers"),
     output:
         "results/krauth2025/pins/{method}_L{length}.nc",
@@ -133,7 +133,7 @@ rule krauth2025_simulate_line:
 
 rule krauth2025_simulate_ring:
     input:
-        sources=KRAUTH2025_SOURCES,
+        code=KRAUTH2025_SOURCES,
         warm=numba_warm("samplers"),
     output:
         "results/krauth2025/pins/ring.nc",
@@ -152,7 +152,7 @@ rule krauth2025_simulate_ring:
 
 rule krauth2025_simulate_pin_snapshots:
     input:
-        sources=KRAUTH2025_SOURCES,
+        code=KRAUTH2025_SOURCES,
         warm=numba_warm("samplers"),
     output:
         "results/krauth2025/pins/snapshots.nc",
@@ -242,7 +242,7 @@ KRAUTH2025_DISK_SOURCES = engine_sources("edmd") + package_files("samplers")
 
 rule krauth2025_simulate_md:
     input:
-        sources=KRAUTH2025_DISK_SOURCES,
+        code=KRAUTH2025_DISK_SOURCES,
         warm=[numba_warm("edmd"), numba_warm("samplers")],
     output:
         "results/krauth2025/disks/md.nc",
@@ -261,7 +261,7 @@ rule krauth2025_simulate_md:
 
 rule krauth2025_simulate_disks:
     input:
-        sources=engine_sources("samplers"),
+        code=engine_sources("samplers"),
         warm=numba_warm("samplers"),
     output:
         "results/krauth2025/disks/{method}.nc",
@@ -282,7 +282,7 @@ rule krauth2025_simulate_disks:
 
 rule krauth2025_simulate_chaos:
     input:
-        sources=KRAUTH2025_DISK_SOURCES,
+        code=KRAUTH2025_DISK_SOURCES,
         warm=[numba_warm("edmd"), numba_warm("samplers")],
     output:
         "results/krauth2025/disks/chaos.nc",

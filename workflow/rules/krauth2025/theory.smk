@@ -35,7 +35,7 @@ def krauth2025_ring_theory(wildcards):
 
 rule krauth2025_theory_line:
     input:
-        package_files("theory/krauth2025"),
+        code=script_code("krauth2025_theory"),
     output:
         "results/krauth2025/theory/line_L{length}.nc",
     log:
@@ -50,7 +50,7 @@ rule krauth2025_theory_line:
 
 rule krauth2025_theory_ring:
     input:
-        package_files("theory/krauth2025"),
+        code=script_code("krauth2025_theory"),
     output:
         "results/krauth2025/theory/ring.nc",
     log:

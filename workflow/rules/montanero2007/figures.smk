@@ -113,12 +113,6 @@ def montanero2007_fig07_runs(wildcards):
     return montanero2007_figure_runs("fig07_alphas")
 
 
-MONTANERO2007_ANALYSIS_CODE = package_files(
-    "analysis/montanero2007", "theory/montanero2007", "studies/montanero2007"
-)
-"""Package modules every figure and table of montanero2007 computes with."""
-
-
 def montanero2007_scan_runs(wildcards):
     return montanero2007_runs_of("scan")
 
@@ -126,8 +120,7 @@ def montanero2007_scan_runs(wildcards):
 rule montanero2007_fig01:
     input:
         runs=montanero2007_field_pair,
-        script=figure_script("montanero2007_fig01"),
-        code=MONTANERO2007_ANALYSIS_CODE,
+        code=script_code("montanero2007_fig01"),
     output:
         pdf="results/montanero2007/fig01.pdf",
         png=report(
@@ -144,8 +137,7 @@ rule montanero2007_fig01:
 rule montanero2007_fig02:
     input:
         runs=montanero2007_fig02_runs,
-        script=figure_script("montanero2007_fig02"),
-        code=MONTANERO2007_ANALYSIS_CODE,
+        code=script_code("montanero2007_fig02"),
     output:
         pdf="results/montanero2007/fig02.pdf",
         png=report(
@@ -164,8 +156,7 @@ rule montanero2007_fig03:
         runs=montanero2007_scan_runs,
         partners=montanero2007_scan_partners,
         template=caption_template("montanero2007_fig03"),
-        script=figure_script("montanero2007_fig03"),
-        code=MONTANERO2007_ANALYSIS_CODE,
+        code=script_code("montanero2007_fig03"),
     output:
         pdf="results/montanero2007/fig03.pdf",
         png=report(
@@ -185,8 +176,7 @@ rule montanero2007_fig04:
         runs=montanero2007_scan_runs,
         partners=montanero2007_scan_partners,
         template=caption_template("montanero2007_fig04"),
-        script=figure_script("montanero2007_fig04"),
-        code=MONTANERO2007_ANALYSIS_CODE,
+        code=script_code("montanero2007_fig04"),
     output:
         pdf="results/montanero2007/fig04.pdf",
         png=report(
@@ -204,8 +194,7 @@ rule montanero2007_fig04:
 rule montanero2007_fig05:
     input:
         runs=montanero2007_fig05_runs,
-        script=figure_script("montanero2007_phi"),
-        code=MONTANERO2007_ANALYSIS_CODE,
+        code=script_code("montanero2007_phi"),
     output:
         pdf="results/montanero2007/fig05.pdf",
         png=report(
@@ -224,8 +213,7 @@ rule montanero2007_fig05:
 rule montanero2007_fig06:
     input:
         runs=montanero2007_fig06_runs,
-        script=figure_script("montanero2007_phi"),
-        code=MONTANERO2007_ANALYSIS_CODE,
+        code=script_code("montanero2007_phi"),
     output:
         pdf="results/montanero2007/fig06.pdf",
         png=report(
@@ -246,8 +234,7 @@ rule montanero2007_fig07:
         runs=montanero2007_fig07_runs,
         partners=montanero2007_fig07_partners,
         template=caption_template("montanero2007_fig07"),
-        script=figure_script("montanero2007_fig07"),
-        code=MONTANERO2007_ANALYSIS_CODE,
+        code=script_code("montanero2007_fig07"),
     output:
         pdf="results/montanero2007/fig07.pdf",
         png=report(
@@ -268,8 +255,7 @@ rule montanero2007_table1:
     input:
         runs=montanero2007_scan_runs,
         partners=montanero2007_scan_partners,
-        script=figure_script("montanero2007_table1"),
-        code=MONTANERO2007_ANALYSIS_CODE,
+        code=script_code("montanero2007_table1"),
     output:
         csv="results/montanero2007/table1.csv",
         md="results/montanero2007/table1.md",
@@ -282,8 +268,7 @@ rule montanero2007_table1:
 rule montanero2007_error_vs_time:
     input:
         runs=montanero2007_error_inputs,
-        script=figure_script("montanero2007_error_vs_time"),
-        code=MONTANERO2007_ANALYSIS_CODE,
+        code=script_code("montanero2007_error_vs_time"),
     output:
         pdf="results/montanero2007/error_vs_time.pdf",
         png=report(
@@ -306,8 +291,7 @@ rule montanero2007_error_vs_time:
 rule montanero2007_extreme:
     input:
         runs=montanero2007_extreme_inputs,
-        script=figure_script("montanero2007_extreme"),
-        code=MONTANERO2007_ANALYSIS_CODE,
+        code=script_code("montanero2007_extreme"),
     output:
         pdf="results/montanero2007/extreme.pdf",
         png=report(
@@ -327,8 +311,7 @@ rule montanero2007_checks:
     # Fails (after writing the table to its log) when a check fails.
     input:
         runs=montanero2007_check_inputs,
-        script=figure_script("montanero2007_checks"),
-        code=MONTANERO2007_ANALYSIS_CODE,
+        code=script_code("montanero2007_checks"),
     output:
         csv="results/montanero2007/checks.csv",
         md="results/montanero2007/checks.md",

@@ -101,7 +101,7 @@ rule montanero2007_simulate_dsmc:
 rule montanero2007_aggregate_run:
     input:
         batches=montanero2007_run_batches,
-        code=package_files("batches", "studies/montanero2007"),
+        code=script_code("montanero2007_aggregate"),
     output:
         "results/montanero2007/runs/{run}.nc",
     log:

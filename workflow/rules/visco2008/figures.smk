@@ -68,7 +68,7 @@ rule visco2008_cloning_error_vs_time:
     input:
         curves="results/visco2008/cloning/error_vs_time.nc",
         table="results/visco2008/cloning_error_vs_time.csv",
-        script=figure_script("visco2008_cloning_error_vs_time"),
+        code=script_code("visco2008_cloning_error_vs_time"),
     output:
         pdf="results/visco2008/cloning_error_vs_time.pdf",
         png=report(
@@ -87,7 +87,7 @@ rule visco2008_cloning_extrapolation:
     input:
         scan="results/visco2008/cloning.nc",
         reference="results/visco2008/cloning/reference.nc",
-        script=figure_script("visco2008_cloning_extrapolation"),
+        code=script_code("visco2008_cloning_extrapolation"),
     output:
         pdf="results/visco2008/cloning_extrapolation.pdf",
         png=report(
@@ -105,7 +105,7 @@ rule visco2008_cloning_extrapolation:
 rule visco2008_cloning_velocity_density:
     input:
         scan="results/visco2008/cloning.nc",
-        script=figure_script("visco2008_cloning_velocity_density"),
+        code=script_code("visco2008_cloning_velocity_density"),
     output:
         pdf="results/visco2008/cloning_velocity_density.pdf",
         png=report(
@@ -126,7 +126,7 @@ rule visco2008_fig01:
         dsmc=visco2008_fig01_dsmc,
         curves=visco2008_theory("free_flights"),
         template=caption_template("visco2008_fig01"),
-        script=figure_script("visco2008_fig01"),
+        code=script_code("visco2008_fig01"),
     output:
         pdf="results/visco2008/fig01.pdf",
         png=report(
@@ -146,7 +146,7 @@ rule visco2008_fig02:
         md=visco2008_md_all_data,
         curves=visco2008_theory("free_paths"),
         template=caption_template("visco2008_fig02"),
-        script=figure_script("visco2008_fig02"),
+        code=script_code("visco2008_fig02"),
     output:
         pdf="results/visco2008/fig02.pdf",
         png=report(
@@ -164,7 +164,7 @@ rule visco2008_fig02:
 rule visco2008_fig03:
     input:
         curves=visco2008_theory("large_deviations"),
-        script=figure_script("visco2008_fig03"),
+        code=script_code("visco2008_fig03"),
     output:
         pdf="results/visco2008/fig03.pdf",
         png=report(
@@ -182,7 +182,7 @@ rule visco2008_fig04:
     input:
         scan="results/visco2008/cloning.nc",
         closures=visco2008_theory("closures"),
-        script=figure_script("visco2008_fig04"),
+        code=script_code("visco2008_fig04"),
     output:
         pdf="results/visco2008/fig04.pdf",
         png=report(
@@ -202,7 +202,7 @@ rule visco2008_fig05:
         closures=visco2008_theory("closures"),
         reference="results/visco2008/cloning/reference.nc",
         template=caption_template("visco2008_fig05"),
-        script=figure_script("visco2008_fig05"),
+        code=script_code("visco2008_fig05"),
     output:
         pdf="results/visco2008/fig05.pdf",
         png=report(
@@ -223,7 +223,7 @@ rule visco2008_fig06:
         closures=visco2008_theory("closures"),
         reference="results/visco2008/cloning/reference.nc",
         template=caption_template("visco2008_fig06"),
-        script=figure_script("visco2008_fig06"),
+        code=script_code("visco2008_fig06"),
     output:
         pdf="results/visco2008/fig06.pdf",
         png=report(
@@ -243,7 +243,7 @@ rule visco2008_fig07:
         scan="results/visco2008/cloning.nc",
         closures=visco2008_theory("closures"),
         reference="results/visco2008/cloning/reference.nc",
-        script=figure_script("visco2008_fig07"),
+        code=script_code("visco2008_fig07"),
     output:
         pdf="results/visco2008/fig07.pdf",
         png=report(
@@ -263,7 +263,7 @@ rule visco2008_fig08:
         closures=visco2008_theory("closures"),
         reference="results/visco2008/cloning/reference.nc",
         template=caption_template("visco2008_fig08"),
-        script=figure_script("visco2008_fig08"),
+        code=script_code("visco2008_fig08"),
     output:
         pdf="results/visco2008/fig08.pdf",
         png=report(
@@ -284,7 +284,7 @@ rule visco2008_fig09:
         curves=visco2008_theory("large_deviations"),
         finite=visco2008_theory("finite_time"),
         template=caption_template("visco2008_fig09"),
-        script=figure_script("visco2008_fig09"),
+        code=script_code("visco2008_fig09"),
     output:
         pdf="results/visco2008/fig09.pdf",
         png=report(
@@ -307,7 +307,7 @@ rule visco2008_fig10:
         md=visco2008_md_all_data,
         curves=visco2008_theory("free_flights"),
         template=caption_template("visco2008_fig10"),
-        script=figure_script("visco2008_fig10"),
+        code=script_code("visco2008_fig10"),
     output:
         pdf="results/visco2008/fig10.pdf",
         png=report(
@@ -325,7 +325,7 @@ rule visco2008_fig10:
 rule visco2008_fig11:
     input:
         curves=visco2008_theory("free_flights"),
-        script=figure_script("visco2008_fig11"),
+        code=script_code("visco2008_fig11"),
     output:
         pdf="results/visco2008/fig11.pdf",
         png=report(
@@ -344,7 +344,7 @@ rule visco2008_fig12:
         dsmc="results/visco2008/dsmc/maxwell_free_paths.nc",
         curves=visco2008_theory("free_paths"),
         template=caption_template("visco2008_fig12"),
-        script=figure_script("visco2008_fig12"),
+        code=script_code("visco2008_fig12"),
     output:
         pdf="results/visco2008/fig12.pdf",
         png=report(
@@ -362,7 +362,7 @@ rule visco2008_fig12:
 rule visco2008_md_error_vs_time:
     input:
         md=visco2008_md_all_data,
-        script=figure_script("visco2008_md_error_vs_time"),
+        code=script_code("visco2008_md_error_vs_time"),
     output:
         pdf="results/visco2008/md_error_vs_time.pdf",
         png=report(
@@ -385,7 +385,7 @@ rule visco2008_table1:
         closures=visco2008_theory("closures"),
         md=visco2008_table1_md,
         template=caption_template("visco2008_table1"),
-        script=figure_script("visco2008_table1"),
+        code=script_code("visco2008_table1"),
     output:
         csv="results/visco2008/table1.csv",
         md="results/visco2008/table1.md",

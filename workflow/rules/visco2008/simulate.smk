@@ -116,7 +116,7 @@ def visco2008_md_runs():
 
 rule visco2008_simulate_md:
     input:
-        sources=engine_sources("edmd"),
+        code=engine_sources("edmd"),
         warm=numba_warm("edmd"),
     output:
         "results/visco2008/md/{run}/{batch}.nc",
@@ -140,7 +140,7 @@ rule visco2008_simulate_md:
 rule visco2008_aggregate_md:
     input:
         batches=visco2008_md_batch_files,
-        sources=package_files("analysis"),
+        code=script_code("visco2008_aggregate_md"),
     output:
         data="results/visco2008/md/{run}.nc",
         cumulants="results/visco2008/md/{run}_cumulants.nc",
@@ -212,7 +212,7 @@ def visco2008_dsmc_job(wildcards):
 
 rule visco2008_simulate_dsmc:
     input:
-        sources=engine_sources("dsmc"),
+        code=engine_sources("dsmc"),
         warm=numba_warm("dsmc"),
     output:
         "results/visco2008/dsmc/{run}/{batch}.nc",
@@ -236,7 +236,7 @@ rule visco2008_simulate_dsmc:
 rule visco2008_aggregate_dsmc:
     input:
         batches=visco2008_dsmc_batch_files,
-        code=package_files("analysis/collision_statistics"),
+        code=script_code("visco2008_aggregate_dsmc"),
     output:
         "results/visco2008/dsmc/{run}.nc",
     log:
@@ -290,7 +290,7 @@ def visco2008_cloning_job(wildcards):
 rule visco2008_simulate_cloning:
     input:
         # the engine and the collision rate it scales time by (kinetic.cloning.rates)
-        sources=engine_sources("cloning") + package_files("theory/visco2008"),
+        code=engine_sources("cloning") + package_files("theory/visco2008"),
         warm=numba_warm("cloning"),
     output:
         "results/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.nc",
@@ -317,7 +317,7 @@ rule visco2008_simulate_cloning:
 rule visco2008_aggregate_cloning:
     input:
         batches=visco2008_cloning_scan_batches,
-        code=package_files("analysis/cloning"),
+        code=script_code("visco2008_aggregate_cloning"),
     output:
         csv="results/visco2008/cloning.csv",
         md="results/visco2008/cloning.md",
@@ -332,7 +332,7 @@ rule visco2008_aggregate_cloning_error:
     input:
         batches=visco2008_cloning_error_batches,
         reference="results/visco2008/cloning/reference.nc",
-        code=package_files("analysis/cloning"),
+        code=script_code("visco2008_aggregate_cloning_error"),
     output:
         csv="results/visco2008/cloning_error_vs_time.csv",
         md="results/visco2008/cloning_error_vs_time.md",

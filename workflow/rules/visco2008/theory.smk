@@ -42,7 +42,7 @@ def visco2008_theory_grid(wildcards):
 
 rule visco2008_theory:
     input:
-        package_files("theory"),
+        code=script_code("visco2008_theory"),
     output:
         "results/visco2008/theory/{family}.nc",
     log:
@@ -67,7 +67,7 @@ def visco2008_cloning_reference_nodes(wildcards):
 
 rule visco2008_theory_cloning_reference:
     input:
-        package_files("theory/visco2008_exact"),
+        code=script_code("visco2008_theory_cloning_reference"),
     output:
         "results/visco2008/cloning/reference.nc",
     log:
