@@ -16,6 +16,9 @@ of ``kinetic``.
 
 The rules that join, analyse and plot results depend on the package files their script
 imports (``script_sources``), read from the import statements without importing anything.
+A simulation job depends on its engines' sources and on the other package files its script
+runs (``simulation_sources``: the theory a sampler starts from, the statistics a front
+stores), except the bookkeeping modules that name, write and log results.
 """
 
 from __future__ import annotations
@@ -24,7 +27,16 @@ import ast
 from functools import cache
 from pathlib import Path
 
-__all__ = ["ENGINES", "PACKAGE", "SHARED", "engine_sources", "kernel_sources", "script_sources"]
+__all__ = [
+    "BOOKKEEPING",
+    "ENGINES",
+    "PACKAGE",
+    "SHARED",
+    "engine_sources",
+    "kernel_sources",
+    "script_sources",
+    "simulation_sources",
+]
 
 PACKAGE = Path(__file__).resolve().parent
 """The ``kinetic`` package directory."""
@@ -34,6 +46,10 @@ ENGINES = ("cloning", "dsmc", "edmd", "samplers")
 
 SHARED = ("rng", "seeds", "jit", "validate", "gas")
 """Top-level modules every engine depends on (``rng`` and ``jit`` hold compiled code)."""
+
+BOOKKEEPING = ("__init__", "config", "io", "progress", "sources", "workflow_support")
+"""Top-level modules that validate, name, write and log results but compute no simulated
+number: an edit of them reruns no simulation."""
 
 
 def engine_sources(engine: str) -> list[Path]:
@@ -104,3 +120,13 @@ def script_sources(script: str | Path) -> list[Path]:
             seen.add(path)
             todo += _imported_files(path)
     return sorted(seen)
+
+
+def simulation_sources(script: str | Path, engines) -> list[Path]:
+    """Files whose edit must rerun a simulation job that runs ``script`` with ``engines``:
+    the engines' sources (numba's cache keys, which also cover the fronts a package loads
+    on first use) and every other package file the script runs, bookkeeping aside."""
+    bookkeeping = {PACKAGE / f"{module}.py" for module in BOOKKEEPING}
+    files = {path for engine in engines for path in engine_sources(engine)}
+    files.update(path for path in script_sources(script) if path not in bookkeeping)
+    return sorted(files)

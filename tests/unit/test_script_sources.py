@@ -1,11 +1,16 @@
-"""kinetic.sources.script_sources: the package files a workflow script runs, read from its
-import statements, agree with what Python imports when the script runs."""
+"""kinetic.sources: the package files a workflow script runs, read from its import
+statements, agree with what Python imports when the script runs; simulation rules list
+every module whose edit changes their numbers."""
 
+import ast
+import re
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 
-from kinetic.sources import PACKAGE, script_sources
+from kinetic.sources import BOOKKEEPING, PACKAGE, script_sources, simulation_sources
 from kinetic.trace import package_modules
 
 SCRIPTS = Path(__file__).resolve().parents[2] / "workflow" / "scripts"
@@ -46,3 +51,55 @@ def test_static_reading_covers_what_the_script_imports(script, repository):
     static = {path.resolve() for path in script_sources(script)}
     imported = {(repository / path).resolve() for path in package_modules(script, repository)}
     assert imported <= static, sorted(map(str, imported - static))
+
+
+def _simulation_rules():
+    """(script, engines) of every simulation_code(...) call in the rule files."""
+    calls = set()
+    for path in (SCRIPTS.parent / "rules").rglob("*.smk"):
+        for args in re.findall(r"simulation_code\(([^)]*)\)", path.read_text()):
+            names = re.findall(r'"(\w+)"', args)
+            if names:  # not the helper's own definition
+                calls.add((names[0], tuple(names[1:])))
+    return sorted(calls)
+
+
+SIMULATIONS = _simulation_rules()
+
+
+def test_every_simulation_rule_names_its_script_and_engines():
+    assert len(SIMULATIONS) >= 10
+    for name, engines in SIMULATIONS:
+        assert (SCRIPTS / f"{name}.py").is_file() and engines
+
+
+@pytest.mark.parametrize(
+    ("name", "engines"),
+    SIMULATIONS,
+    ids=lambda value: "-".join(value) if isinstance(value, tuple) else value,
+)
+def test_a_simulation_rerun_follows_every_module_its_imports_load(name, engines):
+    """Run the script's import statements in a fresh interpreter (fronts that a package
+    loads on first use included): every package module they load is an input of the
+    rule, unless it only names, writes or logs results."""
+    script = SCRIPTS / f"{name}.py"
+    imports = [
+        ast.unparse(node)
+        for node in ast.parse(script.read_text()).body
+        if isinstance(node, (ast.Import, ast.ImportFrom))
+    ]
+    probe = "\n".join(
+        [
+            *imports,
+            "import sys",
+            "print('\\n'.join(m.__file__ for n, m in list(sys.modules.items())"
+            " if n.split('.')[0] == 'kinetic' and getattr(m, '__file__', None)))",
+        ]
+    )
+    loaded = subprocess.run(
+        [sys.executable, "-c", probe], capture_output=True, text=True, check=True
+    ).stdout.split()
+    bookkeeping = {PACKAGE / f"{module}.py" for module in BOOKKEEPING}
+    loaded = {Path(file).resolve() for file in loaded} - bookkeeping
+    inputs = {path.resolve() for path in simulation_sources(script, engines)}
+    assert loaded and loaded <= inputs, sorted(map(str, loaded - inputs))

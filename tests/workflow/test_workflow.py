@@ -184,11 +184,11 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
     assert (tmp_path / "report.html").stat().st_size > 10_000
     # every caption is valid reStructuredText (docutils reports ERROR/3 and WARNING/2 lines)
     assert "ERROR/" not in report.stderr and "WARNING/" not in report.stderr, report.stderr
-    # a lost compile flag fills numba's cache again and reruns no simulation
-    (results / ".cache" / "numba-dsmc.done").unlink()
+    # a cache filled again (a newer compile flag) reruns no simulation: the flags are
+    # ancient inputs, and a missing one is rebuilt only when a simulation has to run
+    flag = results / ".cache" / "numba-dsmc.done"
+    os.utime(flag, (flag.stat().st_atime, flag.stat().st_mtime + 3600))
     again = _snakemake(
         tmp_path, "--configfile", str(REPOSITORY / "config" / "ci.yaml"), "--dry-run"
     )
-    planned = again.stdout + again.stderr
-    assert "rule warm_numba" in planned, planned
-    assert "_simulate_" not in planned and "_aggregate_" not in planned, planned
+    assert "Nothing to be done" in again.stdout + again.stderr, again.stdout

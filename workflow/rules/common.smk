@@ -7,7 +7,7 @@ from snakemake.exceptions import WorkflowError
 from kinetic.config import ConfigError, validate_config
 from kinetic.seeds import derive_seed
 from kinetic.sources import SHARED as KERNEL_SHARED_SOURCES
-from kinetic.sources import script_sources
+from kinetic.sources import script_sources, simulation_sources
 
 try:
     validate_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
@@ -112,6 +112,13 @@ def engine_sources(engine):
     kernels are keyed on in numba's cache (``kinetic.sources``), so that rule warm_numba
     recompiles whenever that cache went stale."""
     return package_files(engine, *KERNEL_SHARED_SOURCES)
+
+
+def simulation_code(name, *engines):
+    """Inputs of a simulation rule that runs workflow/scripts/<name>.py with ``engines``:
+    the files whose edit changes its numbers (``kinetic.sources.simulation_sources``)."""
+    script = Path(workflow.basedir) / "workflow" / "scripts" / f"{name}.py"
+    return [str(path) for path in simulation_sources(script, engines)]
 
 
 def numba_warm(engine):

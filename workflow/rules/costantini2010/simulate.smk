@@ -69,7 +69,7 @@ def costantini2010_analysis(wildcards):
 rule costantini2010_simulate_dsmc:
     input:
         warm=numba_warm("dsmc"),
-        code=engine_sources("dsmc") + package_files("studies/costantini2010", "batches"),
+        code=simulation_code("costantini2010_simulate_dsmc", "dsmc"),
     output:
         "results/costantini2010/{engine}/{run}/batch{batch}.nc",
     log:
@@ -87,13 +87,13 @@ rule costantini2010_simulate_dsmc:
         run="[^/]+",
         batch="[0-9]{4}",
     script:
-        "../../scripts/costantini2010_simulate.py"
+        "../../scripts/costantini2010_simulate_dsmc.py"
 
 
 rule costantini2010_simulate_md:
     input:
         warm=numba_warm("edmd"),
-        code=engine_sources("edmd") + package_files("studies/costantini2010", "batches"),
+        code=simulation_code("costantini2010_simulate_md", "edmd"),
     output:
         "results/costantini2010/{engine}/{run}/batch{batch}.nc",
     log:
@@ -111,7 +111,7 @@ rule costantini2010_simulate_md:
         run="[^/]+",
         batch="[0-9]{4}",
     script:
-        "../../scripts/costantini2010_simulate.py"
+        "../../scripts/costantini2010_simulate_md.py"
 
 
 rule costantini2010_aggregate_run:

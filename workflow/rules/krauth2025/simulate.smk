@@ -106,12 +106,11 @@ def krauth2025_check_config():
 
 
 krauth2025_check_config()
-KRAUTH2025_SOURCES = engine_sources("samplers") + package_files("theory/krauth2025")
 
 
 rule krauth2025_simulate_line:
     input:
-        code=KRAUTH2025_SOURCES,
+        code=simulation_code("krauth2025_simulate_line", "samplers"),
         warm=numba_warm("samplers"),
     output:
         "results/krauth2025/pins/{method}_L{length}.nc",
@@ -133,7 +132,7 @@ rule krauth2025_simulate_line:
 
 rule krauth2025_simulate_ring:
     input:
-        code=KRAUTH2025_SOURCES,
+        code=simulation_code("krauth2025_simulate_ring", "samplers"),
         warm=numba_warm("samplers"),
     output:
         "results/krauth2025/pins/ring.nc",
@@ -152,7 +151,7 @@ rule krauth2025_simulate_ring:
 
 rule krauth2025_simulate_pin_snapshots:
     input:
-        code=KRAUTH2025_SOURCES,
+        code=simulation_code("krauth2025_simulate_pin_snapshots", "samplers"),
         warm=numba_warm("samplers"),
     output:
         "results/krauth2025/pins/snapshots.nc",
@@ -237,12 +236,11 @@ def krauth2025_check_disks():
 
 
 krauth2025_check_disks()
-KRAUTH2025_DISK_SOURCES = engine_sources("edmd") + package_files("samplers")
 
 
 rule krauth2025_simulate_md:
     input:
-        code=KRAUTH2025_DISK_SOURCES,
+        code=simulation_code("krauth2025_simulate_md", "edmd", "samplers"),
         warm=[numba_warm("edmd"), numba_warm("samplers")],
     output:
         "results/krauth2025/disks/md.nc",
@@ -261,7 +259,7 @@ rule krauth2025_simulate_md:
 
 rule krauth2025_simulate_disks:
     input:
-        code=engine_sources("samplers"),
+        code=simulation_code("krauth2025_simulate_disks", "samplers"),
         warm=numba_warm("samplers"),
     output:
         "results/krauth2025/disks/{method}.nc",
@@ -282,7 +280,7 @@ rule krauth2025_simulate_disks:
 
 rule krauth2025_simulate_chaos:
     input:
-        code=KRAUTH2025_DISK_SOURCES,
+        code=simulation_code("krauth2025_simulate_chaos", "edmd", "samplers"),
         warm=[numba_warm("edmd"), numba_warm("samplers")],
     output:
         "results/krauth2025/disks/chaos.nc",

@@ -76,7 +76,7 @@ def montanero2007_run_names():
 rule montanero2007_simulate_dsmc:
     input:
         warm=numba_warm("dsmc"),
-        code=engine_sources("dsmc") + package_files("studies"),
+        code=simulation_code("montanero2007_simulate_dsmc", "dsmc"),
     output:
         "results/montanero2007/runs/{run}/{batch}.nc",
     log:

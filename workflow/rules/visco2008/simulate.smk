@@ -116,7 +116,7 @@ def visco2008_md_runs():
 
 rule visco2008_simulate_md:
     input:
-        code=engine_sources("edmd"),
+        code=simulation_code("visco2008_simulate_md", "edmd"),
         warm=numba_warm("edmd"),
     output:
         "results/visco2008/md/{run}/{batch}.nc",
@@ -212,7 +212,7 @@ def visco2008_dsmc_job(wildcards):
 
 rule visco2008_simulate_dsmc:
     input:
-        code=engine_sources("dsmc"),
+        code=simulation_code("visco2008_simulate_dsmc", "dsmc"),
         warm=numba_warm("dsmc"),
     output:
         "results/visco2008/dsmc/{run}/{batch}.nc",
@@ -290,7 +290,7 @@ def visco2008_cloning_job(wildcards):
 rule visco2008_simulate_cloning:
     input:
         # the engine and the collision rate it scales time by (kinetic.cloning.rates)
-        code=engine_sources("cloning") + package_files("theory/visco2008"),
+        code=simulation_code("visco2008_simulate_cloning", "cloning"),
         warm=numba_warm("cloning"),
     output:
         "results/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.nc",

@@ -1,0 +1,16 @@
+"""One job of a costantini2010 run with the MD engine (rule costantini2010_simulate_md):
+realizations of the cooling gas -> netCDF."""
+
+from kinetic.edmd import simulate_cooling_modes
+from kinetic.workflow_support import start, write_output
+
+log = start(snakemake)
+job = dict(snakemake.params.job)
+dataset = simulate_cooling_modes(**job)
+write_output(snakemake, dataset, job["seed"])
+log.info(
+    "wrote %s: %d collisions in %.1f CPU s",
+    snakemake.output[0],
+    int(dataset.collisions.sum()),
+    float(dataset.cpu_seconds.sum()),
+)
