@@ -5,6 +5,11 @@ Every script in ``workflow/scripts`` starts with::
     from kinetic.workflow_support import start
     log = start(snakemake)
 
+or, for a simulation job whose rule passes the front's arguments as ``params.job``::
+
+    from kinetic.workflow_support import run_job
+    log, job, dataset = run_job(snakemake, front)
+
 which sends the ``kinetic`` logger (progress lines with ETA) and uncaught exceptions to
 ``snakemake.log[0]`` as well as to standard error, and limits numba to the job's threads.
 """
@@ -15,7 +20,7 @@ import logging
 import sys
 from typing import Any
 
-__all__ = ["start", "write_output"]
+__all__ = ["run_job", "start", "write_output"]
 
 
 def start(snakemake: Any) -> logging.Logger:
@@ -75,3 +80,14 @@ def write_output(
     dataset = dataset.assign_attrs(root_seed=int(snakemake.config.get("seed", -1)))
     path = snakemake.output[0] if output is None else getattr(snakemake.output, output)
     io.write_dataset(dataset, path)
+
+
+def run_job(snakemake: Any, front: Any) -> tuple[logging.Logger, dict, Any]:
+    """One simulation job: ``front(**params.job)`` written to the rule's output with the
+    job's seed. Returns the logger, the job's arguments and the dataset, for the script's
+    summary line."""
+    log = start(snakemake)
+    job = dict(snakemake.params.job)
+    dataset = front(**job)
+    write_output(snakemake, dataset, job["seed"])
+    return log, job, dataset

@@ -2,12 +2,9 @@
 realizations of the cooling gas -> netCDF."""
 
 from kinetic.dsmc import simulate_cooling_modes
-from kinetic.workflow_support import start, write_output
+from kinetic.workflow_support import run_job
 
-log = start(snakemake)
-job = dict(snakemake.params.job)
-dataset = simulate_cooling_modes(**job)
-write_output(snakemake, dataset, job["seed"])
+log, job, dataset = run_job(snakemake, simulate_cooling_modes)
 log.info(
     "wrote %s: %d collisions in %.1f CPU s",
     snakemake.output[0],

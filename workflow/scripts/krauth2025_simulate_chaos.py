@@ -2,10 +2,7 @@
 krauth2025_simulate_chaos), event by event: krauth2025 Fig. 4.1 and section 4.1.2."""
 
 from kinetic.edmd.disks import chaos
-from kinetic.workflow_support import start, write_output
+from kinetic.workflow_support import run_job
 
-log = start(snakemake)
-job = dict(snakemake.params.job)
-data = chaos(**job)
-write_output(snakemake, data, job["seed"])
+log, job, data = run_job(snakemake, chaos)
 log.info("wrote %s: %d events per precision", snakemake.output[0], job["events"])

@@ -2,10 +2,7 @@
 krauth2025_simulate_disks): the projected density of N disks in the box along y."""
 
 from kinetic.samplers import sample_disks
-from kinetic.workflow_support import start, write_output
+from kinetic.workflow_support import run_job
 
-log = start(snakemake)
-job = dict(snakemake.params.job)
-data = sample_disks(**job)
-write_output(snakemake, data, job["seed"])
+log, job, data = run_job(snakemake, sample_disks)
 log.info("wrote %s in %.1f CPU s", snakemake.output[0], float(data.cpu_seconds.sum()))

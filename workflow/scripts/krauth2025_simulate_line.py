@@ -4,12 +4,9 @@ realizations (the exact
 density beside it comes from rule krauth2025_theory_line)."""
 
 from kinetic.samplers import sample_line
-from kinetic.workflow_support import start, write_output
+from kinetic.workflow_support import run_job
 
-log = start(snakemake)
-job = dict(snakemake.params.job)
-data = sample_line(**job)
-write_output(snakemake, data, job["seed"])
+log, job, data = run_job(snakemake, sample_line)
 log.info(
     "wrote %s: %d configurations (%d started) in %.1f CPU s",
     snakemake.output[0],

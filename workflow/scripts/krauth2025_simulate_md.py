@@ -2,12 +2,9 @@
 disks in a box with walls -> y-densities, wall and pair collision statistics."""
 
 from kinetic.edmd.disks import simulate_box
-from kinetic.workflow_support import start, write_output
+from kinetic.workflow_support import run_job
 
-log = start(snakemake)
-job = dict(snakemake.params.job)
-data = simulate_box(**job)
-write_output(snakemake, data, job["seed"])
+log, job, data = run_job(snakemake, simulate_box)
 log.info(
     "wrote %s: %d events in %.1f CPU s",
     snakemake.output[0],

@@ -3,12 +3,9 @@ from independent Markov chains, with standard errors across chains (the exact de
 beside it comes from rule krauth2025_theory_ring)."""
 
 from kinetic.samplers import sample_ring
-from kinetic.workflow_support import start, write_output
+from kinetic.workflow_support import run_job
 
-log = start(snakemake)
-job = dict(snakemake.params.job)
-data = sample_ring(**job)
-write_output(snakemake, data, job["seed"])
+log, job, data = run_job(snakemake, sample_ring)
 log.info(
     "wrote %s: %d chains, acceptance %.3f, %.1f CPU s",
     snakemake.output[0],

@@ -1,12 +1,9 @@
 """One job of a visco2008 DSMC run: realizations -> netCDF (rule visco2008_simulate_dsmc)."""
 
 from kinetic.dsmc import simulate_free_flights
-from kinetic.workflow_support import start, write_output
+from kinetic.workflow_support import run_job
 
-log = start(snakemake)
-job = dict(snakemake.params.job)
-dataset = simulate_free_flights(**job)
-write_output(snakemake, dataset, job["seed"])
+log, job, dataset = run_job(snakemake, simulate_free_flights)
 log.info(
     "wrote %s: %d flights in %.1f CPU s",
     snakemake.output[0],
