@@ -2,13 +2,15 @@
 
 Prints the whole pipeline of one target, from the simulations up to the figure or table:
 the config section it reads, every rule Snakemake would run for it (with the file and
-line that define the rule), the script each rule runs, and the package modules each
+line that define the rule), the files each rule writes (the netCDF files a figure's
+numbers can be recomputed from), the script each rule runs, and the package modules each
 script calls (resolved to the file that defines what is imported, so a re-exported engine
 front is shown where it is written). Ends with the list of distinct files, the reading
 list of someone who wants to follow or change that figure.
 
-The rules come from Snakemake itself (``--rulegraph`` of the target with ``--forceall``
-and the given config files), so the trace is what a build would run, not a guess.
+The rules and their files come from Snakemake itself (``--rulegraph`` and ``--summary`` of
+the target with ``--forceall`` and the given config files), so the trace is what a build
+would run, not a guess.
 """
 
 from __future__ import annotations
@@ -41,6 +43,7 @@ class Step:
     line: int
     script: str | None = None
     modules: list[str] = field(default_factory=list)
+    outputs: list[str] = field(default_factory=list)
 
 
 @dataclass
@@ -63,19 +66,34 @@ class Trace:
         return list(seen)
 
 
-def rule_graph(target: str, config_files: list[str], root: Path) -> dict[str, set[str]]:
-    """Rule -> the rules it takes input from, for ``target`` as Snakemake plans it."""
-    command = [sys.executable, "-m", "snakemake", target, "--forceall", "--rulegraph"]
+def _snakemake(target: str, config_files: list[str], root: Path, *options: str) -> str:
+    command = [sys.executable, "-m", "snakemake", target, "--forceall", *options]
     if config_files:
         command += ["--configfile", *config_files]
     done = subprocess.run(command, cwd=root, capture_output=True, text=True)
     if done.returncode != 0:
         raise RuntimeError(f"snakemake could not plan {target}:\n{done.stderr.strip()}")
-    labels = dict(re.findall(r'^\s*(\d+)\[label = "([^"]+)"', done.stdout, re.MULTILINE))
+    return done.stdout
+
+
+def rule_graph(target: str, config_files: list[str], root: Path) -> dict[str, set[str]]:
+    """Rule -> the rules it takes input from, for ``target`` as Snakemake plans it."""
+    dot = _snakemake(target, config_files, root, "--rulegraph")
+    labels = dict(re.findall(r'^\s*(\d+)\[label = "([^"]+)"', dot, re.MULTILINE))
     graph = {name: set() for name in labels.values()}
-    for source, sink in re.findall(r"^\s*(\d+) -> (\d+)", done.stdout, re.MULTILINE):
+    for source, sink in re.findall(r"^\s*(\d+) -> (\d+)", dot, re.MULTILINE):
         graph[labels[sink]].add(labels[source])
     return graph
+
+
+def rule_outputs(target: str, config_files: list[str], root: Path) -> dict[str, list[str]]:
+    """Rule -> the files its jobs write for ``target`` (Snakemake's ``--summary``)."""
+    outputs: dict[str, list[str]] = {}
+    for line in _snakemake(target, config_files, root, "--summary").splitlines()[1:]:
+        columns = line.split("\t")
+        if len(columns) > 2:
+            outputs.setdefault(columns[2], []).append(columns[0])
+    return outputs
 
 
 def rule_locations(root: Path) -> dict[str, tuple[str, int, str | None]]:
@@ -129,18 +147,19 @@ def _is_engine(module: str) -> bool:
     return len(parts) > 1 and parts[0] == "kinetic" and parts[1] in ENGINES
 
 
-def package_modules(script: Path, root: Path) -> list[str]:
-    """The package files a script calls, relative to ``root``, followed by the engine fronts
-    that those files call in turn (a study module that runs an engine shows the engine)."""
+def package_modules(script: Path, root: Path, *, engines: bool = True) -> list[str]:
+    """The package files a script calls, relative to ``root``; with ``engines``, followed
+    by the engine fronts that those files call in turn (a study module that runs an engine
+    shows the engine)."""
     direct = _imports(script, _is_package)
-    engines = [
-        engine
+    fronts = [
+        front
         for file in direct
-        if not _is_engine(_module_of(file))
-        for engine in _imports(Path(file), _is_engine)
+        if engines and not _is_engine(_module_of(file))
+        for front in _imports(Path(file), _is_engine)
     ]
     relative = []
-    for file in dict.fromkeys(direct + engines):
+    for file in dict.fromkeys(direct + fronts):
         path = Path(file).resolve()
         inside = path.is_relative_to(root.resolve())
         relative.append(str(path.relative_to(root.resolve())) if inside else file)
@@ -159,14 +178,17 @@ def trace(target: str, config_files: list[str] | None = None, root: Path | str =
     root = Path(root)
     config_files = list(config_files or ["config/config.yaml"])
     graph = rule_graph(target, config_files, root)
+    outputs = rule_outputs(target, config_files, root)
     locations = rule_locations(root)
     steps = []
     for rule in TopologicalSorter(graph).static_order():
         if rule in SKIPPED_RULES:
             continue
         rule_file, line, script = locations[rule]
-        modules = package_modules(root / script, root) if script else []
-        steps.append(Step(rule, rule_file, line, script, modules))
+        # the rule grammar: only <document>_simulate_<engine> rules run an engine
+        simulation = "_simulate_" in rule
+        modules = package_modules(root / script, root, engines=simulation) if script else []
+        steps.append(Step(rule, rule_file, line, script, modules, outputs.get(rule, [])))
     document = Path(target).parts[1] if len(Path(target).parts) > 2 else ""
     config_line = None
     for number, text in enumerate((root / config_files[-1]).read_text().splitlines(), 1):
@@ -183,6 +205,9 @@ def render(result: Trace) -> str:
     lines = [result.target, f"  config   {config}{where}"]
     for step in result.steps:
         lines.append(f"  rule     {step.rule}  ({step.rule_file}:{step.line})")
+        if step.outputs:
+            more = f" (+{len(step.outputs) - 1} more)" if len(step.outputs) > 1 else ""
+            lines.append(f"    writes {step.outputs[0]}{more}")
         if step.script:
             lines.append(f"    script {step.script}")
         lines += [f"    uses   {module}" for module in step.modules]

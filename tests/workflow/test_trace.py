@@ -25,6 +25,15 @@ def test_montanero2007_fig03_runs_simulation_then_join_then_figure(repository):
     engine = inspect.getsourcefile(dsmc.simulate_homogeneous)
     assert str(repository / simulate.modules[-1]) == engine
     assert "src/kinetic/theory/montanero2007.py" in figure.modules
+    # the datasets between the stages: batches, the joined runs the figure reads, the figure
+    aggregate = result.steps[1]
+    assert all(
+        re.fullmatch(r"results/montanero2007/runs/\w+/batch\d{4}\.nc", f) for f in simulate.outputs
+    )
+    assert all(re.fullmatch(r"results/montanero2007/runs/\w+\.nc", f) for f in aggregate.outputs)
+    assert len(simulate.outputs) >= len(aggregate.outputs) > 1
+    assert figure.outputs[0] == "results/montanero2007/fig03.pdf"
+    assert not any("dsmc" in module for module in aggregate.modules)  # joins, runs no engine
     assert "src/kinetic/analysis/montanero2007.py" in figure.modules
     assert result.files[0] == "config/ci.yaml"
     assert len(result.files) == len(set(result.files))
