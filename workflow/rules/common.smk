@@ -116,7 +116,9 @@ def engine_sources(engine):
 
 def simulation_code(name, *engines):
     """Inputs of a simulation rule that runs workflow/scripts/<name>.py with ``engines``:
-    the files whose edit changes its numbers (``kinetic.sources.simulation_sources``)."""
+    the package files whose edit changes its numbers (``kinetic.sources.simulation_sources``).
+    The script itself, an adapter that passes ``params`` to the front and logs, is not one:
+    the arguments it passes are ``params``, which Snakemake checks on its own."""
     script = Path(workflow.basedir) / "workflow" / "scripts" / f"{name}.py"
     return [str(path) for path in simulation_sources(script, engines)]
 
@@ -126,7 +128,7 @@ def numba_warm(engine):
 
     Marked ancient: a simulation job needs the cache filled, but a newer flag (the cache
     was filled again, e.g. after results/.cache was deleted) reruns no simulation. An edit
-    of the engine reruns them through their ``engine_sources`` inputs."""
+    of the engine reruns them through their ``simulation_code`` inputs."""
     return ancient(f"results/.cache/numba-{engine}.done")
 
 
