@@ -4,7 +4,7 @@ generating function e^{-λ} - 1; inset μ + 1 on a log scale."""
 import numpy as np
 
 from kinetic import io, plotting
-from kinetic.studies.visco2008_cloning_figures import draw_series, scan_series
+from kinetic.plotting.visco2008_cloning import draw_series, scan_series
 from kinetic.workflow_support import start
 
 start(snakemake)

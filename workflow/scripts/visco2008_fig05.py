@@ -7,7 +7,7 @@ them below the exact bound μ >= -ω/√2; the caption counts them from the scan
 import numpy as np
 
 from kinetic import io, plotting
-from kinetic.studies.visco2008_cloning_figures import data_limits, draw_series, finite, scan_series
+from kinetic.plotting.visco2008_cloning import data_limits, draw_series, finite, scan_series
 from kinetic.workflow_support import start
 
 start(snakemake)

@@ -4,7 +4,7 @@ deterministic solution of Eq. (28). Crosses: T of populations that collapsed ont
 clones at large λ (not estimates of the eigenfunction; they only show T -> 0)."""
 
 from kinetic import io, plotting
-from kinetic.studies.visco2008_cloning_figures import (
+from kinetic.plotting.visco2008_cloning import (
     collapsed_points,
     draw_series,
     finite,

@@ -5,7 +5,7 @@ fold) and the deterministic solution of Eq. (28)."""
 import numpy as np
 
 from kinetic import io, plotting
-from kinetic.studies.visco2008_cloning_figures import data_limits, draw_series, finite, scan_series
+from kinetic.plotting.visco2008_cloning import data_limits, draw_series, finite, scan_series
 from kinetic.workflow_support import start
 
 start(snakemake)

@@ -6,7 +6,7 @@ import numpy as np
 
 from kinetic import io, plotting
 from kinetic.analysis import collision_statistics
-from kinetic.studies.visco2008_histograms import (
+from kinetic.plotting.visco2008 import (
     RESIDUAL_MAX_RELATIVE_ERROR,
     Curve,
     Histogram,

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinetic import io
+from kinetic import io, plotting
 
 __all__ = ["Series", "collapsed_points", "data_limits", "draw_series", "finite", "scan_series"]
 
@@ -103,8 +103,6 @@ def draw_series(ax, series: Series, *, scale=None, label="cloning", lam_max=np.i
     usable (finite-population values, which carry the 1/N_c bias). ``scale(lam, value,
     error) -> (value, error)`` transforms the values first. Returns the values drawn as a
     dict {"limit": (λ, value, error), "single": (...)} for axis limits and captions."""
-    from kinetic import plotting
-
     color = plotting.METHOD_STYLE["cloning"]["color"]
     parts = [
         (
