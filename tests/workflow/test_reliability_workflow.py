@@ -86,10 +86,10 @@ def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_
     settings = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
     # two jobs of about 10 s each, so that the second is surely running when killed
     settings["costantini2010"].update(
-        {"realizations": 2, "realizations_per_job": 1, "min_duration": 1500}
+        {"realizations": 2, "realizations_per_job": 1, "min_duration": 1200}
     )
     config.write_text(yaml.safe_dump(settings))
-    run = "results/costantini2010/dsmc/n2000-alpha1-f10-cell0.5-step0.05"
+    run = "results/costantini2010/dsmc/n1000-alpha1-f10-cell0.5-step0.05"
     target = [f"{run}.nc", "--cores", "1", "--configfile", str(config)]
     process = subprocess.Popen(
         [*SNAKEMAKE, "--directory", str(tmp_path), *target],

@@ -5,14 +5,21 @@ import re
 
 import pytest
 
+import kinetic.trace
 from kinetic import dsmc, edmd
 from kinetic.trace import main, package_modules, trace
 
 pytestmark = pytest.mark.workflow
+FIG03 = "results/montanero2007/fig03.pdf"
 
 
-def test_montanero2007_fig03_runs_simulation_then_join_then_figure(repository):
-    result = trace("results/montanero2007/fig03.pdf", ["config/ci.yaml"], repository)
+@pytest.fixture(scope="module")
+def fig03(repository):
+    return trace(FIG03, ["config/ci.yaml"], repository)
+
+
+def test_montanero2007_fig03_runs_simulation_then_join_then_figure(repository, fig03):
+    result = fig03
     rules = [step.rule for step in result.steps]
     assert rules == [
         "montanero2007_simulate_dsmc",
@@ -63,9 +70,13 @@ def test_re_exported_engine_fronts_resolve_to_their_defining_files(repository):
         assert str(repository / package_modules(script, repository)[0]) == defining
 
 
-def test_command_prints_the_reading_list(repository, capsys, monkeypatch):
-    monkeypatch.chdir(repository)
-    assert main(["results/visco2008/fig03.pdf", "--configfile", "config/ci.yaml"]) == 0
+def test_command_prints_the_reading_list(fig03, capsys, monkeypatch):
+    calls = []
+    monkeypatch.setattr(kinetic.trace, "trace", lambda *args: calls.append(args) or fig03)
+    assert main([FIG03, "--configfile", "config/ci.yaml", "config/more.yaml"]) == 0
+    assert calls == [(FIG03, ["config/ci.yaml", "config/more.yaml"], ".")]
     out = capsys.readouterr().out
-    assert "rule     visco2008_theory" in out and "rule     visco2008_fig03" in out
-    assert re.search(r"^\d+ files:$", out, re.MULTILINE)
+    assert "rule     montanero2007_simulate_dsmc" in out and "rule     montanero2007_fig03" in out
+    assert "writes results/montanero2007/fig03.pdf (+2 more)" in out
+    match = re.search(r"^(\d+) files:$", out, re.MULTILINE)
+    assert int(match.group(1)) == len(fig03.files) == len(out[match.end() :].split())
