@@ -84,10 +84,13 @@ def write_output(
 
 def run_job(snakemake: Any, front: Any) -> tuple[logging.Logger, dict, Any]:
     """One simulation job: ``front(**params.job)`` written to the rule's output with the
-    job's seed. Returns the logger, the job's arguments and the dataset, for the script's
-    summary line."""
+    job's seed, and a log line with its CPU time. Returns the logger, the job's arguments
+    and the dataset, for a script that logs more."""
     log = start(snakemake)
     job = dict(snakemake.params.job)
     dataset = front(**job)
     write_output(snakemake, dataset, job["seed"])
+    if "cpu_seconds" in dataset:
+        cpu = float(dataset["cpu_seconds"].sum())
+        log.info("wrote %s in %.1f CPU s", snakemake.output[0], cpu)
     return log, job, dataset

@@ -4,10 +4,4 @@ realizations of the cooling gas -> netCDF."""
 from kinetic.dsmc import simulate_cooling_modes
 from kinetic.workflow_support import run_job
 
-log, job, dataset = run_job(snakemake, simulate_cooling_modes)
-log.info(
-    "wrote %s: %d collisions in %.1f CPU s",
-    snakemake.output[0],
-    int(dataset.collisions.sum()),
-    float(dataset.cpu_seconds.sum()),
-)
+run_job(snakemake, simulate_cooling_modes)

@@ -5,4 +5,4 @@ from kinetic.edmd.disks import chaos
 from kinetic.workflow_support import run_job
 
 log, job, data = run_job(snakemake, chaos)
-log.info("wrote %s: %d events per precision", snakemake.output[0], job["events"])
+log.info("%d events per precision", job["events"])

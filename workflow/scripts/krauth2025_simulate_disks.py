@@ -4,5 +4,4 @@ krauth2025_simulate_disks): the projected density of N disks in the box along y.
 from kinetic.samplers import sample_disks
 from kinetic.workflow_support import run_job
 
-log, job, data = run_job(snakemake, sample_disks)
-log.info("wrote %s in %.1f CPU s", snakemake.output[0], float(data.cpu_seconds.sum()))
+run_job(snakemake, sample_disks)

@@ -8,9 +8,7 @@ from kinetic.workflow_support import run_job
 
 log, job, data = run_job(snakemake, sample_line)
 log.info(
-    "wrote %s: %d configurations (%d started) in %.1f CPU s",
-    snakemake.output[0],
+    "%d configurations (%d started)",
     job["samples"] * job["realizations"],
     int(data.started.sum()),
-    float(data.cpu_seconds.sum()),
 )
