@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 from graphlib import TopologicalSorter
 from pathlib import Path
 
-from kinetic.sources import ENGINES
+from kinetic.sources import ENGINES, PACKAGE
 
 __all__ = ["Step", "Trace", "main", "rule_graph", "trace"]
 
@@ -147,6 +147,12 @@ def _is_engine(module: str) -> bool:
     return len(parts) > 1 and parts[0] == "kinetic" and parts[1] in ENGINES
 
 
+def _in_engine(file: str) -> bool:
+    """Whether a package file belongs to an engine package."""
+    path = Path(file).resolve()
+    return path.is_relative_to(PACKAGE) and path.relative_to(PACKAGE).parts[0] in ENGINES
+
+
 def package_modules(script: Path, root: Path, *, engines: bool = True) -> list[str]:
     """The package files a script calls, relative to ``root``; with ``engines``, followed
     by the engine fronts that those files call in turn (a study module that runs an engine
@@ -155,7 +161,7 @@ def package_modules(script: Path, root: Path, *, engines: bool = True) -> list[s
     fronts = [
         front
         for file in direct
-        if engines and not _is_engine(_module_of(file))
+        if engines and not _in_engine(file)
         for front in _imports(Path(file), _is_engine)
     ]
     relative = []
@@ -164,13 +170,6 @@ def package_modules(script: Path, root: Path, *, engines: bool = True) -> list[s
         inside = path.is_relative_to(root.resolve())
         relative.append(str(path.relative_to(root.resolve())) if inside else file)
     return relative
-
-
-def _module_of(file: str) -> str:
-    """Dotted name of a package file (``.../kinetic/dsmc/homogeneous.py`` -> kinetic.dsmc...)."""
-    parts = Path(file).with_suffix("").parts
-    parts = parts[len(parts) - 1 - parts[::-1].index("kinetic") :]
-    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
 def trace(target: str, config_files: list[str] | None = None, root: Path | str = ".") -> Trace:

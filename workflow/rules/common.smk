@@ -6,8 +6,7 @@ from snakemake.exceptions import WorkflowError
 
 from kinetic.config import ConfigError, validate_config
 from kinetic.seeds import derive_seed
-from kinetic.sources import SHARED as KERNEL_SHARED_SOURCES
-from kinetic.sources import script_sources, simulation_sources
+from kinetic.sources import engine_sources, script_sources, simulation_sources
 
 try:
     validate_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
@@ -97,23 +96,6 @@ def job_seed(key):
     return derive_seed(config["seed"], key)
 
 
-def package_files(*modules):
-    """Source files of kinetic modules (packages or single modules) a rule depends on."""
-    root = Path(workflow.basedir) / "src" / "kinetic"
-    files = []
-    for module in modules:
-        path = root / module
-        files += sorted(str(p) for p in path.rglob("*.py")) if path.is_dir() else [f"{path}.py"]
-    return files
-
-
-def engine_sources(engine):
-    """Files whose change must rebuild a simulation of ``engine``: the files its compiled
-    kernels are keyed on in numba's cache (``kinetic.sources``), so that rule warm_numba
-    recompiles whenever that cache went stale."""
-    return package_files(engine, *KERNEL_SHARED_SOURCES)
-
-
 def simulation_code(name, *engines):
     """Inputs of a simulation rule that runs workflow/scripts/<name>.py with ``engines``:
     the package files whose edit changes its numbers (``kinetic.sources.simulation_sources``).
@@ -133,8 +115,10 @@ def numba_warm(engine):
 
 
 def engine_sources_of_wildcard(wildcards):
-    """Input function: the sources of the engine named by the {engine} wildcard."""
-    return engine_sources(wildcards.engine)
+    """Input function of rule warm_numba: the files the compiled kernels of the engine
+    named by {engine} are keyed on in numba's cache (``kinetic.sources``), so that it
+    recompiles whenever that cache went stale."""
+    return [str(path) for path in engine_sources(wildcards.engine)]
 
 
 def script_code(name):
