@@ -9,7 +9,8 @@ For every table (``*.csv``) and dataset (``*.nc``) under either tree, by relativ
   which carry provenance such as the git revision, are not compared). Variables that time
   the run (names containing ``cpu``, ``wall`` or ``inefficiency``, and ``--ignore``
   patterns) are skipped, and so is the build's own record under ``workflow/``: they
-  differ between any two runs of the same code.
+  differ between any two runs of the same code. The results roots of other configs
+  nested in a tree (``results/ci`` inside ``results``) are not part of it.
 
 ``--rename old=new`` maps a dimension or variable name of the first tree to its name in
 the second, for a refactor that renamed a dimension but no number.
@@ -29,6 +30,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+
+from kinetic.config import root_files
 
 __all__ = ["Report", "compare_trees", "main"]
 
@@ -144,7 +147,7 @@ def compare_trees(
         for suffix in ("*.csv", "*.nc"):
             files |= {
                 path.relative_to(root)
-                for path in root.rglob(suffix)
+                for path in root_files(root, suffix)
                 if not _skipped(path.relative_to(root).as_posix(), RECORD_FILES)
             }
     for relative in sorted(files):

@@ -13,14 +13,25 @@ from __future__ import annotations
 import copy
 import math
 import os
-from collections.abc import MutableMapping
-from pathlib import Path
+from collections.abc import Mapping, MutableMapping
+from pathlib import Path, PurePosixPath
 from typing import Any
 
 import jsonschema
 import yaml
 
-__all__ = ["SCHEMA", "ConfigError", "explain", "load_config_file", "main", "validate_config"]
+__all__ = [
+    "ROOT_MARKER",
+    "SCHEMA",
+    "ConfigError",
+    "explain",
+    "load_config_file",
+    "load_configs",
+    "main",
+    "results_root",
+    "root_files",
+    "validate_config",
+]
 
 SCHEMA = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
 """The workflow's top-level schema (in a source checkout)."""
@@ -181,6 +192,32 @@ _DefaultFillingValidator = jsonschema.validators.extend(
 without its round trip through a schema file (the parse of every dry run pays it)."""
 
 
+ROOT_MARKER = ".kinetic-results"
+"""File that marks a directory as one config's results root (written at the start of a
+build): tools that walk a root (``kinetic.io.remove_orphans``, ``kinetic.compare``) leave
+out the roots of other configs nested in it (``results/ci`` inside ``results``)."""
+
+
+def results_root(config: Mapping[str, Any]) -> str:
+    """The directory this config builds under (key ``results``, default ``results``),
+    normalised: ``results/ci/`` is ``results/ci``."""
+    return PurePosixPath(config.get("results", "results")).as_posix()
+
+
+def root_files(directory: str | os.PathLike, pattern: str = "*") -> list[Path]:
+    """The files under results root ``directory`` whose name matches ``pattern``, leaving
+    out the roots of other configs nested in it (those holding a :data:`ROOT_MARKER`)."""
+    import fnmatch
+
+    found = []
+    for folder, subfolders, files in os.walk(directory):
+        subfolders[:] = sorted(
+            name for name in subfolders if not Path(folder, name, ROOT_MARKER).exists()
+        )
+        found += [Path(folder, name) for name in sorted(fnmatch.filter(files, pattern))]
+    return found
+
+
 def load_config_file(path: str | os.PathLike) -> dict[str, Any]:
     """Read one YAML config file; a syntax error names the file, line and column."""
     path = Path(path)
@@ -194,6 +231,24 @@ def load_config_file(path: str | os.PathLike) -> dict[str, Any]:
     if not isinstance(loaded, dict):
         raise ConfigError(f"{path}: a config file must hold a mapping of keys, got {loaded!r}")
     return loaded
+
+
+def load_configs(paths) -> dict[str, Any]:
+    """Config files merged in order as Snakemake's ``--configfile`` merges them (later files
+    update earlier ones key by key), validated with the defaults filled in."""
+    config: dict[str, Any] = {}
+    for path in paths:
+        _merge(config, load_config_file(path))
+    validate_config(config)
+    return config
+
+
+def _merge(base: dict[str, Any], update: Mapping[str, Any]) -> None:
+    for key, value in update.items():
+        if isinstance(value, Mapping) and isinstance(base.get(key), dict):
+            _merge(base[key], value)
+        else:
+            base[key] = value
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -37,12 +37,12 @@ __all__ = [
     "RUNTIME_SAFETY",
     "Estimate",
     "cloning_batch",
-    "compile_engine",
     "dsmc_free_flights",
     "dsmc_homogeneous",
     "edmd_box",
     "edmd_periodic",
     "mem_mb",
+    "requested_seconds",
     "runtime_minutes",
     "sampler_disks",
     "sampler_line",
@@ -100,10 +100,18 @@ class Estimate:
         return BASE_MEMORY_MB + self.memory_mb
 
 
+def requested_seconds(estimate: Estimate) -> float:
+    """Wall seconds a job of ``estimate`` may take before its request is exceeded: the
+    overhead, plus RUNTIME_SAFETY x (its CPU time and the compilation of the slowest
+    engine's kernels, which the first job after an edit does while the others wait)."""
+    compilation = max(COMPILE_SECONDS.values())
+    return JOB_OVERHEAD_SECONDS + RUNTIME_SAFETY * (compilation + estimate.cpu_seconds)
+
+
 def runtime_minutes(estimate: Estimate, attempt: int = 1) -> int:
-    """SLURM ``runtime`` (minutes) for ``estimate``; doubled on every retry."""
-    seconds = JOB_OVERHEAD_SECONDS + RUNTIME_SAFETY * estimate.cpu_seconds
-    minutes = max(MIN_RUNTIME_MINUTES, math.ceil(seconds / 60.0))
+    """SLURM ``runtime`` (minutes) for ``estimate`` (:func:`requested_seconds`, at least
+    MIN_RUNTIME_MINUTES); doubled on every retry."""
+    minutes = max(MIN_RUNTIME_MINUTES, math.ceil(requested_seconds(estimate) / 60.0))
     return int(minutes * 2 ** (max(1, int(attempt)) - 1))
 
 
@@ -424,14 +432,9 @@ def sampler_disks(
 
 # ------------------------------------------------------------------ fixed-size jobs
 COMPILE_SECONDS = {"edmd": 25.0, "dsmc": 18.0, "cloning": 5.4, "samplers": 2.5}
-"""Compiling one engine's kernels into numba's cache (rule warm_numba), measured in a
-default build from a clean clone on the development machine (2026-11-24, the other core
-busy); the runtime request adds the usual margin."""
-
-
-def compile_engine(engine: str, **_: object) -> Estimate:
-    """Rule warm_numba: compile one engine's kernels."""
-    return Estimate(COMPILE_SECONDS[engine], 500.0, "compilation")
+"""Compiling one engine's kernels into numba's cache (``kinetic.jit.warm``, in the first
+simulation job after an edit), measured in a default build from a clean clone on the
+development machine (2026-11-24, the other core busy)."""
 
 
 def small_job(seconds: float = 10.0, **_: object) -> Estimate:

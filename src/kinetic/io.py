@@ -172,11 +172,13 @@ TEMPORARY_SUFFIX = ".tmp"
 
 def remove_orphans(directory: str | os.PathLike) -> list[Path]:
     """Delete the temporary files that killed writers left under ``directory`` (call it
-    only when no writer runs there, e.g. at the start of a locked build); returns them."""
+    only when no writer runs there, e.g. at the start of a locked build); returns them.
+    The results roots of other configs nested in it (``kinetic.config.ROOT_MARKER``) are
+    left alone: another build may be writing there."""
+    from kinetic.config import root_files
+
     orphans = [
-        path
-        for path in Path(directory).rglob(f".*{TEMPORARY_SUFFIX}")
-        if path.is_file() and path.name.count(".") >= 3
+        path for path in root_files(directory, f".*{TEMPORARY_SUFFIX}") if path.name.count(".") >= 3
     ]
     for path in orphans:
         path.unlink(missing_ok=True)

@@ -2,7 +2,7 @@
 
 ``kernel`` compiles a function with the flags every engine uses: ``cache=True`` (the
 machine code is written beside the source, so later processes load it instead of
-compiling; rule ``warm_numba`` fills the cache once before parallel jobs) and
+compiling; :func:`warm` fills the cache once, under a lock, before a job runs) and
 ``error_model="numpy"`` (a division by zero gives inf or nan instead of a checked
 exception: no test-and-branch on every division in the hot loops). ``inline`` adds
 ``inline="always"``: numba inlines the function's IR into its callers (small helpers of
@@ -19,22 +19,40 @@ checks only the file that defines the compiled function, so a kernel whose inlin
 helpers live in other files (the EDMD event loop and ``kinetic.edmd.cells``, every engine
 and ``kinetic.rng``) would otherwise keep running the old helpers after they are edited,
 or after a checkout that changed only those files. Here such a change invalidates the
-cached kernels, which recompile on their next use (rule ``warm_numba`` reruns on the same
-files).
+cached kernels, which recompile on their next use.
+
+Several processes compiling into one cache at once can corrupt it (numba issue 4807).
+Every simulation job therefore starts with :func:`warm` for each engine it runs: the first
+job after an edit compiles the engine's kernels while holding a lock beside the cache, the
+others wait for it and then load; once a marker records that the cache holds the kernels
+of these sources, for this CPU and numba version, jobs skip the lock.
 """
 
+import fcntl
 import functools
 import hashlib
+import importlib
+import time
 from pathlib import Path
 
+import numba
 from llvmlite import ir
 from numba import njit, types
 from numba.core import caching, cgutils
 from numba.extending import intrinsic
 
-from kinetic.sources import PACKAGE, kernel_sources
+from kinetic.sources import PACKAGE, engine_sources, kernel_sources
 
-__all__ = ["FLAGS", "inline", "kernel", "prefetch", "refcount_free", "source_stamp"]
+__all__ = [
+    "FLAGS",
+    "cache_directory",
+    "inline",
+    "kernel",
+    "prefetch",
+    "refcount_free",
+    "source_stamp",
+    "warm",
+]
 
 
 @functools.cache
@@ -87,6 +105,59 @@ _LOCATORS[:] = [
     _PackageUserWideLocator,
     *(c for c in _LOCATORS if not issubclass(c, _PackageStamp)),
 ]
+
+
+def cache_directory(engine: str) -> Path:
+    """The directory where numba caches the kernels of ``engine``'s package: the locator
+    numba would choose (``NUMBA_CACHE_DIR``, the package's ``__pycache__`` if writable, the
+    user's cache directory otherwise)."""
+    py_file = str(PACKAGE / engine / "__init__.py")
+    for locator_class in _LOCATORS[:3]:
+        locator = locator_class.from_function(cache_directory, py_file)
+        if locator is not None:
+            locator.ensure_cache_path()
+            return Path(locator.get_cache_path())
+    raise OSError(f"no writable cache directory for the kernels of kinetic.{engine}")
+
+
+def _warm_key(engine: str) -> str:
+    """What the cached kernels of ``engine`` are valid for: their sources (the stamp of
+    :func:`source_stamp`), numba's version and the CPU the machine code was built for
+    (numba's own index keys its entries by the CPU name and features)."""
+    from numba.core.registry import cpu_target
+
+    digest = hashlib.sha256(_digest(tuple(engine_sources(engine))).encode())
+    digest.update(numba.__version__.encode())
+    digest.update(repr(cpu_target.target_context.codegen().magic_tuple()).encode())
+    return digest.hexdigest()[:16]
+
+
+def warm(engine: str) -> float:
+    """Make sure numba's cache holds every kernel of ``engine`` (``kinetic.<engine>``'s
+    ``warmup()``) for the current sources; returns the seconds spent compiling or waiting.
+
+    A marker file beside the cache, named by :func:`_warm_key`, records a finished warm-up:
+    with it, nothing is done (the job loads the kernels it calls). Without it, the process
+    takes an exclusive lock on ``kinetic-warm-<engine>.lock`` there, checks the marker
+    again (another job may have compiled meanwhile), runs ``warmup()`` (compiling into
+    the cache, or loading what is there), writes the marker and removes the markers of
+    earlier sources. Parallel jobs of one build, and two builds of one checkout, thus
+    compile each engine once, never concurrently into the same cache files.
+    """
+    directory = cache_directory(engine)
+    marker = directory / f"kinetic-warm-{engine}-{_warm_key(engine)}.done"
+    if marker.exists():
+        return 0.0
+    begin = time.perf_counter()
+    with open(directory / f"kinetic-warm-{engine}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not marker.exists():
+            importlib.import_module(f"kinetic.{engine}").warmup()
+            for stale in directory.glob(f"kinetic-warm-{engine}-*.done"):
+                stale.unlink(missing_ok=True)
+            marker.touch()
+    return time.perf_counter() - begin
+
 
 FLAGS = {"cache": True, "error_model": "numpy"}
 """Options of numba.njit shared by every kernel of the package."""

@@ -21,11 +21,12 @@ import argparse
 import heapq
 import sys
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
 from kinetic import batches, cost
+from kinetic.config import load_configs, results_root
 from kinetic.cost import Estimate
 
 __all__ = [
@@ -91,9 +92,9 @@ def _visco2008(config: Mapping[str, Any]) -> list[Job]:
                     Job(
                         "visco2008",
                         "visco2008_simulate_md",
-                        f"results/{name}.nc",
+                        f"{name}.nc",
                         estimate,
-                        f"logs/benchmarks/{name}.tsv",
+                        f"benchmarks/{name}.tsv",
                     )
                 )
     for run, settings in section.get("dsmc", {}).items():
@@ -111,9 +112,9 @@ def _visco2008(config: Mapping[str, Any]) -> list[Job]:
                 Job(
                     "visco2008",
                     "visco2008_simulate_dsmc",
-                    f"results/{name}.nc",
+                    f"{name}.nc",
                     estimate,
-                    f"logs/benchmarks/{name}.tsv",
+                    f"benchmarks/{name}.tsv",
                 )
             )
     cloning = section.get("cloning")
@@ -132,9 +133,9 @@ def _visco2008(config: Mapping[str, Any]) -> list[Job]:
                     Job(
                         "visco2008",
                         "visco2008_simulate_cloning",
-                        f"results/{name}.nc",
+                        f"{name}.nc",
                         cost.cloning_batch(**parameters),
-                        f"logs/benchmarks/{name}.tsv",
+                        f"benchmarks/{name}.tsv",
                     )
                 )
     return jobs
@@ -158,9 +159,9 @@ def _montanero2007(config: Mapping[str, Any]) -> list[Job]:
                 Job(
                     "montanero2007",
                     "montanero2007_simulate_dsmc",
-                    f"results/{path}.nc",
+                    f"{path}.nc",
                     estimate,
-                    f"logs/benchmarks/{path}.tsv",
+                    f"benchmarks/{path}.tsv",
                 )
             )
     return jobs
@@ -180,7 +181,7 @@ def _costantini2010(config: Mapping[str, Any]) -> list[Job]:
                 engine=run.engine, n_realizations=job.n_realizations, **arguments
             )
             output = study.batch_file(run, job)
-            benchmark = output.replace("results/", "logs/benchmarks/", 1).replace(".nc", ".tsv")
+            benchmark = output.replace("", "benchmarks/", 1).replace(".nc", ".tsv")
             jobs.append(
                 Job(
                     "costantini2010",
@@ -218,25 +219,25 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
             Job(
                 "krauth2025",
                 "krauth2025_simulate_line",
-                f"results/krauth2025/pins/{name}.nc",
+                f"krauth2025/pins/{name}.nc",
                 estimate,
-                f"logs/benchmarks/krauth2025/pins/{name}.tsv",
+                f"benchmarks/krauth2025/pins/{name}.tsv",
             )
         )
     jobs.append(
         Job(
             "krauth2025",
             "krauth2025_simulate_ring",
-            "results/krauth2025/pins/ring.nc",
+            "krauth2025/pins/ring.nc",
             cost.sampler_ring(**ring),
-            "logs/benchmarks/krauth2025/pins/ring.tsv",
+            "benchmarks/krauth2025/pins/ring.tsv",
         )
     )
     jobs.append(
         Job(
             "krauth2025",
             "krauth2025_simulate_pin_snapshots",
-            "results/krauth2025/pins/snapshots.nc",
+            "krauth2025/pins/snapshots.nc",
             cost.small_job(),
         )
     )
@@ -244,13 +245,13 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
         Job(
             "krauth2025",
             "krauth2025_simulate_md",
-            "results/krauth2025/disks/md.nc",
+            "krauth2025/disks/md.nc",
             cost.edmd_box(
                 n_disks=disks["n_disks"],
                 duration=disks["md_duration"],
                 realizations=disks["realizations"],
             ),
-            "logs/benchmarks/krauth2025/disks/md.tsv",
+            "benchmarks/krauth2025/disks/md.tsv",
         )
     )
     for method, samples in (("direct", "direct_samples"), ("markov", "markov_sweeps")):
@@ -258,7 +259,7 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
             Job(
                 "krauth2025",
                 "krauth2025_simulate_disks",
-                f"results/krauth2025/disks/{method}.nc",
+                f"krauth2025/disks/{method}.nc",
                 cost.sampler_disks(
                     method,
                     n_disks=disks["n_disks"],
@@ -266,30 +267,18 @@ def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
                     realizations=disks["sampler_realizations"],
                     burn_in=disks["burn_in"] if method == "markov" else 0,
                 ),
-                f"logs/benchmarks/krauth2025/disks/{method}.tsv",
+                f"benchmarks/krauth2025/disks/{method}.tsv",
             )
         )
     jobs.append(
         Job(
             "krauth2025",
             "krauth2025_simulate_chaos",
-            "results/krauth2025/disks/chaos.nc",
+            "krauth2025/disks/chaos.nc",
             cost.small_job(),
         )
     )
     return jobs
-
-
-def _compile(config: Mapping[str, Any]) -> list[Job]:
-    return [
-        Job(
-            "compile",
-            "warm_numba",
-            f"results/.cache/numba-{engine}.done",
-            cost.compile_engine(engine),
-        )
-        for engine in cost.COMPILE_SECONDS
-    ]
 
 
 PLANNERS: dict[str, Callable[[Mapping[str, Any]], list[Job]]] = {
@@ -297,15 +286,25 @@ PLANNERS: dict[str, Callable[[Mapping[str, Any]], list[Job]]] = {
     "montanero2007": _montanero2007,
     "krauth2025": _krauth2025,
     "costantini2010": _costantini2010,
-    "compile": _compile,
 }
 """Document -> function listing its simulation jobs from the validated config. A new
 document's rule file adds its planner here (and its rules ask for planned resources)."""
 
 
 def plan_jobs(config: Mapping[str, Any]) -> list[Job]:
-    """Every simulation job of a validated (defaults filled) config, in plan order."""
-    return [job for planner in PLANNERS.values() for job in planner(config)]
+    """Every simulation job of a validated (defaults filled) config, in plan order, with
+    its output under the config's results root and its benchmark file under the root's
+    ``logs/`` (the planners name both relative to them)."""
+    root = results_root(config)
+    return [
+        replace(
+            job,
+            output=f"{root}/{job.output}",
+            benchmark=f"{root}/logs/{job.benchmark}" if job.benchmark else None,
+        )
+        for planner in PLANNERS.values()
+        for job in planner(config)
+    ]
 
 
 def jobs_by_output(config: Mapping[str, Any]) -> dict[str, Job]:
@@ -358,8 +357,8 @@ def benchmark_overruns(directory: str | Path, jobs: Iterable[Job]) -> tuple[int,
 
     Returns ``(checked, problems)``: the number of jobs of ``jobs`` that have a benchmark
     file under ``directory``, and one sentence per job whose measured CPU time (column
-    ``cpu_time``) exceeds the overhead plus RUNTIME_SAFETY times its estimated CPU time
-    (its ``runtime`` request before rounding up to minutes) or whose peak memory
+    ``cpu_time``) exceeds its ``runtime`` request before the rounding up to minutes
+    (``kinetic.cost.requested_seconds``) or whose peak memory
     (``max_rss``, MB) exceeds its ``mem_mb`` request. CPU time, not wall time: on a
     cluster every job has its core to itself and the two agree, while on a shared machine
     the wall time also counts the waits for a core, which no estimate can know (the wall
@@ -381,7 +380,7 @@ def benchmark_overruns(directory: str | Path, jobs: Iterable[Job]) -> tuple[int,
         seconds = max(cpu) if cpu else max(float(row["s"]) for row in rows)
         memory = max(float(row["max_rss"]) for row in rows if row["max_rss"] != "NA")
         # the request before its rounding to whole minutes (at least 2): overhead + margin
-        runtime = cost.JOB_OVERHEAD_SECONDS + cost.RUNTIME_SAFETY * job.estimate.cpu_seconds
+        runtime = cost.requested_seconds(job.estimate)
         requested = cost.mem_mb(job.estimate)
         if seconds > runtime:
             problems.append(
@@ -539,27 +538,6 @@ def summary_line(jobs: Iterable[Job]) -> str:
 
 
 # ------------------------------------------------------------------ command line
-def _load_config(paths: list[str]) -> dict[str, Any]:
-    import yaml
-
-    from kinetic.config import validate_config
-
-    config: dict[str, Any] = {}
-    for path in paths:
-        _merge(config, yaml.safe_load(Path(path).read_text()) or {})
-    validate_config(config)
-    return config
-
-
-def _merge(base: dict[str, Any], update: Mapping[str, Any]) -> None:
-    """Snakemake's --configfile semantics: later files update earlier ones key by key."""
-    for key, value in update.items():
-        if isinstance(value, Mapping) and isinstance(base.get(key), dict):
-            _merge(base[key], value)
-        else:
-            base[key] = value
-
-
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         prog="python -m kinetic.plan",
@@ -573,7 +551,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--jobs", action="store_true", help="also list every job")
     arguments = parser.parse_args(argv)
-    config = _load_config(arguments.configfile)
+    config = load_configs(arguments.configfile)
     jobs = plan_jobs(config)
     print(summary_table(jobs))
     if arguments.jobs:

@@ -6,9 +6,8 @@ One list serves two consumers that must agree:
 - numba's on-disk cache (``kinetic.jit``): a cached kernel is fresh only while none of the
   files it depends on changed. numba itself checks only the file that defines the kernel;
   the helpers an engine inlines live in other files of the engine and in ``kinetic.rng``.
-- rule ``warm_numba`` and the simulation rules (``workflow/rules/common.smk``): they rerun
-  when these files change, so the kernels are compiled once, before parallel jobs load
-  them, whenever the cache went stale.
+- the simulation rules (``workflow/rules/common.smk``): they rerun when these files
+  change, and the first of them compiles the kernels again (``kinetic.jit.warm``).
 
 An engine's kernels depend on the files of its package and on the shared modules below.
 Compiled code elsewhere (the benchmarks call into several engines) depends on every file

@@ -1,4 +1,5 @@
-"""Where a figure comes from: ``python -m kinetic.trace results/<document>/<name>.pdf``.
+"""Where a figure comes from: ``python -m kinetic.trace results/<document>/<name>.pdf``
+(with ``--configfile``, a path under that config's results root).
 
 Prints the whole pipeline of one target, from the simulations up to the figure or table:
 the config section it reads, every rule Snakemake would run for it (with the file and
@@ -26,12 +27,13 @@ from dataclasses import dataclass, field
 from graphlib import TopologicalSorter
 from pathlib import Path
 
+from kinetic.config import load_configs, results_root
 from kinetic.sources import ENGINES, PACKAGE
 
 __all__ = ["Step", "Trace", "main", "rule_graph", "trace"]
 
-SKIPPED_RULES = frozenset({"warm_numba", "all"})
-"""Rules that prepare the machine (numba's cache) or only collect targets."""
+SKIPPED_RULES = frozenset({"all"})
+"""Rules that only collect targets."""
 
 
 @dataclass
@@ -173,9 +175,11 @@ def package_modules(script: Path, root: Path, *, engines: bool = True) -> list[s
 
 
 def trace(target: str, config_files: list[str] | None = None, root: Path | str = ".") -> Trace:
-    """The pipeline of ``target`` (a path under results/) with these config files."""
+    """The pipeline of ``target`` (a path under the config's results root) with these
+    config files."""
     root = Path(root)
     config_files = list(config_files or ["config/config.yaml"])
+    results = Path(results_root(load_configs([root / path for path in config_files])))
     graph = rule_graph(target, config_files, root)
     outputs = rule_outputs(target, config_files, root)
     locations = rule_locations(root)
@@ -188,7 +192,9 @@ def trace(target: str, config_files: list[str] | None = None, root: Path | str =
         simulation = "_simulate_" in rule
         modules = package_modules(root / script, root, engines=simulation) if script else []
         steps.append(Step(rule, rule_file, line, script, modules, outputs.get(rule, [])))
-    document = Path(target).parts[1] if len(Path(target).parts) > 2 else ""
+    inside = Path(target).is_relative_to(results)
+    relative = Path(target).relative_to(results).parts if inside else ()
+    document = relative[0] if len(relative) > 1 else ""
     config_line = None
     for number, text in enumerate((root / config_files[-1]).read_text().splitlines(), 1):
         if text.startswith(f"{document}:"):
@@ -221,7 +227,9 @@ def main(argv: list[str] | None = None) -> int:
         prog="python -m kinetic.trace", description=__doc__.split("\n")[0]
     )
     parser.add_argument(
-        "targets", nargs="+", help="files under results/, e.g. results/visco2008/fig03.pdf"
+        "targets",
+        nargs="+",
+        help="files under the config's results root, e.g. results/visco2008/fig03.pdf",
     )
     parser.add_argument("--configfile", nargs="+", default=["config/config.yaml"])
     parser.add_argument("--root", default=".", help="the workflow's directory (default: here)")

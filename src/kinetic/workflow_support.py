@@ -12,6 +12,10 @@ or, for a simulation job whose rule passes the front's arguments as ``params.job
 
 which sends the ``kinetic`` logger (progress lines with ETA) and uncaught exceptions to
 ``snakemake.log[0]`` as well as to standard error, and limits numba to the job's threads.
+A simulation job (``run_job``, or ``start_simulation`` for a script that calls its front
+itself) also makes sure numba's cache holds the compiled kernels of the engines it runs
+before it runs them (``kinetic.jit.warm``): the first job after an edit compiles them
+under a lock, parallel jobs wait and load.
 """
 
 from __future__ import annotations
@@ -20,7 +24,7 @@ import logging
 import sys
 from typing import Any
 
-__all__ = ["run_job", "start", "write_output"]
+__all__ = ["run_job", "start", "start_simulation", "warm_engines", "write_output"]
 
 
 def start(snakemake: Any) -> logging.Logger:
@@ -49,6 +53,26 @@ def start(snakemake: Any) -> logging.Logger:
         pass
     logger.info("rule %s: output %s", snakemake.rule, list(snakemake.output))
     return logger
+
+
+def warm_engines(log: logging.Logger) -> None:
+    """Fill numba's cache with the kernels of every engine package the script has imported
+    (``kinetic.jit.warm``), before the job calls any of them."""
+    from kinetic import jit
+    from kinetic.sources import ENGINES
+
+    for engine in ENGINES:
+        if f"kinetic.{engine}" in sys.modules:
+            seconds = jit.warm(engine)
+            if seconds > 0.0:
+                log.info("kinetic.%s kernels in numba's cache after %.1f s", engine, seconds)
+
+
+def start_simulation(snakemake: Any) -> logging.Logger:
+    """``start`` for a simulation job: logging, then the engines' kernels in the cache."""
+    log = start(snakemake)
+    warm_engines(log)
+    return log
 
 
 def write_output(
@@ -86,7 +110,7 @@ def run_job(snakemake: Any, front: Any) -> tuple[logging.Logger, dict, Any]:
     """One simulation job: ``front(**params.job)`` written to the rule's output with the
     job's seed, and a log line with its CPU time. Returns the logger, the job's arguments
     and the dataset, for a script that logs more."""
-    log = start(snakemake)
+    log = start_simulation(snakemake)
     job = dict(snakemake.params.job)
     dataset = front(**job)
     write_output(snakemake, dataset, job["seed"])

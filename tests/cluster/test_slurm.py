@@ -31,7 +31,10 @@ REPOSITORY = Path(__file__).resolve().parents[2]
 HERE = Path(__file__).resolve().parent
 SNAKEMAKE = [sys.executable, "-m", "snakemake", "--snakefile", str(REPOSITORY / "Snakefile")]
 CI_CONFIG = str(REPOSITORY / "config" / "ci.yaml")
-TARGETS = ["results/krauth2025/pins_table.csv", "results/visco2008/dsmc/maxwell_free_paths.nc"]
+TARGETS = [
+    "results/ci/krauth2025/pins_table.csv",
+    "results/ci/visco2008/dsmc/maxwell_free_paths.nc",
+]
 SLURM_OPTIONS = [
     "--workflow-profile",
     str(REPOSITORY / "workflow" / "profiles" / "slurm"),
@@ -91,8 +94,8 @@ def _measured(name):
 
 
 def _assert_same_numbers(local, remote):
-    tables = sorted(p.relative_to(local) for p in (local / "results").rglob("*.csv"))
-    datasets = sorted(p.relative_to(local) for p in (local / "results").rglob("*.nc"))
+    tables = sorted(p.relative_to(local) for p in (local / "results" / "ci").rglob("*.csv"))
+    datasets = sorted(p.relative_to(local) for p in (local / "results" / "ci").rglob("*.nc"))
     assert tables and datasets
     for relative in tables:
         mine, theirs = pd.read_csv(local / relative), pd.read_csv(remote / relative)
@@ -139,8 +142,8 @@ def test_scancel_loses_nothing_finished_and_the_rerun_builds_only_what_is_missin
         "visco2008:\n  dsmc:\n    maxwell_free_paths:\n      n_particles: 4000\n"
         "      duration: 20000\n      realizations: 8\n      realizations_per_job: 2\n"
     )
-    target = "results/visco2008/dsmc/maxwell_free_paths.nc"
-    batches = tmp_path / "results" / "visco2008" / "dsmc" / "maxwell_free_paths"
+    target = "results/ci/visco2008/dsmc/maxwell_free_paths.nc"
+    batches = tmp_path / "results" / "ci" / "visco2008" / "dsmc" / "maxwell_free_paths"
     configs = ["--configfile", CI_CONFIG, str(override)]
     run = _snakemake(
         tmp_path,
@@ -182,7 +185,7 @@ def test_scancel_loses_nothing_finished_and_the_rerun_builds_only_what_is_missin
     assert run.returncode != 0, output
     assert "CANCELLED" in output, output
     # the failure names the job's log
-    assert "logs/visco2008/dsmc/maxwell_free_paths/batch" in output, output
+    assert "results/ci/logs/visco2008/dsmc/maxwell_free_paths/batch" in output, output
     for path, mtime in kept.items():
         assert path.stat().st_mtime_ns == mtime
     done = set(batches.glob("batch*.nc"))
@@ -210,7 +213,7 @@ def test_a_job_killed_at_its_time_limit_is_told_to_raise_its_runtime(slurm, tmp_
     )
     result = _snakemake(
         tmp_path,
-        "results/visco2008/dsmc/maxwell_free_paths/batch0000.nc",
+        "results/ci/visco2008/dsmc/maxwell_free_paths/batch0000.nc",
         "--configfile",
         CI_CONFIG,
         str(override),
@@ -225,5 +228,5 @@ def test_a_job_killed_at_its_time_limit_is_told_to_raise_its_runtime(slurm, tmp_
     assert result.returncode != 0
     assert "SLURM status is: 'TIMEOUT'" in output, output
     assert "was killed by SLURM (TIMEOUT): raise its runtime" in output, output
-    assert "logs/visco2008/dsmc/maxwell_free_paths/batch0000.log" in output
-    assert not (tmp_path / "results/visco2008/dsmc/maxwell_free_paths/batch0000.nc").exists()
+    assert "results/ci/logs/visco2008/dsmc/maxwell_free_paths/batch0000.log" in output
+    assert not (tmp_path / "results/ci/visco2008/dsmc/maxwell_free_paths/batch0000.nc").exists()

@@ -108,3 +108,54 @@ def test_kernel_sources_cover_the_engine_and_the_shared_modules():
     assert set(kernel_sources(PACKAGE / "bench" / "edmd.py")) == set(PACKAGE.rglob("*.py"))
     with pytest.raises(ValueError, match="unknown engine"):
         engine_sources("plotting")
+
+
+WARM = """
+import sys
+from kinetic import jit
+seconds = jit.warm("samplers")
+print("warm", seconds, "imported" if "kinetic.samplers" in sys.modules else "skipped")
+"""
+
+
+def _warm_processes(package_root, cache, count):
+    """``count`` processes warming the samplers' cache at once: their numba cache lines."""
+    environment = {**os.environ, "PYTHONPATH": str(package_root), "NUMBA_CACHE_DIR": str(cache)}
+    environment["NUMBA_DEBUG_CACHE"] = "1"
+    processes = [
+        subprocess.Popen(
+            [sys.executable, "-c", WARM], env=environment, stdout=subprocess.PIPE, text=True
+        )
+        for _ in range(count)
+    ]
+    outputs = [process.communicate()[0] for process in processes]
+    assert all(process.returncode == 0 for process in processes)
+    return outputs
+
+
+@pytest.mark.slow
+def test_parallel_jobs_compile_an_engine_once_and_an_edit_warms_again(repository, tmp_path):
+    """kinetic.jit.warm: of jobs starting together, one compiles into the cache while the
+    others wait for it; with the cache filled for these sources, jobs do nothing;
+    after an edit of a file the kernels depend on, the next job compiles again."""
+    shutil.copytree(
+        repository / "src" / "kinetic",
+        tmp_path / "kinetic",
+        ignore=shutil.ignore_patterns("__pycache__"),
+    )
+    cache = tmp_path / "cache"
+    first = _warm_processes(tmp_path, cache, 3)
+    saving = [output for output in first if "data saved" in output]
+    assert len(saving) == 1, "exactly one job compiles into the cache"
+    # the others waited for the lock, then found the marker of the finished warm-up
+    assert all("skipped" in output for output in first if output not in saving)
+    assert len(list(cache.rglob("kinetic-warm-samplers-*.done"))) == 1
+
+    (again,) = _warm_processes(tmp_path, cache, 1)
+    assert "warm 0.0 skipped" in again and "data" not in again  # the marker: nothing to do
+
+    with open(tmp_path / "kinetic" / "rng.py", "a") as source:
+        source.write("\n# an edit of a helper every engine inlines\n")
+    (edited,) = _warm_processes(tmp_path, cache, 1)
+    assert "data saved" in edited, "the kernels were not compiled again after the edit"
+    assert len(list(cache.rglob("kinetic-warm-samplers-*.done"))) == 1  # the old marker went

@@ -15,11 +15,7 @@ from kinetic.trace import package_modules
 
 SCRIPTS = Path(__file__).resolve().parents[2] / "workflow" / "scripts"
 # scripts of the rules that join, analyse and plot (simulation rules list engine_sources)
-READING_SCRIPTS = sorted(
-    path
-    for path in SCRIPTS.glob("*.py")
-    if "_simulate" not in path.stem and path.stem != "warm_numba"
-)
+READING_SCRIPTS = sorted(path for path in SCRIPTS.glob("*.py") if "_simulate" not in path.stem)
 
 
 def test_imports_are_followed_through_the_package(tmp_path):

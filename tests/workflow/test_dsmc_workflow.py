@@ -24,7 +24,7 @@ def test_fig12_plans_the_maxwell_jobs_only(tmp_path):
             "--configfile",
             str(REPOSITORY / "config" / "ci.yaml"),
             "--dry-run",
-            "results/visco2008/fig12.pdf",
+            "results/ci/visco2008/fig12.pdf",
         ],
         capture_output=True,
         text=True,
@@ -33,12 +33,11 @@ def test_fig12_plans_the_maxwell_jobs_only(tmp_path):
     )
     plan = result.stdout + result.stderr
     assert result.returncode == 0, plan
-    assert "results/visco2008/dsmc/maxwell_free_paths/batch0000.nc" in plan
-    assert "results/visco2008/dsmc/maxwell_free_paths/batch0001.nc" in plan  # 8 = 2 x 4
+    assert "results/ci/visco2008/dsmc/maxwell_free_paths/batch0000.nc" in plan
+    assert "results/ci/visco2008/dsmc/maxwell_free_paths/batch0001.nc" in plan  # 8 = 2 x 4
     assert "batch0002" not in plan
     assert "free_flight_times" not in plan
     for rule in (
-        "warm_numba",
         "visco2008_simulate_dsmc",
         "visco2008_aggregate_dsmc",
         "visco2008_theory",

@@ -37,7 +37,7 @@ def _ci_config(tmp_path, section=None, **changes):
 @pytest.mark.workflow
 def test_ring_figure_plans_only_the_ring(tmp_path):
     result = _snakemake(
-        tmp_path, _ci_config(tmp_path), "results/krauth2025/fig04_13.pdf", "--dry-run"
+        tmp_path, _ci_config(tmp_path), "results/ci/krauth2025/fig04_13.pdf", "--dry-run"
     )
     plan = result.stdout + result.stderr
     assert result.returncode == 0, plan

@@ -37,7 +37,7 @@ def _ci_config(tmp_path, change=None):
 def test_fig05_plans_only_its_two_runs(tmp_path):
     result = _snakemake(
         tmp_path,
-        "results/montanero2007/fig05.pdf",
+        "results/ci/montanero2007/fig05.pdf",
         "--configfile",
         str(_ci_config(tmp_path)),
         "--dry-run",

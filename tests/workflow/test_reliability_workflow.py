@@ -32,15 +32,19 @@ def _snakemake(workdir, *args, timeout=600):
 
 
 @pytest.mark.workflow
-@pytest.mark.parametrize("name", ["ci.yaml", "paper.yaml", None])
-def test_effective_config_is_the_file_plus_schema_defaults(tmp_path, name):
-    """No key of the default config leaks into a config given with --configfile."""
-    arguments = ["results/workflow/config.yaml", "--cores", "1"]
+@pytest.mark.parametrize(
+    ("name", "root"),
+    [("ci.yaml", "results/ci"), ("paper.yaml", "results/paper"), (None, "results")],
+)
+def test_effective_config_is_the_file_plus_schema_defaults(tmp_path, name, root):
+    """No key of the default config leaks into a config given with --configfile, and each
+    shipped config builds under a results root of its own."""
+    arguments = [f"{root}/workflow/config.yaml", "--cores", "1"]
     if name is not None:
         arguments += ["--configfile", str(REPOSITORY / "config" / name)]
     result = _snakemake(tmp_path, *arguments)
     assert result.returncode == 0, result.stdout + result.stderr
-    effective = yaml.safe_load((tmp_path / "results/workflow/config.yaml").read_text())
+    effective = yaml.safe_load((tmp_path / root / "workflow/config.yaml").read_text())
     expected = load_config_file(REPOSITORY / "config" / (name or "config.yaml"))
     validate_config(expected)
     assert effective == expected
@@ -89,7 +93,7 @@ def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_
         {"realizations": 2, "realizations_per_job": 1, "min_duration": 1200}
     )
     config.write_text(yaml.safe_dump(settings))
-    run = "results/costantini2010/dsmc/n1000-alpha1-f10-cell0.5-step0.05"
+    run = "results/ci/costantini2010/dsmc/n1000-alpha1-f10-cell0.5-step0.05"
     target = [f"{run}.nc", "--cores", "1", "--configfile", str(config)]
     process = subprocess.Popen(
         [*SNAKEMAKE, "--directory", str(tmp_path), *target],
@@ -100,7 +104,10 @@ def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_
         start_new_session=True,
     )
     batch_files = [tmp_path / run / f"batch{index:04d}.nc" for index in (0, 1)]
-    logs = [tmp_path / "logs" / run.removeprefix("results/") / f"batch{i:04d}.log" for i in (0, 1)]
+    logs = [
+        tmp_path / "results/ci/logs" / run.removeprefix("results/ci/") / f"batch{i:04d}.log"
+        for i in (0, 1)
+    ]
     deadline = time.monotonic() + 300
     # Snakemake picks the order of the two jobs: wait until one is done and the other runs
     while time.monotonic() < deadline and process.poll() is None:

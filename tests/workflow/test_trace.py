@@ -10,7 +10,7 @@ from kinetic import dsmc, edmd
 from kinetic.trace import main, package_modules, trace
 
 pytestmark = pytest.mark.workflow
-FIG03 = "results/montanero2007/fig03.pdf"
+FIG03 = "results/ci/montanero2007/fig03.pdf"
 
 
 @pytest.fixture(scope="module")
@@ -25,7 +25,7 @@ def test_montanero2007_fig03_runs_simulation_then_join_then_figure(repository, f
         "montanero2007_simulate_dsmc",
         "montanero2007_aggregate_run",
         "montanero2007_fig03",
-    ]  # warm_numba prepares the machine: not part of the figure's pipeline
+    ]
     simulate, _, figure = result.steps
     assert simulate.script == "workflow/scripts/montanero2007_simulate_dsmc.py"
     # the engine front behind the study module, where it is written
@@ -34,12 +34,11 @@ def test_montanero2007_fig03_runs_simulation_then_join_then_figure(repository, f
     assert "src/kinetic/theory/montanero2007.py" in figure.modules
     # the datasets between the stages: batches, the joined runs the figure reads, the figure
     aggregate = result.steps[1]
-    assert all(
-        re.fullmatch(r"results/montanero2007/runs/\w+/batch\d{4}\.nc", f) for f in simulate.outputs
-    )
-    assert all(re.fullmatch(r"results/montanero2007/runs/\w+\.nc", f) for f in aggregate.outputs)
+    batch = r"results/ci/montanero2007/runs/\w+/batch\d{4}\.nc"
+    assert all(re.fullmatch(batch, f) for f in simulate.outputs)
+    assert all(re.fullmatch(r"results/ci/montanero2007/runs/\w+\.nc", f) for f in aggregate.outputs)
     assert len(simulate.outputs) >= len(aggregate.outputs) > 1
-    assert figure.outputs[0] == "results/montanero2007/fig03.pdf"
+    assert figure.outputs[0] == "results/ci/montanero2007/fig03.pdf"
     assert not any("dsmc" in module for module in aggregate.modules)  # joins, runs no engine
     assert "src/kinetic/analysis/montanero2007.py" in figure.modules
     assert result.files[0] == "config/ci.yaml"
@@ -77,6 +76,6 @@ def test_command_prints_the_reading_list(fig03, capsys, monkeypatch):
     assert calls == [(FIG03, ["config/ci.yaml", "config/more.yaml"], ".")]
     out = capsys.readouterr().out
     assert "rule     montanero2007_simulate_dsmc" in out and "rule     montanero2007_fig03" in out
-    assert "writes results/montanero2007/fig03.pdf (+2 more)" in out
+    assert "writes results/ci/montanero2007/fig03.pdf (+2 more)" in out
     match = re.search(r"^(\d+) files:$", out, re.MULTILINE)
     assert int(match.group(1)) == len(fig03.files) == len(out[match.end() :].split())

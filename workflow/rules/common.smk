@@ -4,9 +4,9 @@ from pathlib import Path
 
 from snakemake.exceptions import WorkflowError
 
-from kinetic.config import ConfigError, validate_config
+from kinetic.config import ROOT_MARKER, ConfigError, results_root, validate_config
 from kinetic.seeds import derive_seed
-from kinetic.sources import engine_sources, script_sources, simulation_sources
+from kinetic.sources import script_sources, simulation_sources
 
 try:
     validate_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
@@ -14,6 +14,21 @@ except ConfigError as error:
     raise WorkflowError(str(error)) from None
 
 PAPERS = ["visco2008", "montanero2007", "krauth2025", "costantini2010"]
+
+RESULTS = results_root(config)
+"""This config's results root (config key ``results``): every file the build writes lies
+under it, so that builds of two configs never overwrite each other's results."""
+
+
+def results_file(path):
+    """``path`` (relative, wildcards allowed) under this config's results root."""
+    return f"{RESULTS}/{path}"
+
+
+def log_file(path):
+    """``path`` under the logs folder of this config's results root."""
+    return f"{RESULTS}/logs/{path}"
+
 
 
 def drop_default_submission_limit(scheduler):
@@ -32,13 +47,16 @@ def drop_default_submission_limit(scheduler):
 
 
 onstart:
-    # the build holds Snakemake's lock: temporary files under results/ are orphans of
-    # writers killed in an earlier build (kinetic.io writes to .<name>.<pid>.tmp, then renames)
+    # the build holds Snakemake's lock: temporary files under its results root are orphans
+    # of writers killed in an earlier build (kinetic.io writes to .<name>.<pid>.tmp, then
+    # renames); the marker tells builds of configs whose roots contain this one to keep out
     import sys
 
     from kinetic.io import remove_orphans
 
-    for orphan in remove_orphans("results") if Path("results").is_dir() else []:
+    Path(RESULTS).mkdir(parents=True, exist_ok=True)
+    Path(RESULTS, ROOT_MARKER).touch()
+    for orphan in remove_orphans(RESULTS):
         print(f"removed {orphan}, left by a killed job", file=sys.stderr)
     drop_default_submission_limit(getattr(workflow, "scheduler", None))
 
@@ -52,13 +70,13 @@ def provide(target_id, *paths):
 
 
 def figure_files(paper, name):
-    """The PDF and its PNG twin: results/<paper>/<name>.pdf|png."""
-    return [f"results/{paper}/{name}.pdf", f"results/{paper}/{name}.png"]
+    """The PDF and its PNG twin: <results>/<paper>/<name>.pdf|png."""
+    return [results_file(f"{paper}/{name}.pdf"), results_file(f"{paper}/{name}.png")]
 
 
 def table_files(paper, name):
-    """The CSV and its Markdown twin: results/<paper>/<name>.csv|md."""
-    return [f"results/{paper}/{name}.csv", f"results/{paper}/{name}.md"]
+    """The CSV and its Markdown twin: <results>/<paper>/<name>.csv|md."""
+    return [results_file(f"{paper}/{name}.csv"), results_file(f"{paper}/{name}.md")]
 
 
 def requested_target_ids():
@@ -105,22 +123,6 @@ def simulation_code(name, *engines):
     return [str(path) for path in simulation_sources(script, engines)]
 
 
-def numba_warm(engine):
-    """Flag file of rule warm_numba: compiled kernels of ``engine`` are in numba's cache.
-
-    Marked ancient: a simulation job needs the cache filled, but a newer flag (the cache
-    was filled again, e.g. after results/.cache was deleted) reruns no simulation. An edit
-    of the engine reruns them through their ``simulation_code`` inputs."""
-    return ancient(f"results/.cache/numba-{engine}.done")
-
-
-def engine_sources_of_wildcard(wildcards):
-    """Input function of rule warm_numba: the files the compiled kernels of the engine
-    named by {engine} are keyed on in numba's cache (``kinetic.sources``), so that it
-    recompiles whenever that cache went stale."""
-    return [str(path) for path in engine_sources(wildcards.engine)]
-
-
 def script_code(name):
     """workflow/scripts/<name>.py and every package file it runs (``kinetic.sources``,
     read from its imports): inputs of the rules that join, analyse and plot results, so an
@@ -140,9 +142,9 @@ def rendered_caption(document, name):
 
     Snakemake resolves a relative caption path against the rule file's directory, which is
     the source tree, not the working directory (--directory); the rendered caption lives in
-    the working directory's results/, so the path is made absolute here.
+    the working directory's results root, so the path is made absolute here.
     """
-    return os.path.abspath(f"results/{document}/{name}.caption.rst")
+    return os.path.abspath(results_file(f"{document}/{name}.caption.rst"))
 
 
 # ---------------------------------------------------------------- resources of simulation jobs
@@ -174,23 +176,3 @@ def planned_runtime(wildcards, attempt, rulename):
 def planned_mem_mb(wildcards, attempt, rulename):
     """resources.mem_mb of a simulation job."""
     return job_cost.mem_mb(planned_job(wildcards, rulename).estimate, attempt)
-
-
-wildcard_constraints:
-    engine="[a-z0-9_]+",
-
-
-rule warm_numba:
-    # Compile an engine's kernels once, before parallel simulation jobs read numba's cache
-    # (several processes compiling into one cache at once can corrupt it: numba #4807).
-    input:
-        engine_sources_of_wildcard,
-    output:
-        touch("results/.cache/numba-{engine}.done"),
-    log:
-        "logs/warm_numba/{engine}.log",
-    resources:
-        runtime=planned_runtime,
-        mem_mb=planned_mem_mb,
-    script:
-        "../scripts/warm_numba.py"

@@ -3,8 +3,8 @@
 # asked for and what its benchmark file measured (kinetic.plan.job_table). With
 # targets: all, the job table waits for every simulation job; otherwise it lists the jobs
 # whose outputs exist.
-provide("workflow/config", "results/workflow/config.yaml")
-provide("workflow/jobs", "results/workflow/jobs.csv")
+provide("workflow/config", results_file("workflow/config.yaml"))
+provide("workflow/jobs", results_file("workflow/jobs.csv"))
 
 
 localrules:
@@ -27,14 +27,14 @@ def workflow_config(wildcards):
 rule workflow_config:
     output:
         report(
-            "results/workflow/config.yaml",
+            results_file("workflow/config.yaml"),
             caption="../report/workflow_config.rst",
             category="configuration and jobs",
         ),
     params:
         config=workflow_config,
     log:
-        "logs/workflow/config.log",
+        log_file("workflow/config.log"),
     script:
         "../scripts/workflow_config.py"
 
@@ -44,11 +44,11 @@ rule workflow_jobs:
         workflow_job_outputs,
     output:
         report(
-            "results/workflow/jobs.csv",
+            results_file("workflow/jobs.csv"),
             caption="../report/workflow_jobs.rst",
             category="configuration and jobs",
         ),
     log:
-        "logs/workflow/jobs.log",
+        log_file("workflow/jobs.log"),
     script:
         "../scripts/workflow_jobs.py"

@@ -2,9 +2,9 @@
 
 from kinetic import io
 from kinetic.studies.montanero2007 import simulate_batch
-from kinetic.workflow_support import start, write_output
+from kinetic.workflow_support import start_simulation, write_output
 
-log = start(snakemake)
+log = start_simulation(snakemake)
 run = dict(snakemake.params.run)
 batch = dict(snakemake.params.batch)
 name = snakemake.wildcards.run

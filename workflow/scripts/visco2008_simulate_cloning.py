@@ -1,9 +1,9 @@
 """One batch of cloning Monte Carlo realizations (rule visco2008_simulate_cloning) -> netCDF."""
 
 from kinetic.cloning import simulate
-from kinetic.workflow_support import start, write_output
+from kinetic.workflow_support import start_simulation, write_output
 
-log = start(snakemake)
+log = start_simulation(snakemake)
 parameters = dict(snakemake.params.job)
 dataset = simulate(
     **parameters,

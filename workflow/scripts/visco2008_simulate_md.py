@@ -1,9 +1,9 @@
 """One batch of visco2008 MD realizations (rule visco2008_simulate_md)."""
 
 from kinetic.edmd import simulate
-from kinetic.workflow_support import start, write_output
+from kinetic.workflow_support import start_simulation, write_output
 
-log = start(snakemake)
+log = start_simulation(snakemake)
 parameters = dict(snakemake.params.simulation)
 dataset = simulate(**parameters)
 write_output(snakemake, dataset, parameters["seed"])

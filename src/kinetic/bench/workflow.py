@@ -29,6 +29,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+from kinetic.config import load_configs, results_root
+
 __all__ = ["run"]
 
 REPOSITORY = Path(__file__).resolve().parents[3]
@@ -60,12 +62,12 @@ def _dry_run_seconds(repeats: int = 3) -> dict[str, Any]:
     }
 
 
-def _benchmark_cpu(workdir: Path) -> dict[str, float]:
+def _benchmark_cpu(benchmarks: Path) -> dict[str, float]:
     """CPU seconds of the jobs with a ``benchmark:`` file, per document (the first folder
-    under logs/benchmarks)."""
+    under ``benchmarks``, the results root's logs/benchmarks)."""
     per_document: dict[str, float] = {}
-    for path in sorted((workdir / "logs" / "benchmarks").rglob("*.tsv")):
-        document = path.relative_to(workdir / "logs" / "benchmarks").parts[0]
+    for path in sorted(benchmarks.rglob("*.tsv")):
+        document = path.relative_to(benchmarks).parts[0]
         with path.open() as handle:
             for row in csv.DictReader(handle, delimiter="\t"):
                 with contextlib.suppress(KeyError, ValueError):
@@ -95,7 +97,8 @@ def _build(config: str, cores: int) -> dict[str, Any]:
         wall = time.perf_counter() - start
         main_cpu = _cpu(resource.getrusage(resource.RUSAGE_SELF)) - self_before
         jobs_cpu = _cpu(resource.getrusage(resource.RUSAGE_CHILDREN)) - children_before
-        benchmarked = _benchmark_cpu(Path(workdir))
+        root = results_root(load_configs([config]))
+        benchmarked = _benchmark_cpu(Path(workdir, root, "logs", "benchmarks"))
     return {
         "config": config,
         "cores": cores,

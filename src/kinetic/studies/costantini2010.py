@@ -228,13 +228,13 @@ def runs(study: Mapping[str, Any]) -> dict[str, Run]:
 
 
 def run_file(run: Run) -> str:
-    """The aggregate of one run (its jobs joined and analysed)."""
-    return f"results/costantini2010/{run.engine}/{run.name}.nc"
+    """The aggregate of one run (its jobs joined and analysed), under the results root."""
+    return f"costantini2010/{run.engine}/{run.name}.nc"
 
 
 def batch_file(run: Run, job: batches.Job) -> str:
-    """The dataset written by one job of a run."""
-    return f"results/costantini2010/{run.engine}/{run.name}/{batches.batch_name(job.index)}.nc"
+    """The dataset written by one job of a run, under the results root."""
+    return f"costantini2010/{run.engine}/{run.name}/{batches.batch_name(job.index)}.nc"
 
 
 def jobs(study: Mapping[str, Any]) -> list[batches.Job]:

@@ -12,21 +12,21 @@ for name in ("error_vs_time", "convergence"):
     provide(
         f"costantini2010/{name}",
         *figure_files("costantini2010", name),
-        f"results/costantini2010/{name}.csv",
+        results_file(f"costantini2010/{name}.csv"),
     )
 provide(
     "costantini2010/table1",
     *table_files("costantini2010", "table1"),
-    "results/costantini2010/extrapolation.csv",
+    results_file("costantini2010/extrapolation.csv"),
 )
 provide(
     "costantini2010/checks",
-    "results/costantini2010/checks.csv",
-    "results/costantini2010/amplitudes.csv",
+    results_file("costantini2010/checks.csv"),
+    results_file("costantini2010/amplitudes.csv"),
 )
 
 def costantini2010_files(runs):
-    return [costantini2010_study.run_file(run) for run in runs]
+    return [results_file(costantini2010_study.run_file(run)) for run in runs]
 
 
 def costantini2010_figure_inputs(wildcards):
@@ -82,10 +82,10 @@ rule costantini2010_fig01:
         runs=costantini2010_figure_inputs,
         code=script_code("costantini2010_fig01"),
     output:
-        pdf="results/costantini2010/fig01.pdf",
-        png=report("results/costantini2010/fig01.png", caption=costantini2010_caption("fig01"), category="costantini2010"),
+        pdf=results_file("costantini2010/fig01.pdf"),
+        png=report(results_file("costantini2010/fig01.png"), caption=costantini2010_caption("fig01"), category="costantini2010"),
     log:
-        "logs/costantini2010/fig01.log",
+        log_file("costantini2010/fig01.log"),
     params:
         study=costantini2010_settings,
     script:
@@ -97,10 +97,10 @@ rule costantini2010_fig02:
         runs=costantini2010_fig02_inputs,
         code=script_code("costantini2010_fig02"),
     output:
-        pdf="results/costantini2010/fig02.pdf",
-        png=report("results/costantini2010/fig02.png", caption=costantini2010_caption("fig02"), category="costantini2010"),
+        pdf=results_file("costantini2010/fig02.pdf"),
+        png=report(results_file("costantini2010/fig02.png"), caption=costantini2010_caption("fig02"), category="costantini2010"),
     log:
-        "logs/costantini2010/fig02.log",
+        log_file("costantini2010/fig02.log"),
     params:
         study=costantini2010_settings,
     script:
@@ -112,10 +112,10 @@ rule costantini2010_fig03:
         runs=costantini2010_fig03_inputs,
         code=script_code("costantini2010_fig03"),
     output:
-        pdf="results/costantini2010/fig03.pdf",
-        png=report("results/costantini2010/fig03.png", caption=costantini2010_caption("fig03"), category="costantini2010"),
+        pdf=results_file("costantini2010/fig03.pdf"),
+        png=report(results_file("costantini2010/fig03.png"), caption=costantini2010_caption("fig03"), category="costantini2010"),
     log:
-        "logs/costantini2010/fig03.log",
+        log_file("costantini2010/fig03.log"),
     params:
         study=costantini2010_settings,
     script:
@@ -127,13 +127,13 @@ rule costantini2010_table1:
         runs=costantini2010_table_inputs,
         code=script_code("costantini2010_table1"),
     output:
-        csv="results/costantini2010/table1.csv",
-        md="results/costantini2010/table1.md",
-        fits="results/costantini2010/extrapolation.csv",
-        checks="results/costantini2010/checks.csv",
-        amplitudes="results/costantini2010/amplitudes.csv",
+        csv=results_file("costantini2010/table1.csv"),
+        md=results_file("costantini2010/table1.md"),
+        fits=results_file("costantini2010/extrapolation.csv"),
+        checks=results_file("costantini2010/checks.csv"),
+        amplitudes=results_file("costantini2010/amplitudes.csv"),
     log:
-        "logs/costantini2010/table1.log",
+        log_file("costantini2010/table1.log"),
     params:
         study=costantini2010_settings,
     script:
@@ -143,21 +143,21 @@ rule costantini2010_table1:
 rule costantini2010_fig04_to_fig07:
     # Figs 4-7 draw Table 1 (itself computed from the run aggregates) and the theory
     input:
-        table="results/costantini2010/table1.csv",
-        fits="results/costantini2010/extrapolation.csv",
-        amplitudes="results/costantini2010/amplitudes.csv",
+        table=results_file("costantini2010/table1.csv"),
+        fits=results_file("costantini2010/extrapolation.csv"),
+        amplitudes=results_file("costantini2010/amplitudes.csv"),
         code=script_code("costantini2010_transport"),
     output:
-        fig04="results/costantini2010/fig04.pdf",
-        fig05="results/costantini2010/fig05.pdf",
-        fig06="results/costantini2010/fig06.pdf",
-        fig07="results/costantini2010/fig07.pdf",
-        png04=report("results/costantini2010/fig04.png", caption=costantini2010_caption("fig04"), category="costantini2010"),
-        png05=report("results/costantini2010/fig05.png", caption=costantini2010_caption("fig05"), category="costantini2010"),
-        png06=report("results/costantini2010/fig06.png", caption=costantini2010_caption("fig06"), category="costantini2010"),
-        png07=report("results/costantini2010/fig07.png", caption=costantini2010_caption("fig07"), category="costantini2010"),
+        fig04=results_file("costantini2010/fig04.pdf"),
+        fig05=results_file("costantini2010/fig05.pdf"),
+        fig06=results_file("costantini2010/fig06.pdf"),
+        fig07=results_file("costantini2010/fig07.pdf"),
+        png04=report(results_file("costantini2010/fig04.png"), caption=costantini2010_caption("fig04"), category="costantini2010"),
+        png05=report(results_file("costantini2010/fig05.png"), caption=costantini2010_caption("fig05"), category="costantini2010"),
+        png06=report(results_file("costantini2010/fig06.png"), caption=costantini2010_caption("fig06"), category="costantini2010"),
+        png07=report(results_file("costantini2010/fig07.png"), caption=costantini2010_caption("fig07"), category="costantini2010"),
     log:
-        "logs/costantini2010/fig04_to_fig07.log",
+        log_file("costantini2010/fig04_to_fig07.log"),
     params:
         study=costantini2010_settings,
     script:
@@ -169,11 +169,11 @@ rule costantini2010_error_vs_time:
         runs=costantini2010_error_inputs,
         code=script_code("costantini2010_error_vs_time"),
     output:
-        pdf="results/costantini2010/error_vs_time.pdf",
-        png=report("results/costantini2010/error_vs_time.png", caption=costantini2010_caption("error_vs_time"), category="costantini2010"),
-        csv="results/costantini2010/error_vs_time.csv",
+        pdf=results_file("costantini2010/error_vs_time.pdf"),
+        png=report(results_file("costantini2010/error_vs_time.png"), caption=costantini2010_caption("error_vs_time"), category="costantini2010"),
+        csv=results_file("costantini2010/error_vs_time.csv"),
     log:
-        "logs/costantini2010/error_vs_time.log",
+        log_file("costantini2010/error_vs_time.log"),
     params:
         study=costantini2010_settings,
     script:
@@ -185,11 +185,11 @@ rule costantini2010_convergence:
         runs=costantini2010_convergence_inputs,
         code=script_code("costantini2010_convergence"),
     output:
-        pdf="results/costantini2010/convergence.pdf",
-        png=report("results/costantini2010/convergence.png", caption=costantini2010_caption("convergence"), category="costantini2010"),
-        csv="results/costantini2010/convergence.csv",
+        pdf=results_file("costantini2010/convergence.pdf"),
+        png=report(results_file("costantini2010/convergence.png"), caption=costantini2010_caption("convergence"), category="costantini2010"),
+        csv=results_file("costantini2010/convergence.csv"),
     log:
-        "logs/costantini2010/convergence.log",
+        log_file("costantini2010/convergence.log"),
     params:
         study=costantini2010_settings,
     script:

@@ -32,7 +32,7 @@ def costantini2010_batch_files(wildcards):
     """Input of the aggregate: every job's file of the run."""
     run = costantini2010_run(wildcards)
     return [
-        costantini2010_study.batch_file(run, job)
+        results_file(costantini2010_study.batch_file(run, job))
         for job in costantini2010_study.jobs(config["costantini2010"])
     ]
 
@@ -68,14 +68,13 @@ def costantini2010_analysis(wildcards):
 
 rule costantini2010_simulate_dsmc:
     input:
-        warm=numba_warm("dsmc"),
         code=simulation_code("costantini2010_simulate_dsmc", "dsmc"),
     output:
-        "results/costantini2010/{engine}/{run}/batch{batch}.nc",
+        results_file("costantini2010/{engine}/{run}/batch{batch}.nc"),
     log:
-        "logs/costantini2010/{engine}/{run}/batch{batch}.log",
+        log_file("costantini2010/{engine}/{run}/batch{batch}.log"),
     benchmark:
-        "logs/benchmarks/costantini2010/{engine}/{run}/batch{batch}.tsv"
+        log_file("benchmarks/costantini2010/{engine}/{run}/batch{batch}.tsv")
     params:
         job=costantini2010_job,
     threads: 1
@@ -92,14 +91,13 @@ rule costantini2010_simulate_dsmc:
 
 rule costantini2010_simulate_md:
     input:
-        warm=numba_warm("edmd"),
         code=simulation_code("costantini2010_simulate_md", "edmd"),
     output:
-        "results/costantini2010/{engine}/{run}/batch{batch}.nc",
+        results_file("costantini2010/{engine}/{run}/batch{batch}.nc"),
     log:
-        "logs/costantini2010/{engine}/{run}/batch{batch}.log",
+        log_file("costantini2010/{engine}/{run}/batch{batch}.log"),
     benchmark:
-        "logs/benchmarks/costantini2010/{engine}/{run}/batch{batch}.tsv"
+        log_file("benchmarks/costantini2010/{engine}/{run}/batch{batch}.tsv")
     params:
         job=costantini2010_job,
     threads: 1
@@ -119,9 +117,9 @@ rule costantini2010_aggregate_run:
         batches=costantini2010_batch_files,
         code=script_code("costantini2010_aggregate"),
     output:
-        "results/costantini2010/{engine}/{run}.nc",
+        results_file("costantini2010/{engine}/{run}.nc"),
     log:
-        "logs/costantini2010/{engine}/{run}.log",
+        log_file("costantini2010/{engine}/{run}.log"),
     params:
         analysis=costantini2010_analysis,
     wildcard_constraints:

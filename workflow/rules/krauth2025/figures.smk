@@ -10,17 +10,17 @@ provide("krauth2025/pins_table", *table_files("krauth2025", "pins_table"))
 
 rule krauth2025_fig04_10:
     input:
-        snapshots="results/krauth2025/pins/snapshots.nc",
+        snapshots=results_file("krauth2025/pins/snapshots.nc"),
         code=script_code("krauth2025_fig04_10"),
     output:
-        pdf="results/krauth2025/fig04_10.pdf",
+        pdf=results_file("krauth2025/fig04_10.pdf"),
         png=report(
-            "results/krauth2025/fig04_10.png",
+            results_file("krauth2025/fig04_10.png"),
             caption="../../report/krauth2025_fig04_10.rst",
             category="krauth2025",
         ),
     log:
-        "logs/krauth2025/fig04_10.log",
+        log_file("krauth2025/fig04_10.log"),
     script:
         "../../scripts/krauth2025_fig04_10.py"
 
@@ -31,32 +31,32 @@ rule krauth2025_fig04_11:
         theory=krauth2025_line_theory_files(),
         code=script_code("krauth2025_fig04_11"),
     output:
-        pdf="results/krauth2025/fig04_11.pdf",
+        pdf=results_file("krauth2025/fig04_11.pdf"),
         png=report(
-            "results/krauth2025/fig04_11.png",
+            results_file("krauth2025/fig04_11.png"),
             caption="../../report/krauth2025_fig04_11.rst",
             category="krauth2025",
         ),
     log:
-        "logs/krauth2025/fig04_11.log",
+        log_file("krauth2025/fig04_11.log"),
     script:
         "../../scripts/krauth2025_fig04_11.py"
 
 
 rule krauth2025_fig04_13:
     input:
-        ring="results/krauth2025/pins/ring.nc",
-        theory="results/krauth2025/theory/ring.nc",
+        ring=results_file("krauth2025/pins/ring.nc"),
+        theory=results_file("krauth2025/theory/ring.nc"),
         code=script_code("krauth2025_fig04_13"),
     output:
-        pdf="results/krauth2025/fig04_13.pdf",
+        pdf=results_file("krauth2025/fig04_13.pdf"),
         png=report(
-            "results/krauth2025/fig04_13.png",
+            results_file("krauth2025/fig04_13.png"),
             caption="../../report/krauth2025_fig04_13.rst",
             category="krauth2025",
         ),
     log:
-        "logs/krauth2025/fig04_13.log",
+        log_file("krauth2025/fig04_13.log"),
     script:
         "../../scripts/krauth2025_fig04_13.py"
 
@@ -67,10 +67,10 @@ rule krauth2025_pins_table:
         theory=krauth2025_line_theory_files(),
         code=script_code("krauth2025_pins_table"),
     output:
-        csv="results/krauth2025/pins_table.csv",
-        md="results/krauth2025/pins_table.md",
+        csv=results_file("krauth2025/pins_table.csv"),
+        md=results_file("krauth2025/pins_table.md"),
     log:
-        "logs/krauth2025/pins_table.log",
+        log_file("krauth2025/pins_table.log"),
     script:
         "../../scripts/krauth2025_pins_table.py"
 
@@ -93,17 +93,17 @@ def krauth2025_snapshot_panels(wildcards):
 
 rule krauth2025_fig04_01:
     input:
-        chaos="results/krauth2025/disks/chaos.nc",
+        chaos=results_file("krauth2025/disks/chaos.nc"),
         code=script_code("krauth2025_fig04_01"),
     output:
-        pdf="results/krauth2025/fig04_01.pdf",
+        pdf=results_file("krauth2025/fig04_01.pdf"),
         png=report(
-            "results/krauth2025/fig04_01.png",
+            results_file("krauth2025/fig04_01.png"),
             caption="../../report/krauth2025_fig04_01.rst",
             category="krauth2025",
         ),
     log:
-        "logs/krauth2025/fig04_01.log",
+        log_file("krauth2025/fig04_01.log"),
     params:
         panels=krauth2025_snapshot_panels,
     script:
@@ -112,73 +112,73 @@ rule krauth2025_fig04_01:
 
 rule krauth2025_chaos:
     input:
-        chaos="results/krauth2025/disks/chaos.nc",
+        chaos=results_file("krauth2025/disks/chaos.nc"),
         code=script_code("krauth2025_chaos"),
         template=caption_template("krauth2025_chaos"),
     output:
-        pdf="results/krauth2025/chaos.pdf",
+        pdf=results_file("krauth2025/chaos.pdf"),
         png=report(
-            "results/krauth2025/chaos.png",
+            results_file("krauth2025/chaos.png"),
             caption=rendered_caption("krauth2025", "chaos"),
             category="krauth2025",
         ),
-        caption="results/krauth2025/chaos.caption.rst",
-        csv="results/krauth2025/chaos_table.csv",
-        md="results/krauth2025/chaos_table.md",
+        caption=results_file("krauth2025/chaos.caption.rst"),
+        csv=results_file("krauth2025/chaos_table.csv"),
+        md=results_file("krauth2025/chaos_table.md"),
     log:
-        "logs/krauth2025/chaos.log",
+        log_file("krauth2025/chaos.log"),
     script:
         "../../scripts/krauth2025_chaos.py"
 
 
 rule krauth2025_fig04_06:
     input:
-        md="results/krauth2025/disks/md.nc",
-        direct="results/krauth2025/disks/direct.nc",
-        markov="results/krauth2025/disks/markov.nc",
+        md=results_file("krauth2025/disks/md.nc"),
+        direct=results_file("krauth2025/disks/direct.nc"),
+        markov=results_file("krauth2025/disks/markov.nc"),
         code=script_code("krauth2025_fig04_06"),
     output:
-        pdf="results/krauth2025/fig04_06.pdf",
+        pdf=results_file("krauth2025/fig04_06.pdf"),
         png=report(
-            "results/krauth2025/fig04_06.png",
+            results_file("krauth2025/fig04_06.png"),
             caption="../../report/krauth2025_fig04_06.rst",
             category="krauth2025",
         ),
     log:
-        "logs/krauth2025/fig04_06.log",
+        log_file("krauth2025/fig04_06.log"),
     script:
         "../../scripts/krauth2025_fig04_06.py"
 
 
 rule krauth2025_velocities:
     input:
-        md="results/krauth2025/disks/md.nc",
+        md=results_file("krauth2025/disks/md.nc"),
         code=script_code("krauth2025_velocities"),
         template=caption_template("krauth2025_velocities"),
     output:
-        pdf="results/krauth2025/velocities.pdf",
+        pdf=results_file("krauth2025/velocities.pdf"),
         png=report(
-            "results/krauth2025/velocities.png",
+            results_file("krauth2025/velocities.png"),
             caption=rendered_caption("krauth2025", "velocities"),
             category="krauth2025",
         ),
-        caption="results/krauth2025/velocities.caption.rst",
+        caption=results_file("krauth2025/velocities.caption.rst"),
     log:
-        "logs/krauth2025/velocities.log",
+        log_file("krauth2025/velocities.log"),
     script:
         "../../scripts/krauth2025_velocities.py"
 
 
 rule krauth2025_pressure_table:
     input:
-        md="results/krauth2025/disks/md.nc",
-        direct="results/krauth2025/disks/direct.nc",
+        md=results_file("krauth2025/disks/md.nc"),
+        direct=results_file("krauth2025/disks/direct.nc"),
         code=script_code("krauth2025_pressure_table"),
     output:
-        csv="results/krauth2025/pressure_table.csv",
-        md="results/krauth2025/pressure_table.md",
+        csv=results_file("krauth2025/pressure_table.csv"),
+        md=results_file("krauth2025/pressure_table.md"),
     log:
-        "logs/krauth2025/pressure_table.log",
+        log_file("krauth2025/pressure_table.log"),
     script:
         "../../scripts/krauth2025_pressure_table.py"
 
@@ -193,21 +193,21 @@ provide(
 rule krauth2025_error_vs_time:
     input:
         lines=krauth2025_line_files(),
-        ring="results/krauth2025/pins/ring.nc",
-        md="results/krauth2025/disks/md.nc",
-        direct="results/krauth2025/disks/direct.nc",
-        markov="results/krauth2025/disks/markov.nc",
+        ring=results_file("krauth2025/pins/ring.nc"),
+        md=results_file("krauth2025/disks/md.nc"),
+        direct=results_file("krauth2025/disks/direct.nc"),
+        markov=results_file("krauth2025/disks/markov.nc"),
         code=script_code("krauth2025_error_vs_time"),
     output:
-        pdf="results/krauth2025/error_vs_time.pdf",
+        pdf=results_file("krauth2025/error_vs_time.pdf"),
         png=report(
-            "results/krauth2025/error_vs_time.png",
+            results_file("krauth2025/error_vs_time.png"),
             caption="../../report/krauth2025_error_vs_time.rst",
             category="krauth2025",
         ),
-        csv="results/krauth2025/error_vs_time.csv",
-        md="results/krauth2025/error_vs_time.md",
+        csv=results_file("krauth2025/error_vs_time.csv"),
+        md=results_file("krauth2025/error_vs_time.md"),
     log:
-        "logs/krauth2025/error_vs_time.log",
+        log_file("krauth2025/error_vs_time.log"),
     script:
         "../../scripts/krauth2025_error_vs_time.py"

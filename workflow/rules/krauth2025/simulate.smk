@@ -11,7 +11,7 @@ def krauth2025_pins():
 def krauth2025_line_files():
     pins = krauth2025_pins()
     return [
-        f"results/krauth2025/pins/{method}_L{pins[key]:g}.nc"
+        results_file(f"krauth2025/pins/{method}_L{pins[key]:g}.nc")
         for method, key in job_plan.LINE_RUNS
     ]
 
@@ -111,13 +111,12 @@ krauth2025_check_config()
 rule krauth2025_simulate_line:
     input:
         code=simulation_code("krauth2025_simulate_line", "samplers"),
-        warm=numba_warm("samplers"),
     output:
-        "results/krauth2025/pins/{method}_L{length}.nc",
+        results_file("krauth2025/pins/{method}_L{length}.nc"),
     log:
-        "logs/krauth2025/pins/{method}_L{length}.log",
+        log_file("krauth2025/pins/{method}_L{length}.log"),
     benchmark:
-        "logs/benchmarks/krauth2025/pins/{method}_L{length}.tsv"
+        log_file("benchmarks/krauth2025/pins/{method}_L{length}.tsv")
     params:
         job=krauth2025_line_job,
     wildcard_constraints:
@@ -133,13 +132,12 @@ rule krauth2025_simulate_line:
 rule krauth2025_simulate_ring:
     input:
         code=simulation_code("krauth2025_simulate_ring", "samplers"),
-        warm=numba_warm("samplers"),
     output:
-        "results/krauth2025/pins/ring.nc",
+        results_file("krauth2025/pins/ring.nc"),
     log:
-        "logs/krauth2025/pins/ring.log",
+        log_file("krauth2025/pins/ring.log"),
     benchmark:
-        "logs/benchmarks/krauth2025/pins/ring.tsv"
+        log_file("benchmarks/krauth2025/pins/ring.tsv")
     params:
         job=krauth2025_ring_job,
     resources:
@@ -152,11 +150,10 @@ rule krauth2025_simulate_ring:
 rule krauth2025_simulate_pin_snapshots:
     input:
         code=simulation_code("krauth2025_simulate_pin_snapshots", "samplers"),
-        warm=numba_warm("samplers"),
     output:
-        "results/krauth2025/pins/snapshots.nc",
+        results_file("krauth2025/pins/snapshots.nc"),
     log:
-        "logs/krauth2025/pins/snapshots.log",
+        log_file("krauth2025/pins/snapshots.log"),
     params:
         job=krauth2025_snapshots_job,
     resources:
@@ -241,13 +238,12 @@ krauth2025_check_disks()
 rule krauth2025_simulate_md:
     input:
         code=simulation_code("krauth2025_simulate_md", "edmd", "samplers"),
-        warm=[numba_warm("edmd"), numba_warm("samplers")],
     output:
-        "results/krauth2025/disks/md.nc",
+        results_file("krauth2025/disks/md.nc"),
     log:
-        "logs/krauth2025/disks/md.log",
+        log_file("krauth2025/disks/md.log"),
     benchmark:
-        "logs/benchmarks/krauth2025/disks/md.tsv"
+        log_file("benchmarks/krauth2025/disks/md.tsv")
     params:
         job=krauth2025_md_job,
     resources:
@@ -260,13 +256,12 @@ rule krauth2025_simulate_md:
 rule krauth2025_simulate_disks:
     input:
         code=simulation_code("krauth2025_simulate_disks", "samplers"),
-        warm=numba_warm("samplers"),
     output:
-        "results/krauth2025/disks/{method}.nc",
+        results_file("krauth2025/disks/{method}.nc"),
     log:
-        "logs/krauth2025/disks/{method}.log",
+        log_file("krauth2025/disks/{method}.log"),
     benchmark:
-        "logs/benchmarks/krauth2025/disks/{method}.tsv"
+        log_file("benchmarks/krauth2025/disks/{method}.tsv")
     params:
         job=krauth2025_sampler_job,
     wildcard_constraints:
@@ -281,11 +276,10 @@ rule krauth2025_simulate_disks:
 rule krauth2025_simulate_chaos:
     input:
         code=simulation_code("krauth2025_simulate_chaos", "edmd", "samplers"),
-        warm=[numba_warm("edmd"), numba_warm("samplers")],
     output:
-        "results/krauth2025/disks/chaos.nc",
+        results_file("krauth2025/disks/chaos.nc"),
     log:
-        "logs/krauth2025/disks/chaos.log",
+        log_file("krauth2025/disks/chaos.log"),
     params:
         job=krauth2025_chaos_job,
     resources:

@@ -7,7 +7,7 @@ def krauth2025_line_theory_files():
     """One exact-density file per line length of the pins runs."""
     pins = krauth2025_pins()
     lengths = sorted({f"{pins[key]:g}" for _, key in job_plan.LINE_RUNS})
-    return [f"results/krauth2025/theory/line_L{token}.nc" for token in lengths]
+    return [results_file(f"krauth2025/theory/line_L{token}.nc") for token in lengths]
 
 
 def krauth2025_line_theory(wildcards):
@@ -37,9 +37,9 @@ rule krauth2025_theory_line:
     input:
         code=script_code("krauth2025_theory"),
     output:
-        "results/krauth2025/theory/line_L{length}.nc",
+        results_file("krauth2025/theory/line_L{length}.nc"),
     log:
-        "logs/krauth2025/theory/line_L{length}.log",
+        log_file("krauth2025/theory/line_L{length}.log"),
     params:
         curves=krauth2025_line_theory,
     wildcard_constraints:
@@ -52,9 +52,9 @@ rule krauth2025_theory_ring:
     input:
         code=script_code("krauth2025_theory"),
     output:
-        "results/krauth2025/theory/ring.nc",
+        results_file("krauth2025/theory/ring.nc"),
     log:
-        "logs/krauth2025/theory/ring.log",
+        log_file("krauth2025/theory/ring.log"),
     params:
         curves=krauth2025_ring_theory,
     script:

@@ -1,7 +1,7 @@
 # montanero2007 figures and tables: Figs 1-7, Table 1, the error-against-run-time study,
 # the extreme cases and the checks, from the runs of simulate.smk.
 #
-#   results/montanero2007/figNN.pdf|png, table1.csv|md, error_vs_time.*, extreme.*, checks.*
+#   <results>/montanero2007/figNN.pdf|png, table1.csv|md, error_vs_time.*, extreme.*, checks.*
 from kinetic.studies.montanero2007 import alpha_key, field_partner
 
 for _number in range(1, 8):
@@ -122,14 +122,14 @@ rule montanero2007_fig01:
         runs=montanero2007_field_pair,
         code=script_code("montanero2007_fig01"),
     output:
-        pdf="results/montanero2007/fig01.pdf",
+        pdf=results_file("montanero2007/fig01.pdf"),
         png=report(
-            "results/montanero2007/fig01.png",
+            results_file("montanero2007/fig01.png"),
             caption="../../report/montanero2007_fig01.rst",
             category="montanero2007",
         ),
     log:
-        "logs/montanero2007/fig01.log",
+        log_file("montanero2007/fig01.log"),
     script:
         "../../scripts/montanero2007_fig01.py"
 
@@ -139,14 +139,14 @@ rule montanero2007_fig02:
         runs=montanero2007_fig02_runs,
         code=script_code("montanero2007_fig02"),
     output:
-        pdf="results/montanero2007/fig02.pdf",
+        pdf=results_file("montanero2007/fig02.pdf"),
         png=report(
-            "results/montanero2007/fig02.png",
+            results_file("montanero2007/fig02.png"),
             caption="../../report/montanero2007_fig02.rst",
             category="montanero2007",
         ),
     log:
-        "logs/montanero2007/fig02.log",
+        log_file("montanero2007/fig02.log"),
     script:
         "../../scripts/montanero2007_fig02.py"
 
@@ -158,15 +158,15 @@ rule montanero2007_fig03:
         template=caption_template("montanero2007_fig03"),
         code=script_code("montanero2007_fig03"),
     output:
-        pdf="results/montanero2007/fig03.pdf",
+        pdf=results_file("montanero2007/fig03.pdf"),
         png=report(
-            "results/montanero2007/fig03.png",
+            results_file("montanero2007/fig03.png"),
             caption=rendered_caption("montanero2007", "fig03"),
             category="montanero2007",
         ),
-        caption="results/montanero2007/fig03.caption.rst",
+        caption=results_file("montanero2007/fig03.caption.rst"),
     log:
-        "logs/montanero2007/fig03.log",
+        log_file("montanero2007/fig03.log"),
     script:
         "../../scripts/montanero2007_fig03.py"
 
@@ -178,15 +178,15 @@ rule montanero2007_fig04:
         template=caption_template("montanero2007_fig04"),
         code=script_code("montanero2007_fig04"),
     output:
-        pdf="results/montanero2007/fig04.pdf",
+        pdf=results_file("montanero2007/fig04.pdf"),
         png=report(
-            "results/montanero2007/fig04.png",
+            results_file("montanero2007/fig04.png"),
             caption=rendered_caption("montanero2007", "fig04"),
             category="montanero2007",
         ),
-        caption="results/montanero2007/fig04.caption.rst",
+        caption=results_file("montanero2007/fig04.caption.rst"),
     log:
-        "logs/montanero2007/fig04.log",
+        log_file("montanero2007/fig04.log"),
     script:
         "../../scripts/montanero2007_fig04.py"
 
@@ -196,14 +196,14 @@ rule montanero2007_fig05:
         runs=montanero2007_fig05_runs,
         code=script_code("montanero2007_phi"),
     output:
-        pdf="results/montanero2007/fig05.pdf",
+        pdf=results_file("montanero2007/fig05.pdf"),
         png=report(
-            "results/montanero2007/fig05.png",
+            results_file("montanero2007/fig05.png"),
             caption="../../report/montanero2007_fig05.rst",
             category="montanero2007",
         ),
     log:
-        "logs/montanero2007/fig05.log",
+        log_file("montanero2007/fig05.log"),
     params:
         figures=montanero2007_figures,
     script:
@@ -215,14 +215,14 @@ rule montanero2007_fig06:
         runs=montanero2007_fig06_runs,
         code=script_code("montanero2007_phi"),
     output:
-        pdf="results/montanero2007/fig06.pdf",
+        pdf=results_file("montanero2007/fig06.pdf"),
         png=report(
-            "results/montanero2007/fig06.png",
+            results_file("montanero2007/fig06.png"),
             caption="../../report/montanero2007_fig06.rst",
             category="montanero2007",
         ),
     log:
-        "logs/montanero2007/fig06.log",
+        log_file("montanero2007/fig06.log"),
     params:
         figures=montanero2007_figures,
     script:
@@ -236,15 +236,15 @@ rule montanero2007_fig07:
         template=caption_template("montanero2007_fig07"),
         code=script_code("montanero2007_fig07"),
     output:
-        pdf="results/montanero2007/fig07.pdf",
+        pdf=results_file("montanero2007/fig07.pdf"),
         png=report(
-            "results/montanero2007/fig07.png",
+            results_file("montanero2007/fig07.png"),
             caption=rendered_caption("montanero2007", "fig07"),
             category="montanero2007",
         ),
-        caption="results/montanero2007/fig07.caption.rst",
+        caption=results_file("montanero2007/fig07.caption.rst"),
     log:
-        "logs/montanero2007/fig07.log",
+        log_file("montanero2007/fig07.log"),
     params:
         figures=montanero2007_figures,
     script:
@@ -257,10 +257,10 @@ rule montanero2007_table1:
         partners=montanero2007_scan_partners,
         code=script_code("montanero2007_table1"),
     output:
-        csv="results/montanero2007/table1.csv",
-        md="results/montanero2007/table1.md",
+        csv=results_file("montanero2007/table1.csv"),
+        md=results_file("montanero2007/table1.md"),
     log:
-        "logs/montanero2007/table1.log",
+        log_file("montanero2007/table1.log"),
     script:
         "../../scripts/montanero2007_table1.py"
 
@@ -270,18 +270,18 @@ rule montanero2007_error_vs_time:
         runs=montanero2007_error_inputs,
         code=script_code("montanero2007_error_vs_time"),
     output:
-        pdf="results/montanero2007/error_vs_time.pdf",
+        pdf=results_file("montanero2007/error_vs_time.pdf"),
         png=report(
-            "results/montanero2007/error_vs_time.png",
+            results_file("montanero2007/error_vs_time.png"),
             caption="../../report/montanero2007_error_vs_time.rst",
             category="montanero2007",
         ),
-        csv="results/montanero2007/error_vs_time.csv",
-        md="results/montanero2007/error_vs_time.md",
-        targets_csv="results/montanero2007/error_targets.csv",
-        targets_md="results/montanero2007/error_targets.md",
+        csv=results_file("montanero2007/error_vs_time.csv"),
+        md=results_file("montanero2007/error_vs_time.md"),
+        targets_csv=results_file("montanero2007/error_targets.csv"),
+        targets_md=results_file("montanero2007/error_targets.md"),
     log:
-        "logs/montanero2007/error_vs_time.log",
+        log_file("montanero2007/error_vs_time.log"),
     params:
         section=montanero2007_section,
     script:
@@ -293,16 +293,16 @@ rule montanero2007_extreme:
         runs=montanero2007_extreme_inputs,
         code=script_code("montanero2007_extreme"),
     output:
-        pdf="results/montanero2007/extreme.pdf",
+        pdf=results_file("montanero2007/extreme.pdf"),
         png=report(
-            "results/montanero2007/extreme.png",
+            results_file("montanero2007/extreme.png"),
             caption="../../report/montanero2007_extreme.rst",
             category="montanero2007",
         ),
-        csv="results/montanero2007/extreme.csv",
-        md="results/montanero2007/extreme.md",
+        csv=results_file("montanero2007/extreme.csv"),
+        md=results_file("montanero2007/extreme.md"),
     log:
-        "logs/montanero2007/extreme.log",
+        log_file("montanero2007/extreme.log"),
     script:
         "../../scripts/montanero2007_extreme.py"
 
@@ -313,10 +313,10 @@ rule montanero2007_checks:
         runs=montanero2007_check_inputs,
         code=script_code("montanero2007_checks"),
     output:
-        csv="results/montanero2007/checks.csv",
-        md="results/montanero2007/checks.md",
+        csv=results_file("montanero2007/checks.csv"),
+        md=results_file("montanero2007/checks.md"),
     log:
-        "logs/montanero2007/checks.log",
+        log_file("montanero2007/checks.log"),
     params:
         section=montanero2007_section,
     script:

@@ -1,7 +1,7 @@
 # montanero2007 simulations: DSMC of the heat-flux-forced granular gas (kinetic.dsmc).
 #
-#   results/montanero2007/runs/<run>/batchNNNN.nc   one job: realizations of one run
-#   results/montanero2007/runs/<run>.nc              the run's batches joined (what figures read)
+#   <results>/montanero2007/runs/<run>/batchNNNN.nc   one job: realizations of one run
+#   <results>/montanero2007/runs/<run>.nc              the run's batches joined (what figures read)
 #
 # Run names come from kinetic.studies.montanero2007.run_plan(config["montanero2007"]).
 import functools
@@ -35,14 +35,14 @@ def montanero2007_jobs(name):
 def montanero2007_batch_files(name):
     """The batch files of one run (all its realizations)."""
     return [
-        f"results/montanero2007/runs/{name}/{batches.batch_name(job.index)}.nc"
+        results_file(f"montanero2007/runs/{name}/{batches.batch_name(job.index)}.nc")
         for job in montanero2007_jobs(name)
     ]
 
 
 def montanero2007_run_file(name):
     """One run, its batches joined (rule montanero2007_aggregate_run)."""
-    return f"results/montanero2007/runs/{name}.nc"
+    return results_file(f"montanero2007/runs/{name}.nc")
 
 
 def montanero2007_run_batches(wildcards):
@@ -75,14 +75,13 @@ def montanero2007_run_names():
 
 rule montanero2007_simulate_dsmc:
     input:
-        warm=numba_warm("dsmc"),
         code=simulation_code("montanero2007_simulate_dsmc", "dsmc"),
     output:
-        "results/montanero2007/runs/{run}/{batch}.nc",
+        results_file("montanero2007/runs/{run}/{batch}.nc"),
     log:
-        "logs/montanero2007/runs/{run}/{batch}.log",
+        log_file("montanero2007/runs/{run}/{batch}.log"),
     benchmark:
-        "logs/benchmarks/montanero2007/runs/{run}/{batch}.tsv"
+        log_file("benchmarks/montanero2007/runs/{run}/{batch}.tsv")
     params:
         run=montanero2007_run_parameters,
         batch=montanero2007_batch,
@@ -103,9 +102,9 @@ rule montanero2007_aggregate_run:
         batches=montanero2007_run_batches,
         code=script_code("montanero2007_aggregate"),
     output:
-        "results/montanero2007/runs/{run}.nc",
+        results_file("montanero2007/runs/{run}.nc"),
     log:
-        "logs/montanero2007/runs/{run}.log",
+        log_file("montanero2007/runs/{run}.log"),
     wildcard_constraints:
         run=montanero2007_run_names(),
     script:

@@ -1,15 +1,15 @@
 # visco2008 figures and tables: Figs 1-12 and Table I from the MD, DSMC and cloning
 # aggregates of simulate.smk and the theory files of theory.smk, plus the cloning and MD
-# error-against-time studies. Figures only read files under results/.
+# error-against-time studies. Figures only read files under <results>/.
 
 for _number in ("01", "02", "03", "04", "05", "06", "07", "08", "09", "10", "11", "12"):
     provide(f"visco2008/fig{_number}", *figure_files("visco2008", f"fig{_number}"))
 provide("visco2008/table1", *table_files("visco2008", "table1"))
 provide(
     "visco2008/cloning",
-    "results/visco2008/cloning.csv",
-    "results/visco2008/cloning.md",
-    "results/visco2008/cloning.nc",
+    results_file("visco2008/cloning.csv"),
+    results_file("visco2008/cloning.md"),
+    results_file("visco2008/cloning.nc"),
     *figure_files("visco2008", "cloning_velocity_density"),
     *figure_files("visco2008", "cloning_extrapolation"),
 )
@@ -66,56 +66,56 @@ def visco2008_table1_extrapolation_windows(wildcards):
 
 rule visco2008_cloning_error_vs_time:
     input:
-        curves="results/visco2008/cloning/error_vs_time.nc",
-        table="results/visco2008/cloning_error_vs_time.csv",
+        curves=results_file("visco2008/cloning/error_vs_time.nc"),
+        table=results_file("visco2008/cloning_error_vs_time.csv"),
         code=script_code("visco2008_cloning_error_vs_time"),
     output:
-        pdf="results/visco2008/cloning_error_vs_time.pdf",
+        pdf=results_file("visco2008/cloning_error_vs_time.pdf"),
         png=report(
-            "results/visco2008/cloning_error_vs_time.png",
+            results_file("visco2008/cloning_error_vs_time.png"),
             caption="../../report/visco2008_cloning_error_vs_time.rst",
             category="visco2008",
             subcategory="cloning Monte Carlo",
         ),
     log:
-        "logs/visco2008/cloning_error_vs_time.log",
+        log_file("visco2008/cloning_error_vs_time.log"),
     script:
         "../../scripts/visco2008_cloning_error_vs_time.py"
 
 
 rule visco2008_cloning_extrapolation:
     input:
-        scan="results/visco2008/cloning.nc",
-        reference="results/visco2008/cloning/reference.nc",
+        scan=results_file("visco2008/cloning.nc"),
+        reference=results_file("visco2008/cloning/reference.nc"),
         code=script_code("visco2008_cloning_extrapolation"),
     output:
-        pdf="results/visco2008/cloning_extrapolation.pdf",
+        pdf=results_file("visco2008/cloning_extrapolation.pdf"),
         png=report(
-            "results/visco2008/cloning_extrapolation.png",
+            results_file("visco2008/cloning_extrapolation.png"),
             caption="../../report/visco2008_cloning_extrapolation.rst",
             category="visco2008",
             subcategory="cloning Monte Carlo",
         ),
     log:
-        "logs/visco2008/cloning_extrapolation.log",
+        log_file("visco2008/cloning_extrapolation.log"),
     script:
         "../../scripts/visco2008_cloning_extrapolation.py"
 
 
 rule visco2008_cloning_velocity_density:
     input:
-        scan="results/visco2008/cloning.nc",
+        scan=results_file("visco2008/cloning.nc"),
         code=script_code("visco2008_cloning_velocity_density"),
     output:
-        pdf="results/visco2008/cloning_velocity_density.pdf",
+        pdf=results_file("visco2008/cloning_velocity_density.pdf"),
         png=report(
-            "results/visco2008/cloning_velocity_density.png",
+            results_file("visco2008/cloning_velocity_density.png"),
             caption="../../report/visco2008_cloning_velocity_density.rst",
             category="visco2008",
             subcategory="cloning Monte Carlo",
         ),
     log:
-        "logs/visco2008/cloning_velocity_density.log",
+        log_file("visco2008/cloning_velocity_density.log"),
     script:
         "../../scripts/visco2008_cloning_velocity_density.py"
 
@@ -128,15 +128,15 @@ rule visco2008_fig01:
         template=caption_template("visco2008_fig01"),
         code=script_code("visco2008_fig01"),
     output:
-        pdf="results/visco2008/fig01.pdf",
+        pdf=results_file("visco2008/fig01.pdf"),
         png=report(
-            "results/visco2008/fig01.png",
+            results_file("visco2008/fig01.png"),
             caption=rendered_caption("visco2008", "fig01"),
             category="visco2008",
         ),
-        caption="results/visco2008/fig01.caption.rst",
+        caption=results_file("visco2008/fig01.caption.rst"),
     log:
-        "logs/visco2008/fig01.log",
+        log_file("visco2008/fig01.log"),
     script:
         "../../scripts/visco2008_fig01.py"
 
@@ -148,15 +148,15 @@ rule visco2008_fig02:
         template=caption_template("visco2008_fig02"),
         code=script_code("visco2008_fig02"),
     output:
-        pdf="results/visco2008/fig02.pdf",
+        pdf=results_file("visco2008/fig02.pdf"),
         png=report(
-            "results/visco2008/fig02.png",
+            results_file("visco2008/fig02.png"),
             caption=rendered_caption("visco2008", "fig02"),
             category="visco2008",
         ),
-        caption="results/visco2008/fig02.caption.rst",
+        caption=results_file("visco2008/fig02.caption.rst"),
     log:
-        "logs/visco2008/fig02.log",
+        log_file("visco2008/fig02.log"),
     script:
         "../../scripts/visco2008_fig02.py"
 
@@ -166,114 +166,114 @@ rule visco2008_fig03:
         curves=visco2008_theory("large_deviations"),
         code=script_code("visco2008_fig03"),
     output:
-        pdf="results/visco2008/fig03.pdf",
+        pdf=results_file("visco2008/fig03.pdf"),
         png=report(
-            "results/visco2008/fig03.png",
+            results_file("visco2008/fig03.png"),
             caption="../../report/visco2008_fig03.rst",
             category="visco2008",
         ),
     log:
-        "logs/visco2008/fig03.log",
+        log_file("visco2008/fig03.log"),
     script:
         "../../scripts/visco2008_fig03.py"
 
 
 rule visco2008_fig04:
     input:
-        scan="results/visco2008/cloning.nc",
+        scan=results_file("visco2008/cloning.nc"),
         closures=visco2008_theory("closures"),
         code=script_code("visco2008_fig04"),
     output:
-        pdf="results/visco2008/fig04.pdf",
+        pdf=results_file("visco2008/fig04.pdf"),
         png=report(
-            "results/visco2008/fig04.png",
+            results_file("visco2008/fig04.png"),
             caption="../../report/visco2008_fig04.rst",
             category="visco2008",
         ),
     log:
-        "logs/visco2008/fig04.log",
+        log_file("visco2008/fig04.log"),
     script:
         "../../scripts/visco2008_fig04.py"
 
 
 rule visco2008_fig05:
     input:
-        scan="results/visco2008/cloning.nc",
+        scan=results_file("visco2008/cloning.nc"),
         closures=visco2008_theory("closures"),
-        reference="results/visco2008/cloning/reference.nc",
+        reference=results_file("visco2008/cloning/reference.nc"),
         template=caption_template("visco2008_fig05"),
         code=script_code("visco2008_fig05"),
     output:
-        pdf="results/visco2008/fig05.pdf",
+        pdf=results_file("visco2008/fig05.pdf"),
         png=report(
-            "results/visco2008/fig05.png",
+            results_file("visco2008/fig05.png"),
             caption=rendered_caption("visco2008", "fig05"),
             category="visco2008",
         ),
-        caption="results/visco2008/fig05.caption.rst",
+        caption=results_file("visco2008/fig05.caption.rst"),
     log:
-        "logs/visco2008/fig05.log",
+        log_file("visco2008/fig05.log"),
     script:
         "../../scripts/visco2008_fig05.py"
 
 
 rule visco2008_fig06:
     input:
-        scan="results/visco2008/cloning.nc",
+        scan=results_file("visco2008/cloning.nc"),
         closures=visco2008_theory("closures"),
-        reference="results/visco2008/cloning/reference.nc",
+        reference=results_file("visco2008/cloning/reference.nc"),
         template=caption_template("visco2008_fig06"),
         code=script_code("visco2008_fig06"),
     output:
-        pdf="results/visco2008/fig06.pdf",
+        pdf=results_file("visco2008/fig06.pdf"),
         png=report(
-            "results/visco2008/fig06.png",
+            results_file("visco2008/fig06.png"),
             caption=rendered_caption("visco2008", "fig06"),
             category="visco2008",
         ),
-        caption="results/visco2008/fig06.caption.rst",
+        caption=results_file("visco2008/fig06.caption.rst"),
     log:
-        "logs/visco2008/fig06.log",
+        log_file("visco2008/fig06.log"),
     script:
         "../../scripts/visco2008_fig06.py"
 
 
 rule visco2008_fig07:
     input:
-        scan="results/visco2008/cloning.nc",
+        scan=results_file("visco2008/cloning.nc"),
         closures=visco2008_theory("closures"),
-        reference="results/visco2008/cloning/reference.nc",
+        reference=results_file("visco2008/cloning/reference.nc"),
         code=script_code("visco2008_fig07"),
     output:
-        pdf="results/visco2008/fig07.pdf",
+        pdf=results_file("visco2008/fig07.pdf"),
         png=report(
-            "results/visco2008/fig07.png",
+            results_file("visco2008/fig07.png"),
             caption="../../report/visco2008_fig07.rst",
             category="visco2008",
         ),
     log:
-        "logs/visco2008/fig07.log",
+        log_file("visco2008/fig07.log"),
     script:
         "../../scripts/visco2008_fig07.py"
 
 
 rule visco2008_fig08:
     input:
-        scan="results/visco2008/cloning.nc",
+        scan=results_file("visco2008/cloning.nc"),
         closures=visco2008_theory("closures"),
-        reference="results/visco2008/cloning/reference.nc",
+        reference=results_file("visco2008/cloning/reference.nc"),
         template=caption_template("visco2008_fig08"),
         code=script_code("visco2008_fig08"),
     output:
-        pdf="results/visco2008/fig08.pdf",
+        pdf=results_file("visco2008/fig08.pdf"),
         png=report(
-            "results/visco2008/fig08.png",
+            results_file("visco2008/fig08.png"),
             caption=rendered_caption("visco2008", "fig08"),
             category="visco2008",
         ),
-        caption="results/visco2008/fig08.caption.rst",
+        caption=results_file("visco2008/fig08.caption.rst"),
     log:
-        "logs/visco2008/fig08.log",
+        log_file("visco2008/fig08.log"),
     script:
         "../../scripts/visco2008_fig08.py"
 
@@ -286,15 +286,15 @@ rule visco2008_fig09:
         template=caption_template("visco2008_fig09"),
         code=script_code("visco2008_fig09"),
     output:
-        pdf="results/visco2008/fig09.pdf",
+        pdf=results_file("visco2008/fig09.pdf"),
         png=report(
-            "results/visco2008/fig09.png",
+            results_file("visco2008/fig09.png"),
             caption=rendered_caption("visco2008", "fig09"),
             category="visco2008",
         ),
-        caption="results/visco2008/fig09.caption.rst",
+        caption=results_file("visco2008/fig09.caption.rst"),
     log:
-        "logs/visco2008/fig09.log",
+        log_file("visco2008/fig09.log"),
     params:
         windows=visco2008_md_ldf_windows,
         min_count=visco2008_md_ldf_min_count,
@@ -309,15 +309,15 @@ rule visco2008_fig10:
         template=caption_template("visco2008_fig10"),
         code=script_code("visco2008_fig10"),
     output:
-        pdf="results/visco2008/fig10.pdf",
+        pdf=results_file("visco2008/fig10.pdf"),
         png=report(
-            "results/visco2008/fig10.png",
+            results_file("visco2008/fig10.png"),
             caption=rendered_caption("visco2008", "fig10"),
             category="visco2008",
         ),
-        caption="results/visco2008/fig10.caption.rst",
+        caption=results_file("visco2008/fig10.caption.rst"),
     log:
-        "logs/visco2008/fig10.log",
+        log_file("visco2008/fig10.log"),
     script:
         "../../scripts/visco2008_fig10.py"
 
@@ -327,34 +327,34 @@ rule visco2008_fig11:
         curves=visco2008_theory("free_flights"),
         code=script_code("visco2008_fig11"),
     output:
-        pdf="results/visco2008/fig11.pdf",
+        pdf=results_file("visco2008/fig11.pdf"),
         png=report(
-            "results/visco2008/fig11.png",
+            results_file("visco2008/fig11.png"),
             caption="../../report/visco2008_fig11.rst",
             category="visco2008",
         ),
     log:
-        "logs/visco2008/fig11.log",
+        log_file("visco2008/fig11.log"),
     script:
         "../../scripts/visco2008_fig11.py"
 
 
 rule visco2008_fig12:
     input:
-        dsmc="results/visco2008/dsmc/maxwell_free_paths.nc",
+        dsmc=results_file("visco2008/dsmc/maxwell_free_paths.nc"),
         curves=visco2008_theory("free_paths"),
         template=caption_template("visco2008_fig12"),
         code=script_code("visco2008_fig12"),
     output:
-        pdf="results/visco2008/fig12.pdf",
+        pdf=results_file("visco2008/fig12.pdf"),
         png=report(
-            "results/visco2008/fig12.png",
+            results_file("visco2008/fig12.png"),
             caption=rendered_caption("visco2008", "fig12"),
             category="visco2008",
         ),
-        caption="results/visco2008/fig12.caption.rst",
+        caption=results_file("visco2008/fig12.caption.rst"),
     log:
-        "logs/visco2008/fig12.log",
+        log_file("visco2008/fig12.log"),
     script:
         "../../scripts/visco2008_fig12.py"
 
@@ -364,16 +364,16 @@ rule visco2008_md_error_vs_time:
         md=visco2008_md_all_data,
         code=script_code("visco2008_md_error_vs_time"),
     output:
-        pdf="results/visco2008/md_error_vs_time.pdf",
+        pdf=results_file("visco2008/md_error_vs_time.pdf"),
         png=report(
-            "results/visco2008/md_error_vs_time.png",
+            results_file("visco2008/md_error_vs_time.png"),
             caption="../../report/visco2008_md_error_vs_time.rst",
             category="visco2008",
         ),
-        csv="results/visco2008/md_error_vs_time.csv",
-        md="results/visco2008/md_error_vs_time.md",
+        csv=results_file("visco2008/md_error_vs_time.csv"),
+        md=results_file("visco2008/md_error_vs_time.md"),
     log:
-        "logs/visco2008/md_error_vs_time.log",
+        log_file("visco2008/md_error_vs_time.log"),
     params:
         window=visco2008_md_error_window,
     script:
@@ -387,11 +387,11 @@ rule visco2008_table1:
         template=caption_template("visco2008_table1"),
         code=script_code("visco2008_table1"),
     output:
-        csv="results/visco2008/table1.csv",
-        md="results/visco2008/table1.md",
-        caption="results/visco2008/table1.caption.rst",
+        csv=results_file("visco2008/table1.csv"),
+        md=results_file("visco2008/table1.md"),
+        caption=results_file("visco2008/table1.caption.rst"),
     log:
-        "logs/visco2008/table1.log",
+        log_file("visco2008/table1.log"),
     params:
         extrapolation_windows=visco2008_table1_extrapolation_windows,
     script:

@@ -1,7 +1,7 @@
 # visco2008 simulations: molecular dynamics (kinetic.edmd, §IV.B), homogeneous DSMC
 # (kinetic.dsmc, Figs 1 and 12) and the cloning Monte Carlo (kinetic.cloning, §IV.A).
 # Every run is cut into jobs of independent realizations (kinetic.batches: one
-# results/visco2008/<engine>/<run>/batchNNNN.nc per job); realization k of a run always
+# <results>/visco2008/<engine>/<run>/batchNNNN.nc per job); realization k of a run always
 # uses stream k of the run's seed, so the data do not depend on the cut and a stopped run
 # resumes job by job. One aggregate per run joins its jobs.
 import math
@@ -59,18 +59,18 @@ def visco2008_md_jobs():
 
 def visco2008_md_data(run):
     """Aggregated observers of one MD run (all realizations)."""
-    return f"results/visco2008/md/{run}.nc"
+    return results_file(f"visco2008/md/{run}.nc")
 
 
 def visco2008_md_cumulants(run):
     """Scaled cumulants <N^p>_c/t with standard errors of one run (Table I input)."""
-    return f"results/visco2008/md/{run}_cumulants.nc"
+    return results_file(f"visco2008/md/{run}_cumulants.nc")
 
 
 def visco2008_md_batch_files(wildcards):
     """Input function: every batch file of the run named by the wildcard."""
     return [
-        f"results/visco2008/md/{wildcards.run}/{batches.batch_name(job.index)}.nc"
+        results_file(f"visco2008/md/{wildcards.run}/{batches.batch_name(job.index)}.nc")
         for job in visco2008_md_jobs()
     ]
 
@@ -117,13 +117,12 @@ def visco2008_md_runs():
 rule visco2008_simulate_md:
     input:
         code=simulation_code("visco2008_simulate_md", "edmd"),
-        warm=numba_warm("edmd"),
     output:
-        "results/visco2008/md/{run}/{batch}.nc",
+        results_file("visco2008/md/{run}/{batch}.nc"),
     log:
-        "logs/visco2008/md/{run}/{batch}.log",
+        log_file("visco2008/md/{run}/{batch}.log"),
     benchmark:
-        "logs/benchmarks/visco2008/md/{run}/{batch}.tsv"
+        log_file("benchmarks/visco2008/md/{run}/{batch}.tsv")
     params:
         simulation=visco2008_md_job,
     threads: 1
@@ -142,10 +141,10 @@ rule visco2008_aggregate_md:
         batches=visco2008_md_batch_files,
         code=script_code("visco2008_aggregate_md"),
     output:
-        data="results/visco2008/md/{run}.nc",
-        cumulants="results/visco2008/md/{run}_cumulants.nc",
+        data=results_file("visco2008/md/{run}.nc"),
+        cumulants=results_file("visco2008/md/{run}_cumulants.nc"),
     log:
-        "logs/visco2008/md/{run}_aggregate.log",
+        log_file("visco2008/md/{run}_aggregate.log"),
     params:
         table_windows=visco2008_md_table_windows,
         extrapolation_windows=visco2008_md_extrapolation_windows,
@@ -176,13 +175,13 @@ def visco2008_dsmc_jobs(run):
 
 def visco2008_dsmc_data(run):
     """Aggregated free-flight densities of one DSMC run."""
-    return f"results/visco2008/dsmc/{run}.nc"
+    return results_file(f"visco2008/dsmc/{run}.nc")
 
 
 def visco2008_dsmc_batch_files(wildcards):
     """Input function of the aggregate: every batch file of the run."""
     return [
-        f"results/visco2008/dsmc/{wildcards.run}/{batches.batch_name(job.index)}.nc"
+        results_file(f"visco2008/dsmc/{wildcards.run}/{batches.batch_name(job.index)}.nc")
         for job in visco2008_dsmc_jobs(wildcards.run)
     ]
 
@@ -213,13 +212,12 @@ def visco2008_dsmc_job(wildcards):
 rule visco2008_simulate_dsmc:
     input:
         code=simulation_code("visco2008_simulate_dsmc", "dsmc"),
-        warm=numba_warm("dsmc"),
     output:
-        "results/visco2008/dsmc/{run}/{batch}.nc",
+        results_file("visco2008/dsmc/{run}/{batch}.nc"),
     log:
-        "logs/visco2008/dsmc/{run}/{batch}.log",
+        log_file("visco2008/dsmc/{run}/{batch}.log"),
     benchmark:
-        "logs/benchmarks/visco2008/dsmc/{run}/{batch}.tsv"
+        log_file("benchmarks/visco2008/dsmc/{run}/{batch}.tsv")
     params:
         job=visco2008_dsmc_job,
     threads: 1
@@ -238,9 +236,9 @@ rule visco2008_aggregate_dsmc:
         batches=visco2008_dsmc_batch_files,
         code=script_code("visco2008_aggregate_dsmc"),
     output:
-        "results/visco2008/dsmc/{run}.nc",
+        results_file("visco2008/dsmc/{run}.nc"),
     log:
-        "logs/visco2008/dsmc/{run}.log",
+        log_file("visco2008/dsmc/{run}.log"),
     wildcard_constraints:
         run="|".join(VISCO2008_DSMC_RUNS),
     script:
@@ -258,7 +256,7 @@ def visco2008_cloning():
 def visco2008_cloning_batch_files(study):
     """Every batch file of one study ('scan' or 'error_vs_time')."""
     return [
-        f"results/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batches.batch_name(batch)}.nc"
+        results_file(f"visco2008/cloning/{study}/{kernel}/{point}/{size}/{batches.batch_name(batch)}.nc")
         for kernel, point, size, batch in cloning_plan.batch_keys(visco2008_cloning(), study)
     ]
 
@@ -291,13 +289,12 @@ rule visco2008_simulate_cloning:
     input:
         # the engine and the collision rate it scales time by (kinetic.cloning.rates)
         code=simulation_code("visco2008_simulate_cloning", "cloning"),
-        warm=numba_warm("cloning"),
     output:
-        "results/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.nc",
+        results_file("visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.nc"),
     log:
-        "logs/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.log",
+        log_file("visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.log"),
     benchmark:
-        "logs/benchmarks/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.tsv"
+        log_file("benchmarks/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.tsv")
     params:
         job=visco2008_cloning_job,
     threads: 1
@@ -319,11 +316,11 @@ rule visco2008_aggregate_cloning:
         batches=visco2008_cloning_scan_batches,
         code=script_code("visco2008_aggregate_cloning"),
     output:
-        csv="results/visco2008/cloning.csv",
-        md="results/visco2008/cloning.md",
-        nc="results/visco2008/cloning.nc",
+        csv=results_file("visco2008/cloning.csv"),
+        md=results_file("visco2008/cloning.md"),
+        nc=results_file("visco2008/cloning.nc"),
     log:
-        "logs/visco2008/cloning_aggregate.log",
+        log_file("visco2008/cloning_aggregate.log"),
     script:
         "../../scripts/visco2008_aggregate_cloning.py"
 
@@ -331,13 +328,13 @@ rule visco2008_aggregate_cloning:
 rule visco2008_aggregate_cloning_error:
     input:
         batches=visco2008_cloning_error_batches,
-        reference="results/visco2008/cloning/reference.nc",
+        reference=results_file("visco2008/cloning/reference.nc"),
         code=script_code("visco2008_aggregate_cloning_error"),
     output:
-        csv="results/visco2008/cloning_error_vs_time.csv",
-        md="results/visco2008/cloning_error_vs_time.md",
-        nc="results/visco2008/cloning/error_vs_time.nc",
+        csv=results_file("visco2008/cloning_error_vs_time.csv"),
+        md=results_file("visco2008/cloning_error_vs_time.md"),
+        nc=results_file("visco2008/cloning/error_vs_time.nc"),
     log:
-        "logs/visco2008/cloning_error_vs_time_aggregate.log",
+        log_file("visco2008/cloning_error_vs_time_aggregate.log"),
     script:
         "../../scripts/visco2008_aggregate_cloning_error.py"

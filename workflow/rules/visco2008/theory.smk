@@ -1,5 +1,5 @@
 # visco2008 theory: the curves of the paper's equations on the config's grids (one netCDF
-# per family under results/visco2008/theory/) and the deterministic solution of Eq. 28
+# per family under <results>/visco2008/theory/) and the deterministic solution of Eq. 28
 # drawn beside the cloning data. Figures read these files; they compute no theory.
 from kinetic.studies import visco2008_cloning as cloning_plan
 
@@ -16,7 +16,7 @@ def visco2008_theory(family):
     """Path of one family of visco2008 theory curves (an input of figure rules)."""
     if family not in VISCO2008_THEORY_FAMILIES:
         raise ValueError(f"unknown visco2008 theory family {family!r}")
-    return f"results/visco2008/theory/{family}.nc"
+    return results_file(f"visco2008/theory/{family}.nc")
 
 
 def visco2008_theory_grid(wildcards):
@@ -44,9 +44,9 @@ rule visco2008_theory:
     input:
         code=script_code("visco2008_theory"),
     output:
-        "results/visco2008/theory/{family}.nc",
+        results_file("visco2008/theory/{family}.nc"),
     log:
-        "logs/visco2008/theory/{family}.log",
+        log_file("visco2008/theory/{family}.log"),
     params:
         grid=visco2008_theory_grid,
     wildcard_constraints:
@@ -69,11 +69,11 @@ rule visco2008_theory_cloning_reference:
     input:
         code=script_code("visco2008_theory_cloning_reference"),
     output:
-        "results/visco2008/cloning/reference.nc",
+        results_file("visco2008/cloning/reference.nc"),
     log:
-        "logs/visco2008/cloning_reference.log",
+        log_file("visco2008/cloning_reference.log"),
     benchmark:
-        "logs/benchmarks/visco2008/cloning_reference.tsv"
+        log_file("benchmarks/visco2008/cloning_reference.tsv")
     params:
         lambdas=visco2008_cloning_reference_lambdas,
         nodes=visco2008_cloning_reference_nodes,
