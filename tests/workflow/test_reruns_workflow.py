@@ -78,10 +78,10 @@ def _stage(path):
     return matches[0]
 
 
-@pytest.fixture(scope="module")
-def tree(tmp_path_factory):
+@pytest.fixture
+def tree(tmp_path):
     """A copy of the workflow and the package with both targets built."""
-    tree = tmp_path_factory.mktemp("reruns")
+    tree = tmp_path
     for name in ("Snakefile", "workflow", "config", "src"):
         if (REPOSITORY / name).is_dir():
             ignore = shutil.ignore_patterns("__pycache__", "*.egg-info")
@@ -119,34 +119,40 @@ def _append_comment(tree, module):
     return edit
 
 
-@pytest.mark.parametrize(
-    ("module", "expected"),
-    [
-        # an engine kernel: every simulation of that engine and what is drawn from it
-        ("dsmc/kernels.py", MONTANERO2007),
-        # a helper every engine's kernels inline: every simulation
-        ("rng.py", MONTANERO2007 | {"krauth2025 simulation", "krauth2025 figure"}),
-        # the study module that turns the config into runs
-        ("studies/montanero2007.py", MONTANERO2007),
-        # analysis that no simulation imports: the figure alone
-        ("analysis/montanero2007.py", {"montanero2007 figure"}),
-        # the plotting helpers every figure uses: the figures alone
-        ("plotting/__init__.py", {"montanero2007 figure", "krauth2025 figure"}),
-    ],
-)
-def test_one_invocation_after_an_edit_rebuilds_exactly_what_depends_on_it(tree, module, expected):
-    assert _rebuilt_after(tree, _append_comment(tree, module)) == expected
-
-
-def test_one_invocation_after_a_config_change_rebuilds_exactly_what_it_changes(tree):
-    def more_sweeps():
+def _more_sweeps(tree):
+    def edit():
         path = tree / "config" / "ci.yaml"
         config = yaml.safe_load(path.read_text())
         config["krauth2025"]["ring"]["sweeps"] += 100
         path.write_text(yaml.safe_dump(config, sort_keys=False))
 
-    rebuilt = _rebuilt_after(tree, more_sweeps)
-    assert rebuilt == {"krauth2025 simulation", "krauth2025 figure"}
+    return edit
+
+
+KRAUTH2025 = {"krauth2025 simulation", "krauth2025 figure"}
+
+EDITS = [
+    # an engine kernel: every simulation of that engine and what is drawn from it
+    ("samplers/kernels.py", KRAUTH2025),
+    # a helper every engine's kernels inline: every simulation
+    ("rng.py", MONTANERO2007 | KRAUTH2025),
+    # the study module that turns the config into runs
+    ("studies/montanero2007.py", MONTANERO2007),
+    # analysis that no simulation imports: the figure alone
+    ("analysis/montanero2007.py", {"montanero2007 figure"}),
+    # the plotting helpers every figure uses: the figures alone
+    ("plotting/__init__.py", {"montanero2007 figure", "krauth2025 figure"}),
+]
+
+
+def test_one_invocation_after_an_edit_rebuilds_exactly_what_depends_on_it(tree):
+    """The edits one after another on one tree (one test, so that one worker builds it):
+    a stage left stale by one edit would also show up in the next edit's rebuilt set."""
+    for module, expected in EDITS:
+        rebuilt = _rebuilt_after(tree, _append_comment(tree, module))
+        assert rebuilt == expected, f"after an edit of {module}"
+    # a config value: the jobs whose parameters it changes, and what is drawn from them
+    assert _rebuilt_after(tree, _more_sweeps(tree)) == KRAUTH2025
 
 
 def test_two_configs_keep_their_own_results(tmp_path):
