@@ -227,7 +227,7 @@ def _markdown(frame: pd.DataFrame, float_format: str) -> str:
             return ""
         if isinstance(value, float | np.floating):
             return format(value, float_format)
-        return str(value)
+        return str(value).replace("|", "\\|")  # a pipe inside a cell would end it
 
     header = "| " + " | ".join(frame.columns) + " |"
     rule = "| " + " | ".join("---" for _ in frame.columns) + " |"

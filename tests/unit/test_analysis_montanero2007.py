@@ -211,31 +211,31 @@ TOLERANCES = {
 
 def test_checks_pass_agreeing_rows_and_fail_each_kind_of_disagreement():
     good = [_summary(1.0), _summary(0.5, "hcs"), _summary(1.0, "field", reduced_field=0.05)]
-    table = analysis.checks(good, TOLERANCES)
-    assert {row["passed"] for row in table} <= {"yes", ""}
-    assert {row["check"] for row in table} >= {
-        "elastic kappa",
-        "two routes",
+    found = analysis.checks(good, TOLERANCES)
+    assert {check.passed for check in found} <= {True, None}
+    claims = " ".join(check.claim for check in found)
+    for words in (
+        "kappa'/kappa0 at alpha = 1",
+        "two routes to b'_1",
         "linear response",
-        "HCS a2 (Eq. 2.16)",
-        "thermostat momentum",
-        "thermostat energy",
-    }
+        "HCS a2 equals Eq. (2.16)",
+        "holds the momentum",
+        "holds the energy",
+        "HCS cooling rate",
+    ):
+        assert words in claims
     # the Student-t factor at 47 dof is about 4.3: 5 errors off fails, 3 passes
     kappa = theory.KAPPA_ELASTIC_HIGHER_SONINE
-    for shift, verdict in ((3 * 0.006, "yes"), (5 * 0.006, "NO")):
+    for shift, verdict in ((3 * 0.006, True), (5 * 0.006, False)):
         rows = [_summary(1.0, kappa_ratio=kappa + shift)]
-        (elastic,) = [r for r in analysis.checks(rows, TOLERANCES) if r["check"] == "elastic kappa"]
-        assert elastic["passed"] == verdict
+        (elastic,) = [c for c in analysis.checks(rows, TOLERANCES) if "kappa0 at alpha" in c.claim]
+        assert elastic.passed is verdict
+        assert elastic.z == pytest.approx(shift / 0.006)
     bad = [
         _summary(1.0, b2_route_difference=0.1),
         _summary(0.5, "hcs", a2=float(theory.hcs_a2(0.5)) + 0.05, max_abs_cx=1e-9),
     ]
-    failed = {
-        (r["check"], r["quantity"]) for r in analysis.checks(bad, TOLERANCES) if r["passed"] == "NO"
-    }
-    assert failed == {
-        ("two routes", "b'_2 (3.10) - b'_2 (3.12)"),
-        ("HCS a2 (Eq. 2.16)", "a2"),
-        ("thermostat momentum", "max |<c_x>|"),
-    }
+    failed = [c.claim for c in analysis.checks(bad, TOLERANCES) if c.passed is False]
+    assert len(failed) == 3
+    assert "two routes to b'_2" in failed[0]
+    assert "HCS a2" in failed[1] and "holds the momentum" in failed[2]

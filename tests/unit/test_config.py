@@ -44,7 +44,7 @@ BAD_VALUES = [
     ("visco2008.theory.rate_points", 0, ["visco2008.theory.rate_points", "0", ">= 11"]),
     ("visco2008.theory.rate_points", -5, ["visco2008.theory.rate_points", "-5", ">= 11"]),
     ("visco2008.theory.time_max", 0.0, ["visco2008.theory.time_max", "0.0", "> 0"]),
-    ("targets", ["visco2008/fig99"], ["targets.0", "visco2008/fig99", "one of"]),
+    ("targets", ["visco2008/Fig 3"], ["targets.0", "visco2008/Fig 3", "matching"]),
     # NaN and infinities pass every JSON Schema bound: refused beforehand, key named
     ("visco2008.theory.time_max", float("nan"), ["visco2008.theory.time_max", "nan", "finite"]),
     ("visco2008.md.densities.rho1e-3", float("nan"), ["visco2008.md.densities.rho1e-3", "finite"]),

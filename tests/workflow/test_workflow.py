@@ -85,6 +85,21 @@ def test_bad_config_is_refused_before_any_job(tmp_path):
 
 
 @pytest.mark.workflow
+def test_a_target_no_rule_file_registers_is_refused_with_the_registered_ones(tmp_path):
+    """The target ids come from one registry (provide() in the rule files): the schema
+    checks only their form, the workflow refuses an unknown id before any job."""
+    config = tmp_path / "targets.yaml"
+    config.write_text("seed: 1\ntargets: [visco2008/fig03, visco2008/fig99]\n")
+    result = _snakemake(tmp_path, "--configfile", str(config), "--dry-run", check=False)
+    output = result.stdout + result.stderr
+    assert result.returncode != 0
+    assert "['visco2008/fig99'], which this checkout cannot build" in output
+    for registered in ("visco2008/fig03", "visco2008/checks", "krauth2025/checks"):
+        assert f"'{registered}'" in output
+    assert not (tmp_path / "results").exists()
+
+
+@pytest.mark.workflow
 def test_md_config_is_refused_by_the_fronts_own_checks_before_any_job(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text(

@@ -98,6 +98,12 @@ def all_targets(wildcards):
     return [path for target in requested_target_ids() for path in TARGETS[target]]
 
 
+def fails_on_checks(document):
+    """Whether a failed check of ``document`` stops the build (config key fail_on_checks):
+    the ``fail`` param of the rule that writes the document's checks.csv."""
+    return document in config["fail_on_checks"]
+
+
 def paper_targets(paper):
     """Every registered file of one paper (input of the per-paper rule)."""
     return [

@@ -35,6 +35,8 @@ import numpy as np
 import xarray as xr
 
 from kinetic import io
+from kinetic.analysis import checks as check
+from kinetic.analysis.checks import Check
 from kinetic.analysis.statistics import error_against_cpu
 from kinetic.theory import costantini2010 as theory
 
@@ -507,35 +509,12 @@ def extrapolated_rows(rows: Sequence[dict[str, Any]]) -> tuple[list, list]:
     return table, fits
 
 
-CHECK_SIGMAS = 3.0
+CHECK_SIGMAS = check.SIGMAS
 """Standard errors within which a check of equality passes (beyond which one of
 difference passes)."""
 
 
-def _check(name, measured, error, expected, *, agree=True, tolerance=None):
-    """One row of the checks table: z = (measured − expected)/error; passes when
-    |z| <= CHECK_SIGMAS (``agree``) or z > CHECK_SIGMAS (a difference claimed), or, with
-    ``tolerance``, when the relative deviation is within it (a percent-level claim)."""
-    difference = measured - expected
-    if error > 0:
-        z = difference / error
-    else:
-        z = 0.0 if difference == 0 else math.copysign(math.inf, difference)
-    if tolerance is not None:
-        passed = abs(measured / expected - 1.0) <= tolerance
-    else:
-        passed = abs(z) <= CHECK_SIGMAS if agree else z > CHECK_SIGMAS
-    return {
-        "check": name,
-        "measured": measured,
-        "error": error,
-        "expected": expected,
-        "z": z,
-        "passed": bool(passed),
-    }
-
-
-def checks(results: Sequence[xr.Dataset], study: dict[str, Any]) -> list[dict[str, Any]]:
+def checks(results: Sequence[xr.Dataset], study: dict[str, Any]) -> list[Check]:
     """The document's claims, tested on the run aggregates of Table 1: C(0) = 1 and the
     converged elastic ν* at α = 1 (1/N -> 0), homogeneous DSMC's Λ-independent wrong
     rate, inhomogeneous DSMC's Λ-independence and agreement with MD, ζ* against Eq. 12
@@ -554,42 +533,43 @@ def checks(results: Sequence[xr.Dataset], study: dict[str, Any]) -> list[dict[st
             continue  # too few fictive particles: Fig 1's bad case, not a claim
         if alpha == 1.0 and method != "dsmc_homogeneous":
             rows.append(
-                _check(
+                check.agrees(
                     f"C(0) = 1 at alpha = 1: {label}",
                     float(result.correlation_zero),
                     float(result.correlation_zero_err),
                     1.0,
+                    CHECK_SIGMAS,
                 )
             )
         if alpha < 1.0:
             rows.append(
-                _check(
+                check.within(
                     f"zeta* against Eq. 12 (5 %): {label}",
                     float(result.zeta_star),
-                    float(result.zeta_star_err),
                     float(theory.zeta_star(alpha, study["a2"])),
-                    tolerance=0.05,
+                    0.05,
+                    float(result.zeta_star_err),
+                    relative=True,
                 )
             )
         if alpha <= 0.8 and method != "dsmc_homogeneous":
             rows.append(
-                _check(
+                check.exceeds(
                     f"nu_bar*/nu* > 1: {label}",
                     float(result.ratio),
                     float(result.ratio_err),
                     1.0,
-                    agree=False,
+                    CHECK_SIGMAS,
                 )
             )
         rows.append(
-            {
-                "check": f"total momentum stays zero (< 1e-10): {label}",
-                "measured": float(result.max_momentum),
-                "error": 0.0,
-                "expected": 0.0,
-                "z": math.nan,
-                "passed": float(result.max_momentum) < 1e-10,
-            }
+            check.within(
+                f"total momentum stays zero: {label}",
+                float(result.max_momentum),
+                0.0,
+                1e-10,
+                upper=True,
+            )
         )
 
     def pair(first, second, claim, *, agree=True):
@@ -597,7 +577,8 @@ def checks(results: Sequence[xr.Dataset], study: dict[str, Any]) -> list[dict[st
         if a is None or b is None:
             return
         error = math.hypot(float(a.tau_c_err), float(b.tau_c_err))
-        rows.append(_check(claim, float(a.tau_c), error, float(b.tau_c), agree=agree))
+        test = check.agrees if agree else check.exceeds
+        rows.append(test(claim, float(a.tau_c), error, float(b.tau_c), CHECK_SIGMAS))
 
     homogeneous = sorted(
         key[3] for key in by_key if key[:3] == ("dsmc_homogeneous", figure_alpha, figure_n)
@@ -632,7 +613,9 @@ def checks(results: Sequence[xr.Dataset], study: dict[str, Any]) -> list[dict[st
     return rows
 
 
-def elastic_checks(extrapolated: Sequence[dict[str, Any]], fits: Sequence[dict[str, Any]]):
+def elastic_checks(
+    extrapolated: Sequence[dict[str, Any]], fits: Sequence[dict[str, Any]]
+) -> list[Check]:
     """ν* at α = 1 extrapolated to 1/N -> 0 against the converged elastic value, and the
     χ²/dof of every 1/N fit (passes below the 99 % point of χ² with its dof)."""
     from scipy.stats import chi2 as chi2_distribution
@@ -641,35 +624,34 @@ def elastic_checks(extrapolated: Sequence[dict[str, Any]], fits: Sequence[dict[s
     for row in extrapolated:
         if row["alpha"] == 1.0 and row["method"] != "dsmc_homogeneous":
             rows.append(
-                _check(
+                check.agrees(
                     f"nu*(1/N -> 0) = converged elastic value: {row['method']}",
                     row["nu_star"],
                     row["nu_star_err"],
                     theory.nu_star_elastic(),
+                    CHECK_SIGMAS,
                 )
             )
             rows.append(
-                _check(
+                check.agrees(
                     f"nu_bar*/nu*(1/N -> 0) = 1 at alpha = 1: {row['method']}",
                     row["ratio"],
                     row["ratio_err"],
                     1.0,
+                    CHECK_SIGMAS,
                 )
             )
     for fit in fits:
         if fit["dof"] > 0 and math.isfinite(fit["chi2"]):
             limit = float(chi2_distribution.ppf(0.99, fit["dof"]))
             rows.append(
-                {
-                    "check": (
-                        f"1/N fit linear: {fit['method']} alpha={fit['alpha']:g} "
-                        f"{fit['quantity']} (chi2 over dof {fit['dof']})"
-                    ),
-                    "measured": fit["chi2"],
-                    "error": 0.0,
-                    "expected": float(fit["dof"]),
-                    "z": math.nan,
-                    "passed": fit["chi2"] <= limit,
-                }
+                check.within(
+                    f"1/N fit linear: {fit['method']} alpha={fit['alpha']:g} "
+                    f"{fit['quantity']} (chi2 against its dof {fit['dof']}, 99 % point)",
+                    fit["chi2"],
+                    float(fit["dof"]),
+                    limit - fit["dof"],
+                    upper=True,
+                )
             )
     return rows

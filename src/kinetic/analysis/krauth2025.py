@@ -20,10 +20,13 @@ import math
 import numpy as np
 import xarray as xr
 
+from kinetic.analysis import checks as check
+from kinetic.analysis.checks import Check
 from kinetic.theory.krauth2025 import rate_pressure_factors, wall_value
 
 __all__ = [
     "FACES",
+    "checks",
     "contact_pressure",
     "pair_collisions_per_disk",
     "parting_table",
@@ -132,3 +135,56 @@ def parting_table(chaos: xr.Dataset) -> list[dict]:
                 }
             )
     return rows
+
+
+def checks(pins, pressure, sigmas: float = check.SIGMAS) -> list[Check]:
+    """krauth2025's claims checked on the built tables (rule krauth2025_checks): per
+    washing-line sample (``pins_table.csv``), the pin density at the posts over the bulk
+    and naive-pin's acceptance equal their exact values, and βP from the wall rift,
+    corrected by the bias its extrapolation has on the exact bin averages, equals
+    N/(L − 2Nσ); for the four disks (``pressure_table.csv``), every estimator of βP and
+    the finite-N averages of Eqs. 4.13 and 4.14 equal their references, while the
+    N → ∞ forms of Eq. 4.9d are reported beside them (at N = 4 they are not expected to
+    hold)."""
+    found = []
+    for row in pins.itertuples():
+        line = f"{row.method}-pin, {row.n_pins} pins on L = {row.length:g}"
+        found.append(
+            check.agrees(
+                f"{line}: pin density at the posts over the bulk equals Eq. (4.7)",
+                row.wall_over_bulk,
+                row.wall_over_bulk_sem,
+                row.wall_over_bulk_exact,
+                sigmas,
+            )
+        )
+        if not math.isnan(row.acceptance):
+            found.append(
+                check.agrees(
+                    f"{line}: naive-pin acceptance equals Z_N,L/(L - 2 sigma)^N",
+                    row.acceptance,
+                    row.acceptance_sem,
+                    row.acceptance_exact,
+                    sigmas,
+                )
+            )
+        found.append(
+            check.agrees(
+                f"{line}: beta P from the wall rift (less its extrapolation bias "
+                f"{row.beta_p_extrapolation_bias:.2g}) equals N/(L - 2 N sigma)",
+                row.beta_p_wall_rift - row.beta_p_extrapolation_bias,
+                row.beta_p_wall_rift_sem,
+                row.beta_p_exact,
+                sigmas,
+            )
+        )
+    for row in pressure.itertuples():
+        if math.isnan(row.reference):
+            continue
+        claim = f"four disks: {row.quantity} (Eq. {row.equation}) equals {row.reference_source}"
+        error = math.hypot(row.sem, 0.0 if math.isnan(row.reference_sem) else row.reference_sem)
+        if "N -> inf" in row.quantity:
+            found.append(check.reported(claim, row.value, error, row.reference))
+        else:
+            found.append(check.agrees(claim, row.value, error, row.reference, sigmas))
+    return found

@@ -21,7 +21,7 @@ provide(
 )
 provide(
     "costantini2010/checks",
-    results_file("costantini2010/checks.csv"),
+    *table_files("costantini2010", "checks"),
     results_file("costantini2010/amplitudes.csv"),
 )
 
@@ -130,12 +130,19 @@ rule costantini2010_table1:
         csv=results_file("costantini2010/table1.csv"),
         md=results_file("costantini2010/table1.md"),
         fits=results_file("costantini2010/extrapolation.csv"),
-        checks=results_file("costantini2010/checks.csv"),
+        checks=report(
+            results_file("costantini2010/checks.csv"),
+            caption="../../report/checks.rst",
+            category="costantini2010",
+            subcategory="checks",
+        ),
+        checks_md=results_file("costantini2010/checks.md"),
         amplitudes=results_file("costantini2010/amplitudes.csv"),
     log:
         log_file("costantini2010/table1.log"),
     params:
         study=costantini2010_settings,
+        fail=fails_on_checks("costantini2010"),
     script:
         "../../scripts/costantini2010_table1.py"
 

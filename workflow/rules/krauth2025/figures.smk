@@ -211,3 +211,30 @@ rule krauth2025_error_vs_time:
         log_file("krauth2025/error_vs_time.log"),
     script:
         "../../scripts/krauth2025_error_vs_time.py"
+
+
+provide("krauth2025/checks", *table_files("krauth2025", "checks"))
+
+
+rule krauth2025_checks:
+    # The lecture's claims on the washing line and the four disks
+    # (kinetic.analysis.krauth2025.checks); a failed check stops the build when the
+    # config's fail_on_checks lists krauth2025.
+    input:
+        pins=results_file("krauth2025/pins_table.csv"),
+        pressure=results_file("krauth2025/pressure_table.csv"),
+        code=script_code("krauth2025_checks"),
+    output:
+        csv=report(
+            results_file("krauth2025/checks.csv"),
+            caption="../../report/checks.rst",
+            category="krauth2025",
+            subcategory="checks",
+        ),
+        md=results_file("krauth2025/checks.md"),
+    log:
+        log_file("krauth2025/checks.log"),
+    params:
+        fail=fails_on_checks("krauth2025"),
+    script:
+        "../../scripts/krauth2025_checks.py"

@@ -308,16 +308,23 @@ rule montanero2007_extreme:
 
 
 rule montanero2007_checks:
-    # Fails (after writing the table to its log) when a check fails.
+    # Fails (after writing the table to its log) when a check fails and the config's
+    # fail_on_checks lists montanero2007.
     input:
         runs=montanero2007_check_inputs,
         code=script_code("montanero2007_checks"),
     output:
-        csv=results_file("montanero2007/checks.csv"),
+        csv=report(
+            results_file("montanero2007/checks.csv"),
+            caption="../../report/checks.rst",
+            category="montanero2007",
+            subcategory="checks",
+        ),
         md=results_file("montanero2007/checks.md"),
     log:
         log_file("montanero2007/checks.log"),
     params:
         section=montanero2007_section,
+        fail=fails_on_checks("montanero2007"),
     script:
         "../../scripts/montanero2007_checks.py"

@@ -396,3 +396,30 @@ rule visco2008_table1:
         extrapolation_windows=visco2008_table1_extrapolation_windows,
     script:
         "../../scripts/visco2008_table1.py"
+
+
+provide("visco2008/checks", *table_files("visco2008", "checks"))
+
+
+rule visco2008_checks:
+    # The document's claims on Table I and the cloning scan (kinetic.analysis.visco2008);
+    # a failed check stops the build when the config's fail_on_checks lists visco2008.
+    input:
+        table=results_file("visco2008/table1.csv"),
+        cloning=results_file("visco2008/cloning.csv"),
+        reference=results_file("visco2008/cloning/reference.nc"),
+        code=script_code("visco2008_checks"),
+    output:
+        csv=report(
+            results_file("visco2008/checks.csv"),
+            caption="../../report/checks.rst",
+            category="visco2008",
+            subcategory="checks",
+        ),
+        md=results_file("visco2008/checks.md"),
+    log:
+        log_file("visco2008/checks.log"),
+    params:
+        fail=fails_on_checks("visco2008"),
+    script:
+        "../../scripts/visco2008_checks.py"

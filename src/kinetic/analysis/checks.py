@@ -1,0 +1,158 @@
+"""Checks of a document's claims: one type and one table for every document.
+
+A check compares one measured ``value`` (with its standard ``error``; 0 for an exact
+quantity) with what a document, a theory or a conservation law says (``expected``), by one
+``rule`` written out in the table:
+
+- :func:`agrees`: the same within ``sigmas`` standard errors, ``|z| <= sigmas``;
+- :func:`exceeds`: larger, by more than ``sigmas`` errors, ``z > sigmas`` (a difference
+  claimed: "ν̄*/ν* > 1");
+- :func:`within`: ``|value - expected| <= tolerance`` (a bound that is not a number of
+  errors: a percent-level claim, a conservation law to round-off, χ² below its quantile);
+- :func:`reported`: measured beside the expectation, with no verdict (``passed`` empty).
+
+``z = (value - expected) / error`` wherever ``error > 0``. Every document writes its checks
+with :func:`write` to ``<results>/<document>/checks.csv`` (and ``.md``) with the columns
+:data:`COLUMNS`; a failed check stops the build only for the documents the config's
+``fail_on_checks`` lists (:func:`write` raises after writing the table).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import asdict, dataclass
+
+__all__ = [
+    "COLUMNS",
+    "SIGMAS",
+    "Check",
+    "ChecksFailed",
+    "agrees",
+    "exceeds",
+    "failures",
+    "reported",
+    "table",
+    "within",
+    "write",
+]
+
+SIGMAS = 3.0
+"""Standard errors within which a check of equality passes (beyond which one of
+difference passes), where a document's config sets no other number."""
+
+COLUMNS = ("claim", "value", "error", "expected", "z", "rule", "passed")
+"""Columns of every checks.csv (read by kinetic.docs and the report: keep the names)."""
+
+
+class ChecksFailed(RuntimeError):
+    """Checks of a document whose config asks failed checks to stop the build."""
+
+
+@dataclass(frozen=True)
+class Check:
+    """One claim tested on the data (see the module docstring)."""
+
+    claim: str
+    value: float
+    error: float
+    expected: float
+    z: float
+    rule: str
+    passed: bool | None
+
+
+def _z(value: float, error: float, expected: float) -> float:
+    difference = value - expected
+    if error > 0:
+        return difference / error
+    return math.nan
+
+
+def agrees(claim: str, value: float, error: float, expected: float, sigmas: float) -> Check:
+    """``value`` equals ``expected`` within ``sigmas`` standard errors."""
+    value, error, expected = float(value), float(error), float(expected)
+    z = _z(value, error, expected)
+    passed = abs(z) <= sigmas if error > 0 else value == expected
+    return Check(claim, value, error, expected, z, f"|z| <= {sigmas:.3g}", bool(passed))
+
+
+def exceeds(claim: str, value: float, error: float, bound: float, sigmas: float) -> Check:
+    """``value`` is above ``bound`` by more than ``sigmas`` standard errors."""
+    value, error, bound = float(value), float(error), float(bound)
+    z = _z(value, error, bound)
+    passed = z > sigmas if error > 0 else value > bound
+    return Check(claim, value, error, bound, z, f"z > {sigmas:.3g}", bool(passed))
+
+
+def within(
+    claim: str,
+    value: float,
+    expected: float,
+    tolerance: float,
+    error: float = 0.0,
+    *,
+    relative: bool = False,
+    upper: bool = False,
+) -> Check:
+    """``|value - expected| <= tolerance`` (``relative``: ``|value/expected - 1|``;
+    ``upper``: only ``value - expected`` is bounded, as for a χ² against its quantile)."""
+    value, error, expected = float(value), float(error), float(expected)
+    deviation = value / expected - 1.0 if relative else value - expected
+    measure = "value/expected - 1" if relative else "value - expected"
+    if upper:
+        passed, rule = deviation <= tolerance, f"{measure} <= {tolerance:.3g}"
+    else:
+        passed, rule = abs(deviation) <= tolerance, f"|{measure}| <= {tolerance:.3g}"
+    return Check(claim, value, error, expected, _z(value, error, expected), rule, bool(passed))
+
+
+def reported(claim: str, value: float, error: float, expected: float) -> Check:
+    """``value`` beside ``expected``, with no verdict (an informative row)."""
+    value, error, expected = float(value), float(error), float(expected)
+    return Check(claim, value, error, expected, _z(value, error, expected), "reported", None)
+
+
+def table(checks: Iterable[Check]):
+    """The checks as a pandas DataFrame with the columns :data:`COLUMNS`."""
+    import pandas as pd
+
+    return pd.DataFrame([asdict(check) for check in checks], columns=list(COLUMNS))
+
+
+def _failed(passed) -> bool:
+    """A verdict that is a failure: False, not an empty (reported) one."""
+    if passed is None or (isinstance(passed, float) and math.isnan(passed)):
+        return False
+    return not bool(passed)
+
+
+def failures(checks) -> list[str]:
+    """One line per failed check (``checks``: Check objects or a checks table)."""
+    if hasattr(checks, "to_dict"):
+        rows = checks.to_dict("records")
+    else:
+        rows = [asdict(check) for check in checks]
+    return [
+        f"{row['claim']}: {row['value']:.6g} +- {row['error']:.2g} against "
+        f"{row['expected']:.6g} ({row['rule']}, z = {row['z']:.3g})"
+        for row in rows
+        if _failed(row["passed"])
+    ]
+
+
+def write(checks: Iterable[Check], csv: str, md: str | None = None, *, fail: bool = False):
+    """Write the checks table (``csv`` and its Markdown twin ``md``) and return it; with
+    ``fail``, then raise :class:`ChecksFailed` naming every failed check."""
+    from kinetic import io
+
+    checks = list(checks)
+    frame = table(checks)
+    io.write_table(frame, csv, md, float_format=".6g")
+    failed = failures(checks)
+    if fail and failed:
+        raise ChecksFailed(
+            f"{len(failed)} of {len(checks)} checks failed (the config's fail_on_checks asks "
+            f"the build to stop):\n  " + "\n  ".join(failed)
+        )
+    return frame

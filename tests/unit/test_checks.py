@@ -1,0 +1,121 @@
+"""kinetic.analysis.checks: one type of check for every document, and its table."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+import xarray as xr
+
+from kinetic import io
+from kinetic.analysis import checks, krauth2025, visco2008
+
+
+def test_rules_pass_and_fail_where_they_say():
+    assert checks.agrees("a", 1.02, 0.01, 1.0, 3).passed
+    assert not checks.agrees("a", 1.04, 0.01, 1.0, 3).passed
+    assert checks.agrees("a", 1.0, 0.0, 1.0, 3).passed  # exact: equality
+    assert not checks.agrees("a", 1.0 + 1e-15, 0.0, 1.0, 3).passed
+    assert checks.exceeds("b", 1.04, 0.01, 1.0, 3).passed
+    assert not checks.exceeds("b", 1.02, 0.01, 1.0, 3).passed  # 2 sigma: not resolved
+    assert not checks.exceeds("b", 0.9, 0.01, 1.0, 3).passed
+    assert checks.within("c", 1.04, 1.0, 0.05, relative=True).passed
+    assert not checks.within("c", 0.94, 1.0, 0.05, relative=True).passed
+    assert checks.within("d", -5.0, 0.0, 1.0, upper=True).passed  # only the excess counts
+    assert not checks.within("d", 2.0, 0.0, 1.0, upper=True).passed
+    reported = checks.reported("e", 2.0, 0.5, 1.0)
+    assert reported.passed is None and reported.z == pytest.approx(2.0)
+    assert math.isnan(checks.within("f", 1.0, 1.0, 0.1).z)  # no error, no z
+    assert checks.agrees("g", 1.03, 0.01, 1.0, 3).z == pytest.approx(3.0)
+
+
+def test_write_keeps_the_table_and_stops_only_when_asked(tmp_path):
+    found = [
+        checks.agrees("holds", 1.0, 0.1, 1.0, 3),
+        checks.exceeds("claimed difference | with a pipe", 1.1, 0.1, 1.0, 3),
+        checks.reported("informative", 1.0, 0.1, 2.0),
+    ]
+    frame = checks.write(found, tmp_path / "checks.csv", tmp_path / "checks.md")
+    assert list(frame.columns) == list(checks.COLUMNS)
+    table = io.read_table(tmp_path / "checks.csv")
+    assert list(table["passed"][:2]) == [True, False] and pd.isna(table["passed"][2])
+    assert checks.failures(table) == checks.failures(found)
+    assert len(checks.failures(found)) == 1 and "claimed difference" in checks.failures(found)[0]
+    markdown = (tmp_path / "checks.md").read_text().splitlines()
+    assert all(line.count(" | ") == len(checks.COLUMNS) - 1 for line in markdown[2:])
+    with pytest.raises(checks.ChecksFailed, match="1 of 3 checks failed"):
+        checks.write(found, tmp_path / "strict.csv", fail=True)
+    assert (tmp_path / "strict.csv").exists()  # written before the build stops
+
+
+def _table1(k2_at_t10):
+    rows = [
+        {"source": "MD", "rho": 0.001, "t": 10.0, "k2": k2_at_t10, "k3": 1.13, "k2_err": 0.001}
+        | {"k3_err": 0.01, "kind": "md", "paper_k2": 1.1228, "paper_k3": 1.1282}
+        | {"paper_row_density": 1},
+        {"source": "MD", "rho": 0.001, "t": np.inf, "k2": 1.1374, "k3": 1.12, "k2_err": 0.0007}
+        | {"k3_err": 0.009, "kind": "extrapolated", "paper_k2": np.nan, "paper_k3": np.nan}
+        | {"paper_row_density": 0},
+        {"source": "Gaussian", "k2": 1.125, "k3": 1.1289, "kind": "theory"},
+        {"source": "Sonine", "k2": 1.13778, "k3": 1.1073, "kind": "theory"},
+    ]
+    return pd.DataFrame(rows)
+
+
+def _cloning(mu_maxwell):
+    return pd.DataFrame(
+        [
+            {"kernel": "maxwell", "lam": 1.0, "mu": mu_maxwell, "mu_err": 0.001, "n_c": 100.0}
+            | {"T": 1.0, "T_err": 0.01, "a2": 0.0, "a2_err": 0.01},
+            {"kernel": "hard_disks", "lam": 1.0, "mu": -0.5766, "mu_err": 0.001, "n_c": np.nan}
+            | {"T": 0.675, "T_err": 0.005, "a2": 0.166, "a2_err": 0.01},
+        ]
+    )
+
+
+REFERENCE = xr.Dataset(
+    {
+        "mu": ("lam", [-0.576653]),
+        "temperature": ("lam", [0.675245]),
+        "a2": ("lam", [0.165591]),
+    },
+    coords={"lam": [1.0]},
+)
+
+
+def test_visco2008_checks_pass_the_documents_numbers_and_fail_a_shifted_one():
+    good = visco2008.checks(_table1(1.1228), _cloning(math.expm1(-1.0)), REFERENCE)
+    assert {check.passed for check in good} == {True}
+    claims = " ".join(check.claim for check in good)
+    for words in ("printed 1.1228", "first-Sonine", "Gaussian", "Maxwell", "Eq. (28)"):
+        assert words in claims
+    bad = visco2008.checks(_table1(1.1228 + 0.005), _cloning(math.expm1(-1.0) + 0.005), REFERENCE)
+    failed = [check.claim for check in bad if check.passed is False]
+    assert len(failed) == 2
+    assert "k2 equals the printed" in failed[0] and "Maxwell" in failed[1]
+
+
+def test_krauth2025_checks_correct_the_extrapolation_bias_and_only_report_the_limit():
+    pins = pd.DataFrame(
+        [
+            {"method": "direct", "n_pins": 15, "length": 40.0, "wall_over_bulk": 1.4677}
+            | {"wall_over_bulk_sem": 0.006, "wall_over_bulk_exact": 1.46924}
+            | {"acceptance": np.nan, "acceptance_sem": np.nan, "acceptance_exact": np.nan}
+            | {"beta_p_wall_rift": 0.5866, "beta_p_wall_rift_sem": 0.0036, "beta_p_exact": 0.6}
+            | {"beta_p_extrapolation_bias": -0.0126}
+        ]
+    )
+    pressure = pd.DataFrame(
+        [
+            {"quantity": "beta P_x, kinematic", "equation": "4.10a", "value": 10.83}
+            | {"sem": 0.04, "reference": 10.81, "reference_sem": 0.15}
+            | {"reference_source": "contact density"},
+            {"quantity": "beta P_x, wall-hit rate, N -> inf", "equation": "4.9d", "value": 11.15}
+            | {"sem": 0.02, "reference": 10.81, "reference_sem": 0.15}
+            | {"reference_source": "contact density"},
+        ]
+    )
+    found = krauth2025.checks(pins, pressure)
+    verdicts = [check.passed for check in found]
+    # the raw wall rift (z = -3.7) would fail; less its known bias it agrees
+    assert verdicts == [True, True, True, None]
