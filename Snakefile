@@ -25,6 +25,9 @@ if not workflow.overwrite_configfiles:
 
 
 
+report: "workflow/report/workflow.rst"
+
+
 include: "workflow/rules/common.smk"
 include: "workflow/rules/visco2008/theory.smk"
 include: "workflow/rules/visco2008/simulate.smk"

@@ -44,6 +44,7 @@ __all__ = [
     "stamp",
     "write_dataset",
     "write_table",
+    "write_text",
 ]
 
 Variable = tuple[tuple[str, ...] | str, Any, str, str]
@@ -251,6 +252,11 @@ def write_table(
     if markdown_path is not None:
         text = _markdown(frame, float_format)
         _replace_atomically(Path(markdown_path), lambda temporary: temporary.write_text(text))
+
+
+def write_text(path: str | os.PathLike, text: str) -> None:
+    """Write a text file atomically (temporary file, fsync, rename)."""
+    _replace_atomically(Path(path), lambda temporary: temporary.write_text(text))
 
 
 def read_table(path: str | os.PathLike) -> pd.DataFrame:

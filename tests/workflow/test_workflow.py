@@ -2,6 +2,7 @@
 
 import json
 import os
+import re
 import shlex
 import subprocess
 import sys
@@ -11,6 +12,7 @@ import pandas as pd
 import pytest
 import xarray as xr
 import yaml
+from _browser import report_panels
 
 from kinetic import plan
 from kinetic.config import validate_config
@@ -199,3 +201,17 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
     assert (tmp_path / "report.html").stat().st_size > 10_000
     # every caption is valid reStructuredText (docutils reports ERROR/3 and WARNING/2 lines)
     assert "ERROR/" not in report.stderr and "WARNING/" not in report.stderr, report.stderr
+    # the report as a browser shows it: the front page with each document's agreement,
+    # and every figure and table of the build behind a click, with its caption
+    panels = report_panels(tmp_path / "report.html", tmp_path)
+    front = panels.pop("front")
+    assert "Agreement with the documents" in front
+    for document in ("visco2008", "montanero2007", "krauth2025", "costantini2010"):
+        assert re.search(rf"{document}\t\d+\t\d+\t\d+\t\d+", front), front
+    shown = {path for path, text in panels.items() if f"PATH\n{path}\nDESCRIPTION\n" in text}
+    figures = {path.relative_to(tmp_path).as_posix() for path in results.rglob("*.png")}
+    checks = {path.relative_to(tmp_path).as_posix() for path in results.glob("*/checks.csv")}
+    assert figures | checks <= shown, sorted((figures | checks) - shown)
+    for path in figures:
+        caption = panels[path].split("DESCRIPTION\n", 1)[1].split("\nSIZE\n", 1)[0]
+        assert len(caption.strip()) > 40, (path, caption)

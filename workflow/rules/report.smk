@@ -10,6 +10,7 @@ provide("workflow/jobs", results_file("workflow/jobs.csv"))
 localrules:
     workflow_config,
     workflow_jobs,
+    workflow_agreement,
 
 
 def workflow_job_outputs(wildcards):
@@ -52,3 +53,34 @@ rule workflow_jobs:
         log_file("workflow/jobs.log"),
     script:
         "../scripts/workflow_jobs.py"
+
+
+provide("workflow/agreement", results_file("workflow/agreement.csv"), results_file("workflow/agreement.rst"))
+
+
+def workflow_agreement_tables(wildcards):
+    """Input function: the checks.csv of every document (only those built, unless the
+    config builds every target)."""
+    files = [results_file(f"{paper}/checks.csv") for paper in PAPERS if f"{paper}/checks" in TARGETS]
+    if config["targets"] == "all":
+        return files
+    return [path for path in files if Path(path).exists()]
+
+
+rule workflow_agreement:
+    # The number of checks passed, failed and reported per document: the report's front
+    # page (workflow/report/workflow.rst includes the reStructuredText twin).
+    input:
+        tables=workflow_agreement_tables,
+        code=script_code("workflow_agreement"),
+    output:
+        csv=report(
+            results_file("workflow/agreement.csv"),
+            caption="../report/workflow_agreement.rst",
+            category="configuration and jobs",
+        ),
+        rst=results_file("workflow/agreement.rst"),
+    log:
+        log_file("workflow/agreement.log"),
+    script:
+        "../scripts/workflow_agreement.py"

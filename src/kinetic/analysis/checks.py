@@ -31,6 +31,8 @@ __all__ = [
     "agrees",
     "exceeds",
     "failures",
+    "overview",
+    "overview_rst",
     "reported",
     "table",
     "within",
@@ -120,11 +122,16 @@ def table(checks: Iterable[Check]):
     return pd.DataFrame([asdict(check) for check in checks], columns=list(COLUMNS))
 
 
+def _verdict(passed) -> bool | None:
+    """True, False, or None for a reported row (None, or NaN as read from a CSV)."""
+    if passed is None or (isinstance(passed, float) and math.isnan(passed)):
+        return None
+    return bool(passed)
+
+
 def _failed(passed) -> bool:
     """A verdict that is a failure: False, not an empty (reported) one."""
-    if passed is None or (isinstance(passed, float) and math.isnan(passed)):
-        return False
-    return not bool(passed)
+    return _verdict(passed) is False
 
 
 def failures(checks) -> list[str]:
@@ -139,6 +146,42 @@ def failures(checks) -> list[str]:
         for row in rows
         if _failed(row["passed"])
     ]
+
+
+def overview(tables):
+    """One row per document of ``tables`` ({document: checks table}): the number of checks,
+    passed, failed and reported, and the failed claims."""
+    import pandas as pd
+
+    rows = []
+    for document, frame in tables.items():
+        records = frame.to_dict("records")
+        verdicts = [_verdict(row["passed"]) for row in records]
+        failed = [row["claim"] for row in records if _failed(row["passed"])]
+        rows.append(
+            {
+                "document": document,
+                "checks": len(records),
+                "passed": verdicts.count(True),
+                "failed": len(failed),
+                "reported": verdicts.count(None),
+                "failed_claims": "; ".join(failed),
+            }
+        )
+    return pd.DataFrame(
+        rows, columns=["document", "checks", "passed", "failed", "reported", "failed_claims"]
+    )
+
+
+def overview_rst(frame) -> str:
+    """:func:`overview` as a reStructuredText list-table (the report's front page)."""
+    lines = [".. list-table::", "   :header-rows: 1", ""]
+    columns = ["document", "checks", "passed", "failed", "reported", "failed_claims"]
+    header = ["document", "checks", "passed", "failed", "reported", "failed checks"]
+    for cells in [header, *frame[columns].astype(str).values.tolist()]:
+        lines.append(f"   * - {cells[0]}")
+        lines += [f"     - {cell if cell not in ('', 'nan') else '—'}" for cell in cells[1:]]
+    return "\n".join(lines) + "\n"
 
 
 def write(checks: Iterable[Check], csv: str, md: str | None = None, *, fail: bool = False):

@@ -7,6 +7,7 @@ report medians, and record the machine the numbers came from.
 
 from __future__ import annotations
 
+import datetime
 import json
 import os
 import platform
@@ -33,6 +34,7 @@ def machine() -> dict[str, Any]:
     except OSError:
         pass
     return {
+        "date": datetime.date.today().isoformat(),
         "cpu": cpu,
         "logical_cpus": os.cpu_count(),
         "load_average_1min": os.getloadavg()[0],

@@ -1,0 +1,111 @@
+"""One row per measured case of a bench report (``results/benchmarks/<engine>.json``), for
+the generated docs/benchmarks.md and the engines' speed lines (``kinetic.docs``).
+
+Each row: engine, case, rate, unit, headline (the case quoted in docs/engines.md), and
+where and when it was measured (date, CPU, 1-minute load average, git revision).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+__all__ = ["rows"]
+
+
+def _dsmc(report: dict[str, Any]):
+    for case in report["collision_stage"]:
+        n, alpha = case["n_particles"], case["restitution"]
+        yield (
+            f"homogeneous, collision stage, N = {n:.0e}, alpha = {alpha:g}",
+            case["accepted_collisions_per_cpu_second"],
+            "accepted collisions per CPU-s",
+            n == 200_000,
+        )
+    for case in report["inhomogeneous_cooling_modes"]:
+        simulated = case["simulated_particles"]
+        yield (
+            f"inhomogeneous, {case['collision_rule']} rule, {simulated} simulated particles",
+            case["particle_steps_per_cpu_second"],
+            "particle-steps per CPU-s",
+            case["collision_rule"] == "majorant",
+        )
+
+
+def _edmd(report: dict[str, Any]):
+    for case in report["cases"]:
+        d, n, density = case["dimension"], case["n_particles"], case["density"]
+        where = (
+            f"rho sigma^2 = {density:g}" if d == 2 else f"packing {case['packing_fraction']:.2g}"
+        )
+        yield (
+            f"d = {d}, N = {n:.0e}, {where}",
+            case["collisions_per_cpu_second"],
+            "collisions per CPU-s",
+            d == 2 and n == 1000 and abs(density - 1e-2) < 1e-12,
+        )
+
+
+def _cloning(report: dict[str, Any]):
+    for case in report["cases"]:
+        kernel = (
+            "hard disks"
+            if case["kernel"] == "hard_spheres" and case["dimension"] == 2
+            else ("hard spheres" if case["kernel"] == "hard_spheres" else "Maxwell")
+        )
+        yield (
+            f"{kernel}, lambda = {case['lambda']:g}, N_c = {case['population']:.0e}",
+            case["events_per_cpu_second"],
+            "collision events per CPU-s",
+            kernel == "hard disks" and case["lambda"] == 1.0 and case["population"] == 1000,
+        )
+
+
+def _samplers(report: dict[str, Any]):
+    for case in report["direct_pin"]:
+        yield (
+            f"direct-pin, {report['n_pins']} pins, L = {case['length']:g}",
+            case["configurations_per_cpu_second"],
+            "configurations per CPU-s",
+            case["length"] == 20.0,
+        )
+    for case in report["naive_pin"]:
+        yield (
+            f"naive-pin, {report['n_pins']} pins, L = {case['length']:g}",
+            case["configurations_per_cpu_second"],
+            "configurations per CPU-s",
+            False,
+        )
+    ring = report["ring_markov"]
+    yield (
+        f"Markov pins on a ring, L = {ring['length']:g}",
+        ring["sweeps_per_cpu_second"],
+        "sweeps per CPU-s",
+        False,
+    )
+
+
+EXTRACTORS = {"dsmc": _dsmc, "edmd": _edmd, "cloning": _cloning, "samplers": _samplers}
+"""Engine -> the cases of its report."""
+
+
+def rows(report: dict[str, Any]) -> list[dict[str, Any]]:
+    """The rows of one bench report (empty for an engine without an extractor)."""
+    extractor = EXTRACTORS.get(report["engine"])
+    if extractor is None:
+        return []
+    machine = report["machine"]
+    return [
+        {
+            "engine": report["engine"],
+            "case": case,
+            "rate": float(rate),
+            "unit": unit,
+            "headline": bool(headline),
+            "date": machine.get("date", ""),
+            "cpu": machine["cpu"],
+            "load": machine["load_average_1min"],
+            "revision": machine["git_revision"],
+            "quick": bool(report.get("quick", False)),
+        }
+        for case, rate, unit, headline in extractor(report)
+    ]
