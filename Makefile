@@ -2,6 +2,9 @@
 #   make figures   build every available figure and table with config/config.yaml
 #   make test      lint and run the whole test suite (what CI runs)
 #   make test-fast lint and run the tests not marked slow (minutes, for editing)
+#   make docs      after make figures and the benches: the README's and docs/' numbers,
+#                  thumbnails and tables from results/ (python -m kinetic.docs)
+# make figures and make test record their duration in results/timings/ (kinetic.docs timed).
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
@@ -12,7 +15,10 @@ CONFIG ?= config/config.yaml
 # extra snakemake options, e.g. SNAKEMAKE_ARGS=-n for a dry run
 SNAKEMAKE_ARGS ?=
 
-.PHONY: install figures test test-fast lint clean-results
+TIMED = $(BIN)/python -m kinetic.docs timed
+FIGURES_TIMING = results/timings/figures-$(basename $(notdir $(CONFIG))).json
+
+.PHONY: install figures test test-fast lint docs clean-results
 
 install: $(VENV)/.installed
 
@@ -25,17 +31,21 @@ $(VENV)/.installed: environment-pip.txt pyproject.toml
 
 figures: install
 	$(BIN)/python -m kinetic.config $(CONFIG)
-	$(BIN)/snakemake all --cores $(CORES) --configfile $(CONFIG) $(SNAKEMAKE_ARGS)
+	$(TIMED) $(FIGURES_TIMING) -- $(BIN)/snakemake all --cores $(CORES) --configfile $(CONFIG) $(SNAKEMAKE_ARGS)
 
 lint: install
 	$(BIN)/ruff check src workflow tests
 	$(BIN)/ruff format --check src workflow tests
 
 test: lint
-	$(BIN)/python -m pytest -n $(TEST_WORKERS)
+	$(TIMED) results/timings/test.json -- $(BIN)/python -m pytest -n $(TEST_WORKERS)
 
 test-fast: lint
 	$(BIN)/python -m pytest -n $(TEST_WORKERS) -m "not slow and not cluster"
+
+docs: install
+	$(BIN)/python -m kinetic.docs collect
+	$(BIN)/python -m kinetic.docs render
 
 clean-results:
 	rm -rf results logs .snakemake

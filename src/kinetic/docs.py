@@ -61,20 +61,27 @@ TITLES = {
 
 HEADLINES = {
     "visco2008": (
-        "Table I, MD row t = 10: k2",
-        "hard disks, 1/N_c -> 0: mu equals Eq. (28) at lambda = 1",
+        ("Table I, MD row t = 10: k2", "Table I, MD k2 at t = 10 against the printed value"),
+        (
+            "hard disks, 1/N_c -> 0: mu equals Eq. (28) at lambda = 1",
+            "cloning μ(1) of hard disks against Eq. (28)",
+        ),
     ),
-    "montanero2007": ("kappa'/kappa0 at alpha = 1",),
+    "montanero2007": (("kappa'/kappa0 at alpha = 1", "κ′/κ0 at α = 1 against 1.025218"),),
     "krauth2025": (
-        "direct-pin, 15 pins on L = 20: beta P",
-        "four disks: beta P_x, kinematic",
+        ("direct-pin, 15 pins on L = 20: beta P", "βP of 15 pins on L = 20 against 3"),
+        ("four disks: beta P_x, kinematic", "βP of four disks, kinematic against contact"),
     ),
     "costantini2010": (
-        "nu*(1/N -> 0) = converged elastic value: md",
-        "nu*(1/N -> 0) = converged elastic value: dsmc",
+        ("nu*(1/N -> 0) = converged elastic value: md", "MD ν*(α = 1, N → ∞) against 0.2039"),
+        (
+            "nu*(1/N -> 0) = converged elastic value: dsmc",
+            "DSMC ν*(α = 1, N → ∞) against 0.2039",
+        ),
     ),
 }
-"""Per document, the claims the README quotes: the first check whose claim starts so."""
+"""Per document, the claims the README quotes, (first words of the claim, short label):
+the first check whose claim starts so."""
 
 GALLERY = {
     "visco2008": "fig05",
@@ -145,6 +152,13 @@ def timed(out: str | os.PathLike, command: list[str]) -> int:
 
 
 # ------------------------------------------------------------------ collect
+def _plain(value):
+    """A table cell as JSON takes it: None for a missing value, Python numbers."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return None
+    return value.item() if hasattr(value, "item") else value
+
+
 def _checks(root: Path, document: str) -> dict[str, Any] | None:
     import pandas as pd
 
@@ -155,16 +169,13 @@ def _checks(root: Path, document: str) -> dict[str, Any] | None:
     passed = table["passed"]
     verdicts = passed.dropna().astype(bool)
     headlines = []
-    for prefix in HEADLINES[document]:
+    for prefix, label in HEADLINES[document]:
         rows = table[table["claim"].str.startswith(prefix)]
         if len(rows):
-            row = rows.iloc[0]
-            headlines.append(
-                {
-                    key: (None if pd.isna(row[key]) else row[key])
-                    for key in ("claim", "value", "error", "expected", "z", "rule", "passed")
-                }
-            )
+            row = rows.iloc[0].to_dict()
+            columns = ("claim", "value", "error", "expected", "z", "rule", "passed")
+            values = {key: _plain(row[key]) for key in columns}
+            headlines.append(values | {"label": label})
     return {
         "checks": len(table),
         "passed": int(verdicts.sum()),
@@ -246,13 +257,13 @@ def collect(
 
 
 # ------------------------------------------------------------------ render
-def _headline(check: dict[str, Any]) -> str:
+def _headline(check: dict[str, Any], *, short: bool = False) -> str:
     z = "" if check["z"] is None else f", z = {check['z']:+.1f}"
     verdict = {True: "", False: " (fails)", None: ""}[check["passed"]]
-    return (
-        f"{check['claim']}: {measurement(check['value'], check['error'] or 0.0)} "
-        f"against {check['expected']:.6g}{z}{verdict}"
-    )
+    value = measurement(check["value"], check["error"] or 0.0)
+    if short:
+        return f"{check['label']}: {value}{z}{verdict}"
+    return f"{check['claim']}: {value} against {check['expected']:.7g}{z}{verdict}"
 
 
 def _agreement(summary: dict[str, Any]) -> str:
@@ -260,7 +271,8 @@ def _agreement(summary: dict[str, Any]) -> str:
         "| document | reproduced | checks passed | key agreement |",
         "| --- | --- | --- | --- |",
     ]
-    for document, entry in summary["documents"].items():
+    for document in DOCUMENTS:
+        entry = summary["documents"][document]
         artefacts = entry["artefacts"]
         figures = len([name for name in artefacts["figures"] if name.startswith("fig")])
         others = len(artefacts["figures"]) - figures
@@ -270,7 +282,7 @@ def _agreement(summary: dict[str, Any]) -> str:
             lines.append(f"| {document} | {reproduced} | — | — |")
             continue
         verdicts = checks["passed"] + checks["failed"]
-        headline = "; ".join(_headline(check) for check in checks["headlines"])
+        headline = "; ".join(_headline(check, short=True) for check in checks["headlines"])
         lines.append(
             f"| [{document}](docs/reproduced.md#{document}) | {reproduced} | "
             f"{checks['passed']} of {verdicts} | {headline} |"
@@ -291,16 +303,16 @@ def _timing(summary: dict[str, Any], name: str) -> str:
 
 def _timings(summary: dict[str, Any]) -> str:
     return (
-        f"- `make figures` (default config, from a clean clone, installation and compilation "
-        f"included): {_timing(summary, 'figures-config')}\n"
+        f"- `make figures` (the build of the default config from a clean clone, numba's "
+        f"compilation included, the installation not): {_timing(summary, 'figures-config')}\n"
         f"- `make test`: {_timing(summary, 'test')}\n"
     )
 
 
 def _checks_tables(summary: dict[str, Any]) -> str:
     out = []
-    for document, entry in summary["documents"].items():
-        checks = entry["checks"]
+    for document in DOCUMENTS:
+        checks = summary["documents"][document]["checks"]
         if checks is None:
             continue
         out.append(
