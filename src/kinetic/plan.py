@@ -6,13 +6,12 @@ per job and the wall time on P = 2, 64 and 1024 cores (greedy longest-first sche
 of the estimated job times; the aggregation and figure jobs, seconds to minutes each,
 are not counted).
 
-The workflow uses the same job list: every simulation rule asks SLURM for the
-``runtime`` and ``mem_mb`` of its output's entry (:func:`jobs_by_output`, through
-kinetic.cost), and before any job the workflow refuses a config with a job above the
-``limits`` section (:func:`check_limits`) and prints the total (:func:`summary_line`).
-The paths and parameters here mirror the rule files' job plans (the study modules
-kinetic.studies.visco2008_cloning and kinetic.studies.montanero2007 are shared with
-them); a workflow test compares this list with the jobs of a Snakemake dry run.
+The jobs are the studies' (``kinetic.studies.jobs``), the same records the simulation
+rules take their ``params`` from: every simulation rule asks SLURM for the ``runtime`` and
+``mem_mb`` of its output's job (:func:`jobs_by_output`, through kinetic.cost), and before
+any job the workflow refuses a config with a job above the ``limits`` section
+(:func:`check_limits`) and prints the total (:func:`summary_line`). A workflow test
+compares this list with the jobs of a Snakemake dry run.
 """
 
 from __future__ import annotations
@@ -20,19 +19,18 @@ from __future__ import annotations
 import argparse
 import heapq
 import sys
-from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, replace
+from collections.abc import Iterable, Mapping
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from kinetic import batches, cost
+from kinetic import cost, studies
 from kinetic.config import load_configs, results_root
-from kinetic.cost import Estimate
+from kinetic.studies import Job
 
 __all__ = [
     "CORES",
     "JOB_TABLE_COLUMNS",
-    "PLANNERS",
     "BudgetError",
     "Job",
     "benchmark_overruns",
@@ -59,242 +57,10 @@ class BudgetError(ValueError):
     """A config whose jobs exceed the limits of its ``limits`` section."""
 
 
-@dataclass(frozen=True)
-class Job:
-    """One simulation job: its document, rule, first output, benchmark file and cost."""
-
-    document: str
-    rule: str
-    output: str
-    estimate: Estimate
-    benchmark: str | None = None
-
-
-# ------------------------------------------------------------------ per-document plans
-def _visco2008(config: Mapping[str, Any]) -> list[Job]:
-    section = config.get("visco2008", {})
-    jobs = []
-    md = section.get("md")
-    if md:
-        for run, density in md["densities"].items():
-            for job in batches.plan(
-                realizations=md["realizations"], realizations_per_job=md["realizations_per_job"]
-            ):
-                name = f"visco2008/md/{run}/{batches.batch_name(job.index)}"
-                estimate = cost.edmd_periodic(
-                    n_particles=md["n_particles"],
-                    density=density,
-                    realizations=job.n_realizations,
-                    equilibration=md["equilibration"],
-                    duration=md["duration"],
-                )
-                jobs.append(
-                    Job(
-                        "visco2008",
-                        "visco2008_simulate_md",
-                        f"{name}.nc",
-                        estimate,
-                        f"benchmarks/{name}.tsv",
-                    )
-                )
-    for run, settings in section.get("dsmc", {}).items():
-        for job in batches.plan(
-            realizations=settings["realizations"],
-            realizations_per_job=settings["realizations_per_job"],
-        ):
-            name = f"visco2008/dsmc/{run}/{batches.batch_name(job.index)}"
-            estimate = cost.dsmc_free_flights(
-                n_particles=settings["n_particles"],
-                duration=settings["duration"],
-                n_realizations=job.n_realizations,
-            )
-            jobs.append(
-                Job(
-                    "visco2008",
-                    "visco2008_simulate_dsmc",
-                    f"{name}.nc",
-                    estimate,
-                    f"benchmarks/{name}.tsv",
-                )
-            )
-    cloning = section.get("cloning")
-    if cloning:
-        from kinetic.studies import visco2008_cloning as cloning_plan
-
-        for study in ("scan", "error_vs_time"):
-            for kernel, point, size, batch in cloning_plan.batch_keys(cloning, study):
-                parameters = cloning_plan.job_parameters(
-                    cloning, study, kernel, point, size, batch, seed=0
-                )
-                name = (
-                    f"visco2008/cloning/{study}/{kernel}/{point}/{size}/{batches.batch_name(batch)}"
-                )
-                jobs.append(
-                    Job(
-                        "visco2008",
-                        "visco2008_simulate_cloning",
-                        f"{name}.nc",
-                        cost.cloning_batch(**parameters),
-                        f"benchmarks/{name}.tsv",
-                    )
-                )
-    return jobs
-
-
-def _montanero2007(config: Mapping[str, Any]) -> list[Job]:
-    section = config.get("montanero2007")
-    if not section:
-        return []
-    from kinetic.studies.montanero2007 import run_plan
-
-    jobs = []
-    for name, run in run_plan(section).items():
-        for job in batches.plan(
-            realizations=int(run["realizations"]),
-            realizations_per_job=int(run["realizations_per_job"]),
-        ):
-            estimate = cost.dsmc_homogeneous(**{**run, "realizations": job.n_realizations})
-            path = f"montanero2007/runs/{name}/{batches.batch_name(job.index)}"
-            jobs.append(
-                Job(
-                    "montanero2007",
-                    "montanero2007_simulate_dsmc",
-                    f"{path}.nc",
-                    estimate,
-                    f"benchmarks/{path}.tsv",
-                )
-            )
-    return jobs
-
-
-def _costantini2010(config: Mapping[str, Any]) -> list[Job]:
-    section = config.get("costantini2010")
-    if not section:
-        return []
-    from kinetic.studies import costantini2010 as study
-
-    jobs = []
-    for run in study.runs(section).values():
-        arguments = run.engine_arguments(section)
-        for job in study.jobs(section):
-            estimate = cost.cooling_modes(
-                engine=run.engine, n_realizations=job.n_realizations, **arguments
-            )
-            output = study.batch_file(run, job)
-            benchmark = output.replace("", "benchmarks/", 1).replace(".nc", ".tsv")
-            jobs.append(
-                Job(
-                    "costantini2010",
-                    f"costantini2010_simulate_{run.engine}",
-                    output,
-                    estimate,
-                    benchmark,
-                )
-            )
-    return jobs
-
-
-LINE_RUNS = (("direct", "length"), ("naive", "naive_length"), ("direct", "naive_length"))
-"""krauth2025's washing-line samples: (method, length key of config krauth2025.pins)."""
-
-
-def _krauth2025(config: Mapping[str, Any]) -> list[Job]:
-    section = config.get("krauth2025")
-    if not section:
-        return []
-    jobs = []
-    pins, ring, disks = section["pins"], section["ring"], section["disks"]
-    lines = {}
-    for method, key in LINE_RUNS:
-        lines[f"{method}_L{pins[key]:g}"] = cost.sampler_line(
-            method,
-            n_pins=pins["n_pins"],
-            length=float(pins[key]),
-            sigma=pins["sigma"],
-            samples=pins[f"{method}_samples"],
-            realizations=pins["realizations"],
-        )
-    for name, estimate in lines.items():
-        jobs.append(
-            Job(
-                "krauth2025",
-                "krauth2025_simulate_line",
-                f"krauth2025/pins/{name}.nc",
-                estimate,
-                f"benchmarks/krauth2025/pins/{name}.tsv",
-            )
-        )
-    jobs.append(
-        Job(
-            "krauth2025",
-            "krauth2025_simulate_ring",
-            "krauth2025/pins/ring.nc",
-            cost.sampler_ring(**ring),
-            "benchmarks/krauth2025/pins/ring.tsv",
-        )
-    )
-    jobs.append(
-        Job(
-            "krauth2025",
-            "krauth2025_simulate_pin_snapshots",
-            "krauth2025/pins/snapshots.nc",
-            cost.small_job(),
-        )
-    )
-    jobs.append(
-        Job(
-            "krauth2025",
-            "krauth2025_simulate_md",
-            "krauth2025/disks/md.nc",
-            cost.edmd_box(
-                n_disks=disks["n_disks"],
-                duration=disks["md_duration"],
-                realizations=disks["realizations"],
-            ),
-            "benchmarks/krauth2025/disks/md.tsv",
-        )
-    )
-    for method, samples in (("direct", "direct_samples"), ("markov", "markov_sweeps")):
-        jobs.append(
-            Job(
-                "krauth2025",
-                "krauth2025_simulate_disks",
-                f"krauth2025/disks/{method}.nc",
-                cost.sampler_disks(
-                    method,
-                    n_disks=disks["n_disks"],
-                    samples=disks[samples],
-                    realizations=disks["sampler_realizations"],
-                    burn_in=disks["burn_in"] if method == "markov" else 0,
-                ),
-                f"benchmarks/krauth2025/disks/{method}.tsv",
-            )
-        )
-    jobs.append(
-        Job(
-            "krauth2025",
-            "krauth2025_simulate_chaos",
-            "krauth2025/disks/chaos.nc",
-            cost.small_job(),
-        )
-    )
-    return jobs
-
-
-PLANNERS: dict[str, Callable[[Mapping[str, Any]], list[Job]]] = {
-    "visco2008": _visco2008,
-    "montanero2007": _montanero2007,
-    "krauth2025": _krauth2025,
-    "costantini2010": _costantini2010,
-}
-"""Document -> function listing its simulation jobs from the validated config. A new
-document's rule file adds its planner here (and its rules ask for planned resources)."""
-
-
 def plan_jobs(config: Mapping[str, Any]) -> list[Job]:
-    """Every simulation job of a validated (defaults filled) config, in plan order, with
-    its output under the config's results root and its benchmark file under the root's
-    ``logs/`` (the planners name both relative to them)."""
+    """Every simulation job of a validated (defaults filled) config, in plan order
+    (``kinetic.studies.jobs``), with its output under the config's results root and its
+    benchmark file under the root's ``logs/``."""
     root = results_root(config)
     return [
         replace(
@@ -302,13 +68,12 @@ def plan_jobs(config: Mapping[str, Any]) -> list[Job]:
             output=f"{root}/{job.output}",
             benchmark=f"{root}/logs/{job.benchmark}" if job.benchmark else None,
         )
-        for planner in PLANNERS.values()
-        for job in planner(config)
+        for job in studies.jobs(config)
     ]
 
 
 def jobs_by_output(config: Mapping[str, Any]) -> dict[str, Job]:
-    """:func:`plan_jobs` keyed by each job's first output path."""
+    """:func:`plan_jobs` keyed by each job's output path."""
     return {job.output: job for job in plan_jobs(config)}
 
 

@@ -15,9 +15,9 @@ of ``kinetic``.
 
 The rules that join, analyse and plot results depend on the package files their script
 imports (``script_sources``), read from the import statements without importing anything.
-A simulation job depends on its engines' sources and on the other package files its script
-runs (``simulation_sources``: the theory a sampler starts from, the statistics a front
-stores), except the bookkeeping modules that name, write and log results.
+A simulation job depends on its engines' sources and on the other package files its front
+runs (``front_sources``: the theory a sampler starts from, the statistics a front stores),
+except the bookkeeping modules that name, write and log results.
 """
 
 from __future__ import annotations
@@ -32,9 +32,9 @@ __all__ = [
     "PACKAGE",
     "SHARED",
     "engine_sources",
+    "front_sources",
     "kernel_sources",
     "script_sources",
-    "simulation_sources",
 ]
 
 PACKAGE = Path(__file__).resolve().parent
@@ -121,11 +121,23 @@ def script_sources(script: str | Path) -> list[Path]:
     return sorted(seen)
 
 
-def simulation_sources(script: str | Path, engines) -> list[Path]:
-    """Files whose edit must rerun a simulation job that runs ``script`` with ``engines``:
-    the engines' sources (numba's cache keys, which also cover the fronts a package loads
-    on first use) and every other package file the script runs, bookkeeping aside."""
-    bookkeeping = {PACKAGE / f"{module}.py" for module in BOOKKEEPING}
+def front_sources(front: str, engines) -> list[Path]:
+    """Files whose edit must rerun a simulation job that calls ``front`` (``module:function``,
+    a ``kinetic.studies.Job``'s) with ``engines``: the engines' sources, the front's module
+    and the packages on the way to it, and every package file they import, bookkeeping
+    aside."""
+    module = front.partition(":")[0]
+    bookkeeping = {PACKAGE / f"{name}.py" for name in BOOKKEEPING}
     files = {path for engine in engines for path in engine_sources(engine)}
-    files.update(path for path in script_sources(script) if path not in bookkeeping)
+    own = _module_files(module)
+    if not own:
+        raise ValueError(f"{module} is not a module of the package")
+    seen: set[Path] = set()
+    todo = list(own)
+    while todo:
+        path = todo.pop()
+        if path not in seen:
+            seen.add(path)
+            todo += _imported_files(path)
+    files.update(path for path in seen if path not in bookkeeping)
     return sorted(files)

@@ -174,12 +174,38 @@ def package_modules(script: Path, root: Path, *, engines: bool = True) -> list[s
     return relative
 
 
+def _relative(files, root: Path) -> list[str]:
+    relative = []
+    for file in dict.fromkeys(files):
+        path = Path(file).resolve()
+        inside = path.is_relative_to(root.resolve())
+        relative.append(str(path.relative_to(root.resolve())) if inside else file)
+    return relative
+
+
+def front_modules(rule: str, config, root: Path) -> list[str]:
+    """The files defining the fronts that the jobs of simulation rule ``rule`` call
+    (``kinetic.studies.Job.front``), relative to ``root``; behind a study's front (one that
+    prepares an engine's arguments), the engine fronts it calls."""
+    from kinetic import studies
+
+    fronts = dict.fromkeys(job.front for job in studies.jobs(config) if job.rule == rule)
+    files = []
+    for name in fronts:
+        file = inspect.getsourcefile(studies.front(name))
+        files.append(file)
+        if not _in_engine(file):
+            files += _imports(Path(file), _is_engine)
+    return _relative(files, root)
+
+
 def trace(target: str, config_files: list[str] | None = None, root: Path | str = ".") -> Trace:
     """The pipeline of ``target`` (a path under the config's results root) with these
     config files."""
     root = Path(root)
     config_files = list(config_files or ["config/config.yaml"])
-    results = Path(results_root(load_configs([root / path for path in config_files])))
+    config = load_configs([root / path for path in config_files])
+    results = Path(results_root(config))
     graph = rule_graph(target, config_files, root)
     outputs = rule_outputs(target, config_files, root)
     locations = rule_locations(root)
@@ -188,9 +214,12 @@ def trace(target: str, config_files: list[str] | None = None, root: Path | str =
         if rule in SKIPPED_RULES:
             continue
         rule_file, line, script = locations[rule]
-        # the rule grammar: only <document>_simulate_<engine> rules run an engine
-        simulation = "_simulate_" in rule
-        modules = package_modules(root / script, root, engines=simulation) if script else []
+        # the rule grammar: only <document>_simulate_<what> rules run an engine, through the
+        # front their jobs name (kinetic.studies); the others run what their script imports
+        if "_simulate_" in rule:
+            modules = front_modules(rule, config, root)
+        else:
+            modules = package_modules(root / script, root, engines=False) if script else []
         steps.append(Step(rule, rule_file, line, script, modules, outputs.get(rule, [])))
     inside = Path(target).is_relative_to(results)
     relative = Path(target).relative_to(results).parts if inside else ()

@@ -5,15 +5,15 @@ Every script in ``workflow/scripts`` starts with::
     from kinetic.workflow_support import start
     log = start(snakemake)
 
-or, for a simulation job whose rule passes the front's arguments as ``params.job``::
+or, for a simulation job (``workflow/scripts/simulate.py``, whose rule passes a
+``kinetic.studies.Job``'s front, arguments and provenance as ``params``)::
 
     from kinetic.workflow_support import run_job
-    log, job, dataset = run_job(snakemake, front)
+    run_job(snakemake)
 
 which sends the ``kinetic`` logger (progress lines with ETA) and uncaught exceptions to
 ``snakemake.log[0]`` as well as to standard error, and limits numba to the job's threads.
-A simulation job (``run_job``, or ``start_simulation`` for a script that calls its front
-itself) also makes sure numba's cache holds the compiled kernels of the engines it runs
+A simulation job also makes sure numba's cache holds the compiled kernels of the engines it runs
 before it runs them (``kinetic.jit.warm``): the first job after an edit compiles them
 under a lock, parallel jobs wait and load.
 """
@@ -24,7 +24,7 @@ import logging
 import sys
 from typing import Any
 
-__all__ = ["run_job", "start", "start_simulation", "warm_engines", "write_output"]
+__all__ = ["run_job", "start", "warm_engines", "write_output"]
 
 
 def start(snakemake: Any) -> logging.Logger:
@@ -68,13 +68,6 @@ def warm_engines(log: logging.Logger) -> None:
                 log.info("kinetic.%s kernels in numba's cache after %.1f s", engine, seconds)
 
 
-def start_simulation(snakemake: Any) -> logging.Logger:
-    """``start`` for a simulation job: logging, then the engines' kernels in the cache."""
-    log = start(snakemake)
-    warm_engines(log)
-    return log
-
-
 def write_output(
     snakemake: Any,
     dataset: Any,
@@ -106,15 +99,25 @@ def write_output(
     io.write_dataset(dataset, path)
 
 
-def run_job(snakemake: Any, front: Any) -> tuple[logging.Logger, dict, Any]:
-    """One simulation job: ``front(**params.job)`` written to the rule's output with the
-    job's seed, and a log line with its CPU time. Returns the logger, the job's arguments
-    and the dataset, for a script that logs more."""
-    log = start_simulation(snakemake)
+def run_job(snakemake: Any) -> tuple[logging.Logger, Any]:
+    """One simulation job: the front named by ``params.front`` (``module:function``, a
+    ``kinetic.studies.Job``'s) called with ``params.job``, written to the rule's output with
+    the job's seed and ``params.parameters`` stamped beside the front's own parameters,
+    and a log line with its CPU time. Numba's cache is filled for the engines the front
+    imports before it runs (:func:`warm_engines`). Returns the logger and the dataset."""
+    from kinetic import io, studies
+
+    log = start(snakemake)
+    front = studies.front(snakemake.params.front)
+    warm_engines(log)
     job = dict(snakemake.params.job)
     dataset = front(**job)
-    write_output(snakemake, dataset, job["seed"])
+    extra = dict(snakemake.params.parameters)
+    parameters = {**io.parameters_of(dataset), **extra} if extra else None
+    write_output(snakemake, dataset, job["seed"], parameters=parameters)
     if "cpu_seconds" in dataset:
         cpu = float(dataset["cpu_seconds"].sum())
-        log.info("wrote %s in %.1f CPU s", snakemake.output[0], cpu)
-    return log, job, dataset
+        log.info("wrote %s (%s, %.1f CPU s)", snakemake.output[0], snakemake.params.front, cpu)
+    else:
+        log.info("wrote %s (%s)", snakemake.output[0], snakemake.params.front)
+    return log, dataset

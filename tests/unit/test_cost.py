@@ -6,10 +6,12 @@ import pytest
 
 from kinetic import cost, plan
 from kinetic.cost import Estimate
+from kinetic.studies import Job
 
 
-def _job(seconds, memory_mb=0.0, document="d", output="results/x.nc"):
-    return plan.Job(document, "rule", output, Estimate(seconds, memory_mb, "work"))
+def _job(seconds, memory_mb=0.0, document="d", output="results/x.nc", benchmark=None):
+    estimate = Estimate(seconds, memory_mb, "work")
+    return Job(document, "rule", output, "m:f", {"seed": 1}, estimate, (), benchmark=benchmark)
 
 
 def test_requests_carry_the_safety_factors_and_double_on_every_retry():
@@ -142,7 +144,7 @@ def test_overruns_compare_the_cpu_time_a_job_used_with_its_request(tmp_path):
         (tmp_path / f"{name}.tsv").write_text(
             header + f"{wall}\t0:00:00\t10\t0\t0\t0\t0\t0\t0\t{cpu}\n"
         )
-        jobs.append(plan.Job("d", "rule", name, Estimate(10.0, 0.0, "work"), f"{name}.tsv"))
+        jobs.append(_job(10.0, output=name, benchmark=f"{name}.tsv"))
     checked, overruns = plan.benchmark_overruns(tmp_path, jobs)
     assert checked == 3
     assert [line.split(":")[0] for line in overruns] == ["overran", "unsampled"]

@@ -1,21 +1,21 @@
 """kinetic.sources: the package files a workflow script runs, read from its import
 statements, agree with what Python imports when the script runs; simulation rules list
-every module whose edit changes their numbers."""
+every module whose edit changes their jobs' numbers."""
 
-import ast
-import re
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
-from kinetic.sources import BOOKKEEPING, PACKAGE, script_sources, simulation_sources
+from kinetic import studies
+from kinetic.config import load_configs
+from kinetic.sources import BOOKKEEPING, PACKAGE, front_sources, script_sources
 from kinetic.trace import package_modules
 
 SCRIPTS = Path(__file__).resolve().parents[2] / "workflow" / "scripts"
-# scripts of the rules that join, analyse and plot (simulation rules list engine_sources)
-READING_SCRIPTS = sorted(path for path in SCRIPTS.glob("*.py") if "_simulate" not in path.stem)
+# scripts of the rules that join, analyse and plot (simulation rules list their fronts')
+READING_SCRIPTS = sorted(path for path in SCRIPTS.glob("*.py") if path.stem != "simulate")
 
 
 def test_imports_are_followed_through_the_package(tmp_path):
@@ -49,53 +49,43 @@ def test_static_reading_covers_what_the_script_imports(script, repository):
     assert imported <= static, sorted(map(str, imported - static))
 
 
-def _simulation_rules():
-    """(script, engines) of every simulation_code(...) call in the rule files."""
-    calls = set()
-    for path in (SCRIPTS.parent / "rules").rglob("*.smk"):
-        for args in re.findall(r"simulation_code\(([^)]*)\)", path.read_text()):
-            names = re.findall(r'"(\w+)"', args)
-            if names:  # not the helper's own definition
-                calls.add((names[0], tuple(names[1:])))
-    return sorted(calls)
+def _fronts():
+    """(front, engines) of every simulation job of the shipped configs."""
+    found = set()
+    for name in ("ci", "config", "paper"):
+        config = load_configs([SCRIPTS.parents[1] / "config" / f"{name}.yaml"])
+        found |= {(job.front, job.engines) for job in studies.jobs(config)}
+    return sorted(found)
 
 
-SIMULATIONS = _simulation_rules()
+FRONTS = _fronts()
 
 
-def test_every_simulation_rule_names_its_script_and_engines():
-    assert len(SIMULATIONS) >= 10
-    for name, engines in SIMULATIONS:
-        assert (SCRIPTS / f"{name}.py").is_file() and engines
+def test_every_engine_and_document_has_simulation_jobs():
+    assert len(FRONTS) >= 10
+    engines = {engine for _, names in FRONTS for engine in names}
+    assert engines == {"edmd", "dsmc", "cloning", "samplers"}
+    jobs = studies.jobs(load_configs([SCRIPTS.parents[1] / "config" / "ci.yaml"]))
+    assert {job.document for job in jobs} == set(studies.DOCUMENTS)
+    assert len({job.output for job in jobs}) == len(jobs)  # one job per file
 
 
-@pytest.mark.parametrize(
-    ("name", "engines"),
-    SIMULATIONS,
-    ids=lambda value: "-".join(value) if isinstance(value, tuple) else value,
-)
-def test_a_simulation_rerun_follows_every_module_its_imports_load(name, engines):
-    """Run the script's import statements in a fresh interpreter (fronts that a package
-    loads on first use included): every package module they load is an input of the
-    rule, unless it only names, writes or logs results."""
-    script = SCRIPTS / f"{name}.py"
-    imports = [
-        ast.unparse(node)
-        for node in ast.parse(script.read_text()).body
-        if isinstance(node, (ast.Import, ast.ImportFrom))
-    ]
-    probe = "\n".join(
-        [
-            *imports,
-            "import sys",
-            "print('\\n'.join(m.__file__ for n, m in list(sys.modules.items())"
-            " if n.split('.')[0] == 'kinetic' and getattr(m, '__file__', None)))",
-        ]
+@pytest.mark.parametrize(("front", "engines"), FRONTS, ids=lambda value: str(value))
+def test_a_simulation_rerun_follows_every_module_its_front_loads(front, engines):
+    """Import the front's module and take the front in a fresh interpreter (names that a
+    package loads on first use included): every package module loaded is an input of the
+    job's rule (kinetic.sources.front_sources), unless it only names, writes or logs."""
+    module, _, function = front.partition(":")
+    probe = (
+        f"import importlib, sys\n"
+        f"getattr(importlib.import_module({module!r}), {function!r})\n"
+        "print('\\n'.join(m.__file__ for n, m in list(sys.modules.items())"
+        " if n.split('.')[0] == 'kinetic' and getattr(m, '__file__', None)))"
     )
     loaded = subprocess.run(
         [sys.executable, "-c", probe], capture_output=True, text=True, check=True
     ).stdout.split()
     bookkeeping = {PACKAGE / f"{module}.py" for module in BOOKKEEPING}
     loaded = {Path(file).resolve() for file in loaded} - bookkeeping
-    inputs = {path.resolve() for path in simulation_sources(script, engines)}
+    inputs = {path.resolve() for path in front_sources(front, engines)}
     assert loaded and loaded <= inputs, sorted(map(str, loaded - inputs))

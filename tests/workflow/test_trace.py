@@ -7,7 +7,8 @@ import pytest
 
 import kinetic.trace
 from kinetic import dsmc, edmd
-from kinetic.trace import main, package_modules, trace
+from kinetic.config import load_configs
+from kinetic.trace import front_modules, main, trace
 
 pytestmark = pytest.mark.workflow
 FIG03 = "results/ci/montanero2007/fig03.pdf"
@@ -27,8 +28,9 @@ def test_montanero2007_fig03_runs_simulation_then_join_then_figure(repository, f
         "montanero2007_fig03",
     ]
     simulate, _, figure = result.steps
-    assert simulate.script == "workflow/scripts/montanero2007_simulate_dsmc.py"
-    # the engine front behind the study module, where it is written
+    assert simulate.script == "workflow/scripts/simulate.py"  # the one simulate script
+    # the jobs' front (the study's batch of a run), and the engine front behind it
+    assert simulate.modules[0] == "src/kinetic/studies/montanero2007.py"
     engine = inspect.getsourcefile(dsmc.simulate_homogeneous)
     assert str(repository / simulate.modules[-1]) == engine
     assert "src/kinetic/theory/montanero2007.py" in figure.modules
@@ -59,14 +61,15 @@ def test_every_rule_of_the_whole_build_is_located(repository):
 
 
 def test_re_exported_engine_fronts_resolve_to_their_defining_files(repository):
+    config = load_configs([repository / "config/ci.yaml"])
     for engine, front in (
         ("dsmc", dsmc.simulate_cooling_modes),
         ("md", edmd.simulate_cooling_modes),
     ):
-        script = repository / f"workflow/scripts/costantini2010_simulate_{engine}.py"
         defining = inspect.getsourcefile(front)
         assert not defining.endswith("__init__.py")  # the module that writes the front
-        assert str(repository / package_modules(script, repository)[0]) == defining
+        modules = front_modules(f"costantini2010_simulate_{engine}", config, repository)
+        assert [str(repository / module) for module in modules] == [defining]
 
 
 def test_command_prints_the_reading_list(fig03, capsys, monkeypatch):

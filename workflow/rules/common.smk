@@ -6,7 +6,7 @@ from snakemake.exceptions import WorkflowError
 
 from kinetic.config import ROOT_MARKER, ConfigError, results_root, validate_config
 from kinetic.seeds import derive_seed
-from kinetic.sources import script_sources, simulation_sources
+from kinetic.sources import front_sources, script_sources
 
 try:
     validate_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
@@ -120,15 +120,6 @@ def job_seed(key):
     return derive_seed(config["seed"], key)
 
 
-def simulation_code(name, *engines):
-    """Inputs of a simulation rule that runs workflow/scripts/<name>.py with ``engines``:
-    the package files whose edit changes its numbers (``kinetic.sources.simulation_sources``).
-    The script itself, an adapter that passes ``params`` to the front and logs, is not one:
-    the arguments it passes are ``params``, which Snakemake checks on its own."""
-    script = Path(workflow.basedir) / "workflow" / "scripts" / f"{name}.py"
-    return [str(path) for path in simulation_sources(script, engines)]
-
-
 def script_code(name):
     """workflow/scripts/<name>.py and every package file it runs (``kinetic.sources``,
     read from its imports): inputs of the rules that join, analyse and plot results, so an
@@ -163,15 +154,49 @@ from kinetic import plan as job_plan
 _PLANNED_JOBS = {}
 
 
-def planned_job(wildcards, rulename):
-    """The kinetic.plan entry of the job of ``rulename`` with these wildcards."""
+def planned_jobs():
+    """{output path: kinetic.studies.Job} of every simulation job of the config (with the
+    results root in the paths), computed once."""
     if not _PLANNED_JOBS:
         _PLANNED_JOBS.update(job_plan.jobs_by_output(config))
-    output = workflow.get_rule(rulename).output[0].apply_wildcards(wildcards)
+    return _PLANNED_JOBS
+
+
+def job_of(output):
+    """The simulation job that writes ``output``."""
     try:
-        return _PLANNED_JOBS[str(output)]
+        return planned_jobs()[str(output)]
     except KeyError:
-        raise WorkflowError(f"kinetic.plan has no cost estimate for {output} (rule {rulename})")
+        raise WorkflowError(f"no simulation job of the config writes {output}") from None
+
+
+def planned_job(wildcards, rulename):
+    """The job of ``rulename`` with these wildcards (for resources, which get no output)."""
+    return job_of(workflow.get_rule(rulename).output[0].apply_wildcards(wildcards))
+
+
+def job_code(rulename):
+    """Inputs of a simulation rule: every package file whose edit changes the numbers of
+    one of its jobs (``kinetic.sources.front_sources`` of each job's front and engines).
+    The simulate script itself only calls the front, with ``params``, which Snakemake
+    checks on its own."""
+    fronts = {(job.front, job.engines) for job in planned_jobs().values() if job.rule == rulename}
+    return sorted({str(path) for front, engines in fronts for path in front_sources(front, engines)})
+
+
+def job_front(wildcards, output):
+    """params.front of a simulation job: its front, ``module:function``."""
+    return job_of(output[0]).front
+
+
+def job_arguments(wildcards, output):
+    """params.job of a simulation job: the front's keyword arguments, the seed included."""
+    return dict(job_of(output[0]).arguments)
+
+
+def job_parameters(wildcards, output):
+    """params.parameters of a simulation job: provenance stamped beside the front's own."""
+    return dict(job_of(output[0]).parameters)
 
 
 def planned_runtime(wildcards, attempt, rulename):

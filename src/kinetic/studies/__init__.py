@@ -1,1 +1,75 @@
-"""Study drivers: which runs a document needs, in which batches, and how they combine."""
+"""Studies: from a document's config section to the simulation jobs it needs.
+
+Every document's study module (``kinetic.studies.<document>``) has ``jobs(config)``, the
+list of its simulation jobs as :class:`Job` records: the rule that runs it, the file it
+writes (relative to the results root), the engine front and its keyword arguments (the
+job's seed included), the provenance to stamp beside the front's own parameters, and
+the cost estimate. The workflow and ``kinetic.plan`` read the same list (:func:`jobs`):
+the rules take their ``params`` and ``resources`` from it, the plan its costs, and the
+one simulate script (``workflow/scripts/simulate.py``) calls ``front(**arguments)``.
+
+The modules are read while Snakemake parses the workflow: numpy at most, no numba, no
+xarray at import.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from kinetic.cost import Estimate
+
+__all__ = ["DOCUMENTS", "Job", "benchmark_file", "front", "jobs"]
+
+DOCUMENTS = ("visco2008", "montanero2007", "krauth2025", "costantini2010")
+"""The documents, each with a study module of its name."""
+
+
+@dataclass(frozen=True)
+class Job:
+    """One simulation job (see the module docstring).
+
+    ``front`` names the function that runs it as ``module:function``; ``engines`` the
+    engine packages whose compiled kernels it runs (their sources are the job's code
+    inputs, and ``kinetic.jit.warm`` fills their cache before the front runs);
+    ``parameters`` are stamped beside the ones the front stores (the run a batch belongs
+    to, say)."""
+
+    document: str
+    rule: str
+    output: str
+    front: str
+    arguments: Mapping[str, Any]
+    estimate: Estimate
+    engines: tuple[str, ...]
+    parameters: Mapping[str, Any] = field(default_factory=dict)
+    benchmark: str | None = None
+
+    @property
+    def seed(self) -> int:
+        """The seed of the job's random streams."""
+        return int(self.arguments["seed"])
+
+
+def benchmark_file(output: str) -> str:
+    """The Snakemake benchmark file of the job writing ``output`` (relative to the results
+    root's logs/): ``benchmarks/<output without .nc>.tsv``."""
+    return f"benchmarks/{output.removesuffix('.nc')}.tsv"
+
+
+def front(name: str):
+    """The function named ``module:function`` (a job's ``front``)."""
+    module, _, function = name.partition(":")
+    return getattr(importlib.import_module(module), function)
+
+
+def jobs(config: Mapping[str, Any]) -> list[Job]:
+    """Every simulation job of a validated config, document by document, in plan order
+    (paths relative to the results root)."""
+    found = []
+    for document in DOCUMENTS:
+        module = importlib.import_module(f"kinetic.studies.{document}")
+        found += module.jobs(config)
+    return found

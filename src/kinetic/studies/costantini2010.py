@@ -33,12 +33,15 @@ from dataclasses import dataclass
 from typing import Any
 
 from kinetic import batches, gas
+from kinetic.studies import Job, benchmark_file
 from kinetic.theory import costantini2010 as theory
 
 __all__ = [
+    "FRONTS",
     "METHODS",
     "Run",
     "batch_file",
+    "batch_plan",
     "check",
     "convergence_runs",
     "correlation_runs",
@@ -237,11 +240,58 @@ def batch_file(run: Run, job: batches.Job) -> str:
     return f"costantini2010/{run.engine}/{run.name}/{batches.batch_name(job.index)}.nc"
 
 
-def jobs(study: Mapping[str, Any]) -> list[batches.Job]:
-    """The jobs of every run (the same cut for all runs)."""
+def batch_plan(study: Mapping[str, Any]) -> list[batches.Job]:
+    """The cut of every run into jobs of realizations (the same for all runs)."""
     return batches.plan(
         realizations=study["realizations"], realizations_per_job=study["realizations_per_job"]
     )
+
+
+FRONTS = {
+    "dsmc": ("kinetic.dsmc:simulate_cooling_modes", "dsmc"),
+    "md": ("kinetic.edmd:simulate_cooling_modes", "edmd"),
+}
+"""Per engine key of a run: the front that runs it and its engine package."""
+
+
+def jobs(config: Mapping[str, Any]) -> list[Job]:
+    """The simulation jobs of the config's costantini2010 section (``kinetic.studies``):
+    every run of :func:`runs`, cut by :func:`batch_plan` into batches of realizations."""
+    from kinetic import cost
+    from kinetic.seeds import derive_seed
+
+    study = config.get("costantini2010")
+    if not study:
+        return []
+    found = []
+    for run in runs(study).values():
+        arguments = run.engine_arguments(study)
+        front, engine = FRONTS[run.engine]
+        seed = derive_seed(config["seed"], f"costantini2010/{run.engine}/{run.name}")
+        for job in batch_plan(study):
+            output = batch_file(run, job)
+            found.append(
+                Job(
+                    document="costantini2010",
+                    rule=f"costantini2010_simulate_{run.engine}",
+                    output=output,
+                    front=front,
+                    arguments=arguments
+                    | {
+                        "seed": seed,
+                        "first_realization": job.first_realization,
+                        "n_realizations": job.n_realizations,
+                        "label": f"costantini2010 {run.engine} {run.name} "
+                        f"{batches.batch_name(job.index)}",
+                    },
+                    estimate=cost.cooling_modes(
+                        engine=run.engine, n_realizations=job.n_realizations, **arguments
+                    ),
+                    engines=(engine,),
+                    benchmark=benchmark_file(output),
+                )
+            )
+    return found
 
 
 def check(study: Mapping[str, Any]) -> None:

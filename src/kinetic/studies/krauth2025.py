@@ -1,4 +1,5 @@
-"""krauth2025's disk study: whether the configured box can be sampled at all.
+"""The krauth2025 study: its simulation jobs (``jobs``), and whether the configured box
+can be sampled at all.
 
 The direct-disks sampler (Alg. 4.4) draws every disk uniformly and starts again on any
 overlap; when legal configurations are too rare it never returns. ``check_disks`` proves
@@ -16,9 +17,10 @@ from typing import Any
 
 import numpy as np
 
+from kinetic.studies import Job, benchmark_file
 from kinetic.theory.krauth2025 import check_disk_box
 
-__all__ = ["check_disks"]
+__all__ = ["LINE_RUNS", "check_disks", "disk_bins", "jobs", "line_bins", "line_name", "ring_bins"]
 
 
 def _legal_configuration(n_disks, sigma, box, tries, rng, chunk=20_000) -> bool:
@@ -49,3 +51,181 @@ def check_disks(disks: Mapping[str, Any], tries: int = 10**6, seed: int = 0) -> 
             f"direct-disks found no legal configuration of {n_disks} disks of radius "
             f"{sigma} in {tries} tries: too dense for tabula-rasa sampling"
         )
+
+
+LINE_RUNS = (("direct", "length"), ("naive", "naive_length"), ("direct", "naive_length"))
+"""The washing-line samples: (method, length key of config krauth2025.pins)."""
+
+
+def line_name(method: str, length: float) -> str:
+    """File stem of a washing-line sample: ``direct_L20``."""
+    return f"{method}_L{length:g}"
+
+
+def line_bins(pins: Mapping[str, Any], length: float) -> int:
+    """Bins of a line's histogram over [sigma, length - sigma): width about bin_width."""
+    return max(1, round((length - 2 * pins["sigma"]) / pins["bin_width"]))
+
+
+def ring_bins(ring: Mapping[str, Any]) -> int:
+    """Bins of the ring's histogram over [0, length): width about bin_width."""
+    return max(1, round(ring["length"] / ring["bin_width"]))
+
+
+def disk_bins(disks: Mapping[str, Any]) -> int:
+    """Bins of the disks' y-histograms across the box."""
+    return max(1, round((disks["box"][1] - 2 * disks["sigma"]) / disks["bin_width"]))
+
+
+def jobs(config: Mapping[str, Any]) -> list[Job]:
+    """The simulation jobs of the config's krauth2025 section (``kinetic.studies``): the
+    washing-line samples, the ring's chains and the snapshots (``kinetic.samplers``), and
+    the four disks by event-disks, direct-disks and markov-disks, and the chaos run. Each
+    job runs all its realizations."""
+    from kinetic import cost
+    from kinetic.seeds import derive_seed
+
+    section = config.get("krauth2025")
+    if not section:
+        return []
+    pins, ring, disks = section["pins"], section["ring"], section["disks"]
+
+    def job(rule, output, front, arguments, estimate, engines, benchmark=True):
+        seed = derive_seed(config["seed"], f"krauth2025/{output.removesuffix('.nc')}")
+        return Job(
+            document="krauth2025",
+            rule=rule,
+            output=f"krauth2025/{output}",
+            front=front,
+            arguments=arguments | {"seed": seed},
+            estimate=estimate,
+            engines=engines,
+            benchmark=benchmark_file(f"krauth2025/{output}") if benchmark else None,
+        )
+
+    found = []
+    for method, key in LINE_RUNS:
+        length = float(pins[key])
+        arguments = {
+            "method": method,
+            "n_pins": pins["n_pins"],
+            "length": length,
+            "sigma": pins["sigma"],
+            "samples": pins[f"{method}_samples"],
+            "realizations": pins["realizations"],
+            "bins": line_bins(pins, length),
+        }
+        estimate = cost.sampler_line(
+            method,
+            n_pins=pins["n_pins"],
+            length=length,
+            sigma=pins["sigma"],
+            samples=pins[f"{method}_samples"],
+            realizations=pins["realizations"],
+        )
+        found.append(
+            job(
+                "krauth2025_simulate_line",
+                f"pins/{line_name(method, length)}.nc",
+                "kinetic.samplers:sample_line",
+                arguments,
+                estimate,
+                ("samplers",),
+            )
+        )
+    keys = ("n_pins", "length", "sigma", "step", "sweeps", "burn_in", "realizations")
+    found.append(
+        job(
+            "krauth2025_simulate_ring",
+            "pins/ring.nc",
+            "kinetic.samplers:sample_ring",
+            {key: ring[key] for key in keys} | {"bins": ring_bins(ring)},
+            cost.sampler_ring(**ring),
+            ("samplers",),
+        )
+    )
+    found.append(
+        job(
+            "krauth2025_simulate_pin_snapshots",
+            "pins/snapshots.nc",
+            "kinetic.samplers:pin_snapshots",
+            {
+                "n_pins": pins["n_pins"],
+                "length": pins["length"],
+                "sigma": pins["sigma"],
+                "count": pins["snapshots"],
+            },
+            cost.small_job(),
+            ("samplers",),
+            benchmark=False,
+        )
+    )
+    found.append(
+        job(
+            "krauth2025_simulate_md",
+            "disks/md.nc",
+            "kinetic.edmd.disks:simulate_box",
+            {
+                "n_disks": disks["n_disks"],
+                "sigma": disks["sigma"],
+                "box": disks["box"],
+                "duration": disks["md_duration"],
+                "snapshot_interval": disks["snapshot_interval"],
+                "bins": disk_bins(disks),
+                "realizations": disks["realizations"],
+                "velocity_bins": disks["velocity_bins"],
+            },
+            cost.edmd_box(
+                n_disks=disks["n_disks"],
+                duration=disks["md_duration"],
+                realizations=disks["realizations"],
+            ),
+            ("edmd", "samplers"),
+        )
+    )
+    for method, samples in (("direct", "direct_samples"), ("markov", "markov_sweeps")):
+        found.append(
+            job(
+                "krauth2025_simulate_disks",
+                f"disks/{method}.nc",
+                "kinetic.samplers:sample_disks",
+                {
+                    "method": method,
+                    "n_disks": disks["n_disks"],
+                    "sigma": disks["sigma"],
+                    "box": disks["box"],
+                    "samples": disks[samples],
+                    "realizations": disks["sampler_realizations"],
+                    "bins": disk_bins(disks),
+                    "step": disks["markov_step"],
+                    "burn_in": disks["burn_in"],
+                },
+                cost.sampler_disks(
+                    method,
+                    n_disks=disks["n_disks"],
+                    samples=disks[samples],
+                    realizations=disks["sampler_realizations"],
+                    burn_in=disks["burn_in"] if method == "markov" else 0,
+                ),
+                ("samplers",),
+            )
+        )
+    found.append(
+        job(
+            "krauth2025_simulate_chaos",
+            "disks/chaos.nc",
+            "kinetic.edmd.disks:chaos",
+            {
+                "n_disks": disks["n_disks"],
+                "sigma": disks["sigma"],
+                "box": disks["box"],
+                "events": max(disks["chaos_events"], disks["snapshot_events"]),
+                "start": disks["start"],
+                "extra_starts": disks["chaos_starts"],
+            },
+            cost.small_job(),
+            ("edmd", "samplers"),
+            benchmark=False,
+        )
+    )
+    return found

@@ -30,9 +30,12 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from kinetic.studies import Job, benchmark_file
+
 __all__ = [
     "PROTOCOL_KEYS",
     "alpha_key",
+    "jobs",
     "join_run",
     "load_runs",
     "run_plan",
@@ -274,6 +277,51 @@ def simulate_batch(run: Mapping[str, Any], *, seed: int, first: int, count: int,
         label=label,
     )
     return dataset.assign_attrs(steady_from_tau=float(histogram_start))
+
+
+def jobs(config: Mapping[str, Any]) -> list[Job]:
+    """The simulation jobs of the config's montanero2007 section (``kinetic.studies``):
+    every run of :func:`run_plan` cut into batches, each ``simulate_batch`` of its
+    realizations, stamped with the run's name, family and setting."""
+    from kinetic import batches, cost
+    from kinetic.seeds import derive_seed
+
+    section = config.get("montanero2007")
+    if not section:
+        return []
+    found = []
+    for name, run in run_plan(section).items():
+        seed = derive_seed(config["seed"], f"montanero2007/{name}")
+        for job in batches.plan(
+            realizations=int(run["realizations"]),
+            realizations_per_job=int(run["realizations_per_job"]),
+        ):
+            batch = batches.batch_name(job.index)
+            output = f"montanero2007/runs/{name}/{batch}.nc"
+            found.append(
+                Job(
+                    document="montanero2007",
+                    rule="montanero2007_simulate_dsmc",
+                    output=output,
+                    front="kinetic.studies.montanero2007:simulate_batch",
+                    arguments={
+                        "run": dict(run),
+                        "seed": seed,
+                        "first": job.first_realization,
+                        "count": job.n_realizations,
+                        "label": f"montanero2007 {name} {batch}",
+                    },
+                    estimate=cost.dsmc_homogeneous(**{**run, "realizations": job.n_realizations}),
+                    engines=("dsmc",),
+                    parameters={
+                        "run": name,
+                        "family": run["family"],
+                        "setting": run.get("setting", ""),
+                    },
+                    benchmark=benchmark_file(output),
+                )
+            )
+    return found
 
 
 def join_run(paths: Sequence[Any]) -> Any:

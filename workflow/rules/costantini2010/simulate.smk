@@ -33,24 +33,8 @@ def costantini2010_batch_files(wildcards):
     run = costantini2010_run(wildcards)
     return [
         results_file(costantini2010_study.batch_file(run, job))
-        for job in costantini2010_study.jobs(config["costantini2010"])
+        for job in costantini2010_study.batch_plan(config["costantini2010"])
     ]
-
-
-def costantini2010_job(wildcards):
-    """Keyword arguments of simulate_cooling_modes for one job."""
-    study = config["costantini2010"]
-    run = costantini2010_run(wildcards)
-    plan = {f"{job.index:04d}": job for job in costantini2010_study.jobs(study)}
-    job = plan.get(wildcards.batch)
-    if job is None:
-        raise WorkflowError(f"costantini2010 run {run.name} has no job batch{wildcards.batch}")
-    return run.engine_arguments(study) | {
-        "seed": job_seed(f"costantini2010/{run.engine}/{run.name}"),
-        "first_realization": job.first_realization,
-        "n_realizations": job.n_realizations,
-        "label": f"costantini2010 {run.engine} {run.name} batch{wildcards.batch}",
-    }
 
 
 def costantini2010_analysis(wildcards):
@@ -68,7 +52,7 @@ def costantini2010_analysis(wildcards):
 
 rule costantini2010_simulate_dsmc:
     input:
-        code=simulation_code("costantini2010_simulate_dsmc", "dsmc"),
+        code=job_code("costantini2010_simulate_dsmc"),
     output:
         results_file("costantini2010/{engine}/{run}/batch{batch}.nc"),
     log:
@@ -76,7 +60,9 @@ rule costantini2010_simulate_dsmc:
     benchmark:
         log_file("benchmarks/costantini2010/{engine}/{run}/batch{batch}.tsv")
     params:
-        job=costantini2010_job,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     threads: 1
     resources:
         runtime=planned_runtime,
@@ -86,12 +72,12 @@ rule costantini2010_simulate_dsmc:
         run="[^/]+",
         batch="[0-9]{4}",
     script:
-        "../../scripts/costantini2010_simulate_dsmc.py"
+        "../../scripts/simulate.py"
 
 
 rule costantini2010_simulate_md:
     input:
-        code=simulation_code("costantini2010_simulate_md", "edmd"),
+        code=job_code("costantini2010_simulate_md"),
     output:
         results_file("costantini2010/{engine}/{run}/batch{batch}.nc"),
     log:
@@ -99,7 +85,9 @@ rule costantini2010_simulate_md:
     benchmark:
         log_file("benchmarks/costantini2010/{engine}/{run}/batch{batch}.tsv")
     params:
-        job=costantini2010_job,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     threads: 1
     resources:
         runtime=planned_runtime,
@@ -109,7 +97,7 @@ rule costantini2010_simulate_md:
         run="[^/]+",
         batch="[0-9]{4}",
     script:
-        "../../scripts/costantini2010_simulate_md.py"
+        "../../scripts/simulate.py"
 
 
 rule costantini2010_aggregate_run:

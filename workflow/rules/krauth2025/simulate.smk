@@ -4,82 +4,20 @@
 # markov-disks, the chaos run). Each job writes one netCDF file holding its histograms and
 # their standard errors; the exact curves beside them come from theory.smk.
 
+from kinetic.studies import krauth2025 as krauth2025_study
+
+
 def krauth2025_pins():
     return config["krauth2025"]["pins"]
 
 
 def krauth2025_line_files():
+    """The washing-line samples (kinetic.studies.krauth2025.LINE_RUNS)."""
     pins = krauth2025_pins()
     return [
-        results_file(f"krauth2025/pins/{method}_L{pins[key]:g}.nc")
-        for method, key in job_plan.LINE_RUNS
+        results_file(f"krauth2025/pins/{krauth2025_study.line_name(method, pins[key])}.nc")
+        for method, key in krauth2025_study.LINE_RUNS
     ]
-
-
-def krauth2025_line_length(method, token):
-    """The config length of a line run whose path carries ``token`` (looked up among the
-    runs of kinetic.plan.LINE_RUNS, not parsed); ``method`` None: any sampler."""
-    pins = krauth2025_pins()
-    lengths = {
-        (run_method, f"{pins[key]:g}"): float(pins[key])
-        for run_method, key in job_plan.LINE_RUNS
-        if method in (None, run_method)
-    }
-    matches = {value for (_, known), value in lengths.items() if known == token}
-    if not matches:
-        raise ValueError(
-            f"no krauth2025 pin run {method or ''} at length {token}: the config asks for "
-            f"{sorted(lengths)}"
-        )
-    return matches.pop()
-
-
-def krauth2025_line_bins(length):
-    """Bins of the line histograms over [sigma, length - sigma): width about bin_width."""
-    pins = krauth2025_pins()
-    return max(1, round((length - 2 * pins["sigma"]) / pins["bin_width"]))
-
-
-def krauth2025_ring_bins():
-    """Bins of the ring histogram over [0, length): width about bin_width."""
-    ring = config["krauth2025"]["ring"]
-    return max(1, round(ring["length"] / ring["bin_width"]))
-
-
-def krauth2025_line_job(wildcards):
-    """Keyword arguments of kinetic.samplers.sample_line for one line file."""
-    pins = krauth2025_pins()
-    length = krauth2025_line_length(wildcards.method, wildcards.length)
-    return {
-        "method": wildcards.method,
-        "n_pins": pins["n_pins"],
-        "length": length,
-        "sigma": pins["sigma"],
-        "samples": pins[f"{wildcards.method}_samples"],
-        "realizations": pins["realizations"],
-        "bins": krauth2025_line_bins(length),
-        "seed": job_seed(f"krauth2025/pins/{wildcards.method}_L{wildcards.length}"),
-    }
-
-
-def krauth2025_ring_job(wildcards):
-    ring = config["krauth2025"]["ring"]
-    keys = ("n_pins", "length", "sigma", "step", "sweeps", "burn_in", "realizations")
-    job = {key: ring[key] for key in keys}
-    job["bins"] = krauth2025_ring_bins()
-    job["seed"] = job_seed("krauth2025/pins/ring")
-    return job
-
-
-def krauth2025_snapshots_job(wildcards):
-    pins = krauth2025_pins()
-    return {
-        "n_pins": pins["n_pins"],
-        "length": pins["length"],
-        "sigma": pins["sigma"],
-        "count": pins["snapshots"],
-        "seed": job_seed("krauth2025/pins/snapshots"),
-    }
 
 
 def krauth2025_check_config():
@@ -110,7 +48,7 @@ krauth2025_check_config()
 
 rule krauth2025_simulate_line:
     input:
-        code=simulation_code("krauth2025_simulate_line", "samplers"),
+        code=job_code("krauth2025_simulate_line"),
     output:
         results_file("krauth2025/pins/{method}_L{length}.nc"),
     log:
@@ -118,7 +56,9 @@ rule krauth2025_simulate_line:
     benchmark:
         log_file("benchmarks/krauth2025/pins/{method}_L{length}.tsv")
     params:
-        job=krauth2025_line_job,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     wildcard_constraints:
         method="naive|direct",
         length="[0-9.]+",
@@ -126,12 +66,12 @@ rule krauth2025_simulate_line:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     script:
-        "../../scripts/krauth2025_simulate_line.py"
+        "../../scripts/simulate.py"
 
 
 rule krauth2025_simulate_ring:
     input:
-        code=simulation_code("krauth2025_simulate_ring", "samplers"),
+        code=job_code("krauth2025_simulate_ring"),
     output:
         results_file("krauth2025/pins/ring.nc"),
     log:
@@ -139,28 +79,32 @@ rule krauth2025_simulate_ring:
     benchmark:
         log_file("benchmarks/krauth2025/pins/ring.tsv")
     params:
-        job=krauth2025_ring_job,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     resources:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     script:
-        "../../scripts/krauth2025_simulate_ring.py"
+        "../../scripts/simulate.py"
 
 
 rule krauth2025_simulate_pin_snapshots:
     input:
-        code=simulation_code("krauth2025_simulate_pin_snapshots", "samplers"),
+        code=job_code("krauth2025_simulate_pin_snapshots"),
     output:
         results_file("krauth2025/pins/snapshots.nc"),
     log:
         log_file("krauth2025/pins/snapshots.log"),
     params:
-        job=krauth2025_snapshots_job,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     resources:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     script:
-        "../../scripts/krauth2025_simulate_pin_snapshots.py"
+        "../../scripts/simulate.py"
 
 
 # ------------------------------------------------------------------ hard disks in a box
@@ -170,56 +114,6 @@ rule krauth2025_simulate_pin_snapshots:
 
 def krauth2025_disks():
     return config["krauth2025"]["disks"]
-
-
-def krauth2025_disk_bins():
-    disks = krauth2025_disks()
-    return max(1, round((disks["box"][1] - 2 * disks["sigma"]) / disks["bin_width"]))
-
-
-def krauth2025_md_job(wildcards):
-    disks = krauth2025_disks()
-    return {
-        "n_disks": disks["n_disks"],
-        "sigma": disks["sigma"],
-        "box": disks["box"],
-        "duration": disks["md_duration"],
-        "snapshot_interval": disks["snapshot_interval"],
-        "bins": krauth2025_disk_bins(),
-        "realizations": disks["realizations"],
-        "velocity_bins": disks["velocity_bins"],
-        "seed": job_seed("krauth2025/disks/md"),
-    }
-
-
-def krauth2025_sampler_job(wildcards):
-    disks = krauth2025_disks()
-    markov = wildcards.method == "markov"
-    return {
-        "method": wildcards.method,
-        "n_disks": disks["n_disks"],
-        "sigma": disks["sigma"],
-        "box": disks["box"],
-        "samples": disks["markov_sweeps" if markov else "direct_samples"],
-        "realizations": disks["sampler_realizations"],
-        "bins": krauth2025_disk_bins(),
-        "step": disks["markov_step"],
-        "burn_in": disks["burn_in"],
-        "seed": job_seed(f"krauth2025/disks/{wildcards.method}"),
-    }
-
-
-def krauth2025_chaos_job(wildcards):
-    disks = krauth2025_disks()
-    return {
-        "n_disks": disks["n_disks"],
-        "sigma": disks["sigma"],
-        "box": disks["box"],
-        "events": max(disks["chaos_events"], disks["snapshot_events"]),
-        "start": disks["start"],
-        "extra_starts": disks["chaos_starts"],
-        "seed": job_seed("krauth2025/disks/chaos"),
-    }
 
 
 def krauth2025_check_disks():
@@ -237,7 +131,7 @@ krauth2025_check_disks()
 
 rule krauth2025_simulate_md:
     input:
-        code=simulation_code("krauth2025_simulate_md", "edmd", "samplers"),
+        code=job_code("krauth2025_simulate_md"),
     output:
         results_file("krauth2025/disks/md.nc"),
     log:
@@ -245,17 +139,19 @@ rule krauth2025_simulate_md:
     benchmark:
         log_file("benchmarks/krauth2025/disks/md.tsv")
     params:
-        job=krauth2025_md_job,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     resources:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     script:
-        "../../scripts/krauth2025_simulate_md.py"
+        "../../scripts/simulate.py"
 
 
 rule krauth2025_simulate_disks:
     input:
-        code=simulation_code("krauth2025_simulate_disks", "samplers"),
+        code=job_code("krauth2025_simulate_disks"),
     output:
         results_file("krauth2025/disks/{method}.nc"),
     log:
@@ -263,27 +159,31 @@ rule krauth2025_simulate_disks:
     benchmark:
         log_file("benchmarks/krauth2025/disks/{method}.tsv")
     params:
-        job=krauth2025_sampler_job,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     wildcard_constraints:
         method="direct|markov",
     resources:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     script:
-        "../../scripts/krauth2025_simulate_disks.py"
+        "../../scripts/simulate.py"
 
 
 rule krauth2025_simulate_chaos:
     input:
-        code=simulation_code("krauth2025_simulate_chaos", "edmd", "samplers"),
+        code=job_code("krauth2025_simulate_chaos"),
     output:
         results_file("krauth2025/disks/chaos.nc"),
     log:
         log_file("krauth2025/disks/chaos.log"),
     params:
-        job=krauth2025_chaos_job,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     resources:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     script:
-        "../../scripts/krauth2025_simulate_chaos.py"
+        "../../scripts/simulate.py"

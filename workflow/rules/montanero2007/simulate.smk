@@ -49,25 +49,6 @@ def montanero2007_run_batches(wildcards):
     return montanero2007_batch_files(wildcards.run)
 
 
-def montanero2007_run_parameters(wildcards):
-    """Parameters of the run named by the wildcard (protocol merged with overrides)."""
-    return montanero2007_runs()[wildcards.run]
-
-
-def montanero2007_batch(wildcards):
-    """(first realization, count) of one job."""
-    jobs = montanero2007_jobs(wildcards.run)
-    index = int(wildcards.batch.removeprefix("batch"))
-    if index >= len(jobs):
-        raise ValueError(f"run {wildcards.run} has {len(jobs)} jobs, not {wildcards.batch}")
-    return {"first": jobs[index].first_realization, "count": jobs[index].n_realizations}
-
-
-def montanero2007_seed(wildcards):
-    """One seed per run; realization k uses stream row k, whatever the batching."""
-    return job_seed(f"montanero2007/{wildcards.run}")
-
-
 def montanero2007_run_names():
     """Wildcard constraint: the run names of the plan, nothing else."""
     return "|".join(sorted(montanero2007_runs()))
@@ -75,7 +56,7 @@ def montanero2007_run_names():
 
 rule montanero2007_simulate_dsmc:
     input:
-        code=simulation_code("montanero2007_simulate_dsmc", "dsmc"),
+        code=job_code("montanero2007_simulate_dsmc"),
     output:
         results_file("montanero2007/runs/{run}/{batch}.nc"),
     log:
@@ -83,9 +64,9 @@ rule montanero2007_simulate_dsmc:
     benchmark:
         log_file("benchmarks/montanero2007/runs/{run}/{batch}.tsv")
     params:
-        run=montanero2007_run_parameters,
-        batch=montanero2007_batch,
-        seed=montanero2007_seed,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     threads: 1
     wildcard_constraints:
         run=montanero2007_run_names(),
@@ -94,7 +75,7 @@ rule montanero2007_simulate_dsmc:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     script:
-        "../../scripts/montanero2007_simulate_dsmc.py"
+        "../../scripts/simulate.py"
 
 
 rule montanero2007_aggregate_run:

@@ -8,6 +8,7 @@ import math
 import re
 
 from kinetic import batches
+from kinetic.studies import visco2008 as visco2008_study
 from kinetic.studies import visco2008_cloning as cloning_plan
 
 BATCH = r"batch[0-9]{4}"
@@ -24,19 +25,18 @@ def _check_visco2008_md():
     """The config section visco2008.md, checked before any job starts: every run's first
     job by the MD front's own checks (kinetic.edmd.arguments.check_simulate, numpy only), then what
     only the config knows (the windows the table and figures use, the figure's run)."""
-    from types import SimpleNamespace
-
     from kinetic.edmd.arguments import check_simulate
 
     md = visco2008_md()
     windows = md["windows"]
     problems = []
-    for run in md["densities"]:
-        job = visco2008_md_job(SimpleNamespace(run=run, batch=batches.batch_name(0)))
+    for job in visco2008_study.md_jobs(config):
+        if job.arguments["first_realization"] != 0:
+            continue
         try:
-            check_simulate(**job)
+            check_simulate(**job.arguments)
         except (TypeError, ValueError) as error:
-            problems.append(f"run {run}: {error}")
+            problems.append(f"run {job.output.split('/')[2]}: {error}")
     for key in ("table_windows", "ldf_windows", "extrapolation_windows"):
         missing = [t for t in md[key] if t not in windows]
         if missing:
@@ -75,29 +75,6 @@ def visco2008_md_batch_files(wildcards):
     ]
 
 
-def visco2008_md_job(wildcards):
-    """Keyword arguments of kinetic.edmd.simulate for one job."""
-    md = visco2008_md()
-    job = visco2008_md_jobs()[int(wildcards.batch.removeprefix("batch"))]
-    return {
-        "n_particles": md["n_particles"],
-        "density": md["densities"][wildcards.run],
-        "seed": job_seed(f"visco2008/md/{wildcards.run}"),
-        "realizations": job.n_realizations,
-        "first_realization": job.first_realization,
-        "equilibration": md["equilibration"],
-        "duration": md["duration"],
-        "windows": md["windows"],
-        "checkpoints": md["checkpoints"],
-        "flight_time_max": md["flight_time_max"],
-        "flight_time_bins": md["flight_time_bins"],
-        "free_path_max": md["free_path_max"],
-        "free_path_bins": md["free_path_bins"],
-        "cell_occupancy": md["cell_occupancy"],
-        "label": f"visco2008 md {wildcards.run} {wildcards.batch}",
-    }
-
-
 _check_visco2008_md()
 
 
@@ -116,7 +93,7 @@ def visco2008_md_runs():
 
 rule visco2008_simulate_md:
     input:
-        code=simulation_code("visco2008_simulate_md", "edmd"),
+        code=job_code("visco2008_simulate_md"),
     output:
         results_file("visco2008/md/{run}/{batch}.nc"),
     log:
@@ -124,7 +101,9 @@ rule visco2008_simulate_md:
     benchmark:
         log_file("benchmarks/visco2008/md/{run}/{batch}.tsv")
     params:
-        simulation=visco2008_md_job,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     threads: 1
     wildcard_constraints:
         run=visco2008_md_runs(),
@@ -133,7 +112,7 @@ rule visco2008_simulate_md:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     script:
-        "../../scripts/visco2008_simulate_md.py"
+        "../../scripts/simulate.py"
 
 
 rule visco2008_aggregate_md:
@@ -186,32 +165,9 @@ def visco2008_dsmc_batch_files(wildcards):
     ]
 
 
-def visco2008_dsmc_job(wildcards):
-    """Keyword arguments of kinetic.dsmc.simulate_free_flights for one job."""
-    settings = visco2008_dsmc_run(wildcards.run)
-    jobs = visco2008_dsmc_jobs(wildcards.run)
-    index = int(wildcards.batch.removeprefix("batch"))
-    if index >= len(jobs):
-        raise ValueError(f"run {wildcards.run} has no job {index}")
-    return {
-        "kernel": settings["kernel"],
-        "dimension": settings["dimension"],
-        "n_particles": settings["n_particles"],
-        "duration": settings["duration"],
-        "seed": job_seed(f"visco2008/dsmc/{wildcards.run}"),
-        "first_realization": jobs[index].first_realization,
-        "n_realizations": jobs[index].n_realizations,
-        "max_flight_time": settings["max_flight_time"],
-        "n_time_bins": settings["time_bins"],
-        "max_free_path": settings["max_free_path"],
-        "n_path_bins": settings["path_bins"],
-        "label": f"visco2008 dsmc {wildcards.run} {wildcards.batch}",
-    }
-
-
 rule visco2008_simulate_dsmc:
     input:
-        code=simulation_code("visco2008_simulate_dsmc", "dsmc"),
+        code=job_code("visco2008_simulate_dsmc"),
     output:
         results_file("visco2008/dsmc/{run}/{batch}.nc"),
     log:
@@ -219,7 +175,9 @@ rule visco2008_simulate_dsmc:
     benchmark:
         log_file("benchmarks/visco2008/dsmc/{run}/{batch}.tsv")
     params:
-        job=visco2008_dsmc_job,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     threads: 1
     wildcard_constraints:
         run="|".join(VISCO2008_DSMC_RUNS),
@@ -228,7 +186,7 @@ rule visco2008_simulate_dsmc:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     script:
-        "../../scripts/visco2008_simulate_dsmc.py"
+        "../../scripts/simulate.py"
 
 
 rule visco2008_aggregate_dsmc:
@@ -269,26 +227,10 @@ def visco2008_cloning_error_batches(wildcards):
     return visco2008_cloning_batch_files("error_vs_time")
 
 
-def visco2008_cloning_job(wildcards):
-    """Keyword arguments of kinetic.cloning.simulate for the batch named by the wildcards."""
-    key = cloning_plan.point_seed_key(
-        wildcards.study, wildcards.kernel, wildcards.point, wildcards.size
-    )
-    return cloning_plan.job_parameters(
-        visco2008_cloning(),
-        wildcards.study,
-        wildcards.kernel,
-        wildcards.point,
-        wildcards.size,
-        int(wildcards.batch.removeprefix("batch")),
-        job_seed(key),
-    )
-
-
 rule visco2008_simulate_cloning:
     input:
         # the engine and the collision rate it scales time by (kinetic.cloning.rates)
-        code=simulation_code("visco2008_simulate_cloning", "cloning"),
+        code=job_code("visco2008_simulate_cloning"),
     output:
         results_file("visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.nc"),
     log:
@@ -296,7 +238,9 @@ rule visco2008_simulate_cloning:
     benchmark:
         log_file("benchmarks/visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.tsv")
     params:
-        job=visco2008_cloning_job,
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     threads: 1
     wildcard_constraints:
         study="scan|error_vs_time",
@@ -308,7 +252,7 @@ rule visco2008_simulate_cloning:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     script:
-        "../../scripts/visco2008_simulate_cloning.py"
+        "../../scripts/simulate.py"
 
 
 rule visco2008_aggregate_cloning:

@@ -1,0 +1,169 @@
+"""The visco2008 study: its simulation jobs.
+
+- molecular dynamics (``kinetic.edmd.simulate``, §IV.B): one run per density of the config's
+  ``md.densities``, each cut into batches of realizations;
+- homogeneous DSMC (``kinetic.dsmc.simulate_free_flights``, Figs 1 and 12): one run per
+  entry of ``dsmc``;
+- the cloning Monte Carlo (``kinetic.cloning.simulate``, §IV.A): one run per point
+  (kernel, λ, N_c) of the scan and of the error study (``kinetic.studies.visco2008_cloning``).
+
+Realization k of a run always uses stream k of the run's seed, so the data do not depend on
+the cut into jobs.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from kinetic.studies import Job, benchmark_file
+from kinetic.studies import visco2008_cloning as cloning_plan
+
+__all__ = ["cloning_jobs", "dsmc_jobs", "jobs", "md_arguments", "md_jobs"]
+
+
+def md_arguments(md: Mapping[str, Any], run: str) -> dict[str, Any]:
+    """Keyword arguments of ``kinetic.edmd.simulate`` shared by every job of MD run
+    ``run`` (without the seed, the realization range and the label)."""
+    return {
+        "n_particles": md["n_particles"],
+        "density": md["densities"][run],
+        "equilibration": md["equilibration"],
+        "duration": md["duration"],
+        "windows": md["windows"],
+        "checkpoints": md["checkpoints"],
+        "flight_time_max": md["flight_time_max"],
+        "flight_time_bins": md["flight_time_bins"],
+        "free_path_max": md["free_path_max"],
+        "free_path_bins": md["free_path_bins"],
+        "cell_occupancy": md["cell_occupancy"],
+    }
+
+
+def md_jobs(config: Mapping[str, Any]) -> list[Job]:
+    """The MD jobs (every density's run cut into batches)."""
+    from kinetic import batches, cost
+    from kinetic.seeds import derive_seed
+
+    md = config.get("visco2008", {}).get("md")
+    if not md:
+        return []
+    found = []
+    for run, density in md["densities"].items():
+        seed = derive_seed(config["seed"], f"visco2008/md/{run}")
+        for job in batches.plan(
+            realizations=md["realizations"], realizations_per_job=md["realizations_per_job"]
+        ):
+            batch = batches.batch_name(job.index)
+            output = f"visco2008/md/{run}/{batch}.nc"
+            arguments = md_arguments(md, run) | {
+                "seed": seed,
+                "realizations": job.n_realizations,
+                "first_realization": job.first_realization,
+                "label": f"visco2008 md {run} {batch}",
+            }
+            estimate = cost.edmd_periodic(
+                n_particles=md["n_particles"],
+                density=density,
+                realizations=job.n_realizations,
+                equilibration=md["equilibration"],
+                duration=md["duration"],
+            )
+            found.append(
+                Job(
+                    document="visco2008",
+                    rule="visco2008_simulate_md",
+                    output=output,
+                    front="kinetic.edmd:simulate",
+                    arguments=arguments,
+                    estimate=estimate,
+                    engines=("edmd",),
+                    benchmark=benchmark_file(output),
+                )
+            )
+    return found
+
+
+def dsmc_jobs(config: Mapping[str, Any]) -> list[Job]:
+    """The DSMC jobs of Figs 1 and 12 (every run cut into batches)."""
+    from kinetic import batches, cost
+    from kinetic.seeds import derive_seed
+
+    found = []
+    for run, settings in config.get("visco2008", {}).get("dsmc", {}).items():
+        seed = derive_seed(config["seed"], f"visco2008/dsmc/{run}")
+        for job in batches.plan(
+            realizations=settings["realizations"],
+            realizations_per_job=settings["realizations_per_job"],
+        ):
+            batch = batches.batch_name(job.index)
+            output = f"visco2008/dsmc/{run}/{batch}.nc"
+            arguments = {
+                "kernel": settings["kernel"],
+                "dimension": settings["dimension"],
+                "n_particles": settings["n_particles"],
+                "duration": settings["duration"],
+                "seed": seed,
+                "first_realization": job.first_realization,
+                "n_realizations": job.n_realizations,
+                "max_flight_time": settings["max_flight_time"],
+                "n_time_bins": settings["time_bins"],
+                "max_free_path": settings["max_free_path"],
+                "n_path_bins": settings["path_bins"],
+                "label": f"visco2008 dsmc {run} {batch}",
+            }
+            estimate = cost.dsmc_free_flights(
+                n_particles=settings["n_particles"],
+                duration=settings["duration"],
+                n_realizations=job.n_realizations,
+            )
+            found.append(
+                Job(
+                    document="visco2008",
+                    rule="visco2008_simulate_dsmc",
+                    output=output,
+                    front="kinetic.dsmc:simulate_free_flights",
+                    arguments=arguments,
+                    estimate=estimate,
+                    engines=("dsmc",),
+                    benchmark=benchmark_file(output),
+                )
+            )
+    return found
+
+
+def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
+    """The cloning jobs of the scan and of the error study (every point cut into batches)."""
+    from kinetic import batches, cost
+    from kinetic.seeds import derive_seed
+
+    section = config.get("visco2008", {}).get("cloning")
+    if not section:
+        return []
+    found = []
+    for study in ("scan", "error_vs_time"):
+        for kernel, point, size, index in cloning_plan.batch_keys(section, study):
+            key = cloning_plan.point_seed_key(study, kernel, point, size)
+            batch = batches.batch_name(index)
+            arguments = cloning_plan.job_parameters(
+                section, study, kernel, point, size, index, derive_seed(config["seed"], key)
+            )
+            output = f"visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.nc"
+            found.append(
+                Job(
+                    document="visco2008",
+                    rule="visco2008_simulate_cloning",
+                    output=output,
+                    front="kinetic.cloning:simulate",
+                    arguments=arguments | {"label": f"cloning {kernel} {point} {size} {batch}"},
+                    estimate=cost.cloning_batch(**arguments),
+                    engines=("cloning",),
+                    benchmark=benchmark_file(output),
+                )
+            )
+    return found
+
+
+def jobs(config: Mapping[str, Any]) -> list[Job]:
+    """Every visco2008 simulation job (``kinetic.studies``): MD, DSMC, cloning."""
+    return md_jobs(config) + dsmc_jobs(config) + cloning_jobs(config)
