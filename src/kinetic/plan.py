@@ -317,6 +317,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--jobs", action="store_true", help="also list every job")
     arguments = parser.parse_args(argv)
     config = load_configs(arguments.configfile)
+    try:
+        studies.check(config)
+    except ValueError as error:
+        print(error, file=sys.stderr)
+        return 1
     jobs = plan_jobs(config)
     print(summary_table(jobs))
     if arguments.jobs:

@@ -18,7 +18,7 @@ def section(name="config.yaml"):
 @pytest.mark.parametrize("name", ["ci.yaml", "config.yaml", "paper.yaml"])
 def test_every_shipped_config_gives_named_runs_and_passes_the_checks(name):
     settings = section(name)
-    study.check(settings)
+    study.check({"costantini2010": settings})
     runs = study.runs(settings)
     assert len(runs) == len(set(runs))
     for name_, run in runs.items():
@@ -61,11 +61,17 @@ def test_engine_units():
 def test_unstable_sizes_are_refused_with_the_bound():
     settings = section() | {"density": 0.01, "restitutions": [1.0, 0.5], "particles": [3000]}
     with pytest.raises(ValueError, match=r"L_c|critical|unstable"):
-        study.check(settings)
+        study.check({"costantini2010": settings})
 
 
 def test_a_sample_interval_the_time_step_does_not_divide_is_refused():
     settings = section()
     settings["dsmc"] = settings["dsmc"] | {"time_step": 0.03}
     with pytest.raises(ValueError, match="whole multiple"):
-        study.check(settings)
+        study.check({"costantini2010": settings})
+
+
+def test_keys_that_contradict_each_other_are_refused():
+    settings = section() | {"fit_start": 10, "max_lag": 3}
+    with pytest.raises(ValueError, match="fit_start = 10 l/v_s starts the tail fit"):
+        study.check({"costantini2010": settings})

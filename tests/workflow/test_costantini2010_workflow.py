@@ -56,6 +56,7 @@ def test_convergence_figure_plans_only_elastic_dsmc_runs(tmp_path):
     [
         ({"density": 0.01, "particles": [3000], "restitutions": [0.5]}, "shear-unstable"),
         ({"sample_interval": 0.07}, "whole multiple"),
+        ({"fit_start": 10, "max_lag": 3}, "fit_start = 10 l/v_s starts the tail fit"),
     ],
 )
 def test_impossible_costantini2010_configs_stop_before_any_job(tmp_path, changes, message):

@@ -8,9 +8,12 @@ from kinetic.config import ROOT_MARKER, ConfigError, results_root, validate_conf
 from kinetic.seeds import derive_seed
 from kinetic.sources import front_sources, script_sources
 
+from kinetic import studies
+
 try:
     validate_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
-except ConfigError as error:
+    studies.check(config)  # what the schema cannot judge, study by study
+except (ConfigError, ValueError) as error:
     raise WorkflowError(str(error)) from None
 
 PAPERS = ["visco2008", "montanero2007", "krauth2025", "costantini2010"]

@@ -1,7 +1,8 @@
 """Studies: from a document's config section to the simulation jobs it needs.
 
-Every document's study module (``kinetic.studies.<document>``) has ``jobs(config)``, the
-list of its simulation jobs as :class:`Job` records: the rule that runs it, the file it
+Every document's study module (``kinetic.studies.<document>``) has ``check(config)``, which
+refuses what the schema cannot judge before any job, and ``jobs(config)``, the list of its
+simulation jobs as :class:`Job` records: the rule that runs it, the file it
 writes (relative to the results root), the engine front and its keyword arguments (the
 job's seed included), the provenance to stamp beside the front's own parameters, and
 the cost estimate. The workflow and ``kinetic.plan`` read the same list (:func:`jobs`):
@@ -21,7 +22,7 @@ from typing import Any
 
 from kinetic.cost import Estimate
 
-__all__ = ["DOCUMENTS", "Job", "benchmark_file", "front", "jobs"]
+__all__ = ["DOCUMENTS", "Job", "benchmark_file", "check", "front", "jobs"]
 
 DOCUMENTS = ("visco2008", "montanero2007", "krauth2025", "costantini2010")
 """The documents, each with a study module of its name."""
@@ -65,9 +66,17 @@ def front(name: str):
     return getattr(importlib.import_module(module), function)
 
 
+def check(config: Mapping[str, Any]) -> None:
+    """Every study's ``check(config)``: what the schema cannot judge (keys that contradict
+    each other, a box that cannot hold its particles, arguments an engine's front would
+    refuse), a ValueError naming the key before any job."""
+    for document in DOCUMENTS:
+        importlib.import_module(f"kinetic.studies.{document}").check(config)
+
+
 def jobs(config: Mapping[str, Any]) -> list[Job]:
-    """Every simulation job of a validated config, document by document, in plan order
-    (paths relative to the results root)."""
+    """Every simulation job of a validated and checked config (:func:`check`), document by
+    document, in plan order (paths relative to the results root)."""
     found = []
     for document in DOCUMENTS:
         module = importlib.import_module(f"kinetic.studies.{document}")

@@ -294,10 +294,26 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
     return found
 
 
-def check(study: Mapping[str, Any]) -> None:
-    """Stop before any job on what the schema cannot judge: an (N, α) at or beyond the
+def check(config: Mapping[str, Any]) -> None:
+    """Stop before any job on what the schema cannot judge: keys that contradict each
+    other (a tail fit starting beyond the longest lag of C), an (N, α) at or beyond the
     shear instability (L >= L_c, where τ_c diverges), a sample interval that the DSMC
     steps do not divide."""
+    study = config.get("costantini2010")
+    if not study:
+        return
+    try:
+        _check(study)
+    except ValueError as error:
+        raise ValueError(f"config section costantini2010: {error}") from None
+
+
+def _check(study: Mapping[str, Any]) -> None:
+    if study["fit_start"] >= study["max_lag"]:
+        raise ValueError(
+            f"fit_start = {study['fit_start']} l/v_s starts the tail fit of C at or beyond "
+            f"its longest lag max_lag = {study['max_lag']} l/v_s"
+        )
     for run in runs(study).values():
         theory.check_stable(run.n_particles, study["density"], run.restitution)
         run.engine_arguments(study)

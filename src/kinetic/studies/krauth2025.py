@@ -20,7 +20,16 @@ import numpy as np
 from kinetic.studies import Job, benchmark_file
 from kinetic.theory.krauth2025 import check_disk_box
 
-__all__ = ["LINE_RUNS", "check_disks", "disk_bins", "jobs", "line_bins", "line_name", "ring_bins"]
+__all__ = [
+    "LINE_RUNS",
+    "check",
+    "check_disks",
+    "disk_bins",
+    "jobs",
+    "line_bins",
+    "line_name",
+    "ring_bins",
+]
 
 
 def _legal_configuration(n_disks, sigma, box, tries, rng, chunk=20_000) -> bool:
@@ -75,6 +84,37 @@ def ring_bins(ring: Mapping[str, Any]) -> int:
 def disk_bins(disks: Mapping[str, Any]) -> int:
     """Bins of the disks' y-histograms across the box."""
     return max(1, round((disks["box"][1] - 2 * disks["sigma"]) / disks["bin_width"]))
+
+
+def check(config: Mapping[str, Any]) -> None:
+    """Stop before any job on values the schema cannot judge alone: lines and rings too
+    short for their pins, a naive-pin run that would take forever, a box that cannot hold
+    the disks (:func:`check_disks`)."""
+    from kinetic.theory.krauth2025 import check_naive_starts, check_pins
+
+    section = config.get("krauth2025")
+    if not section:
+        return
+    pins, ring = section["pins"], section["ring"]
+    try:
+        for key in ("length", "naive_length"):
+            check_pins(pins["n_pins"], pins[key], pins["sigma"])
+        check_pins(ring["n_pins"], ring["length"], ring["sigma"])
+    except ValueError as error:
+        raise ValueError(f"config krauth2025: {error}") from None
+    if ring["step"] > ring["length"] / 2:
+        raise ValueError(
+            f"config krauth2025.ring.step = {ring['step']} exceeds half the ring length"
+        )
+    try:
+        samples = pins["naive_samples"] * pins["realizations"]
+        check_naive_starts(pins["n_pins"], pins["naive_length"], pins["sigma"], samples)
+    except ValueError as error:
+        raise ValueError(f"config krauth2025.pins (naive_length): {error}") from None
+    try:
+        check_disks(section["disks"])
+    except ValueError as error:
+        raise ValueError(f"config krauth2025.disks: {error}") from None
 
 
 def jobs(config: Mapping[str, Any]) -> list[Job]:

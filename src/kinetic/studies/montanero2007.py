@@ -35,6 +35,7 @@ from kinetic.studies import Job, benchmark_file
 __all__ = [
     "PROTOCOL_KEYS",
     "alpha_key",
+    "check",
     "jobs",
     "join_run",
     "load_runs",
@@ -277,6 +278,12 @@ def simulate_batch(run: Mapping[str, Any], *, seed: int, first: int, count: int,
         label=label,
     )
     return dataset.assign_attrs(steady_from_tau=float(histogram_start))
+
+
+def check(config: Mapping[str, Any]) -> None:
+    """Stop before any job on a plan the schema cannot judge (:func:`run_plan` raises)."""
+    if config.get("montanero2007"):
+        run_plan(config["montanero2007"])
 
 
 def jobs(config: Mapping[str, Any]) -> list[Job]:

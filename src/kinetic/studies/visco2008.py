@@ -19,7 +19,38 @@ from typing import Any
 from kinetic.studies import Job, benchmark_file
 from kinetic.studies import visco2008_cloning as cloning_plan
 
-__all__ = ["cloning_jobs", "dsmc_jobs", "jobs", "md_arguments", "md_jobs"]
+__all__ = ["check", "cloning_jobs", "dsmc_jobs", "jobs", "md_arguments", "md_jobs"]
+
+
+def check(config: Mapping[str, Any]) -> None:
+    """The MD section, before any job: every run's first job by the MD front's own checks
+    (``kinetic.edmd.arguments.check_simulate``, numpy only), then what only the config
+    knows (the windows the table and figures use, the figure's run)."""
+    from kinetic.edmd.arguments import check_simulate
+
+    md = config.get("visco2008", {}).get("md")
+    if not md:
+        return
+    windows = md["windows"]
+    problems = []
+    for job in md_jobs(config):
+        if job.arguments["first_realization"] == 0:
+            try:
+                check_simulate(**job.arguments)
+            except (TypeError, ValueError) as error:
+                problems.append(f"run {job.output.split('/')[2]}: {error}")
+    for key in ("table_windows", "ldf_windows", "extrapolation_windows"):
+        missing = [t for t in md[key] if t not in windows]
+        if missing:
+            problems.append(f"{key} {missing} are not among windows {windows}")
+    if md["error_window"] not in windows:
+        problems.append(f"error_window {md['error_window']} is not among windows {windows}")
+    if md["figure_run"] not in md["densities"]:
+        problems.append(
+            f"figure_run {md['figure_run']!r} is not a key of densities {sorted(md['densities'])}"
+        )
+    if problems:
+        raise ValueError("config section visco2008.md: " + "; ".join(problems))
 
 
 def md_arguments(md: Mapping[str, Any], run: str) -> dict[str, Any]:

@@ -9,12 +9,6 @@ from kinetic.studies import costantini2010 as costantini2010_study
 COSTANTINI2010_PACKAGES = {"dsmc": "dsmc", "md": "edmd"}
 """Package of each engine wildcard."""
 
-try:
-    costantini2010_study.check(config["costantini2010"])
-except ValueError as error:
-    raise WorkflowError(f"config section costantini2010: {error}") from None
-
-
 def costantini2010_runs():
     """Every run of the study by name."""
     return costantini2010_study.runs(config["costantini2010"])

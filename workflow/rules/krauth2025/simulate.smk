@@ -20,32 +20,6 @@ def krauth2025_line_files():
     ]
 
 
-def krauth2025_check_config():
-    """Stop before any job on values the schema cannot judge alone: lines and rings too
-    short for their pins, or a naive-pin run that would take forever."""
-    from kinetic.theory.krauth2025 import check_naive_starts, check_pins
-
-    pins, ring = krauth2025_pins(), config["krauth2025"]["ring"]
-    try:
-        for key in ("length", "naive_length"):
-            check_pins(pins["n_pins"], pins[key], pins["sigma"])
-        check_pins(ring["n_pins"], ring["length"], ring["sigma"])
-    except ValueError as error:
-        raise WorkflowError(f"config krauth2025: {error}") from None
-    if ring["step"] > ring["length"] / 2:
-        raise WorkflowError(
-            f"config krauth2025.ring.step = {ring['step']} exceeds half the ring length"
-        )
-    try:
-        samples = pins["naive_samples"] * pins["realizations"]
-        check_naive_starts(pins["n_pins"], pins["naive_length"], pins["sigma"], samples)
-    except ValueError as error:
-        raise WorkflowError(f"config krauth2025.pins (naive_length): {error}") from None
-
-
-krauth2025_check_config()
-
-
 rule krauth2025_simulate_line:
     input:
         code=job_code("krauth2025_simulate_line"),
@@ -114,19 +88,6 @@ rule krauth2025_simulate_pin_snapshots:
 
 def krauth2025_disks():
     return config["krauth2025"]["disks"]
-
-
-def krauth2025_check_disks():
-    """Stop before any job on a box that cannot hold the disks."""
-    from kinetic.studies.krauth2025 import check_disks
-
-    try:
-        check_disks(krauth2025_disks())
-    except ValueError as error:
-        raise WorkflowError(f"config krauth2025.disks: {error}") from None
-
-
-krauth2025_check_disks()
 
 
 rule krauth2025_simulate_md:

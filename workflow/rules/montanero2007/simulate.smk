@@ -14,13 +14,7 @@ from kinetic.studies.montanero2007 import run_plan
 def montanero2007_runs():
     """{run name: parameters} of the config's plan (the protocol merged with each family's
     overrides), computed once."""
-    try:
-        return run_plan(config["montanero2007"])
-    except ValueError as error:
-        raise WorkflowError(str(error)) from None
-
-
-montanero2007_runs()  # a bad plan is refused before any job
+    return run_plan(config["montanero2007"])
 
 
 def montanero2007_jobs(name):

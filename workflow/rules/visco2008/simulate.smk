@@ -21,34 +21,6 @@ def visco2008_md():
     return config["visco2008"]["md"]
 
 
-def _check_visco2008_md():
-    """The config section visco2008.md, checked before any job starts: every run's first
-    job by the MD front's own checks (kinetic.edmd.arguments.check_simulate, numpy only), then what
-    only the config knows (the windows the table and figures use, the figure's run)."""
-    from kinetic.edmd.arguments import check_simulate
-
-    md = visco2008_md()
-    windows = md["windows"]
-    problems = []
-    for job in visco2008_study.md_jobs(config):
-        if job.arguments["first_realization"] != 0:
-            continue
-        try:
-            check_simulate(**job.arguments)
-        except (TypeError, ValueError) as error:
-            problems.append(f"run {job.output.split('/')[2]}: {error}")
-    for key in ("table_windows", "ldf_windows", "extrapolation_windows"):
-        missing = [t for t in md[key] if t not in windows]
-        if missing:
-            problems.append(f"{key} {missing} are not among windows {windows}")
-    if md["error_window"] not in windows:
-        problems.append(f"error_window {md['error_window']} is not among windows {windows}")
-    if md["figure_run"] not in md["densities"]:
-        problems.append(f"figure_run {md['figure_run']!r} is not a key of densities {sorted(md['densities'])}")
-    if problems:
-        raise WorkflowError("config section visco2008.md: " + "; ".join(problems))
-
-
 def visco2008_md_jobs():
     """kinetic.batches plan of one MD run (every run has the same)."""
     md = visco2008_md()
@@ -73,9 +45,6 @@ def visco2008_md_batch_files(wildcards):
         results_file(f"visco2008/md/{wildcards.run}/{batches.batch_name(job.index)}.nc")
         for job in visco2008_md_jobs()
     ]
-
-
-_check_visco2008_md()
 
 
 def visco2008_md_table_windows(wildcards):
