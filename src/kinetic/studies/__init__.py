@@ -22,7 +22,7 @@ from typing import Any
 
 from kinetic.cost import Estimate
 
-__all__ = ["DOCUMENTS", "Job", "benchmark_file", "check", "front", "jobs"]
+__all__ = ["DOCUMENTS", "Job", "benchmark_file", "check", "front", "jobs", "run_jobs"]
 
 DOCUMENTS = ("visco2008", "montanero2007", "krauth2025", "costantini2010")
 """The documents, each with a study module of its name."""
@@ -58,6 +58,44 @@ def benchmark_file(output: str) -> str:
     """The Snakemake benchmark file of the job writing ``output`` (relative to the results
     root's logs/): ``benchmarks/<output without .nc>.tsv``."""
     return f"benchmarks/{output.removesuffix('.nc')}.tsv"
+
+
+def run_jobs(
+    *,
+    document: str,
+    rule: str,
+    run: str,
+    front: str,
+    engines: tuple[str, ...],
+    cut,
+    arguments,
+    estimate,
+    parameters: Mapping[str, Any] | None = None,
+) -> list[Job]:
+    """The jobs of one run of independent realizations: ``run`` names its folder under the
+    results root (``visco2008/md/rho1e-3``), ``cut`` is its ``kinetic.batches.plan``, and
+    job k writes ``<run>/batchNNNN.nc`` with the front's ``arguments(job, batch name)`` (the
+    seed and the realization range included) and the cost ``estimate(job)``."""
+    from kinetic.batches import batch_name
+
+    found = []
+    for job in cut:
+        batch = batch_name(job.index)
+        output = f"{run}/{batch}.nc"
+        found.append(
+            Job(
+                document=document,
+                rule=rule,
+                output=output,
+                front=front,
+                arguments=arguments(job, batch),
+                estimate=estimate(job),
+                engines=engines,
+                parameters=dict(parameters or {}),
+                benchmark=benchmark_file(output),
+            )
+        )
+    return found
 
 
 def front(name: str):

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from kinetic import batches, gas
-from kinetic.studies import Job, benchmark_file
+from kinetic.studies import Job, run_jobs
 from kinetic.theory import costantini2010 as theory
 
 __all__ = [
@@ -265,32 +265,29 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
         return []
     found = []
     for run in runs(study).values():
-        arguments = run.engine_arguments(study)
+        shared = run.engine_arguments(study)
         front, engine = FRONTS[run.engine]
         seed = derive_seed(config["seed"], f"costantini2010/{run.engine}/{run.name}")
-        for job in batch_plan(study):
-            output = batch_file(run, job)
-            found.append(
-                Job(
-                    document="costantini2010",
-                    rule=f"costantini2010_simulate_{run.engine}",
-                    output=output,
-                    front=front,
-                    arguments=arguments
-                    | {
-                        "seed": seed,
-                        "first_realization": job.first_realization,
-                        "n_realizations": job.n_realizations,
-                        "label": f"costantini2010 {run.engine} {run.name} "
-                        f"{batches.batch_name(job.index)}",
-                    },
-                    estimate=cost.cooling_modes(
-                        engine=run.engine, n_realizations=job.n_realizations, **arguments
-                    ),
-                    engines=(engine,),
-                    benchmark=benchmark_file(output),
-                )
-            )
+        found += run_jobs(
+            document="costantini2010",
+            rule=f"costantini2010_simulate_{run.engine}",
+            run=run_file(run).removesuffix(".nc"),
+            front=front,
+            engines=(engine,),
+            cut=batch_plan(study),
+            arguments=lambda job, batch, run=run, shared=shared, seed=seed: (
+                shared
+                | {
+                    "seed": seed,
+                    "first_realization": job.first_realization,
+                    "n_realizations": job.n_realizations,
+                    "label": f"costantini2010 {run.engine} {run.name} {batch}",
+                }
+            ),
+            estimate=lambda job, run=run, shared=shared: cost.cooling_modes(
+                engine=run.engine, n_realizations=job.n_realizations, **shared
+            ),
+        )
     return found
 
 

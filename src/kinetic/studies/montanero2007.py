@@ -30,7 +30,7 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from kinetic.studies import Job, benchmark_file
+from kinetic.studies import Job, run_jobs
 
 __all__ = [
     "PROTOCOL_KEYS",
@@ -299,35 +299,28 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
     found = []
     for name, run in run_plan(section).items():
         seed = derive_seed(config["seed"], f"montanero2007/{name}")
-        for job in batches.plan(
-            realizations=int(run["realizations"]),
-            realizations_per_job=int(run["realizations_per_job"]),
-        ):
-            batch = batches.batch_name(job.index)
-            output = f"montanero2007/runs/{name}/{batch}.nc"
-            found.append(
-                Job(
-                    document="montanero2007",
-                    rule="montanero2007_simulate_dsmc",
-                    output=output,
-                    front="kinetic.studies.montanero2007:simulate_batch",
-                    arguments={
-                        "run": dict(run),
-                        "seed": seed,
-                        "first": job.first_realization,
-                        "count": job.n_realizations,
-                        "label": f"montanero2007 {name} {batch}",
-                    },
-                    estimate=cost.dsmc_homogeneous(**{**run, "realizations": job.n_realizations}),
-                    engines=("dsmc",),
-                    parameters={
-                        "run": name,
-                        "family": run["family"],
-                        "setting": run.get("setting", ""),
-                    },
-                    benchmark=benchmark_file(output),
-                )
-            )
+        found += run_jobs(
+            document="montanero2007",
+            rule="montanero2007_simulate_dsmc",
+            run=f"montanero2007/runs/{name}",
+            front="kinetic.studies.montanero2007:simulate_batch",
+            engines=("dsmc",),
+            cut=batches.plan(
+                realizations=int(run["realizations"]),
+                realizations_per_job=int(run["realizations_per_job"]),
+            ),
+            arguments=lambda job, batch, name=name, run=run, seed=seed: {
+                "run": dict(run),
+                "seed": seed,
+                "first": job.first_realization,
+                "count": job.n_realizations,
+                "label": f"montanero2007 {name} {batch}",
+            },
+            estimate=lambda job, run=run: cost.dsmc_homogeneous(
+                **{**run, "realizations": job.n_realizations}
+            ),
+            parameters={"run": name, "family": run["family"], "setting": run.get("setting", "")},
+        )
     return found
 
 

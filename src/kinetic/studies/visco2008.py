@@ -16,10 +16,18 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from kinetic.studies import Job, benchmark_file
+from kinetic.studies import Job, run_jobs
 from kinetic.studies import visco2008_cloning as cloning_plan
 
-__all__ = ["check", "cloning_jobs", "dsmc_jobs", "jobs", "md_arguments", "md_jobs"]
+__all__ = [
+    "check",
+    "cloning_jobs",
+    "dsmc_arguments",
+    "dsmc_jobs",
+    "jobs",
+    "md_arguments",
+    "md_jobs",
+]
 
 
 def check(config: Mapping[str, Any]) -> None:
@@ -79,40 +87,52 @@ def md_jobs(config: Mapping[str, Any]) -> list[Job]:
     md = config.get("visco2008", {}).get("md")
     if not md:
         return []
+    cut = batches.plan(
+        realizations=md["realizations"], realizations_per_job=md["realizations_per_job"]
+    )
     found = []
     for run, density in md["densities"].items():
         seed = derive_seed(config["seed"], f"visco2008/md/{run}")
-        for job in batches.plan(
-            realizations=md["realizations"], realizations_per_job=md["realizations_per_job"]
-        ):
-            batch = batches.batch_name(job.index)
-            output = f"visco2008/md/{run}/{batch}.nc"
-            arguments = md_arguments(md, run) | {
-                "seed": seed,
-                "realizations": job.n_realizations,
-                "first_realization": job.first_realization,
-                "label": f"visco2008 md {run} {batch}",
-            }
-            estimate = cost.edmd_periodic(
+        found += run_jobs(
+            document="visco2008",
+            rule="visco2008_simulate_md",
+            run=f"visco2008/md/{run}",
+            front="kinetic.edmd:simulate",
+            engines=("edmd",),
+            cut=cut,
+            arguments=lambda job, batch, run=run, seed=seed: (
+                md_arguments(md, run)
+                | {
+                    "seed": seed,
+                    "realizations": job.n_realizations,
+                    "first_realization": job.first_realization,
+                    "label": f"visco2008 md {run} {batch}",
+                }
+            ),
+            estimate=lambda job, density=density: cost.edmd_periodic(
                 n_particles=md["n_particles"],
                 density=density,
                 realizations=job.n_realizations,
                 equilibration=md["equilibration"],
                 duration=md["duration"],
-            )
-            found.append(
-                Job(
-                    document="visco2008",
-                    rule="visco2008_simulate_md",
-                    output=output,
-                    front="kinetic.edmd:simulate",
-                    arguments=arguments,
-                    estimate=estimate,
-                    engines=("edmd",),
-                    benchmark=benchmark_file(output),
-                )
-            )
+            ),
+        )
     return found
+
+
+def dsmc_arguments(settings: Mapping[str, Any]) -> dict[str, Any]:
+    """Keyword arguments of ``kinetic.dsmc.simulate_free_flights`` shared by every job of a
+    DSMC run (without the seed, the realization range and the label)."""
+    return {
+        "kernel": settings["kernel"],
+        "dimension": settings["dimension"],
+        "n_particles": settings["n_particles"],
+        "duration": settings["duration"],
+        "max_flight_time": settings["max_flight_time"],
+        "n_time_bins": settings["time_bins"],
+        "max_free_path": settings["max_free_path"],
+        "n_path_bins": settings["path_bins"],
+    }
 
 
 def dsmc_jobs(config: Mapping[str, Any]) -> list[Job]:
@@ -123,49 +143,37 @@ def dsmc_jobs(config: Mapping[str, Any]) -> list[Job]:
     found = []
     for run, settings in config.get("visco2008", {}).get("dsmc", {}).items():
         seed = derive_seed(config["seed"], f"visco2008/dsmc/{run}")
-        for job in batches.plan(
-            realizations=settings["realizations"],
-            realizations_per_job=settings["realizations_per_job"],
-        ):
-            batch = batches.batch_name(job.index)
-            output = f"visco2008/dsmc/{run}/{batch}.nc"
-            arguments = {
-                "kernel": settings["kernel"],
-                "dimension": settings["dimension"],
-                "n_particles": settings["n_particles"],
-                "duration": settings["duration"],
-                "seed": seed,
-                "first_realization": job.first_realization,
-                "n_realizations": job.n_realizations,
-                "max_flight_time": settings["max_flight_time"],
-                "n_time_bins": settings["time_bins"],
-                "max_free_path": settings["max_free_path"],
-                "n_path_bins": settings["path_bins"],
-                "label": f"visco2008 dsmc {run} {batch}",
-            }
-            estimate = cost.dsmc_free_flights(
+        found += run_jobs(
+            document="visco2008",
+            rule="visco2008_simulate_dsmc",
+            run=f"visco2008/dsmc/{run}",
+            front="kinetic.dsmc:simulate_free_flights",
+            engines=("dsmc",),
+            cut=batches.plan(
+                realizations=settings["realizations"],
+                realizations_per_job=settings["realizations_per_job"],
+            ),
+            arguments=lambda job, batch, run=run, seed=seed, settings=settings: (
+                dsmc_arguments(settings)
+                | {
+                    "seed": seed,
+                    "first_realization": job.first_realization,
+                    "n_realizations": job.n_realizations,
+                    "label": f"visco2008 dsmc {run} {batch}",
+                }
+            ),
+            estimate=lambda job, settings=settings: cost.dsmc_free_flights(
                 n_particles=settings["n_particles"],
                 duration=settings["duration"],
                 n_realizations=job.n_realizations,
-            )
-            found.append(
-                Job(
-                    document="visco2008",
-                    rule="visco2008_simulate_dsmc",
-                    output=output,
-                    front="kinetic.dsmc:simulate_free_flights",
-                    arguments=arguments,
-                    estimate=estimate,
-                    engines=("dsmc",),
-                    benchmark=benchmark_file(output),
-                )
-            )
+            ),
+        )
     return found
 
 
 def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
     """The cloning jobs of the scan and of the error study (every point cut into batches)."""
-    from kinetic import batches, cost
+    from kinetic import cost
     from kinetic.seeds import derive_seed
 
     section = config.get("visco2008", {}).get("cloning")
@@ -173,24 +181,32 @@ def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
         return []
     found = []
     for study in ("scan", "error_vs_time"):
-        for kernel, point, size, index in cloning_plan.batch_keys(section, study):
-            key = cloning_plan.point_seed_key(study, kernel, point, size)
-            batch = batches.batch_name(index)
-            arguments = cloning_plan.job_parameters(
-                section, study, kernel, point, size, index, derive_seed(config["seed"], key)
+        for kernel, lam, population in cloning_plan.study_points(section, study):
+            point = cloning_plan.lambda_token(lam)
+            size = cloning_plan.population_token(population)
+            seed = derive_seed(
+                config["seed"], cloning_plan.point_seed_key(study, kernel, point, size)
             )
-            output = f"visco2008/cloning/{study}/{kernel}/{point}/{size}/{batch}.nc"
-            found.append(
-                Job(
-                    document="visco2008",
-                    rule="visco2008_simulate_cloning",
-                    output=output,
-                    front="kinetic.cloning:simulate",
-                    arguments=arguments | {"label": f"cloning {kernel} {point} {size} {batch}"},
-                    estimate=cost.cloning_batch(**arguments),
-                    engines=("cloning",),
-                    benchmark=benchmark_file(output),
+
+            def arguments(
+                job, batch, study=study, kernel=kernel, point=point, size=size, seed=seed
+            ):
+                parameters = cloning_plan.job_parameters(
+                    section, study, kernel, point, size, job.index, seed
                 )
+                return parameters | {"label": f"cloning {kernel} {point} {size} {batch}"}
+
+            found += run_jobs(
+                document="visco2008",
+                rule="visco2008_simulate_cloning",
+                run=f"visco2008/cloning/{study}/{kernel}/{point}/{size}",
+                front="kinetic.cloning:simulate",
+                engines=("cloning",),
+                cut=cloning_plan.jobs(section, study),
+                arguments=arguments,
+                estimate=lambda job, arguments=arguments: cost.cloning_batch(
+                    **{k: v for k, v in arguments(job, "").items() if k != "label"}
+                ),
             )
     return found
 
