@@ -36,6 +36,7 @@ figures: install
 lint: install
 	$(BIN)/ruff check src workflow tests
 	$(BIN)/ruff format --check src workflow tests
+	$(BIN)/snakefmt --check Snakefile workflow
 
 test: lint
 	$(TIMED) results/timings/test.json -- $(BIN)/python -m pytest -n $(TEST_WORKERS)

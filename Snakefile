@@ -9,7 +9,8 @@
 # workflow/rules/<document>/: simulate.smk (<document>_simulate_<what> and
 # <document>_aggregate_<what>: jobs of realizations and their joining), theory.smk
 # (<document>_theory...) where the document has theory files of its own, and figures.smk
-# (<document>_figNN, tables and studies). common.smk holds what every document shares.
+# (<document>_figNN, tables, studies and checks); the helpers those rules call live in the
+# folder's common.smk. workflow/rules/common.smk holds what every document shares.
 
 from snakemake.utils import min_version
 
@@ -24,19 +25,22 @@ if not workflow.overwrite_configfiles:
     configfile: f"{workflow.basedir}/config/config.yaml"
 
 
-
 report: "workflow/report/workflow.rst"
 
 
 include: "workflow/rules/common.smk"
+include: "workflow/rules/visco2008/common.smk"
 include: "workflow/rules/visco2008/theory.smk"
 include: "workflow/rules/visco2008/simulate.smk"
 include: "workflow/rules/visco2008/figures.smk"
+include: "workflow/rules/montanero2007/common.smk"
 include: "workflow/rules/montanero2007/simulate.smk"
 include: "workflow/rules/montanero2007/figures.smk"
+include: "workflow/rules/krauth2025/common.smk"
 include: "workflow/rules/krauth2025/simulate.smk"
 include: "workflow/rules/krauth2025/theory.smk"
 include: "workflow/rules/krauth2025/figures.smk"
+include: "workflow/rules/costantini2010/common.smk"
 include: "workflow/rules/costantini2010/simulate.smk"
 include: "workflow/rules/costantini2010/figures.smk"
 include: "workflow/rules/report.smk"
@@ -45,6 +49,6 @@ include: "workflow/rules/budget.smk"
 
 
 rule all:
+    default_target: True
     input:
         all_targets,
-    default_target: True

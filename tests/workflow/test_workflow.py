@@ -77,6 +77,19 @@ def test_readme_figures_command_plans_every_artefact(tmp_path):
 
 
 @pytest.mark.workflow
+def test_lint_finds_nothing_but_the_missing_software_environments(tmp_path):
+    """snakemake --lint: rule files hold only rules (helpers in common.smk files), every
+    rule has a log; the one lint left asks for a conda environment or a container per
+    rule, which the build machines cannot reach."""
+    result = _snakemake(
+        tmp_path, "--lint", "--configfile", str(REPOSITORY / "config" / "ci.yaml"), check=False
+    )
+    output = result.stdout + result.stderr
+    titles = set(re.findall(r"^\s+\* (.+?):?$", output, re.MULTILINE))
+    assert titles == {"Specify a conda environment or container for each rule."}, output
+
+
+@pytest.mark.workflow
 def test_bad_config_is_refused_before_any_job(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text("seed: 1\nvisco2008:\n  theory:\n    rate_points: -3\n")

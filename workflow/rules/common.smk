@@ -1,4 +1,5 @@
-# Shared by every rule file: config validation, the target registry, seeds, code inputs.
+# Shared by every document: config validation, the results root, the target registry,
+# seeds, code inputs, planned resources, and the helpers of report.smk and targets.smk.
 import os
 from pathlib import Path
 
@@ -11,7 +12,9 @@ from kinetic.sources import front_sources, script_sources
 from kinetic import studies
 
 try:
-    validate_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
+    validate_config(
+        config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
+    )
     studies.check(config)  # what the schema cannot judge, study by study
 except (ConfigError, ValueError) as error:
     raise WorkflowError(str(error)) from None
@@ -31,7 +34,6 @@ def results_file(path):
 def log_file(path):
     """``path`` under the logs folder of this config's results root."""
     return f"{RESULTS}/logs/{path}"
-
 
 
 def drop_default_submission_limit(scheduler):
@@ -54,7 +56,6 @@ onstart:
     # of writers killed in an earlier build (kinetic.io writes to .<name>.<pid>.tmp, then
     # renames); the marker tells builds of configs whose roots contain this one to keep out
     import sys
-
     from kinetic.io import remove_orphans
 
     Path(RESULTS).mkdir(parents=True, exist_ok=True)
@@ -63,9 +64,11 @@ onstart:
         print(f"removed {orphan}, left by a killed job", file=sys.stderr)
     drop_default_submission_limit(getattr(workflow, "scheduler", None))
 
+
 # ---------------------------------------------------------------- target registry
 # Rule files register each figure/table they can build: provide(id, file, ...).
 TARGETS = {}
+
 
 def provide(target_id, *paths):
     """Register the files of one figure or table under its id, e.g. 'visco2008/fig03'."""
@@ -170,7 +173,9 @@ def job_of(output):
     try:
         return planned_jobs()[str(output)]
     except KeyError:
-        raise WorkflowError(f"no simulation job of the config writes {output}") from None
+        raise WorkflowError(
+            f"no simulation job of the config writes {output}"
+        ) from None
 
 
 def planned_job(wildcards, rulename):
@@ -183,8 +188,18 @@ def job_code(rulename):
     one of its jobs (``kinetic.sources.front_sources`` of each job's front and engines).
     The simulate script itself only calls the front, with ``params``, which Snakemake
     checks on its own."""
-    fronts = {(job.front, job.engines) for job in planned_jobs().values() if job.rule == rulename}
-    return sorted({str(path) for front, engines in fronts for path in front_sources(front, engines)})
+    fronts = {
+        (job.front, job.engines)
+        for job in planned_jobs().values()
+        if job.rule == rulename
+    }
+    return sorted(
+        {
+            str(path)
+            for front, engines in fronts
+            for path in front_sources(front, engines)
+        }
+    )
 
 
 def job_front(wildcards, output):
@@ -210,3 +225,29 @@ def planned_runtime(wildcards, attempt, rulename):
 def planned_mem_mb(wildcards, attempt, rulename):
     """resources.mem_mb of a simulation job."""
     return job_cost.mem_mb(planned_job(wildcards, rulename).estimate, attempt)
+
+
+# ---------------------------------------------------------------- the report's tables (report.smk)
+def workflow_job_outputs(wildcards):
+    """Input function: the simulation outputs the job table reports on."""
+    outputs = [job.output for job in job_plan.plan_jobs(config)]
+    if config["targets"] == "all":
+        return outputs
+    return [path for path in outputs if Path(path).exists()]
+
+
+def workflow_config(wildcards):
+    return config
+
+
+def workflow_agreement_tables(wildcards):
+    """Input function: the checks.csv of every document (only those built, unless the
+    config builds every target)."""
+    files = [
+        results_file(f"{paper}/checks.csv")
+        for paper in PAPERS
+        if f"{paper}/checks" in TARGETS
+    ]
+    if config["targets"] == "all":
+        return files
+    return [path for path in files if Path(path).exists()]

@@ -13,18 +13,6 @@ localrules:
     workflow_agreement,
 
 
-def workflow_job_outputs(wildcards):
-    """Input function: the simulation outputs the job table reports on."""
-    outputs = [job.output for job in job_plan.plan_jobs(config)]
-    if config["targets"] == "all":
-        return outputs
-    return [path for path in outputs if Path(path).exists()]
-
-
-def workflow_config(wildcards):
-    return config
-
-
 rule workflow_config:
     output:
         report(
@@ -32,10 +20,10 @@ rule workflow_config:
             caption="../report/workflow_config.rst",
             category="configuration and jobs",
         ),
-    params:
-        config=workflow_config,
     log:
         log_file("workflow/config.log"),
+    params:
+        config=workflow_config,
     script:
         "../scripts/workflow_config.py"
 
@@ -55,16 +43,11 @@ rule workflow_jobs:
         "../scripts/workflow_jobs.py"
 
 
-provide("workflow/agreement", results_file("workflow/agreement.csv"), results_file("workflow/agreement.rst"))
-
-
-def workflow_agreement_tables(wildcards):
-    """Input function: the checks.csv of every document (only those built, unless the
-    config builds every target)."""
-    files = [results_file(f"{paper}/checks.csv") for paper in PAPERS if f"{paper}/checks" in TARGETS]
-    if config["targets"] == "all":
-        return files
-    return [path for path in files if Path(path).exists()]
+provide(
+    "workflow/agreement",
+    results_file("workflow/agreement.csv"),
+    results_file("workflow/agreement.rst"),
+)
 
 
 rule workflow_agreement:

@@ -6,75 +6,31 @@
 #   table1 one row per (method, alpha, N, Lambda), the 1/N -> 0 rows and theory; checks
 #   error_vs_time  error of nu*, nu_bar* against CPU time; convergence  DSMC cell side and step
 
+
 for name in ("fig01", "fig02", "fig03", "fig04", "fig05", "fig06", "fig07"):
     provide(f"costantini2010/{name}", *figure_files("costantini2010", name))
+
+
 for name in ("error_vs_time", "convergence"):
     provide(
         f"costantini2010/{name}",
         *figure_files("costantini2010", name),
         results_file(f"costantini2010/{name}.csv"),
     )
+
+
 provide(
     "costantini2010/table1",
     *table_files("costantini2010", "table1"),
     results_file("costantini2010/extrapolation.csv"),
 )
+
+
 provide(
     "costantini2010/checks",
     *table_files("costantini2010", "checks"),
     results_file("costantini2010/amplitudes.csv"),
 )
-
-def costantini2010_files(runs):
-    return [results_file(costantini2010_study.run_file(run)) for run in runs]
-
-
-def costantini2010_figure_inputs(wildcards):
-    """Figs 1 and 2: the runs at the figure's (N, alpha)."""
-    return costantini2010_files(costantini2010_study.figure_runs(config["costantini2010"]))
-
-
-def costantini2010_fig02_inputs(wildcards):
-    """Fig 2: the figure runs without the fine cells."""
-    return costantini2010_files(costantini2010_study.correlation_runs(config["costantini2010"]))
-
-
-def costantini2010_fig03_inputs(wildcards):
-    """Fig 3: the grid runs at the figure's alpha, every N."""
-    study = config["costantini2010"]
-    alpha = study["figures"]["restitution"]
-    return costantini2010_files(
-        run for run in costantini2010_study.grid_runs(study) if run.restitution == alpha
-    )
-
-
-def costantini2010_table_inputs(wildcards):
-    """Table 1: every grid run, and the figure runs with the production cells."""
-    return costantini2010_files(costantini2010_study.table_runs(config["costantini2010"]))
-
-
-def costantini2010_error_inputs(wildcards):
-    """Error against CPU time: DSMC and MD at the figure's N and error_restitution."""
-    study = config["costantini2010"]
-    n, alpha = study["figures"]["particles"], study["error_restitution"]
-    return costantini2010_files(
-        run
-        for run in costantini2010_study.grid_runs(study)
-        if run.restitution == alpha and run.n_particles == n
-    )
-
-
-def costantini2010_convergence_inputs(wildcards):
-    return costantini2010_files(costantini2010_study.convergence_runs(config["costantini2010"]))
-
-
-def costantini2010_settings(wildcards):
-    """The validated config section (density, figure choices)."""
-    return config["costantini2010"]
-
-
-def costantini2010_caption(name):
-    return f"../../report/costantini2010_{name}.rst"
 
 
 rule costantini2010_fig01:
@@ -83,7 +39,11 @@ rule costantini2010_fig01:
         code=script_code("costantini2010_fig01"),
     output:
         pdf=results_file("costantini2010/fig01.pdf"),
-        png=report(results_file("costantini2010/fig01.png"), caption=costantini2010_caption("fig01"), category="costantini2010"),
+        png=report(
+            results_file("costantini2010/fig01.png"),
+            caption=costantini2010_caption("fig01"),
+            category="costantini2010",
+        ),
     log:
         log_file("costantini2010/fig01.log"),
     params:
@@ -98,7 +58,11 @@ rule costantini2010_fig02:
         code=script_code("costantini2010_fig02"),
     output:
         pdf=results_file("costantini2010/fig02.pdf"),
-        png=report(results_file("costantini2010/fig02.png"), caption=costantini2010_caption("fig02"), category="costantini2010"),
+        png=report(
+            results_file("costantini2010/fig02.png"),
+            caption=costantini2010_caption("fig02"),
+            category="costantini2010",
+        ),
     log:
         log_file("costantini2010/fig02.log"),
     params:
@@ -113,7 +77,11 @@ rule costantini2010_fig03:
         code=script_code("costantini2010_fig03"),
     output:
         pdf=results_file("costantini2010/fig03.pdf"),
-        png=report(results_file("costantini2010/fig03.png"), caption=costantini2010_caption("fig03"), category="costantini2010"),
+        png=report(
+            results_file("costantini2010/fig03.png"),
+            caption=costantini2010_caption("fig03"),
+            category="costantini2010",
+        ),
     log:
         log_file("costantini2010/fig03.log"),
     params:
@@ -159,10 +127,26 @@ rule costantini2010_fig04_to_fig07:
         fig05=results_file("costantini2010/fig05.pdf"),
         fig06=results_file("costantini2010/fig06.pdf"),
         fig07=results_file("costantini2010/fig07.pdf"),
-        png04=report(results_file("costantini2010/fig04.png"), caption=costantini2010_caption("fig04"), category="costantini2010"),
-        png05=report(results_file("costantini2010/fig05.png"), caption=costantini2010_caption("fig05"), category="costantini2010"),
-        png06=report(results_file("costantini2010/fig06.png"), caption=costantini2010_caption("fig06"), category="costantini2010"),
-        png07=report(results_file("costantini2010/fig07.png"), caption=costantini2010_caption("fig07"), category="costantini2010"),
+        png04=report(
+            results_file("costantini2010/fig04.png"),
+            caption=costantini2010_caption("fig04"),
+            category="costantini2010",
+        ),
+        png05=report(
+            results_file("costantini2010/fig05.png"),
+            caption=costantini2010_caption("fig05"),
+            category="costantini2010",
+        ),
+        png06=report(
+            results_file("costantini2010/fig06.png"),
+            caption=costantini2010_caption("fig06"),
+            category="costantini2010",
+        ),
+        png07=report(
+            results_file("costantini2010/fig07.png"),
+            caption=costantini2010_caption("fig07"),
+            category="costantini2010",
+        ),
     log:
         log_file("costantini2010/fig04_to_fig07.log"),
     params:
@@ -177,7 +161,11 @@ rule costantini2010_error_vs_time:
         code=script_code("costantini2010_error_vs_time"),
     output:
         pdf=results_file("costantini2010/error_vs_time.pdf"),
-        png=report(results_file("costantini2010/error_vs_time.png"), caption=costantini2010_caption("error_vs_time"), category="costantini2010"),
+        png=report(
+            results_file("costantini2010/error_vs_time.png"),
+            caption=costantini2010_caption("error_vs_time"),
+            category="costantini2010",
+        ),
         csv=results_file("costantini2010/error_vs_time.csv"),
     log:
         log_file("costantini2010/error_vs_time.log"),
@@ -193,7 +181,11 @@ rule costantini2010_convergence:
         code=script_code("costantini2010_convergence"),
     output:
         pdf=results_file("costantini2010/convergence.pdf"),
-        png=report(results_file("costantini2010/convergence.png"), caption=costantini2010_caption("convergence"), category="costantini2010"),
+        png=report(
+            results_file("costantini2010/convergence.png"),
+            caption=costantini2010_caption("convergence"),
+            category="costantini2010",
+        ),
         csv=results_file("costantini2010/convergence.csv"),
     log:
         log_file("costantini2010/convergence.log"),

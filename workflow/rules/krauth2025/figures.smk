@@ -2,9 +2,16 @@
 # table, the velocities figure, the pins and pressure tables and the error-against-time
 # study, from the files of simulate.smk.
 
+
 provide("krauth2025/fig04_10", *figure_files("krauth2025", "fig04_10"))
+
+
 provide("krauth2025/fig04_11", *figure_files("krauth2025", "fig04_11"))
+
+
 provide("krauth2025/fig04_13", *figure_files("krauth2025", "fig04_13"))
+
+
 provide("krauth2025/pins_table", *table_files("krauth2025", "pins_table"))
 
 
@@ -76,19 +83,22 @@ rule krauth2025_pins_table:
 
 
 provide("krauth2025/fig04_01", *figure_files("krauth2025", "fig04_01"))
+
+
 provide(
     "krauth2025/chaos",
     *figure_files("krauth2025", "chaos"),
     *table_files("krauth2025", "chaos_table"),
 )
+
+
 provide("krauth2025/fig04_06", *figure_files("krauth2025", "fig04_06"))
+
+
 provide("krauth2025/velocities", *figure_files("krauth2025", "velocities"))
+
+
 provide("krauth2025/pressure_table", *table_files("krauth2025", "pressure_table"))
-
-
-def krauth2025_snapshot_panels(wildcards):
-    """Events drawn in Fig 4.1 after the start."""
-    return krauth2025_disks()["snapshot_events"]
 
 
 rule krauth2025_fig04_01:

@@ -4,21 +4,6 @@
 # markov-disks, the chaos run). Each job writes one netCDF file holding its histograms and
 # their standard errors; the exact curves beside them come from theory.smk.
 
-from kinetic.studies import krauth2025 as krauth2025_study
-
-
-def krauth2025_pins():
-    return config["krauth2025"]["pins"]
-
-
-def krauth2025_line_files():
-    """The washing-line samples (kinetic.studies.krauth2025.LINE_RUNS)."""
-    pins = krauth2025_pins()
-    return [
-        results_file(f"krauth2025/pins/{krauth2025_study.line_name(method, pins[key])}.nc")
-        for method, key in krauth2025_study.LINE_RUNS
-    ]
-
 
 rule krauth2025_simulate_line:
     input:
@@ -29,16 +14,16 @@ rule krauth2025_simulate_line:
         log_file("krauth2025/pins/{method}_L{length}.log"),
     benchmark:
         log_file("benchmarks/krauth2025/pins/{method}_L{length}.tsv")
-    params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
     wildcard_constraints:
         method="naive|direct",
         length="[0-9.]+",
     resources:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
+    params:
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     script:
         "../../scripts/simulate.py"
 
@@ -52,13 +37,13 @@ rule krauth2025_simulate_ring:
         log_file("krauth2025/pins/ring.log"),
     benchmark:
         log_file("benchmarks/krauth2025/pins/ring.tsv")
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     params:
         front=job_front,
         job=job_arguments,
         parameters=job_parameters,
-    resources:
-        runtime=planned_runtime,
-        mem_mb=planned_mem_mb,
     script:
         "../../scripts/simulate.py"
 
@@ -70,13 +55,13 @@ rule krauth2025_simulate_pin_snapshots:
         results_file("krauth2025/pins/snapshots.nc"),
     log:
         log_file("krauth2025/pins/snapshots.log"),
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     params:
         front=job_front,
         job=job_arguments,
         parameters=job_parameters,
-    resources:
-        runtime=planned_runtime,
-        mem_mb=planned_mem_mb,
     script:
         "../../scripts/simulate.py"
 
@@ -85,9 +70,6 @@ rule krauth2025_simulate_pin_snapshots:
 # Fig 4.1 (event-disks snapshots), the chaos of section 4.1.2, Figs 4.5/4.6 (y-density by
 # Eq. 4.3 and from snapshots, against direct-disks and markov-disks: the equal-probability
 # check) and the pressure table of section 4.4.3 (Eqs. 4.9, 4.10, 4.13, 4.14).
-
-def krauth2025_disks():
-    return config["krauth2025"]["disks"]
 
 
 rule krauth2025_simulate_md:
@@ -99,13 +81,13 @@ rule krauth2025_simulate_md:
         log_file("krauth2025/disks/md.log"),
     benchmark:
         log_file("benchmarks/krauth2025/disks/md.tsv")
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     params:
         front=job_front,
         job=job_arguments,
         parameters=job_parameters,
-    resources:
-        runtime=planned_runtime,
-        mem_mb=planned_mem_mb,
     script:
         "../../scripts/simulate.py"
 
@@ -119,15 +101,15 @@ rule krauth2025_simulate_disks:
         log_file("krauth2025/disks/{method}.log"),
     benchmark:
         log_file("benchmarks/krauth2025/disks/{method}.tsv")
-    params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
     wildcard_constraints:
         method="direct|markov",
     resources:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
+    params:
+        front=job_front,
+        job=job_arguments,
+        parameters=job_parameters,
     script:
         "../../scripts/simulate.py"
 
@@ -139,12 +121,12 @@ rule krauth2025_simulate_chaos:
         results_file("krauth2025/disks/chaos.nc"),
     log:
         log_file("krauth2025/disks/chaos.log"),
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
     params:
         front=job_front,
         job=job_arguments,
         parameters=job_parameters,
-    resources:
-        runtime=planned_runtime,
-        mem_mb=planned_mem_mb,
     script:
         "../../scripts/simulate.py"

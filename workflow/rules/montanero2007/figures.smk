@@ -2,119 +2,33 @@
 # the extreme cases and the checks, from the runs of simulate.smk.
 #
 #   <results>/montanero2007/figNN.pdf|png, table1.csv|md, error_vs_time.*, extreme.*, checks.*
-from kinetic.studies.montanero2007 import alpha_key, field_partner
+
 
 for _number in range(1, 8):
-    provide(f"montanero2007/fig0{_number}", *figure_files("montanero2007", f"fig0{_number}"))
+    provide(
+        f"montanero2007/fig0{_number}", *figure_files("montanero2007", f"fig0{_number}")
+    )
+
+
 provide("montanero2007/table1", *table_files("montanero2007", "table1"))
+
+
 provide(
     "montanero2007/error_vs_time",
     *figure_files("montanero2007", "error_vs_time"),
     *table_files("montanero2007", "error_vs_time"),
     *table_files("montanero2007", "error_targets"),
 )
+
+
 provide(
     "montanero2007/extreme",
     *figure_files("montanero2007", "extreme"),
     *table_files("montanero2007", "extreme"),
 )
+
+
 provide("montanero2007/checks", *table_files("montanero2007", "checks"))
-
-
-
-def montanero2007_runs_of(family):
-    """The joined runs of one family, in plan order."""
-    return [
-        montanero2007_run_file(name)
-        for name, run in montanero2007_runs().items()
-        if run["family"] == family
-    ]
-
-
-def montanero2007_scan(alphas):
-    """The joined scan runs at these restitution coefficients."""
-    return [montanero2007_run_file(alpha_key(alpha)) for alpha in alphas]
-
-
-def montanero2007_section(wildcards):
-    """The validated config section (tolerances, target errors)."""
-    return config["montanero2007"]
-
-
-def montanero2007_figures(wildcards):
-    """Display settings of Figs 5-7 (rebinning, c_x^2 range)."""
-    return config["montanero2007"]["figures"]
-
-
-def montanero2007_field_pair(wildcards):
-    """Fig 1: the scan run and its larger-field partner at the same restitution."""
-    alpha = config["montanero2007"]["figures"]["fig01_alpha"]
-    field = config["montanero2007"]["field_check"]
-    files = montanero2007_scan([alpha])
-    if field["restitution"] == alpha:
-        files.append(montanero2007_run_file(f"field_{alpha_key(alpha)}"))
-    return files
-
-
-def montanero2007_field_partners(alphas):
-    """The joined larger-field partner of each scan run at these restitutions: the
-    O(eps*^2) bias and the extrapolation eps* -> 0 of Figs 3, 4, 7 and Table 1."""
-    section = config["montanero2007"]
-    return [montanero2007_run_file(field_partner(section, alpha)) for alpha in alphas]
-
-
-def montanero2007_scan_partners(wildcards):
-    return montanero2007_field_partners(config["montanero2007"]["alphas"])
-
-
-def montanero2007_fig07_partners(wildcards):
-    return montanero2007_field_partners(config["montanero2007"]["figures"]["fig07_alphas"])
-
-
-def montanero2007_error_inputs(wildcards):
-    """Error study: the paper-protocol scan runs and every error setting."""
-    study = config["montanero2007"]["error_study"]
-    return montanero2007_scan(study["alphas"]) + montanero2007_runs_of("error")
-
-
-def montanero2007_extreme_inputs(wildcards):
-    """Extreme cases: the protocol-field scan runs of extreme.alphas and the extreme runs."""
-    extreme = config["montanero2007"]["extreme"]
-    return montanero2007_scan(extreme["alphas"]) + montanero2007_runs_of("extreme")
-
-
-def montanero2007_check_inputs(wildcards):
-    """Checks: every scan run, the field partner and the HCS runs."""
-    return (
-        montanero2007_runs_of("scan")
-        + montanero2007_runs_of("field")
-        + montanero2007_runs_of("hcs")
-    )
-
-
-def montanero2007_figure_runs(key):
-    """Joined scan runs listed by the config key figures.<key>."""
-    return montanero2007_scan(config["montanero2007"]["figures"][key])
-
-
-def montanero2007_fig02_runs(wildcards):
-    return montanero2007_figure_runs("fig02_alphas")
-
-
-def montanero2007_fig05_runs(wildcards):
-    return montanero2007_figure_runs("fig05_alphas")
-
-
-def montanero2007_fig06_runs(wildcards):
-    return montanero2007_figure_runs("fig06_alphas")
-
-
-def montanero2007_fig07_runs(wildcards):
-    return montanero2007_figure_runs("fig07_alphas")
-
-
-def montanero2007_scan_runs(wildcards):
-    return montanero2007_runs_of("scan")
 
 
 rule montanero2007_fig01:

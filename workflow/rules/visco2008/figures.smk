@@ -2,9 +2,14 @@
 # aggregates of simulate.smk and the theory files of theory.smk, plus the cloning and MD
 # error-against-time studies. Figures only read files under <results>/.
 
+
 for _number in ("01", "02", "03", "04", "05", "06", "07", "08", "09", "10", "11", "12"):
     provide(f"visco2008/fig{_number}", *figure_files("visco2008", f"fig{_number}"))
+
+
 provide("visco2008/table1", *table_files("visco2008", "table1"))
+
+
 provide(
     "visco2008/cloning",
     results_file("visco2008/cloning.csv"),
@@ -13,55 +18,20 @@ provide(
     *figure_files("visco2008", "cloning_velocity_density"),
     *figure_files("visco2008", "cloning_extrapolation"),
 )
+
+
 provide(
     "visco2008/cloning_error_vs_time",
     *figure_files("visco2008", "cloning_error_vs_time"),
     *table_files("visco2008", "cloning_error_vs_time"),
 )
+
+
 provide(
     "visco2008/md_error_vs_time",
     *figure_files("visco2008", "md_error_vs_time"),
     *table_files("visco2008", "md_error_vs_time"),
 )
-
-
-def visco2008_md_figure_data(wildcards):
-    """Aggregated MD observers of the run drawn in Figs 1, 2, 9 and 10."""
-    return visco2008_md_data(visco2008_md()["figure_run"])
-
-
-def visco2008_md_all_data(wildcards):
-    """Aggregated MD observers of every run (error-against-run-time study)."""
-    return [visco2008_md_data(run) for run in visco2008_md()["densities"]]
-
-
-def visco2008_fig01_dsmc(wildcards):
-    """DSMC free-flight-time densities drawn as squares in Fig. 1 (variables time_pdf,
-    time_pdf_sem on flight_time): the hard-disk run."""
-    return [visco2008_dsmc_data("free_flight_times")]
-
-
-def visco2008_md_ldf_windows(wildcards):
-    return visco2008_md()["ldf_windows"]
-
-
-def visco2008_md_ldf_min_count(wildcards):
-    return visco2008_md()["ldf_min_count"]
-
-
-def visco2008_md_error_window(wildcards):
-    return visco2008_md()["error_window"]
-
-
-def visco2008_table1_md(wildcards):
-    """MD cumulant files of Table I: one per MD run."""
-    return [visco2008_md_cumulants(run) for run in visco2008_md()["densities"]]
-
-
-def visco2008_table1_extrapolation_windows(wildcards):
-    """Windows t of the 1/t fit of Table I's extrapolated rows (for the caption)."""
-    return config["visco2008"]["md"]["extrapolation_windows"]
-
 
 
 rule visco2008_cloning_error_vs_time:
