@@ -22,7 +22,10 @@ from __future__ import annotations
 import math
 
 __all__ = [
+    "HARD_SPHERES",
     "KERNELS",
+    "MAXWELL",
+    "VERY_HARD",
     "candidate_coefficient",
     "cross_section",
     "equilibrium_collision_frequency",
@@ -34,6 +37,15 @@ __all__ = [
     "solid_angle",
     "thermal_speed",
 ]
+
+# Collision kernels, by the codes every engine's kernels take (a compile-time constant).
+HARD_SPHERES = 0
+"""Hard spheres (hard disks in d = 2): collision rate ∝ |g·σ̂| (σ̂ the unit vector between
+the centres at contact)."""
+MAXWELL = 1
+"""Maxwell molecules: a collision rate independent of the relative velocity."""
+VERY_HARD = 2
+"""Very hard particles: collision rate ∝ |g|² (visco2008 Appendix B)."""
 
 KERNELS = ("hard_spheres", "maxwell", "very_hard")
 """Names of the collision kernels (index = kernel id of :mod:`kinetic.dsmc.kernels`)."""

@@ -48,7 +48,7 @@ __all__ = [
     "cache_directory",
     "inline",
     "kernel",
-    "prefetch",
+    "prefetch_row",
     "refcount_free",
     "source_stamp",
     "warm",
@@ -176,21 +176,31 @@ decrement of the array's count: about a tenth of the cloning kernel's time."""
 
 
 @intrinsic
-def prefetch(typingctx, array, row):
-    """Ask the cache for the line of ``array[row]`` (``array[row, 0]`` of a 2-D array).
-
-    A hint only: results do not change. Loops that know their next random addresses
-    early (a few candidates ahead) issue it to overlap the memory latency of several
-    candidates instead of waiting for each in turn.
-    """
-    sig = types.void(array, row)
+def prefetch_row(typingctx, array, row):
+    """Hint the processor to load the cache line of ``array[row]`` (a C-contiguous 1-D
+    array) or the first cache line of row ``row`` (2-D) into every cache level; no effect
+    on the program's results. Emits LLVM's ``llvm.prefetch`` (read, high locality, data
+    cache)."""
+    if not (
+        isinstance(array, types.Array) and array.ndim in (1, 2) and isinstance(row, types.Integer)
+    ):
+        return None
 
     def codegen(context, builder, signature, args):
-        array_type = signature.args[0]
-        ary = context.make_array(array_type)(context, builder, args[0])
-        indices = [args[1]] + [context.get_constant(types.intp, 0)] * (array_type.ndim - 1)
-        pointer = cgutils.get_item_pointer(
-            context, builder, array_type, ary, indices, wraparound=False
+        array_type, row_type = signature.args
+        view = context.make_array(array_type)(context, builder, args[0])
+        index = context.cast(builder, args[1], row_type, types.intp)
+        indices = [index] + [context.get_constant(types.intp, 0)] * (array_type.ndim - 1)
+        pointer = cgutils.get_item_pointer2(
+            context,
+            builder,
+            view.data,
+            cgutils.unpack_tuple(builder, view.shape),
+            cgutils.unpack_tuple(builder, view.strides),
+            array_type.layout,
+            indices,
+            wraparound=False,
+            boundscheck=False,
         )
         byte_pointer = ir.IntType(8).as_pointer()
         i32 = ir.IntType(32)
@@ -199,8 +209,7 @@ def prefetch(typingctx, array, row):
             ir.FunctionType(ir.VoidType(), [byte_pointer, i32, i32, i32]),
             "llvm.prefetch.p0",
         )
-        # read access, high temporal locality, data cache
         builder.call(function, [builder.bitcast(pointer, byte_pointer), i32(0), i32(3), i32(1)])
         return context.get_dummy_value()
 
-    return sig, codegen
+    return types.void(array, row), codegen

@@ -28,9 +28,11 @@ __all__ = [
     "derive_seed",
     "disk_point",
     "exponential",
+    "load_state",
     "normal",
     "normal_pair",
     "random_unit_vector",
+    "store_state",
     "stream_states",
     "uniform",
     "uniform_open",
@@ -71,6 +73,22 @@ def xoshiro_next(s0, s1, s2, s3):
     s2 ^= t
     s3 = (s3 << _SHIFT_45) | (s3 >> _ROT_LEFT)
     return x, s0, s1, s2, s3
+
+
+@inline
+def load_state(state):
+    """The four words of a stream's state row, for a loop that holds them in scalars and
+    draws with the ``xoshiro_*`` functions: ``s0, s1, s2, s3 = load_state(state)``."""
+    return state[0], state[1], state[2], state[3]
+
+
+@inline
+def store_state(state, s0, s1, s2, s3):
+    """Write the four scalars of :func:`load_state` back to the stream's state row."""
+    state[0] = s0
+    state[1] = s1
+    state[2] = s2
+    state[3] = s3
 
 
 @kernel
@@ -139,16 +157,8 @@ def xoshiro_unit_2d(s0, s1, s2, s3):
 @inline
 def _next_u64(state):
     result, s0, s1, s2, s3 = xoshiro_next(state[0], state[1], state[2], state[3])
-    _store(state, s0, s1, s2, s3)
+    store_state(state, s0, s1, s2, s3)
     return result
-
-
-@inline
-def _store(state, s0, s1, s2, s3):
-    state[0] = s0
-    state[1] = s1
-    state[2] = s2
-    state[3] = s3
 
 
 @inline
@@ -173,7 +183,7 @@ def exponential(state):
 def disk_point(state):
     """Uniform point (x, y) in the open unit disk minus its centre, and r2 = x² + y²."""
     x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(state[0], state[1], state[2], state[3])
-    _store(state, s0, s1, s2, s3)
+    store_state(state, s0, s1, s2, s3)
     return x, y, r2
 
 
@@ -181,7 +191,7 @@ def disk_point(state):
 def normal_pair(state):
     """Two independent standard normal variates (Marsaglia's polar method)."""
     z0, z1, s0, s1, s2, s3 = xoshiro_normal_pair(state[0], state[1], state[2], state[3])
-    _store(state, s0, s1, s2, s3)
+    store_state(state, s0, s1, s2, s3)
     return z0, z1
 
 
@@ -189,7 +199,7 @@ def normal_pair(state):
 def unit_vector_3d(state):
     """Uniform direction on the sphere (Marsaglia 1972): returns ``(x, y, z)``."""
     x, y, z, s0, s1, s2, s3 = xoshiro_unit_3d(state[0], state[1], state[2], state[3])
-    _store(state, s0, s1, s2, s3)
+    store_state(state, s0, s1, s2, s3)
     return x, y, z
 
 

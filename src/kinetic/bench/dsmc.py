@@ -59,6 +59,7 @@ from kinetic.dsmc.kernels import _pair, _uniform
 from kinetic.dsmc.speed_classes import SpeedClasses, collide_speed_classes
 from kinetic.jit import kernel
 from kinetic.progress import logger
+from kinetic.rng import load_state, store_state
 
 TARGET_COLLISIONS_PER_SECOND = 5e6
 TARGET_MAJORANT_ACCEPTANCE = 0.6
@@ -74,7 +75,7 @@ MARSAGLIA_DRAWS = 2 * 4 / math.pi  # uniforms per direction on the sphere (rejec
 @kernel
 def _candidate_floor(velocity, state, n_candidates, bound_sq):
     """The candidate loop of collide_range without collisions: draws, loads, test."""
-    s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
+    s0, s1, s2, s3 = load_state(state)
     n = velocity.shape[1]
     accepted = 0
     for _ in range(n_candidates):
@@ -85,19 +86,19 @@ def _candidate_floor(velocity, state, n_candidates, bound_sq):
         u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
         if u * u * bound_sq < g0 * g0 + g1 * g1 + g2 * g2:
             accepted += 1
-    state[0], state[1], state[2], state[3] = s0, s1, s2, s3
+    store_state(state, s0, s1, s2, s3)
     return accepted
 
 
 @kernel
 def _generator_floor(state, n_draws):
     """n_draws uniforms from the scalar xoshiro256+ of the kernels."""
-    s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
+    s0, s1, s2, s3 = load_state(state)
     total = 0.0
     for _ in range(n_draws):
         u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
         total += u
-    state[0], state[1], state[2], state[3] = s0, s1, s2, s3
+    store_state(state, s0, s1, s2, s3)
     return total
 
 

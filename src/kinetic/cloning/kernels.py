@@ -51,8 +51,11 @@ from __future__ import annotations
 
 import math
 
+from kinetic.gas import HARD_SPHERES, MAXWELL
 from kinetic.jit import inline, kernel, refcount_free
 from kinetic.rng import (
+    load_state,
+    store_state,
     xoshiro_disk_point,
     xoshiro_normal_pair,
     xoshiro_uniform,
@@ -69,10 +72,6 @@ __all__ = [
     "run_blocks",
 ]
 
-HARD_SPHERES = 0
-"""Kernel code of hard spheres (hard disks in d = 2): rate ∝ (g·σ̂)⁺."""
-MAXWELL = 1
-"""Kernel code of Maxwell molecules: constant rate ω = 1."""
 
 BLOCK_FIELDS = (
     "elapsed_time",  # time the block covered
@@ -266,7 +265,7 @@ def _copy_member(velocity, speed, source, target):
 def draw_population(velocity, speed, state):
     """Fill ``velocity`` (d, n) with bath velocities N(0, T0 = 1) and ``speed`` with |v|."""
     d, n = velocity.shape
-    s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
+    s0, s1, s2, s3 = load_state(state)
     waiting = False
     held = 0.0
     for i in range(n):
@@ -276,7 +275,7 @@ def draw_population(velocity, speed, state):
             velocity[k, i] = value
             total += value * value
         speed[i] = math.sqrt(total)
-    state[0], state[1], state[2], state[3] = s0, s1, s2, s3
+    store_state(state, s0, s1, s2, s3)
 
 
 @inline
@@ -410,10 +409,7 @@ def run_blocks(
     rate_factor, keep, duplicating = compensation_parameters(lam)
     always_keep = keep >= 1.0
     k1 = channel_a_rate(d)
-    s0 = state[0]
-    s1 = state[1]
-    s2 = state[2]
-    s3 = state[3]
+    s0, s1, s2, s3 = load_state(state)
     waiting = False
     held = 0.0
     histogram_weight = 0.0
@@ -552,8 +548,5 @@ def run_blocks(
         row[9] = block_max
         histogram_weight += dt
         _snapshot_histogram(velocity, dt, half_width, histogram)
-    state[0] = s0
-    state[1] = s1
-    state[2] = s2
-    state[3] = s3
+    store_state(state, s0, s1, s2, s3)
     return histogram_weight

@@ -87,6 +87,7 @@ from kinetic.dsmc.kernels import (
     maxwellian,
 )
 from kinetic.jit import inline, kernel
+from kinetic.rng import load_state, store_state
 from kinetic.rng import xoshiro_uniform as _uniform
 
 __all__ = [
@@ -142,10 +143,7 @@ def initial_state(position, velocity, labels, state, box_side):
     state: (4,) uint64 stream, advanced (positions first, then velocities).
     """
     n = position.shape[2]
-    s0 = state[0]
-    s1 = state[1]
-    s2 = state[2]
-    s3 = state[3]
+    s0, s1, s2, s3 = load_state(state)
     for i in range(n):
         u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
         v, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
@@ -153,10 +151,7 @@ def initial_state(position, velocity, labels, state, box_side):
         position[0, 1, i] = v * box_side
         labels[0, 0, i] = i
         labels[0, 1, i] = -1
-    state[0] = s0
-    state[1] = s1
-    state[2] = s2
-    state[3] = s3
+    store_state(state, s0, s1, s2, s3)
     maxwellian(velocity[0], state, 1.0)
 
 
@@ -391,10 +386,7 @@ def collide_cells(
         state[2],
         state[3],
     )
-    state[0] = s0
-    state[1] = s1
-    state[2] = s2
-    state[3] = s3
+    store_state(state, s0, s1, s2, s3)
 
 
 @kernel
@@ -444,10 +436,7 @@ def advance(
     inverse_cell = m / box_side
     growth = np.exp(drag_rate * time_step)
     shift = time_step if drag_rate == 0.0 else np.expm1(drag_rate * time_step) / drag_rate
-    s0 = state[0]
-    s1 = state[1]
-    s2 = state[2]
-    s3 = state[3]
+    s0, s1, s2, s3 = load_state(state)
     for _ in range(n_steps):
         now = tally[TALLY_PARITY]
         r_src = position[now]
@@ -533,10 +522,7 @@ def advance(
         tally[TALLY_PARITY] = 1 - now
         tally[TALLY_STEPS] += 1
         tally[TALLY_PARTICLE_STEPS] += n
-    state[0] = s0
-    state[1] = s1
-    state[2] = s2
-    state[3] = s3
+    store_state(state, s0, s1, s2, s3)
 
 
 @kernel

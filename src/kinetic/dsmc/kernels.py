@@ -50,8 +50,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from kinetic.gas import HARD_SPHERES, MAXWELL, VERY_HARD
 from kinetic.jit import inline, kernel
-from kinetic.rng import normal_pair
+from kinetic.rng import load_state, normal_pair, store_state
 from kinetic.rng import xoshiro_exponential as _exponential
 from kinetic.rng import xoshiro_next as _next
 from kinetic.rng import xoshiro_uniform as _uniform
@@ -83,9 +84,6 @@ __all__ = [
     "speed_bounds",
 ]
 
-HARD_SPHERES = 0
-MAXWELL = 1
-VERY_HARD = 2
 
 TALLY_CANDIDATES = 0
 TALLY_ACCEPTED = 1
@@ -378,10 +376,7 @@ def _collide_loop(
     budget = duration
     if not poisson:
         budget += carry[0] * spacing
-    s0 = state[0]
-    s1 = state[1]
-    s2 = state[2]
-    s3 = state[3]
+    s0, s1, s2, s3 = load_state(state)
     candidates = 0
     accepted = 0
     while True:
@@ -422,10 +417,7 @@ def _collide_loop(
             if raised:
                 tally[TALLY_RAISED] += 1
                 bound_sq, spacing = _majorant(kernel, pair_coefficient, n_pairs, top1, top2)
-    state[0] = s0
-    state[1] = s1
-    state[2] = s2
-    state[3] = s3
+    store_state(state, s0, s1, s2, s3)
     bounds[d] = top1
     bounds[d + 1] = top2
     if not poisson:
@@ -574,10 +566,7 @@ def _collide_observed_loop(
     inverse_path_width = 1.0 / path_bin_width
     c0, c1, c2, top1, top2 = _bound_terms(bounds, d)
     bound_sq, spacing = _majorant(kernel, pair_coefficient, n_pairs, top1, top2)
-    s0 = state[0]
-    s1 = state[1]
-    s2 = state[2]
-    s3 = state[3]
+    s0, s1, s2, s3 = load_state(state)
     now = start_time
     end = start_time + duration
     while True:
@@ -631,10 +620,7 @@ def _collide_observed_loop(
             if raised:
                 tally[TALLY_RAISED] += 1
                 bound_sq, spacing = _majorant(kernel, pair_coefficient, n_pairs, top1, top2)
-    state[0] = s0
-    state[1] = s1
-    state[2] = s2
-    state[3] = s3
+    store_state(state, s0, s1, s2, s3)
     bounds[d] = top1
     bounds[d + 1] = top2
 

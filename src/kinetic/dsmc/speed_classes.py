@@ -55,7 +55,8 @@ from kinetic.dsmc.kernels import (
     _speed_sq,
     _trial_relative,
 )
-from kinetic.jit import inline, kernel, prefetch
+from kinetic.jit import inline, kernel, prefetch_row
+from kinetic.rng import load_state, store_state
 from kinetic.rng import xoshiro_exponential as _exponential
 from kinetic.rng import xoshiro_next as _next
 
@@ -282,7 +283,7 @@ def _draw_i(records, layout, probability, lo, width, s0, s1, s2, s3):
     a = layout[_BASE_ROW, k] + np.int64(
         ((x >> _SHIFT_32) * np.uint64(layout[_CAPACITY_ROW, k])) >> _SHIFT_32
     )
-    prefetch(records, a)
+    prefetch_row(records, a)
     return k, a, np.float64((x >> _SHIFT_11) & _LOW_32) * _TWO_M32, s0, s1, s2, s3
 
 
@@ -291,7 +292,7 @@ def _draw_j(records, slots, s0, s1, s2, s3):
     """One draw of j: a uniform slot (kept at use if it holds a particle other than i)."""
     x, s0, s1, s2, s3 = _next(s0, s1, s2, s3)
     b = np.int64(((x >> _SHIFT_32) * np.uint64(slots)) >> _SHIFT_32)
-    prefetch(records, b)
+    prefetch_row(records, b)
     return b, s0, s1, s2, s3
 
 
@@ -328,10 +329,7 @@ def _classes_loop(
         return 0
     if total <= 0.0:
         return 0
-    s0 = state[0]
-    s1 = state[1]
-    s2 = state[2]
-    s3 = state[3]
+    s0, s1, s2, s3 = load_state(state)
     # rings of prepared draws; refilled whenever the layout changes (unused draws are
     # dropped: they are independent of everything, so dropping them biases nothing)
     ring_k = np.empty(AHEAD, dtype=np.int64)
@@ -458,10 +456,7 @@ def _classes_loop(
                 )
                 ring_b[r], s0, s1, s2, s3 = _draw_j(records, slots, s0, s1, s2, s3)
     _gather(records, layout, lo, width, velocity, d)
-    state[0] = s0
-    state[1] = s1
-    state[2] = s2
-    state[3] = s3
+    store_state(state, s0, s1, s2, s3)
     if not poisson:
         carry[0] = budget / spacing
     bounds[d] = top1

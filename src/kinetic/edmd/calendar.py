@@ -5,10 +5,6 @@ events one to three buckets ahead in large systems."""
 from __future__ import annotations
 
 import numpy as np
-from llvmlite import ir
-from numba import types
-from numba.core import cgutils
-from numba.extending import intrinsic
 
 from kinetic.edmd.layout import (
     C_STAGE1,
@@ -28,50 +24,7 @@ from kinetic.edmd.layout import (
     cell_flat,
     smaller,
 )
-from kinetic.jit import inline, kernel
-
-# ----------------------------------------------------------------------------- prefetch
-
-
-@intrinsic
-def prefetch_row(typingctx, array, row):
-    """Hint the processor to load the cache line of ``array[row]`` (a C-contiguous 1-D
-    array) or the first cache line of row ``row`` (2-D) into every cache level; no effect
-    on the program's results. Emits LLVM's ``llvm.prefetch`` (read, high locality, data
-    cache)."""
-    if not (
-        isinstance(array, types.Array) and array.ndim in (1, 2) and isinstance(row, types.Integer)
-    ):
-        return None
-
-    def codegen(context, builder, signature, args):
-        array_type, row_type = signature.args
-        view = context.make_array(array_type)(context, builder, args[0])
-        index = context.cast(builder, args[1], row_type, types.intp)
-        indices = [index] + [context.get_constant(types.intp, 0)] * (array_type.ndim - 1)
-        pointer = cgutils.get_item_pointer2(
-            context,
-            builder,
-            view.data,
-            cgutils.unpack_tuple(builder, view.shape),
-            cgutils.unpack_tuple(builder, view.strides),
-            array_type.layout,
-            indices,
-            wraparound=False,
-            boundscheck=False,
-        )
-        byte_pointer = ir.IntType(8).as_pointer()
-        i32 = ir.IntType(32)
-        function = cgutils.get_or_insert_function(
-            builder.module,
-            ir.FunctionType(ir.VoidType(), [byte_pointer, i32, i32, i32]),
-            "llvm.prefetch.p0",
-        )
-        builder.call(function, [builder.bitcast(pointer, byte_pointer), i32(0), i32(3), i32(1)])
-        return context.get_dummy_value()
-
-    return types.void(array, row), codegen
-
+from kinetic.jit import inline, kernel, prefetch_row
 
 # ----------------------------------------------------------------------------- calendar
 

@@ -47,6 +47,7 @@ plt.style.use(STYLE)
 METHOD_STYLE: dict[str, dict[str, Any]] = {
     "md": {"marker": "o", "color": "black"},
     "dsmc": {"marker": "s", "color": "tab:blue"},
+    "dsmc_homogeneous": {"marker": "v", "color": "tab:cyan"},
     "cloning": {"marker": "^", "color": "tab:red"},
     "direct": {"marker": "D", "color": "tab:purple"},
     "markov": {"marker": "v", "color": "tab:orange"},
@@ -54,12 +55,13 @@ METHOD_STYLE: dict[str, dict[str, Any]] = {
     "theory_alt": {"color": "tab:gray", "linestyle": "--"},
 }
 """One symbol and colour per method, the same in every figure of every document (MD,
-DSMC, cloning, direct and Markov-chain sampling; theory as lines, a second theory
-dashed)."""
+DSMC, its one-cell homogeneous variant, cloning, direct and Markov-chain sampling; theory
+as lines, a second theory dashed)."""
 
 METHOD_LABELS = {
     "md": "MD",
     "dsmc": "DSMC",
+    "dsmc_homogeneous": "homogeneous DSMC",
     "cloning": "cloning",
     "direct": "direct sampling",
     "markov": "Markov chain",

@@ -2,29 +2,17 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import xarray as xr
 
 from kinetic import plotting
 
 __all__ = ["METHOD_LABELS", "METHOD_STYLE", "correlation_panel", "run_label"]
 
-METHOD_STYLE: dict[str, dict[str, Any]] = {
-    "md": plotting.METHOD_STYLE["md"],
-    "dsmc": plotting.METHOD_STYLE["dsmc"],
-    "dsmc_homogeneous": {"marker": "v", "color": "tab:cyan"},
-    "theory": plotting.METHOD_STYLE["theory"],
-}
-"""Marker and colour of each method (theory: a line): the project's, plus a variant of
-DSMC's for the homogeneous (one-cell) DSMC."""
+METHOD_STYLE = plotting.METHOD_STYLE
+"""The project's marker and colour of each method (kinetic.plotting.METHOD_STYLE)."""
 
-METHOD_LABELS = {
-    "md": "MD",
-    "dsmc": "DSMC",
-    "dsmc_homogeneous": "homogeneous DSMC",
-    "theory": "theory (first Sonine)",
-}
+METHOD_LABELS = plotting.METHOD_LABELS | {"theory": "theory (first Sonine)"}
+"""The project's legend text of each method; costantini2010's theory is first Sonine."""
 
 
 def run_label(result: xr.Dataset) -> str:

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from kinetic.jit import inline, kernel
-from kinetic.rng import uniform, xoshiro_uniform
+from kinetic.rng import load_state, store_state, uniform, xoshiro_uniform
 
 __all__ = ["direct_pin", "naive_pin", "ring_markov"]
 
@@ -97,12 +97,12 @@ def direct_pin(n, length, sigma, samples, state, positions, histogram, lower, up
     generator state stays in registers through the loop (``kinetic.rng.xoshiro_next``)."""
     scale = histogram.shape[0] / (upper - lower)
     free = length - 2.0 * n * sigma
-    s0, s1, s2, s3 = state[0], state[1], state[2], state[3]
+    s0, s1, s2, s3 = load_state(state)
     for _ in range(samples):
         s0, s1, s2, s3 = _direct_configuration(n, free, sigma, positions, s0, s1, s2, s3)
         for k in range(n):
             _add(histogram, positions[k], lower, scale)
-    state[0], state[1], state[2], state[3] = s0, s1, s2, s3
+    store_state(state, s0, s1, s2, s3)
 
 
 @kernel
