@@ -115,44 +115,88 @@ rule costantini2010_table1:
         "../../scripts/costantini2010_table1.py"
 
 
-rule costantini2010_fig04_to_fig07:
-    # Figs 4-7 draw Table 1 (itself computed from the run aggregates) and the theory
+rule costantini2010_fig04:
+    # drawn from Table 1 (itself computed from the run aggregates) and the theory
     input:
         table=results_file("costantini2010/table1.csv"),
         fits=results_file("costantini2010/extrapolation.csv"),
         amplitudes=results_file("costantini2010/amplitudes.csv"),
-        code=script_code("costantini2010_transport"),
+        code=script_code("costantini2010_fig04"),
     output:
-        fig04=results_file("costantini2010/fig04.pdf"),
-        fig05=results_file("costantini2010/fig05.pdf"),
-        fig06=results_file("costantini2010/fig06.pdf"),
-        fig07=results_file("costantini2010/fig07.pdf"),
-        png04=report(
+        pdf=results_file("costantini2010/fig04.pdf"),
+        png=report(
             results_file("costantini2010/fig04.png"),
             caption=costantini2010_caption("fig04"),
             category="costantini2010",
         ),
-        png05=report(
+    log:
+        log_file("costantini2010/fig04.log"),
+    params:
+        study=costantini2010_settings,
+    script:
+        "../../scripts/costantini2010_fig04.py"
+
+
+rule costantini2010_fig05:
+    # drawn from Table 1 (itself computed from the run aggregates) and the theory
+    input:
+        table=results_file("costantini2010/table1.csv"),
+        fits=results_file("costantini2010/extrapolation.csv"),
+        amplitudes=results_file("costantini2010/amplitudes.csv"),
+        code=script_code("costantini2010_fig05"),
+    output:
+        pdf=results_file("costantini2010/fig05.pdf"),
+        png=report(
             results_file("costantini2010/fig05.png"),
             caption=costantini2010_caption("fig05"),
             category="costantini2010",
         ),
-        png06=report(
+    log:
+        log_file("costantini2010/fig05.log"),
+    params:
+        study=costantini2010_settings,
+    script:
+        "../../scripts/costantini2010_fig05.py"
+
+
+rule costantini2010_fig06:
+    # drawn from Table 1 (itself computed from the run aggregates) and the theory
+    input:
+        table=results_file("costantini2010/table1.csv"),
+        code=script_code("costantini2010_fig06"),
+    output:
+        pdf=results_file("costantini2010/fig06.pdf"),
+        png=report(
             results_file("costantini2010/fig06.png"),
             caption=costantini2010_caption("fig06"),
             category="costantini2010",
         ),
-        png07=report(
+    log:
+        log_file("costantini2010/fig06.log"),
+    params:
+        study=costantini2010_settings,
+    script:
+        "../../scripts/costantini2010_fig06.py"
+
+
+rule costantini2010_fig07:
+    # drawn from Table 1 (itself computed from the run aggregates) and the theory
+    input:
+        table=results_file("costantini2010/table1.csv"),
+        code=script_code("costantini2010_fig07"),
+    output:
+        pdf=results_file("costantini2010/fig07.pdf"),
+        png=report(
             results_file("costantini2010/fig07.png"),
             caption=costantini2010_caption("fig07"),
             category="costantini2010",
         ),
     log:
-        log_file("costantini2010/fig04_to_fig07.log"),
+        log_file("costantini2010/fig07.log"),
     params:
         study=costantini2010_settings,
     script:
-        "../../scripts/costantini2010_transport.py"
+        "../../scripts/costantini2010_fig07.py"
 
 
 rule costantini2010_error_vs_time:
