@@ -1,4 +1,12 @@
-"""visco2008's claims checked on the built tables (rule visco2008_checks).
+"""visco2008's Table I (``table1``, ``table1_caption_numbers``) and its claims checked on
+the built tables (``checks``, rule visco2008_checks).
+
+``table1`` builds the rows of Table I from the MD runs' scaled cumulants and the closures:
+the MD rows per density and window, their 1/t extrapolation, the Poisson, Gaussian and
+Sonine rows, the document's printed row beside ours with z-scores, and the density whose
+rows the document's MD rows match best (the smallest sum of squared z-scores).
+
+The checks:
 
 ``checks`` reads Table I (``table1.csv``: the MD cumulants, their 1/t extrapolation, the
 closures' rows and the document's printed rows), the cloning scan (``cloning.csv``) and
@@ -24,7 +32,137 @@ import numpy as np
 from kinetic.analysis import checks as check
 from kinetic.analysis.checks import Check
 
-__all__ = ["checks"]
+__all__ = ["TABLE1_COLUMNS", "checks", "table1", "table1_caption_numbers"]
+
+TABLE1_COLUMNS = ["source", "rho", "t", "k1", "k2", "k3", "k1_err", "k2_err", "k3_err"]
+"""The first columns of table1.csv (the original contract: keep the names and order)."""
+
+
+def _z(value, error, reference):
+    return (value - reference) / error if error > 0 else np.nan
+
+
+def _row(source, rho, t, values, errors, kind, paper, closures):
+    record = dict(zip(TABLE1_COLUMNS, [source, rho, t, *values, *errors], strict=True))
+    record["kind"] = kind
+    for p in range(3):
+        record[f"paper_k{p + 1}"] = paper[p] if paper is not None else np.nan
+    for p in (1, 2):
+        record[f"z_k{p + 1}"] = _z(values[p], errors[p], paper[p]) if paper is not None else np.nan
+    for name in ("Gaussian", "Sonine"):
+        for p in (1, 2):
+            record[f"z_{name.lower()}_k{p + 1}"] = (
+                _z(values[p], errors[p], closures[name][p]) if kind != "theory" else np.nan
+            )
+    record["k1_exact"] = 1
+    return record
+
+
+def table1(md_runs, closures, extrapolation_windows):
+    """Table I as a DataFrame, the columns of table1.csv: source,rho,t,k1,k2,k3,k1_err,
+    k2_err,k3_err (the original contract), then kind (md | extrapolated | theory),
+    paper_k1..3 (the document's printed row; empty where it has none), z_k2, z_k3 (ours
+    minus printed, over our standard error), z_gaussian_k2..z_sonine_k3 (ours against the
+    Gaussian and Sonine closures), k1_exact (1: k1 = 1 holds by construction, not as a
+    measurement), paper_row_density (1 on the MD rows at the density whose rows the
+    document's MD rows match best), note. MD rows carry the density, the window length t
+    (mean free times) and standard errors; extrapolated rows (t = inf) the 1/t fit over
+    several windows; theory rows leave rho, t and the errors empty.
+
+    ``md_runs``: the MD cumulant datasets (``scaled_cumulant`` and its ``_sem`` over window
+    and order, the ``density`` attribute, optionally ``extrapolated_cumulant``);
+    ``closures``: the theory dataset with ``cumulant_poisson``, ``cumulant_gaussian`` and
+    ``cumulant_sonine``."""
+    import pandas as pd
+
+    from kinetic.theory.visco2008 import TABLE_I_DOCUMENT
+
+    theory = {
+        "Poisson": closures["cumulant_poisson"].values,
+        "Gaussian": closures["cumulant_gaussian"].values,
+        "Sonine": closures["cumulant_sonine"].values,
+    }
+    rows = []
+    for md in md_runs:
+        density = float(md.attrs["density"])
+        for window in md["window"].values:
+            values = md["scaled_cumulant"].sel(window=window).sel(order=[1, 2, 3]).values
+            errors = md["scaled_cumulant_sem"].sel(window=window).sel(order=[1, 2, 3]).values
+            paper = TABLE_I_DOCUMENT.get(f"MD t={window:g}")
+            rows.append(_row("MD", density, float(window), values, errors, "md", paper, theory))
+        if "extrapolated_cumulant" in md:
+            rows.append(
+                _row(
+                    "MD",
+                    density,
+                    np.inf,
+                    md["extrapolated_cumulant"].values,
+                    md["extrapolated_cumulant_sem"].values,
+                    "extrapolated",
+                    None,
+                    theory,
+                )
+            )
+    for source, values in theory.items():
+        rows.append(
+            _row(
+                source,
+                np.nan,
+                np.nan,
+                values,
+                [np.nan] * 3,
+                "theory",
+                TABLE_I_DOCUMENT[source],
+                theory,
+            )
+        )
+    table = pd.DataFrame(rows)
+    # which density the document's MD rows come from: the smallest sum of squared z-scores
+    md_rows = table[(table["kind"] == "md") & table["paper_k2"].notna()]
+    chi2 = (md_rows["z_k2"] ** 2 + md_rows["z_k3"] ** 2).groupby(md_rows["rho"]).sum()
+    paper_density = float(chi2.idxmin())
+    table["paper_row_density"] = ((table["kind"] == "md") & (table["rho"] == paper_density)).astype(
+        int
+    )
+    notes = {
+        "md": "k1 = 1 by construction (t in measured mean free times), not a measurement",
+        "extrapolated": "fit k(t) = k(inf) + c/t per realization over t = {}".format(
+            ", ".join(f"{w:g}" for w in extrapolation_windows)
+        ),
+        "theory": "k1 = 1 by construction (omega = 1)",
+    }
+    table["note"] = table["kind"].map(notes)
+    table.loc[table["paper_row_density"] == 1, "note"] += "; density of the document's MD rows"
+    return table
+
+
+def table1_caption_numbers(table, extrapolation_windows) -> dict:
+    """Every number the caption of Table I quotes, from the table: per density ("doc", the
+    density of the document's MD rows, and "other") and window (10, 50, inf) the cumulants,
+    their errors and z-scores, and the difference of k2 between the densities."""
+    paper_density = float(table.loc[table["paper_row_density"] == 1, "rho"].iloc[0])
+    numbers = {}
+    densities = sorted(table["rho"].dropna().unique(), key=lambda rho: rho != paper_density)
+    for density, tag in zip(densities, ("doc", "other"), strict=False):
+        numbers[f"rho_{tag}"] = density
+        for kind_row in table[(table["rho"] == density)].itertuples():
+            key = "inf" if kind_row.kind == "extrapolated" else f"{kind_row.t:g}"
+            for p in (2, 3):
+                for column in (
+                    f"k{p}",
+                    f"k{p}_err",
+                    f"z_k{p}",
+                    f"z_gaussian_k{p}",
+                    f"z_sonine_k{p}",
+                ):
+                    numbers[f"{column}_{tag}_{key}"] = getattr(kind_row, column)
+    for key in ("10", "50", "inf"):
+        difference = numbers[f"k2_other_{key}"] - numbers[f"k2_doc_{key}"]
+        error = np.hypot(numbers[f"k2_err_other_{key}"], numbers[f"k2_err_doc_{key}"])
+        numbers[f"dk2_{key}"], numbers[f"dk2_err_{key}"] = difference, error
+        numbers[f"dz_{key}"] = difference / error
+    numbers["windows"] = ", ".join(f"{w:g}" for w in extrapolation_windows)
+    return numbers
 
 
 def checks(table1, cloning, reference, sigmas: float = check.SIGMAS) -> list[Check]:
