@@ -119,3 +119,39 @@ def test_krauth2025_checks_correct_the_extrapolation_bias_and_only_report_the_li
     verdicts = [check.passed for check in found]
     # the raw wall rift (z = -3.7) would fail; less its known bias it agrees
     assert verdicts == [True, True, True, None]
+
+
+def _md_run(density, k2):
+    windows = [10.0, 50.0]
+    values = np.array([[1.0, k2, 1.13], [1.0, k2 + 0.012, 1.10]])
+    return xr.Dataset(
+        {
+            "scaled_cumulant": (("window", "order"), values),
+            "scaled_cumulant_sem": (("window", "order"), np.full((2, 3), 0.001)),
+            "extrapolated_cumulant": ("order", [1.0, k2 + 0.015, 1.12]),
+            "extrapolated_cumulant_sem": ("order", [0.0, 0.002, 0.01]),
+        },
+        coords={"window": windows, "order": [1, 2, 3]},
+        attrs={"density": density},
+    )
+
+
+def test_table1_scores_our_rows_against_the_printed_ones_and_finds_their_density():
+    closures = xr.Dataset(
+        {
+            "cumulant_poisson": ("order", [1.0, 1.0, 1.0]),
+            "cumulant_gaussian": ("order", [1.0, 1.125, 1.1289]),
+            "cumulant_sonine": ("order", [1.0, 1.1378, 1.1073]),
+        }
+    )
+    # the document's t = 10 row is k2 = 1.1228: the 1e-3 run is 0.5 sigma off, 1e-2 10 sigma
+    runs = [_md_run(0.001, 1.1228 + 0.0005), _md_run(0.01, 1.1228 - 0.01)]
+    table = visco2008.table1(runs, closures, [10, 50])
+    md = table[table["kind"] == "md"].set_index(["rho", "t"])
+    assert md.loc[(0.001, 10.0), "z_k2"] == pytest.approx(0.5)
+    assert md.loc[(0.01, 10.0), "z_k2"] == pytest.approx(-10.0)
+    assert md.loc[(0.001, 10.0), "z_gaussian_k2"] == pytest.approx((1.1233 - 1.125) / 0.001)
+    assert set(table.loc[table["paper_row_density"] == 1, "rho"]) == {0.001}
+    assert list(table.columns[:9]) == visco2008.TABLE1_COLUMNS
+    numbers = visco2008.table1_caption_numbers(table, [10, 50])
+    assert numbers["rho_doc"] == 0.001 and numbers["dk2_10"] == pytest.approx(-0.0105)
