@@ -72,3 +72,18 @@ def test_a_bias_as_large_as_the_target_cannot_be_averaged_away():
     assert cpu_for_error(10.0, 0.1, 0.05, bias=0.03) == pytest.approx(
         10.0 * 0.01 / (0.05**2 - 0.03**2)
     )
+
+
+def test_chi2_per_dof_counts_only_entries_with_an_error_and_an_expectation():
+    from kinetic.analysis.statistics import chi2_per_dof
+
+    values = np.array([1.0, 2.0, 3.0, 4.0])
+    errors = np.array([0.5, 0.0, 1.0, 2.0])
+    expected = np.array([0.0, 2.0, np.nan, 0.0])
+    chi2, dof = chi2_per_dof(values, errors, expected)
+    assert dof == 2 and chi2 == pytest.approx((2.0**2 + 2.0**2) / 2)
+    assert chi2_per_dof(values, np.zeros(4), 0.0) == (pytest.approx(float("nan"), nan_ok=True), 0)
+    # Gaussian noise around the truth gives chi2/dof near 1
+    rng = np.random.default_rng(1)
+    noise = rng.normal(size=100_000)
+    assert chi2_per_dof(noise, np.ones_like(noise), 0.0)[0] == pytest.approx(1.0, abs=0.02)

@@ -5,11 +5,10 @@ runs (mean and standard error over realizations) against the sphere's marginal
 ∝ (1 − u²)^(N − 3/2) and the Maxwell Gaussian √(N/π) e^(−N u²) it tends to at large N,
 both averaged over the bins; residuals against the sphere; χ²/dof of each curve."""
 
-import numpy as np
 from scipy import stats
 
 from kinetic import io, plotting
-from kinetic.analysis.statistics import mean_and_sem
+from kinetic.analysis.statistics import chi2_per_dof, mean_and_sem
 from kinetic.theory import krauth2025 as theory
 from kinetic.workflow_support import start
 
@@ -23,12 +22,9 @@ curves = {
     "sphere": plotting.bin_average(lambda x: theory.sphere_velocity_marginal(x, n), edges),
     "maxwell": plotting.bin_average(lambda x: theory.maxwell_velocity_marginal(x, n), edges),
 }
-populated = error > 0
 chi2 = {}
 for name, curve in curves.items():
-    z = (density - curve)[populated] / error[populated]
-    chi2[name] = float(np.mean(z**2))
-dof = int(populated.sum())
+    chi2[name], dof = chi2_per_dof(density, error, curve)
 
 fig, (top, bottom) = plotting.figure(
     2, 1, sharex=True, figsize=(3.4, 3.6), gridspec_kw={"height_ratios": [2.2, 1]}

@@ -22,14 +22,6 @@ windows = list(snakemake.params.windows)
 density = md.attrs["density"]
 
 
-def chi2_per_dof(rate, ldf, error, theory_rate, theory):
-    """χ²/dof of the data against a finite-t curve at the data's n (NaN-free part)."""
-    ok = np.isfinite(theory)
-    values = np.interp(rate, theory_rate[ok], theory[ok], left=np.nan, right=np.nan)
-    inside = np.isfinite(values)
-    return float(np.sum(((ldf[inside] - values[inside]) / error[inside]) ** 2) / inside.sum())
-
-
 fig, axes = plotting.figure(1, len(windows), figsize=(3.4 * len(windows), 2.8), sharey=True)
 axes = np.atleast_1d(axes)
 numbers = {"min_count": min_count, "density": density}
@@ -76,7 +68,7 @@ for axis, window, tag in zip(axes, windows, "ab", strict=False):
         zorder=3,
     )
     for name in ("gaussian", "poisson"):
-        numbers[f"chi2_{name}_{tag}"] = chi2_per_dof(
+        numbers[f"chi2_{name}_{tag}"] = collision_statistics.ldf_chi2_per_dof(
             estimate["rate"],
             estimate["ldf"],
             estimate["error"],

@@ -40,6 +40,7 @@ __all__ = [
     "flight_time_pdf",
     "free_path_pdf",
     "histogram_cumulants",
+    "ldf_chi2_per_dof",
     "mean_free_path",
     "mean_free_time",
     "scaled_cumulants",
@@ -452,3 +453,15 @@ def combine_free_flights(batches: Sequence[xr.Dataset]) -> xr.Dataset:
     parameters = io.parameters_of(run)
     parameters.pop("first_realization", None)
     return io.stamp(dataset, parameters=parameters, seed=int(run.attrs["seed"]))
+
+
+def ldf_chi2_per_dof(rate, ldf, error, theory_rate, theory) -> float:
+    """χ²/dof of a measured large-deviation function (``ldf`` with ``error`` at ``rate``,
+    :func:`count_ldf_estimate`) against a curve (``theory`` on ``theory_rate``),
+    interpolated at the data's rates, over the rates the curve covers."""
+    from kinetic.analysis.statistics import chi2_per_dof
+
+    theory_rate, theory = np.asarray(theory_rate, dtype=float), np.asarray(theory, dtype=float)
+    ok = np.isfinite(theory)
+    values = np.interp(rate, theory_rate[ok], theory[ok], left=np.nan, right=np.nan)
+    return chi2_per_dof(ldf, error, values)[0]

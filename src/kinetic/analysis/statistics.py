@@ -18,11 +18,26 @@ import numpy as np
 __all__ = [
     "ErrorCurve",
     "block_sem",
+    "chi2_per_dof",
     "count_cumulants",
     "cpu_for_error",
     "error_against_cpu",
     "mean_and_sem",
 ]
+
+
+def chi2_per_dof(values, errors, expected) -> tuple[float, int]:
+    """χ²/dof of ``values`` with standard ``errors`` against ``expected`` over the entries
+    where both the expectation and a positive error exist: ``(Σ z²/n, n)`` with
+    z = (value − expected)/error (NaN for no entry)."""
+    values, errors, expected = (np.asarray(a, dtype=float) for a in (values, errors, expected))
+    expected = np.broadcast_to(expected, values.shape)
+    used = np.isfinite(expected) & (errors > 0)
+    count = int(used.sum())
+    if count == 0:
+        return float("nan"), 0
+    z = (values[used] - expected[used]) / errors[used]
+    return float(np.sum(z**2) / count), count
 
 
 def mean_and_sem(samples, axis: int = 0) -> tuple[np.ndarray, np.ndarray]:

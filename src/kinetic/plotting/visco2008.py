@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from kinetic import plotting
+from kinetic.analysis.statistics import chi2_per_dof
 
 __all__ = ["Curve", "Histogram", "comparison_figure"]
 
@@ -128,10 +129,10 @@ def comparison_figure(
             error = histogram.error[kept] / theory[kept]
             residual_values[column] += [residual - error, residual + error]
             if column == 1:
-                chi2 = float(np.sum((residual / error) ** 2))
+                chi2, dof = chi2_per_dof(residual, error, 0.0)
                 numbers[histogram.label] = {
-                    "chi2": chi2 / max(kept.sum(), 1),
-                    "dof": int(kept.sum()),
+                    "chi2": chi2,
+                    "dof": dof,
                     "x_last": float(centres[kept].max()) if kept.any() else np.nan,
                 }
         for curve in extra_residuals:
