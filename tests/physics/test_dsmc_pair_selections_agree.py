@@ -14,7 +14,7 @@ import pytest
 
 from kinetic import rng
 from kinetic.dsmc import kernels
-from kinetic.dsmc.speed_classes import SpeedClasses, collide_speed_classes
+from kinetic.experimental.speed_classes import SpeedClasses, collide_speed_classes
 
 D = 3
 N = 4000

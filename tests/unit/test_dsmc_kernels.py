@@ -5,7 +5,7 @@ import pytest
 
 from kinetic import rng
 from kinetic.dsmc import kernels
-from kinetic.dsmc.speed_classes import SpeedClasses, collide_speed_classes
+from kinetic.experimental.speed_classes import SpeedClasses, collide_speed_classes
 from kinetic.gas import candidate_coefficient
 
 
@@ -88,52 +88,6 @@ def test_stale_bound_is_detected_and_raised(kernel):
     assert tally[kernels.TALLY_EXCEEDED] >= 1
     speeds = np.linalg.norm(velocity - bounds[:d, None], axis=0)
     assert bounds[d] >= speeds.max() * (1 - 1e-12)
-
-
-def test_members_kernel_equals_range_kernel_on_the_identity_list():
-    d, n = 3, 300
-    v1, s1, b1 = _gas(d, n, seed=4)
-    v2, s2, b2 = v1.copy(), s1.copy(), b1.copy()
-    members = np.arange(n, dtype=np.int64)
-    t1, t2 = np.zeros(4, dtype=np.int64), np.zeros(4, dtype=np.int64)
-    c1, c2 = np.zeros(1), np.zeros(1)
-    kernels.collide_range(v1, 0, n, s1, kernels.HARD_SPHERES, 0.8, 0.01, 3.0, False, b1, c1, t1)
-    kernels.collide_members(
-        v2, members, 0, n, s2, kernels.HARD_SPHERES, 0.8, 0.01, 3.0, False, b2, c2, t2
-    )
-    np.testing.assert_array_equal(v1, v2)
-    np.testing.assert_array_equal(t1, t2)
-    assert c1[0] == c2[0]
-
-
-def test_members_kernel_touches_only_its_cell():
-    d, n = 2, 100
-    velocity, state, _ = _gas(d, n)
-    before = velocity.copy()
-    members = np.array([3, 17, 42, 58, 91], dtype=np.int64)
-    bounds = np.empty(d + 2)
-    kernels.members_speed_bounds(velocity, members, 1, 4, bounds)
-    kernels.collide_members(
-        velocity,
-        members,
-        1,
-        4,
-        state,
-        kernels.MAXWELL,
-        1.0,
-        1.0,
-        5.0,
-        True,
-        bounds,
-        np.zeros(1),
-        np.zeros(4, dtype=np.int64),
-    )
-    untouched = np.setdiff1d(np.arange(n), members[1:4])
-    np.testing.assert_array_equal(velocity[:, untouched], before[:, untouched])
-    assert not np.array_equal(velocity[:, members[1:4]], before[:, members[1:4]])
-    np.testing.assert_allclose(
-        velocity[:, members[1:4]].sum(axis=1), before[:, members[1:4]].sum(axis=1), atol=1e-13
-    )
 
 
 def test_ntc_carry_keeps_the_candidate_count_of_split_steps():

@@ -142,6 +142,8 @@ EDITS = [
     ("analysis/montanero2007.py", {"montanero2007 figure"}),
     # the plotting helpers every figure uses: the figures alone
     ("plotting/__init__.py", {"montanero2007 figure", "krauth2025 figure"}),
+    # an engine variant no document runs: nothing
+    ("experimental/speed_classes.py", set()),
 ]
 
 

@@ -56,7 +56,7 @@ from kinetic.dsmc import (
     realization_streams,
 )
 from kinetic.dsmc.kernels import _pair, _uniform
-from kinetic.dsmc.speed_classes import SpeedClasses, collide_speed_classes
+from kinetic.experimental.speed_classes import SpeedClasses, collide_speed_classes
 from kinetic.jit import kernel
 from kinetic.progress import logger
 from kinetic.rng import load_state, store_state

@@ -12,8 +12,6 @@ homogeneous cooling state, with the transverse-mode observers."""
 
 from __future__ import annotations
 
-import numpy as np
-
 from kinetic.dsmc.free_flights import simulate_free_flights
 from kinetic.dsmc.homogeneous import simulate_homogeneous
 from kinetic.dsmc.inhomogeneous import (
@@ -58,7 +56,7 @@ def warmup() -> None:
     inhomogeneous engine (both collision rules, with and without drag, its observers and
     its collision stage alone).
     """
-    from kinetic.dsmc import inhomogeneous_kernels, kernels
+    from kinetic.dsmc import inhomogeneous_kernels
 
     for dimension in (2, 3):
         for selection, force_step, splitting in (
@@ -78,26 +76,6 @@ def warmup() -> None:
             gas = new_gas(settings, realization_streams(0, 0, 1)[0])
             advance_gas(gas, 2, Samples(stride=1, histogram=True))
         simulate_free_flights(n_particles=8, duration=0.5, seed=0, dimension=dimension, chunk=0.5)
-        velocity = np.zeros((dimension, 4))
-        velocity[0] = [1.0, -1.0, 0.5, -0.5]
-        members = np.arange(4, dtype=np.int64)
-        bounds = np.empty(dimension + 2)
-        kernels.members_speed_bounds(velocity, members, 0, 4, bounds)
-        kernels.collide_members(
-            velocity,
-            members,
-            0,
-            4,
-            realization_streams(0, 0, 1)[0],
-            kernels.HARD_SPHERES,
-            1.0,
-            0.1,
-            0.1,
-            False,
-            bounds,
-            np.zeros(1),
-            np.zeros(4, dtype=np.int64),
-        )
     for rule in ("paper", "majorant"):
         for restitution, drag_rate in ((1.0, 0.0), (0.8, 0.001)):
             simulate_cooling_modes(

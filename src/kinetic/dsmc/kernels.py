@@ -37,10 +37,9 @@ fraction of a candidate left at the end of a call carried in ``carry[0]``) and P
 (exponential spacing: exact continuous-time event times by thinning, used by the
 tagged-particle observers; memoryless, no carry).
 
-Kernels are reusable by the inhomogeneous engine: ``collide_range`` collides the pairs
-of particles ``first..last-1`` (particles sorted by cell), ``collide_members`` those of
-``members[start:stop]`` (an index list per cell). Each range/cell has its own ``bounds``,
-``carry`` and ``pair_coefficient`` (which holds its density).
+Kernels are reusable by a cell-based engine: ``collide_range`` collides the pairs of
+particles ``first..last-1`` (particles sorted by cell). Each range/cell has its own
+``bounds``, ``carry`` and ``pair_coefficient`` (which holds its density).
 
 Random numbers: xoshiro256+ streams of :mod:`kinetic.rng`, one ``state`` row (4 uint64)
 advanced in place. No kernel allocates inside its loops, prints, or touches files.
@@ -75,12 +74,10 @@ __all__ = [
     "accumulate_histograms",
     "accumulate_moments",
     "advance",
-    "collide_members",
     "collide_observed",
     "collide_range",
     "force_and_thermostat",
     "maxwellian",
-    "members_speed_bounds",
     "speed_bounds",
 ]
 
@@ -301,36 +298,6 @@ def speed_bounds(velocity, first, last, bounds):
     bounds[d + 1] = np.sqrt(top2)
 
 
-@kernel
-def members_speed_bounds(velocity, members, start, stop, bounds):
-    """``speed_bounds`` for the particles ``members[start:stop]``."""
-    d = velocity.shape[0]
-    n = stop - start
-    for k in range(d):
-        total = 0.0
-        for m in range(start, stop):
-            total += velocity[k, members[m]]
-        bounds[k] = total / max(n, 1)
-    c0 = bounds[0]
-    c1 = bounds[1]
-    c2 = bounds[2] if d == 3 else 0.0
-    top1 = 0.0
-    top2 = 0.0
-    for m in range(start, stop):
-        s = _speed_sq(velocity, members[m], d, c0, c1, c2)
-        if s > top2:
-            if s > top1:
-                top2 = top1
-                top1 = s
-            else:
-                top2 = s
-    bounds[d] = np.sqrt(top1)
-    bounds[d + 1] = np.sqrt(top2)
-
-
-# ------------------------------------------------------------------- collision kernels
-
-
 @inline
 def _bound_terms(bounds, d):
     """``(c0, c1, c2, top1, top2)`` of a ``bounds`` row (centre and the two top speeds)."""
@@ -348,7 +315,6 @@ def _majorant(kernel, pair_coefficient, n_pairs, top1, top2):
 @inline
 def _collide_loop(
     velocity,
-    members,
     first,
     last,
     state,
@@ -361,11 +327,8 @@ def _collide_loop(
     carry,
     tally,
     d,
-    indexed,
 ):
-    """Body of ``collide_range`` (``indexed`` False: particles first..last-1) and of
-    ``collide_members`` (True: particles members[first:last]), for a literal dimension
-    ``d`` and a literal ``indexed`` (both specialised by inlining)."""
+    """Body of ``collide_range`` for a literal dimension ``d`` (specialised by inlining)."""
     n = last - first
     if n < 2 or duration <= 0.0:
         return
@@ -390,21 +353,14 @@ def _collide_loop(
         budget -= step
         candidates += 1
         a, b, s0, s1, s2, s3 = _pair(n, s0, s1, s2, s3)
-        if indexed:
-            i = members[first + a]
-            j = members[first + b]
-        else:
-            i = first + a
-            j = first + b
+        i = first + a
+        j = first + b
         code, h0, h1, h2, s0, s1, s2, s3 = _trial(
             velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
         )
         if code == 2:
             tally[TALLY_EXCEEDED] += 1
-            if indexed:
-                members_speed_bounds(velocity, members, first, last, bounds)
-            else:
-                speed_bounds(velocity, first, last, bounds)
+            speed_bounds(velocity, first, last, bounds)
             c0, c1, c2, top1, top2 = _bound_terms(bounds, d)
             bound_sq, spacing = _majorant(kernel, pair_coefficient, n_pairs, top1, top2)
             continue  # the candidate drawn under the stale bound is dropped
@@ -452,49 +408,15 @@ def collide_range(
     bounds: (d + 2,) float64 from ``speed_bounds`` (kept valid in place).
     tally: (4,) int64 += candidates, accepted, bound raises, stale-bound detections.
     """
-    members = np.empty(0, dtype=np.int64)  # unused: the particles are a range
     if velocity.shape[0] == 3:
         _collide_loop(
-            velocity, members, first, last, state, kernel, restitution, pair_coefficient,
-            duration, poisson, bounds, carry, tally, 3, False,
+            velocity, first, last, state, kernel, restitution, pair_coefficient, duration,
+            poisson, bounds, carry, tally, 3,
         )  # fmt: skip
     else:
         _collide_loop(
-            velocity, members, first, last, state, kernel, restitution, pair_coefficient,
-            duration, poisson, bounds, carry, tally, 2, False,
-        )  # fmt: skip
-
-
-@kernel
-def collide_members(
-    velocity,
-    members,
-    start,
-    stop,
-    state,
-    kernel,
-    restitution,
-    pair_coefficient,
-    duration,
-    poisson,
-    bounds,
-    carry,
-    tally,
-):
-    """``collide_range`` for the particles ``members[start:stop]`` (an index list per cell).
-
-    members: int64 particle indices; ``bounds`` from ``members_speed_bounds``.
-    Everything else as in ``collide_range``.
-    """
-    if velocity.shape[0] == 3:
-        _collide_loop(
-            velocity, members, start, stop, state, kernel, restitution, pair_coefficient,
-            duration, poisson, bounds, carry, tally, 3, True,
-        )  # fmt: skip
-    else:
-        _collide_loop(
-            velocity, members, start, stop, state, kernel, restitution, pair_coefficient,
-            duration, poisson, bounds, carry, tally, 2, True,
+            velocity, first, last, state, kernel, restitution, pair_coefficient, duration,
+            poisson, bounds, carry, tally, 2,
         )  # fmt: skip
 
 
