@@ -245,6 +245,7 @@ def collect(
         summary["timings"][path.stem] = {
             key: record[key] for key in ("wall_seconds", "cpu_seconds", "date", "exit_code")
         } | {
+            "note": record.get("note", ""),
             "cpu": record["machine"]["cpu"],
             "logical_cpus": record["machine"]["logical_cpus"],
             "git_revision": record["machine"]["git_revision"],
@@ -294,10 +295,11 @@ def _timing(summary: dict[str, Any], name: str) -> str:
     record = summary["timings"].get(name)
     if record is None:
         return "not measured yet"
+    note = f"; {record['note']}" if record.get("note") else ""
     return (
         f"{_seconds(record['wall_seconds'])} wall, {record['cpu_seconds'] / 3600:.2f} CPU-hours "
         f"on {record['logical_cpus']} cores ({record['cpu']}, {record['date']}, "
-        f"revision {record['git_revision'][:7]})"
+        f"revision {record['git_revision'][:7]}{note})"
     )
 
 
