@@ -202,19 +202,17 @@ def job_code(rulename):
     )
 
 
-def job_front(wildcards, output):
-    """params.front of a simulation job: its front, ``module:function``."""
-    return job_of(output[0]).front
+def job_param(rulename, field):
+    """A params function of simulation rule ``rulename``: ``field`` of the job its wildcards
+    name (``front``, ``arguments`` or ``parameters`` of the kinetic.studies.Job). It takes
+    the wildcards only: Snakemake leaves params computed from the output out of its
+    params-changed check, and a changed config value must rerun the jobs it changes."""
 
+    def param(wildcards):
+        value = getattr(planned_job(wildcards, rulename), field)
+        return dict(value) if field != "front" else value
 
-def job_arguments(wildcards, output):
-    """params.job of a simulation job: the front's keyword arguments, the seed included."""
-    return dict(job_of(output[0]).arguments)
-
-
-def job_parameters(wildcards, output):
-    """params.parameters of a simulation job: provenance stamped beside the front's own."""
-    return dict(job_of(output[0]).parameters)
+    return param
 
 
 def planned_runtime(wildcards, attempt, rulename):

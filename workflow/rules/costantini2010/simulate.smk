@@ -24,9 +24,9 @@ rule costantini2010_simulate_dsmc:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("costantini2010_simulate_dsmc", "front"),
+        job=job_param("costantini2010_simulate_dsmc", "arguments"),
+        parameters=job_param("costantini2010_simulate_dsmc", "parameters"),
     script:
         "../../scripts/simulate.py"
 
@@ -49,9 +49,9 @@ rule costantini2010_simulate_md:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("costantini2010_simulate_md", "front"),
+        job=job_param("costantini2010_simulate_md", "arguments"),
+        parameters=job_param("costantini2010_simulate_md", "parameters"),
     script:
         "../../scripts/simulate.py"
 

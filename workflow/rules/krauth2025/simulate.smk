@@ -21,9 +21,9 @@ rule krauth2025_simulate_line:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("krauth2025_simulate_line", "front"),
+        job=job_param("krauth2025_simulate_line", "arguments"),
+        parameters=job_param("krauth2025_simulate_line", "parameters"),
     script:
         "../../scripts/simulate.py"
 
@@ -41,9 +41,9 @@ rule krauth2025_simulate_ring:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("krauth2025_simulate_ring", "front"),
+        job=job_param("krauth2025_simulate_ring", "arguments"),
+        parameters=job_param("krauth2025_simulate_ring", "parameters"),
     script:
         "../../scripts/simulate.py"
 
@@ -59,9 +59,9 @@ rule krauth2025_simulate_pin_snapshots:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("krauth2025_simulate_pin_snapshots", "front"),
+        job=job_param("krauth2025_simulate_pin_snapshots", "arguments"),
+        parameters=job_param("krauth2025_simulate_pin_snapshots", "parameters"),
     script:
         "../../scripts/simulate.py"
 
@@ -85,9 +85,9 @@ rule krauth2025_simulate_md:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("krauth2025_simulate_md", "front"),
+        job=job_param("krauth2025_simulate_md", "arguments"),
+        parameters=job_param("krauth2025_simulate_md", "parameters"),
     script:
         "../../scripts/simulate.py"
 
@@ -107,9 +107,9 @@ rule krauth2025_simulate_disks:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("krauth2025_simulate_disks", "front"),
+        job=job_param("krauth2025_simulate_disks", "arguments"),
+        parameters=job_param("krauth2025_simulate_disks", "parameters"),
     script:
         "../../scripts/simulate.py"
 
@@ -125,8 +125,8 @@ rule krauth2025_simulate_chaos:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("krauth2025_simulate_chaos", "front"),
+        job=job_param("krauth2025_simulate_chaos", "arguments"),
+        parameters=job_param("krauth2025_simulate_chaos", "parameters"),
     script:
         "../../scripts/simulate.py"

@@ -23,9 +23,9 @@ rule montanero2007_simulate_dsmc:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("montanero2007_simulate_dsmc", "front"),
+        job=job_param("montanero2007_simulate_dsmc", "arguments"),
+        parameters=job_param("montanero2007_simulate_dsmc", "parameters"),
     script:
         "../../scripts/simulate.py"
 

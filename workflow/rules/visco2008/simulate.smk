@@ -23,9 +23,9 @@ rule visco2008_simulate_md:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("visco2008_simulate_md", "front"),
+        job=job_param("visco2008_simulate_md", "arguments"),
+        parameters=job_param("visco2008_simulate_md", "parameters"),
     script:
         "../../scripts/simulate.py"
 
@@ -65,9 +65,9 @@ rule visco2008_simulate_dsmc:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("visco2008_simulate_dsmc", "front"),
+        job=job_param("visco2008_simulate_dsmc", "arguments"),
+        parameters=job_param("visco2008_simulate_dsmc", "parameters"),
     script:
         "../../scripts/simulate.py"
 
@@ -109,9 +109,9 @@ rule visco2008_simulate_cloning:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
     params:
-        front=job_front,
-        job=job_arguments,
-        parameters=job_parameters,
+        front=job_param("visco2008_simulate_cloning", "front"),
+        job=job_param("visco2008_simulate_cloning", "arguments"),
+        parameters=job_param("visco2008_simulate_cloning", "parameters"),
     script:
         "../../scripts/simulate.py"
 
