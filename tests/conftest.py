@@ -19,11 +19,18 @@ if _WORKER:
     os.environ["NUMBA_CACHE_DIR"] = str(REPOSITORY / ".pytest_cache" / "numba" / _WORKER)
 
 
+LONGEST = ("test_ci_config_builds_every_target_with_provenance",)
+"""The longest tests (the whole ci build), started before every other."""
+
+
 def pytest_collection_modifyitems(config, items):
-    """End-to-end builds first, then the other slow tests: with two workers the longest
-    test starts at once instead of after everything else."""
+    """The whole ci build first, then the other end-to-end builds, then the other slow
+    tests: with two workers the longest test starts at once, and the short ones fill the
+    end instead of one long build running alone."""
 
     def rank(item):
+        if item.originalname in LONGEST:
+            return -1
         slow = item.get_closest_marker("slow") is not None
         workflow = item.get_closest_marker("workflow") is not None
         return 0 if slow and workflow else 1 if slow else 2

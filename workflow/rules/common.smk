@@ -203,7 +203,7 @@ def job_code(rulename):
 
 
 def job_param(rulename, field):
-    """A params function of simulation rule ``rulename``: ``field`` of the job its wildcards
+    """A params function of the simulation rule named ``rulename``, ``field`` of the job its wildcards
     name (``front``, ``arguments`` or ``parameters`` of the kinetic.studies.Job). It takes
     the wildcards only: Snakemake leaves params computed from the output out of its
     params-changed check, and a changed config value must rerun the jobs it changes."""
