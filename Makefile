@@ -39,10 +39,10 @@ lint: install
 	$(BIN)/snakefmt --check Snakefile workflow
 
 test: lint
-	$(TIMED) results/timings/test.json -- $(BIN)/python -m pytest -n $(TEST_WORKERS)
+	$(TIMED) results/timings/test.json -- $(BIN)/python -m pytest -n $(TEST_WORKERS) --maxschedchunk 1
 
 test-fast: lint
-	$(BIN)/python -m pytest -n $(TEST_WORKERS) -m "not slow and not cluster"
+	$(BIN)/python -m pytest -n $(TEST_WORKERS) --maxschedchunk 1 -m "not slow and not cluster"
 
 docs: install
 	$(BIN)/python -m kinetic.docs collect
