@@ -1,7 +1,7 @@
 """Pressure of hard disks in a box with walls from the krauth2025 runs (§4.4.3).
 
 Per independent realization (an MD run, a sampler's run or chain), from the datasets of
-``kinetic.edmd.disks`` and ``kinetic.samplers.sample_disks``:
+``kinetic.event_disks`` and ``kinetic.samplers.sample_disks``:
 
 - ``wall_pressures``: βP by the wall rift, Eq. (4.9a), (1/(2 L τ)) Σ 2/|v⊥| over the hits
   of the chosen walls of total length 2L, and by the kinematic estimator, Eq. (4.10a)
@@ -18,10 +18,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pandas as pd
 import xarray as xr
 
 from kinetic.analysis import checks as check
 from kinetic.analysis.checks import Check
+from kinetic.analysis.statistics import mean_and_sem
+from kinetic.theory import krauth2025 as theory
 from kinetic.theory.krauth2025 import rate_pressure_factors, wall_value
 
 __all__ = [
@@ -31,6 +34,7 @@ __all__ = [
     "pair_collisions_per_disk",
     "parting_table",
     "pin_contact_density",
+    "pressure_table",
     "rate_pressures",
     "wall_hit_rate",
     "wall_pressures",
@@ -87,6 +91,112 @@ def contact_pressure(data: xr.Dataset) -> np.ndarray:
     return np.array([wall_value(edges, row) for row in densities]) / float(data.attrs["box_x"])
 
 
+def pressure_table(md: xr.Dataset, direct: xr.Dataset) -> pd.DataFrame:
+    """§4.4.3 in numbers, one row per quantity: βP of the four disks by the wall-rift
+    (Eq. 4.9a) and kinematic (Eq. 4.10a, times β) estimators on the x and y walls and by the
+    contact density of the MD's Eq. (4.3) density, against the thermodynamic βP (the contact
+    density of direct-disks ``direct``); the averages of Eqs. (4.13a/b) over wall collisions
+    and (4.14a/b) over pair collisions against their finite-N values ((4.14a) corrected, the
+    printed value listed); the wall-hit rate n̂ (4.9b) and βP from it times the finite-N
+    flux average (4.9c) and times its N → ∞ limit (4.9d), which differ by
+    Γ(N+1/2)/(Γ(N)√N) (0.969 at N = 4).
+
+    Columns: quantity, equation, value, sem (mean and standard error across the
+    realizations of ``md``), reference, reference_sem, reference_source, z = (value −
+    reference)/hypot(sem, reference_sem) (NaN without a reference), printed_value."""
+    n = int(md.attrs["n_disks"])
+    walls = md["wall_statistics"].values  # (realization, face, [count, sum, sum_inverse])
+    pairs = md["pair_statistics"].values
+    radius = float(np.sqrt(md["radius_squared"].values).mean())
+    thermodynamic = mean_and_sem(contact_pressure(direct))
+    contact = ("contact density from direct-disks", *thermodynamic)
+    none = ("", math.nan, 0.0)
+    wall_exact = theory.wall_speed_averages(n, radius)
+    pair_exact = theory.pair_speed_averages(n, radius)
+    rows = []
+
+    def row(quantity, equation, values, reference, printed=math.nan):
+        value, sem = mean_and_sem(values)
+        source, expected, expected_sem = reference
+        rows.append(
+            {
+                "quantity": quantity,
+                "equation": equation,
+                "value": value,
+                "sem": sem,
+                "reference": expected,
+                "reference_sem": expected_sem,
+                "reference_source": source,
+                "z": (
+                    (value - expected) / math.hypot(sem, expected_sem)
+                    if math.isfinite(expected)
+                    else math.nan
+                ),
+                "printed_value": printed,
+            }
+        )
+
+    rift_x, kinematic_x = wall_pressures(md, "x")
+    rift_y, kinematic_y = wall_pressures(md, "y")
+    row("beta P_x, wall rift", "4.9a", rift_x, contact)
+    row("beta P_y, wall rift", "4.9a", rift_y, contact)
+    row("beta P_x, kinematic", "4.10a", kinematic_x, contact)
+    row("beta P_y, kinematic", "4.10a", kinematic_y, contact)
+    row("beta P, contact density (MD, Eq. 4.3)", "4.8", contact_pressure(md), contact)
+    row(
+        "mean of 1/v_perp over wall collisions",
+        "4.13a",
+        walls[:, :, 2].sum(1) / walls[:, :, 0].sum(1),
+        ("Eq. 4.13a", wall_exact["inverse"], 0.0),
+    )
+    row(
+        "mean of v_perp over wall collisions",
+        "4.13b",
+        walls[:, :, 1].sum(1) / walls[:, :, 0].sum(1),
+        ("Eq. 4.13b", wall_exact["mean"], 0.0),
+    )
+    row(
+        "mean of 1/dv_perp over pair collisions",
+        "4.14a",
+        pairs[:, 2] / pairs[:, 0],
+        (
+            "Eq. 4.14a corrected (sqrt(pi/2) for the printed sqrt(2 pi))",
+            pair_exact["inverse"],
+            0.0,
+        ),
+        printed=pair_exact["inverse_printed"],
+    )
+    row(
+        "mean of dv_perp over pair collisions",
+        "4.14b",
+        pairs[:, 1] / pairs[:, 0],
+        ("Eq. 4.14b", pair_exact["mean"], 0.0),
+    )
+    for faces in ("x", "y"):
+        finite, limit = rate_pressures(md, faces)
+        row(
+            f"wall-hit rate n_{faces} per unit wall length and time",
+            "4.9b",
+            wall_hit_rate(md, faces),
+            none,
+        )
+        row(f"beta P_{faces}, wall-hit rate, finite N", "4.9c = beta x 4.10c", finite, contact)
+        row(
+            f"beta P_{faces}, wall-hit rate, N -> inf",
+            "4.9d = beta x 4.10d (corrected)",
+            limit,
+            contact,
+        )
+    factor = rate_pressure_factors(n, radius)["finite_over_limit"]
+    row(
+        "Gamma(N+1/2)/(Gamma(N) sqrt N), finite N over limit",
+        "4.9c / 4.9d",
+        [factor, factor],
+        ("exact", math.nan, 0.0),
+    )
+    return pd.DataFrame(rows)
+
+
 def pin_contact_density(edges, density) -> float:
     """Pin density at contact with the posts (both posts averaged) from a histogram of pin
     centres on ``edges`` between them: the wall-rift βP of the washing line, whose exact
@@ -107,7 +217,7 @@ def pair_collisions_per_disk(event_pair, n_disks: int) -> np.ndarray:
 
 def parting_table(chaos: xr.Dataset) -> list[dict]:
     """Where the collision sequences of float32 and of a one-ulp start part from float64,
-    for every start of a ``kinetic.edmd.disks.chaos`` dataset: the first event whose pair
+    for every start of a ``kinetic.event_disks.chaos`` dataset: the first event whose pair
     differs, and the pair collisions per disk of the float64 sequence before it (NaN when
     the sequences agree over all events: the run was too short to see them part)."""
     n_disks = int(chaos.attrs["n_disks"])
