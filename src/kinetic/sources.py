@@ -40,7 +40,7 @@ __all__ = [
 PACKAGE = Path(__file__).resolve().parent
 """The ``kinetic`` package directory."""
 
-ENGINES = ("cloning", "dsmc", "edmd", "samplers")
+ENGINES = ("cloning", "dsmc", "edmd", "event_disks", "samplers")
 """Subpackages whose compiled kernels call only themselves and the shared modules."""
 
 SHARED = ("rng", "seeds", "jit", "validate", "gas")

@@ -14,12 +14,14 @@ import pytest
 from kinetic.analysis.krauth2025 import (
     contact_pressure,
     parting_table,
+    pressure_table,
     rate_pressures,
     wall_pressures,
 )
 from kinetic.analysis.statistics import mean_and_sem
-from kinetic.edmd import HardSphereSystem, Observers, naive
-from kinetic.edmd.disks import CLASSIC_START, chaos, initial_state, simulate_box
+from kinetic.edmd import HardSphereSystem, Observers
+from kinetic.event_disks import CLASSIC_START, chaos, initial_state, simulate_box
+from kinetic.event_disks import kernels as event_disks_kernels
 from kinetic.samplers import sample_disks
 from kinetic.theory import krauth2025 as theory
 
@@ -54,7 +56,7 @@ def test_event_disks_follows_the_cell_engine_event_by_event():
     events = 200
     times = np.zeros(events)
     pairs = np.zeros((events, 2), dtype=np.int64)
-    naive.trajectory(
+    event_disks_kernels.trajectory(
         x.copy(), v.copy(), SIGMA, np.ones(2), events, times, pairs, np.zeros((events, N, 2))
     )
     is_pair = pairs[:, 1] >= 0
@@ -76,7 +78,7 @@ def test_event_disks_conserves_energy_and_never_overlaps():
     energy = np.sum(v**2)
     events = 20_000
     positions = np.zeros((events, N, 2))
-    naive.trajectory(
+    event_disks_kernels.trajectory(
         x,
         v,
         SIGMA,
@@ -160,6 +162,26 @@ def test_finite_n_averages_of_eqs_4_13_and_4_14(md):
         assert abs(value - expected) < 4.5 * sem
     value, sem = mean_and_sem(pairs[:, 2] / pairs[:, 0])
     assert abs(value - pair["inverse_printed"]) > 100 * sem
+
+
+def test_pressure_table_rows_agree_with_their_references(md, direct):
+    """The table of rule krauth2025_pressure_table: every βP estimator and finite-N average
+    within 4.5 of its combined standard errors of its reference, the N → ∞ rate form (4.9d)
+    off by its Γ factor (reported, not a claim), and its values those of the estimators."""
+    table = pressure_table(md, direct).set_index("quantity")
+    assert len(table) == 16
+    claims = table[table["reference"].notna() & ~table.index.str.contains("N -> inf")]
+    assert len(claims) == 11
+    assert (claims["z"].abs() < 4.5).all(), claims["z"]
+    limits = table[table.index.str.contains("N -> inf")]
+    finite = table[table.index.str.contains("finite N") & table.index.str.startswith("beta")]
+    np.testing.assert_allclose(finite["value"].values / limits["value"].values, 0.969311, rtol=1e-5)
+    rift_y, _ = wall_pressures(md, "y")
+    assert table.loc["beta P_y, wall rift", "value"] == pytest.approx(rift_y.mean())
+    expected = theory.pair_speed_averages(N, float(np.sqrt(md["radius_squared"]).mean()))
+    assert table.loc["mean of 1/dv_perp over pair collisions", "printed_value"] == (
+        pytest.approx(expected["inverse_printed"])
+    )
 
 
 def test_chaos_precisions_part_and_float64_is_deterministic():

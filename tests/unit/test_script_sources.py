@@ -64,7 +64,7 @@ FRONTS = _fronts()
 def test_every_engine_and_document_has_simulation_jobs():
     assert len(FRONTS) >= 10
     engines = {engine for _, names in FRONTS for engine in names}
-    assert engines == {"edmd", "dsmc", "cloning", "samplers"}
+    assert engines == {"edmd", "event_disks", "dsmc", "cloning", "samplers"}
     jobs = studies.jobs(load_configs([SCRIPTS.parents[1] / "config" / "ci.yaml"]))
     assert {job.document for job in jobs} == set(studies.DOCUMENTS)
     assert len({job.output for job in jobs}) == len(jobs)  # one job per file
@@ -89,3 +89,20 @@ def test_a_simulation_rerun_follows_every_module_its_front_loads(front, engines)
     loaded = {Path(file).resolve() for file in loaded} - bookkeeping
     inputs = {path.resolve() for path in front_sources(front, engines)}
     assert loaded and loaded <= inputs, sorted(map(str, loaded - inputs))
+
+
+def test_each_md_engine_reruns_only_its_own_jobs():
+    """visco2008's and costantini2010's MD (kinetic.edmd) and krauth2025's four disks
+    (kinetic.event_disks) share no source file but the shared modules: an edit of one
+    engine reruns none of the other's jobs."""
+    md = {front: set(front_sources(front, engines)) for front, engines in FRONTS}
+    edmd = PACKAGE / "edmd"
+    event_disks = PACKAGE / "event_disks"
+    for front, files in md.items():
+        engine = front.split(":")[0].split(".")[1]
+        if engine != "edmd":
+            assert not any(path.is_relative_to(edmd) for path in files), front
+        if engine != "event_disks":
+            assert not any(path.is_relative_to(event_disks) for path in files), front
+    assert any(front.startswith("kinetic.event_disks:") for front in md)
+    assert sum(front.startswith("kinetic.edmd") for front in md) >= 2

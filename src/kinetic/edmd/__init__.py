@@ -7,9 +7,8 @@
   realizations -> ``xarray.Dataset``);
 - ``warmup``: compile (or load from numba's cache) every kernel with production types.
 
-Beside them, for a few disks in a box with walls (krauth2025): ``kinetic.edmd.naive``,
-the lecture's O(N²)-per-event event-disks in float32 or float64, and its front
-``kinetic.edmd.disks`` (observed runs, the chaos comparison).
+krauth2025's few disks in a box with walls run on the lecture's O(N²)-per-event
+event-disks, an engine of its own (``kinetic.event_disks``).
 """
 
 import importlib
@@ -83,45 +82,3 @@ def warmup() -> None:
         system.run(until=system.time + 1.0)
         system.min_distance()
         system.kinetic_temperature()
-    _warm_naive()
-
-
-def _warm_naive() -> None:
-    """Compile event-disks (``kinetic.edmd.naive``) for float64 and float32 arrays, without
-    the direct-disks start of ``kinetic.edmd.disks`` (compiled by ``kinetic.samplers``)."""
-    import numpy as np
-
-    from kinetic.edmd import naive
-
-    for dtype in (np.float64, np.float32):
-        x = np.array([[0.3, 0.3], [0.7, 0.7]], dtype=dtype)
-        v = np.array([[1.0, 0.5], [-0.5, -1.0]], dtype=dtype)
-        pairs = np.zeros((3, 2), dtype=np.int64)
-        naive.trajectory(
-            x,
-            v,
-            dtype(0.1),
-            np.ones(2, dtype=dtype),
-            3,
-            np.zeros(3, dtype=dtype),
-            pairs,
-            np.zeros((3, 2, 2), dtype=dtype),
-        )
-    x = np.array([[0.3, 0.3], [0.7, 0.7]])
-    v = np.array([[1.0, 0.5], [-0.5, -1.0]])
-    naive.observe(
-        x,
-        v,
-        0.1,
-        np.ones(2),
-        2.0,
-        0.5,
-        np.zeros(4),
-        np.zeros(4),
-        0.1,
-        0.9,
-        np.zeros((4, 3)),
-        np.zeros(3),
-        np.zeros(4),
-        1.0,
-    )

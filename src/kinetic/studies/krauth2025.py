@@ -204,7 +204,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
         job(
             "krauth2025_simulate_md",
             "disks/md.nc",
-            "kinetic.edmd.disks:simulate_box",
+            "kinetic.event_disks:simulate_box",
             {
                 "n_disks": disks["n_disks"],
                 "sigma": disks["sigma"],
@@ -220,7 +220,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
                 duration=disks["md_duration"],
                 realizations=disks["realizations"],
             ),
-            ("edmd", "samplers"),
+            ("event_disks", "samplers"),
         )
     )
     for method, samples in (("direct", "direct_samples"), ("markov", "markov_sweeps")):
@@ -254,7 +254,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
         job(
             "krauth2025_simulate_chaos",
             "disks/chaos.nc",
-            "kinetic.edmd.disks:chaos",
+            "kinetic.event_disks:chaos",
             {
                 "n_disks": disks["n_disks"],
                 "sigma": disks["sigma"],
@@ -264,7 +264,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
                 "extra_starts": disks["chaos_starts"],
             },
             cost.small_job(),
-            ("edmd", "samplers"),
+            ("event_disks", "samplers"),
             benchmark=False,
         )
     )

@@ -20,7 +20,7 @@ Two kernels:
   (Eq. 4.14).
 
 Faces are numbered 2k + (1 if the wall is at L_k, 0 if at 0). Disks must start legal
-(inside [σ, L_k − σ], no overlap); the front (``kinetic.edmd.disks``) checks that.
+(inside [σ, L_k − σ], no overlap); the front (``kinetic.event_disks``) checks that.
 """
 
 from __future__ import annotations

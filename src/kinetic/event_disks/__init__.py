@@ -1,5 +1,6 @@
-"""Front of ``kinetic.edmd.naive`` (event-disks, krauth2025 §4.1 and §4.4.3): a few hard
-disks in a box with walls.
+"""event-disks (krauth2025 §4.1 and §4.4.3): a few hard disks in a box with walls, by the
+lecture's naive event-driven MD (kernels in ``kinetic.event_disks.kernels``). An engine of
+its own, apart from ``kinetic.edmd``: an edit of one reruns none of the other's jobs.
 
 - ``simulate_box``: independent realizations (direct-disks start, Gaussian velocities
   scaled to Σ v² = 2N, i.e. k_B T = 1 with m = 1) run for a fixed time; returns the
@@ -11,7 +12,8 @@ disks in a box with walls.
   state one unit in the last place away), event by event (§4.1.2), from the classic start
   of Krauth's four-disk program or a random one, and the event sequences of further
   random starts (where the precisions part, with a spread);
-- ``initial_state``: the start of realization r of a seed.
+- ``initial_state``: the start of realization r of a seed;
+- ``warmup``: compile (or load from numba's cache) the kernels for float64 and float32.
 """
 
 from __future__ import annotations
@@ -23,12 +25,12 @@ import numpy as np
 import xarray as xr
 
 from kinetic import io
-from kinetic.edmd import naive
+from kinetic.event_disks import kernels
 from kinetic.progress import Progress
 from kinetic.rng import stream_states
 from kinetic.samplers import disk_configuration
 
-__all__ = ["CLASSIC_START", "chaos", "initial_state", "simulate_box"]
+__all__ = ["CLASSIC_START", "chaos", "initial_state", "simulate_box", "warmup"]
 
 CLASSIC_START = {
     "sigma": 0.15,
@@ -97,7 +99,7 @@ def simulate_box(
     cpu = np.zeros(realizations)
     progress = Progress(realizations, label=f"event-disks N={n_disks}", unit="realizations")
     x, v = starts[0]
-    naive.observe(  # load the compiled kernel before the clock runs (a run of length 0)
+    kernels.observe(  # load the compiled kernel before the clock runs (a run of length 0)
         x.copy(),
         v.copy(),
         float(sigma),
@@ -116,7 +118,7 @@ def simulate_box(
     for r, (x, v) in enumerate(starts):
         radius2[r] = np.sum(v**2)
         begin = time.process_time()
-        events[r] = naive.observe(
+        events[r] = kernels.observe(
             x,
             v,
             float(sigma),
@@ -237,7 +239,7 @@ def _parting_runs(x, v, sigma, box, events: int):
     for index, (xr_, vr, dtype) in enumerate(runs.values()):
         event_time = np.zeros(events, dtype=dtype)
         event_positions = np.zeros((events, n_disks, 2), dtype=dtype)
-        naive.trajectory(
+        kernels.trajectory(
             xr_,
             vr,
             dtype(sigma),
@@ -327,3 +329,41 @@ def chaos(
     }
     parameters.update({"box_x": float(box[0]), "box_y": float(box[1])})
     return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
+
+
+def warmup() -> None:
+    """Compile the kernels for float64 and float32 arrays (numba cache=True: later processes
+    load the machine code), without the direct-disks start (compiled by
+    ``kinetic.samplers``)."""
+    for dtype in (np.float64, np.float32):
+        x = np.array([[0.3, 0.3], [0.7, 0.7]], dtype=dtype)
+        v = np.array([[1.0, 0.5], [-0.5, -1.0]], dtype=dtype)
+        pairs = np.zeros((3, 2), dtype=np.int64)
+        kernels.trajectory(
+            x,
+            v,
+            dtype(0.1),
+            np.ones(2, dtype=dtype),
+            3,
+            np.zeros(3, dtype=dtype),
+            pairs,
+            np.zeros((3, 2, 2), dtype=dtype),
+        )
+    x = np.array([[0.3, 0.3], [0.7, 0.7]])
+    v = np.array([[1.0, 0.5], [-0.5, -1.0]])
+    kernels.observe(
+        x,
+        v,
+        0.1,
+        np.ones(2),
+        2.0,
+        0.5,
+        np.zeros(4),
+        np.zeros(4),
+        0.1,
+        0.9,
+        np.zeros((4, 3)),
+        np.zeros(3),
+        np.zeros(4),
+        1.0,
+    )
