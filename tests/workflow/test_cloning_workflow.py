@@ -46,7 +46,7 @@ def run(workdir, *args, check=True):
 @pytest.mark.workflow
 def test_fig05_plans_only_the_scan(tmp_path):
     plan = run(tmp_path, "results/ci/visco2008/fig05.pdf", "--configfile", CI, "--dry-run")
-    assert "visco2008_simulate_cloning" in plan and "visco2008_aggregate_cloning" in plan
+    assert "visco2008_simulate_cloning" in plan and "visco2008_cloning_table" in plan
     assert "visco2008_theory_cloning_reference" in plan
     assert "error_vs_time" not in plan
     for unrelated in ("visco2008_fig04", "visco2008_fig07", "visco2008_fig03"):
@@ -90,4 +90,4 @@ def test_tiny_scan_writes_the_table_and_resumes(tmp_path):
     (tmp_path / target).unlink()
     plan = run(tmp_path, target, "--configfile", str(config), "--dry-run")
     assert plan.count("rule visco2008_simulate_cloning:") == 1
-    assert "batch0001.nc" in plan and "rule visco2008_aggregate_cloning:" in plan
+    assert "batch0001.nc" in plan and "rule visco2008_cloning_table:" in plan

@@ -4,6 +4,7 @@ import json
 import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -113,6 +114,82 @@ def test_a_target_no_rule_file_registers_is_refused_with_the_registered_ones(tmp
     for registered in ("visco2008/fig03", "visco2008/checks", "krauth2025/checks"):
         assert f"'{registered}'" in output
     assert not (tmp_path / "results").exists()
+
+
+TOY_RULE = """
+
+provide("krauth2025/figtoy", *figure_files("krauth2025", "figtoy"))
+
+
+rule krauth2025_figtoy:
+    input:
+        theory=results_file("krauth2025/theory/ring.nc"),
+        code=script_code("krauth2025_figtoy"),
+    output:
+        pdf=results_file("krauth2025/figtoy.pdf"),
+        png=report(
+            results_file("krauth2025/figtoy.png"),
+            caption="../../report/krauth2025_figtoy.rst",
+            category="krauth2025",
+        ),
+    log:
+        log_file("krauth2025/figtoy.log"),
+    script:
+        "../../scripts/krauth2025_figtoy.py"
+"""
+
+TOY_SCRIPT = """from kinetic import io, plotting
+from kinetic.workflow_support import start
+
+start(snakemake)
+theory = io.read_dataset(snakemake.input.theory)
+fig, ax = plotting.figure()
+ax.plot(theory["r_curve"], theory["pair_density_curve"], "-")
+plotting.save(fig, snakemake.output.pdf)
+"""
+
+
+@pytest.mark.workflow
+def test_a_new_figure_needs_a_rule_entry_a_script_and_a_caption(tmp_path):
+    """docs/layout.md's recipe on a copy of the workflow: a rule that registers its files
+    (provide), a script and a caption, nothing else edited (no schema, no target list, no
+    Snakefile). The id is then a config target, rule all builds it, and a build of the id
+    alone runs only the rules it needs."""
+    tree = tmp_path / "tree"
+    tree.mkdir()
+    shutil.copy(REPOSITORY / "Snakefile", tree / "Snakefile")
+    for name in ("workflow", "config"):
+        shutil.copytree(REPOSITORY / name, tree / name)
+    with open(tree / "workflow" / "rules" / "krauth2025" / "figures.smk", "a") as rules:
+        rules.write(TOY_RULE)
+    (tree / "workflow" / "scripts" / "krauth2025_figtoy.py").write_text(TOY_SCRIPT)
+    (tree / "workflow" / "report" / "krauth2025_figtoy.rst").write_text("A toy figure.\n")
+    ci = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
+    config = tmp_path / "toy.yaml"
+    config.write_text(yaml.safe_dump({**ci, "targets": ["krauth2025/figtoy"]}))
+    command = [sys.executable, "-m", "snakemake", "--snakefile", str(tree / "Snakefile")]
+
+    def snakemake(*args):
+        result = subprocess.run(
+            [*command, "--directory", str(tmp_path), *args, "--configfile", str(config)],
+            capture_output=True,
+            text=True,
+            timeout=600,
+            env={**os.environ, "MPLBACKEND": "Agg"},
+        )
+        assert result.returncode == 0, result.stdout + result.stderr
+        return result.stdout + result.stderr
+
+    built = snakemake("--cores", "1")
+    assert set(re.findall(r"^(?:local)?rule (\w+):", built, re.MULTILINE)) == {
+        "krauth2025_theory_ring",
+        "krauth2025_figtoy",
+        "all",
+    }
+    assert (tmp_path / "results" / "ci" / "krauth2025" / "figtoy.png").stat().st_size > 0
+    config.write_text(yaml.safe_dump({**ci, "targets": "all"}))
+    assert "krauth2025_figtoy" not in snakemake("--dry-run")  # rule all: built already
+    assert "krauth2025/figtoy.pdf" in snakemake("--dry-run", "--forceall")
 
 
 @pytest.mark.workflow

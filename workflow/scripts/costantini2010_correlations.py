@@ -1,4 +1,5 @@
-"""Join the jobs of one costantini2010 run and analyse it: C(tau), tail fit, nu*, nu_bar*."""
+"""One costantini2010 run's correlations (rule costantini2010_correlations): its jobs joined,
+then C(tau), the tail fit, nu*, nu_bar*, zeta* and T(tau)."""
 
 from kinetic import batches, io
 from kinetic.analysis.costantini2010 import analyse_run

@@ -1,26 +1,9 @@
-"""Join the batches of one visco2008 MD run; derive its Table I cumulants (rule
-visco2008_aggregate_md)."""
+"""Join the batches of one visco2008 MD run (rule visco2008_aggregate_md)."""
 
-from kinetic.analysis import collision_statistics
 from kinetic.batches import combine, read_batches
 from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
 data = combine(read_batches(snakemake.input.batches))
-write_output(snakemake, data, int(data.attrs["seed"]), output="data")
-cumulants = collision_statistics.cumulant_dataset(
-    data,
-    snakemake.params.table_windows,
-    extrapolation_windows=snakemake.params.extrapolation_windows,
-)
-write_output(snakemake, cumulants, int(data.attrs["seed"]), output="cumulants")
-for window in cumulants["window"].values:
-    values = cumulants["scaled_cumulant"].sel(window=window).values
-    errors = cumulants["scaled_cumulant_sem"].sel(window=window).values
-    log.info("t = %g: <N^p>_c/t = %s +- %s", window, values.round(4), errors.round(4))
-log.info(
-    "t -> inf (fit in 1/t over t = %s): %s +- %s",
-    cumulants.attrs["extrapolation_windows"],
-    cumulants["extrapolated_cumulant"].values.round(4),
-    cumulants["extrapolated_cumulant_sem"].values.round(4),
-)
+write_output(snakemake, data, int(data.attrs["seed"]))
+log.info("%s: %d realizations", snakemake.output[0], data.sizes["realization"])

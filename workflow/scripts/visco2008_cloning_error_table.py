@@ -1,4 +1,4 @@
-"""Error-against-CPU-time study (rule visco2008_aggregate_cloning_error) -> table and netCDF."""
+"""Error-against-CPU-time study (rule visco2008_cloning_error_table) -> table and netCDF."""
 
 import numpy as np
 

@@ -1,4 +1,4 @@
-"""Pool the scan's batches (rule visco2008_aggregate_cloning) -> cloning.csv|md|nc."""
+"""Pool the scan's batches (rule visco2008_cloning_table) -> cloning.csv|md|nc."""
 
 from kinetic import io
 from kinetic.analysis import cloning as analysis

@@ -27,7 +27,7 @@ def costantini2010_run(wildcards):
 
 
 def costantini2010_batch_files(wildcards):
-    """Input of the aggregate: every job's file of the run."""
+    """Input of costantini2010_correlations (the rule): every job's file of the run."""
     run = costantini2010_run(wildcards)
     return [
         results_file(costantini2010_study.batch_file(run, job))

@@ -1,4 +1,6 @@
-# costantini2010: figures and tables, from the run aggregates of simulate.smk only.
+# costantini2010: each run's correlations (C(tau), nu*, nu_bar*, T(tau): rule
+# costantini2010_correlations, from the jobs of simulate.smk), then figures and tables
+# from those only.
 #   fig01  T(tau) for several cell sizes and Lambda against MD and T_s, with the
 #          recollision diagnostic           fig02  C(tau): homogeneous vs inhomogeneous DSMC vs MD
 #   fig03  C(tau) for each N                fig04/05  nu*, nu_bar* against 1/N (table1 fits)
@@ -31,6 +33,23 @@ provide(
     *table_files("costantini2010", "checks"),
     results_file("costantini2010/amplitudes.csv"),
 )
+
+
+rule costantini2010_correlations:
+    input:
+        batches=costantini2010_batch_files,
+        code=script_code("costantini2010_correlations"),
+    output:
+        results_file("costantini2010/{engine}/{run}.nc"),
+    log:
+        log_file("costantini2010/{engine}/{run}.log"),
+    wildcard_constraints:
+        engine="dsmc|md",
+        run="[^/]+",
+    params:
+        analysis=costantini2010_analysis,
+    script:
+        "../../scripts/costantini2010_correlations.py"
 
 
 rule costantini2010_fig01:
@@ -116,7 +135,7 @@ rule costantini2010_table1:
 
 
 rule costantini2010_fig04:
-    # drawn from Table 1 (itself computed from the run aggregates) and the theory
+    # drawn from Table 1 (itself computed from the runs' correlations) and the theory
     input:
         table=results_file("costantini2010/table1.csv"),
         fits=results_file("costantini2010/extrapolation.csv"),
@@ -138,7 +157,7 @@ rule costantini2010_fig04:
 
 
 rule costantini2010_fig05:
-    # drawn from Table 1 (itself computed from the run aggregates) and the theory
+    # drawn from Table 1 (itself computed from the runs' correlations) and the theory
     input:
         table=results_file("costantini2010/table1.csv"),
         fits=results_file("costantini2010/extrapolation.csv"),
@@ -160,7 +179,7 @@ rule costantini2010_fig05:
 
 
 rule costantini2010_fig06:
-    # drawn from Table 1 (itself computed from the run aggregates) and the theory
+    # drawn from Table 1 (itself computed from the runs' correlations) and the theory
     input:
         table=results_file("costantini2010/table1.csv"),
         code=script_code("costantini2010_fig06"),
@@ -180,7 +199,7 @@ rule costantini2010_fig06:
 
 
 rule costantini2010_fig07:
-    # drawn from Table 1 (itself computed from the run aggregates) and the theory
+    # drawn from Table 1 (itself computed from the runs' correlations) and the theory
     input:
         table=results_file("costantini2010/table1.csv"),
         code=script_code("costantini2010_fig07"),

@@ -1,8 +1,8 @@
 # costantini2010: runs of the cooling gas in the stationary representation, by inhomogeneous
 # DSMC (kinetic.dsmc.simulate_cooling_modes) and MD (kinetic.edmd.simulate_cooling_modes).
-# Every run is cut into jobs of realizations (kinetic.batches); one aggregate per run joins
-# them and computes C(tau), the tail fit, nu*, nu_bar*, zeta* and T(tau)
-# (kinetic.analysis.costantini2010). Run names are the keys of
+# Every run is cut into jobs of realizations (kinetic.batches); rule
+# costantini2010_correlations (figures.smk) reads a run's jobs and computes C(tau), the tail
+# fit, nu*, nu_bar*, zeta* and T(tau) (kinetic.analysis.costantini2010). Run names are the keys of
 # kinetic.studies.costantini2010.runs(config): wildcards are looked up, never parsed.
 
 
@@ -54,20 +54,3 @@ rule costantini2010_simulate_md:
         parameters=job_param("costantini2010_simulate_md", "parameters"),
     script:
         "../../scripts/simulate.py"
-
-
-rule costantini2010_aggregate_run:
-    input:
-        batches=costantini2010_batch_files,
-        code=script_code("costantini2010_aggregate"),
-    output:
-        results_file("costantini2010/{engine}/{run}.nc"),
-    log:
-        log_file("costantini2010/{engine}/{run}.log"),
-    wildcard_constraints:
-        engine="dsmc|md",
-        run="[^/]+",
-    params:
-        analysis=costantini2010_analysis,
-    script:
-        "../../scripts/costantini2010_aggregate.py"

@@ -1,6 +1,7 @@
-# visco2008 figures and tables: Figs 1-12 and Table I from the MD, DSMC and cloning
-# aggregates of simulate.smk and the theory files of theory.smk, plus the cloning and MD
-# error-against-time studies. Figures only read files under <results>/.
+# visco2008 analyses, figures and tables: the MD runs' cumulants, the cloning scan's table
+# (its 1/N_c extrapolations) and the cloning error study's table from the joined runs of
+# simulate.smk; Figs 1-12 and Table I from those and the theory files of theory.smk, plus
+# the cloning and MD error-against-time studies. Figures only read files under <results>/.
 
 
 for _number in ("01", "02", "03", "04", "05", "06", "07", "08", "09", "10", "11", "12"):
@@ -32,6 +33,52 @@ provide(
     *figure_files("visco2008", "md_error_vs_time"),
     *table_files("visco2008", "md_error_vs_time"),
 )
+
+
+rule visco2008_cumulants_md:
+    input:
+        data=visco2008_md_data("{run}"),
+        code=script_code("visco2008_cumulants_md"),
+    output:
+        visco2008_md_cumulants("{run}"),
+    log:
+        log_file("visco2008/md/{run}_cumulants.log"),
+    wildcard_constraints:
+        run=visco2008_md_runs(),
+    params:
+        table_windows=visco2008_md_table_windows,
+        extrapolation_windows=visco2008_md_extrapolation_windows,
+    script:
+        "../../scripts/visco2008_cumulants_md.py"
+
+
+rule visco2008_cloning_table:
+    input:
+        batches=visco2008_cloning_scan_batches,
+        code=script_code("visco2008_cloning_table"),
+    output:
+        csv=results_file("visco2008/cloning.csv"),
+        md=results_file("visco2008/cloning.md"),
+        nc=results_file("visco2008/cloning.nc"),
+    log:
+        log_file("visco2008/cloning_table.log"),
+    script:
+        "../../scripts/visco2008_cloning_table.py"
+
+
+rule visco2008_cloning_error_table:
+    input:
+        batches=visco2008_cloning_error_batches,
+        reference=results_file("visco2008/cloning/reference.nc"),
+        code=script_code("visco2008_cloning_error_table"),
+    output:
+        csv=results_file("visco2008/cloning_error_vs_time.csv"),
+        md=results_file("visco2008/cloning_error_vs_time.md"),
+        nc=results_file("visco2008/cloning/error_vs_time.nc"),
+    log:
+        log_file("visco2008/cloning_error_table.log"),
+    script:
+        "../../scripts/visco2008_cloning_error_table.py"
 
 
 rule visco2008_cloning_error_vs_time:

@@ -3,7 +3,8 @@
 # Every run is cut into jobs of independent realizations (kinetic.batches: one
 # <results>/visco2008/<engine>/<run>/batchNNNN.nc per job); realization k of a run always
 # uses stream k of the run's seed, so the data do not depend on the cut and a stopped run
-# resumes job by job. One aggregate per run joins its jobs.
+# resumes job by job. One aggregate per run joins its jobs and computes nothing else; the
+# analyses of the joined runs are in figures.smk.
 
 
 rule visco2008_simulate_md:
@@ -35,15 +36,11 @@ rule visco2008_aggregate_md:
         batches=visco2008_md_batch_files,
         code=script_code("visco2008_aggregate_md"),
     output:
-        data=results_file("visco2008/md/{run}.nc"),
-        cumulants=results_file("visco2008/md/{run}_cumulants.nc"),
+        results_file("visco2008/md/{run}.nc"),
     log:
         log_file("visco2008/md/{run}_aggregate.log"),
     wildcard_constraints:
         run=visco2008_md_runs(),
-    params:
-        table_windows=visco2008_md_table_windows,
-        extrapolation_windows=visco2008_md_extrapolation_windows,
     script:
         "../../scripts/visco2008_aggregate_md.py"
 
@@ -114,32 +111,3 @@ rule visco2008_simulate_cloning:
         parameters=job_param("visco2008_simulate_cloning", "parameters"),
     script:
         "../../scripts/simulate.py"
-
-
-rule visco2008_aggregate_cloning:
-    input:
-        batches=visco2008_cloning_scan_batches,
-        code=script_code("visco2008_aggregate_cloning"),
-    output:
-        csv=results_file("visco2008/cloning.csv"),
-        md=results_file("visco2008/cloning.md"),
-        nc=results_file("visco2008/cloning.nc"),
-    log:
-        log_file("visco2008/cloning_aggregate.log"),
-    script:
-        "../../scripts/visco2008_aggregate_cloning.py"
-
-
-rule visco2008_aggregate_cloning_error:
-    input:
-        batches=visco2008_cloning_error_batches,
-        reference=results_file("visco2008/cloning/reference.nc"),
-        code=script_code("visco2008_aggregate_cloning_error"),
-    output:
-        csv=results_file("visco2008/cloning_error_vs_time.csv"),
-        md=results_file("visco2008/cloning_error_vs_time.md"),
-        nc=results_file("visco2008/cloning/error_vs_time.nc"),
-    log:
-        log_file("visco2008/cloning_error_vs_time_aggregate.log"),
-    script:
-        "../../scripts/visco2008_aggregate_cloning_error.py"
