@@ -1,7 +1,11 @@
 """Shared fixtures: the repository root and a headless matplotlib; under pytest-xdist,
-one numba cache per worker and the longest tests first."""
+one numba cache per worker, seeded with every engine compiled once, and the longest tests
+first."""
 
 import os
+import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import matplotlib
@@ -14,9 +18,44 @@ REPOSITORY = Path(__file__).resolve().parents[1]
 # Two processes compiling the same kernel into one numba cache can corrupt it (numba
 # issue 4807). Each xdist worker (and every Snakemake build a workflow test starts from
 # it, which inherits the variable) gets a cache of its own, set before numba is imported.
+_CACHES = REPOSITORY / ".pytest_cache" / "numba"
 _WORKER = os.environ.get("PYTEST_XDIST_WORKER")
 if _WORKER:
-    os.environ["NUMBA_CACHE_DIR"] = str(REPOSITORY / ".pytest_cache" / "numba" / _WORKER)
+    os.environ["NUMBA_CACHE_DIR"] = str(_CACHES / _WORKER)
+
+SEEDS = (("edmd", "event_disks"), ("dsmc", "cloning", "samplers"))
+"""Engines compiled by the controller before the workers start, in two processes (about
+equal compile times) and two caches of their own, which every worker's cache then starts
+from: each engine compiles once per test run instead of once per worker and once more in
+the first Snakemake build of each worker. ``kinetic.jit.warm``'s markers come with the
+copies, so the builds' jobs load the kernels instead of compiling them."""
+
+
+def _seed_caches() -> None:
+    """Compile every engine into the seed caches (kinetic.jit.warm: nothing to do when the
+    sources did not change since the last run)."""
+    processes = [
+        subprocess.Popen(
+            [
+                sys.executable,
+                "-c",
+                f"from kinetic import jit\nfor engine in {engines!r}: jit.warm(engine)",
+            ],
+            env={**os.environ, "NUMBA_CACHE_DIR": str(_CACHES / f"seed-{index}")},
+        )
+        for index, engines in enumerate(SEEDS)
+    ]
+    for process in processes:
+        if process.wait() != 0:
+            raise RuntimeError("compiling the engines into the seed caches failed")
+
+
+def pytest_configure(config):
+    if _WORKER:
+        for seed in sorted(_CACHES.glob("seed-*")):
+            shutil.copytree(seed, os.environ["NUMBA_CACHE_DIR"], dirs_exist_ok=True)
+    elif getattr(config.option, "numprocesses", None):
+        _seed_caches()
 
 
 LONGEST = ("test_ci_config_builds_every_target_with_provenance",)

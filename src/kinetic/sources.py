@@ -88,13 +88,29 @@ def _module_files(dotted: str) -> list[Path]:
     return files
 
 
+def _import_statements(tree: ast.Module):
+    """The import statements of a module, at any depth of its statements (function and
+    class bodies, branches, handlers), without walking its expressions, which cannot hold
+    one: a tenth of the nodes ``ast.walk`` visits."""
+    blocks = [tree.body]
+    while blocks:
+        for statement in blocks.pop():
+            if isinstance(statement, ast.Import | ast.ImportFrom):
+                yield statement
+                continue
+            for field in ("body", "orelse", "finalbody", "handlers", "cases"):
+                children = getattr(statement, field, None)
+                if isinstance(children, list):
+                    blocks.append(children)
+
+
 @cache
 def _imported_files(path: Path) -> tuple[Path, ...]:
     """Package files imported by the import statements of ``path`` (anywhere in it,
     function bodies included); ``from kinetic.x import name`` counts the submodule
     ``kinetic.x.name`` when there is one."""
     found = []
-    for node in ast.walk(ast.parse(path.read_text(), filename=str(path))):
+    for node in _import_statements(ast.parse(path.read_text(), filename=str(path))):
         if isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] == "kinetic":
             found += _module_files(node.module)
             for alias in node.names:

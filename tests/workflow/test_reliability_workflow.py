@@ -88,9 +88,9 @@ def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_
     --unlock, and the rerun builds only what is missing (and removes the orphans)."""
     config = tmp_path / "config.yaml"
     settings = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
-    # two jobs of about 10 s each, so that the second is surely running when killed
+    # two jobs of about 5 s each, so that the second is surely running when killed
     settings["costantini2010"].update(
-        {"realizations": 2, "realizations_per_job": 1, "min_duration": 1200}
+        {"realizations": 2, "realizations_per_job": 1, "min_duration": 600}
     )
     config.write_text(yaml.safe_dump(settings))
     run = "results/ci/costantini2010/dsmc/n1000-alpha1-f10-cell0.5-step0.05"
