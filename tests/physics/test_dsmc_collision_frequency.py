@@ -38,14 +38,16 @@ def test_equilibrium_collision_frequency(d, kernel):
             0,
             n,
             state,
-            KERNEL_IDS[kernel],
-            1.0,
-            candidate_coefficient(kernel, d, density, n),
-            duration,
-            True,
-            bounds,
-            np.zeros(1),
-            tally,
+            kernels.Collisions(
+                KERNEL_IDS[kernel],
+                1.0,
+                candidate_coefficient(kernel, d, density, n),
+                duration,
+                True,
+                bounds,
+                np.zeros(1),
+                tally,
+            ),
         )
         frequencies.append(2.0 * tally[kernels.TALLY_ACCEPTED] / (n * duration))
     mean, sem = mean_and_sem(frequencies)

@@ -35,14 +35,9 @@ def test_collisions_conserve_momentum_and_elastic_energy(d, kernel, restitution,
         0,
         n,
         state,
-        KERNEL_IDS[kernel],
-        restitution,
-        coefficient,
-        2.0,
-        poisson,
-        bounds,
-        np.zeros(1),
-        tally,
+        kernels.Collisions(
+            KERNEL_IDS[kernel], restitution, coefficient, 2.0, poisson, bounds, np.zeros(1), tally
+        ),
     )
 
     assert tally[kernels.TALLY_ACCEPTED] > n  # every particle collided about once or more

@@ -56,14 +56,16 @@ def test_velocity_outlier_collides_at_its_exact_rate():
             0,
             n,
             state,
-            kernels.HARD_SPHERES,
-            1.0,
-            candidate_coefficient("hard_spheres", d, density, n),
-            window,
-            True,
-            bounds,
-            np.zeros(1),
-            tally,
+            kernels.Collisions(
+                kernels.HARD_SPHERES,
+                1.0,
+                candidate_coefficient("hard_spheres", d, density, n),
+                window,
+                True,
+                bounds,
+                np.zeros(1),
+                tally,
+            ),
         )
         collided += not np.array_equal(velocity[:, 0], before)
         expected += -np.expm1(-rate * window)

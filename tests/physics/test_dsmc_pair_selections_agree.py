@@ -41,9 +41,14 @@ def _cooling_state(selection: str, seed: int):
         before = int(tally[kernels.TALLY_ACCEPTED])
         if selection == "uniform":
             kernels.collide_range(
-                velocity, 0, N, state, kernels.HARD_SPHERES, ALPHA, coefficient, duration,
-                False, bounds, carry, tally,
-            )  # fmt: skip
+                velocity,
+                0,
+                N,
+                state,
+                kernels.Collisions(
+                    kernels.HARD_SPHERES, ALPHA, coefficient, duration, False, bounds, carry, tally
+                ),
+            )
         else:
             collide_speed_classes(
                 velocity, state, ALPHA, coefficient, duration, False, bounds, carry, tally,

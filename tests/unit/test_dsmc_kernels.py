@@ -60,14 +60,9 @@ def test_bound_stays_rigorous_while_collisions_raise_it(d):
             0,
             n,
             state,
-            kernels.HARD_SPHERES,
-            1.0,
-            coefficient,
-            0.2,
-            False,
-            bounds,
-            np.zeros(1),
-            tally,
+            kernels.Collisions(
+                kernels.HARD_SPHERES, 1.0, coefficient, 0.2, False, bounds, np.zeros(1), tally
+            ),
         )
         speeds = np.sort(np.linalg.norm(velocity - bounds[:d, None], axis=0))
         assert bounds[d] >= speeds[-1] * (1 - 1e-12)
@@ -83,7 +78,11 @@ def test_stale_bound_is_detected_and_raised(kernel):
     velocity[:, 0] += [60.0, 0.0, 0.0]  # outlier injected behind the kernel's back
     tally = np.zeros(4, dtype=np.int64)
     kernels.collide_range(
-        velocity, 0, n, state, kernel, 1.0, 0.05, 1.0, False, bounds, np.zeros(1), tally
+        velocity,
+        0,
+        n,
+        state,
+        kernels.Collisions(kernel, 1.0, 0.05, 1.0, False, bounds, np.zeros(1), tally),
     )
     assert tally[kernels.TALLY_EXCEEDED] >= 1
     speeds = np.linalg.norm(velocity - bounds[:d, None], axis=0)
@@ -96,13 +95,21 @@ def test_ntc_carry_keeps_the_candidate_count_of_split_steps():
     tally_once, tally_split = np.zeros(4, dtype=np.int64), np.zeros(4, dtype=np.int64)
     # Maxwell molecules: constant rate, so the number of candidates is deterministic
     kernels.collide_range(
-        v1, 0, n, s1, kernels.MAXWELL, 1.0, 0.001, 1.0, False, b1, np.zeros(1), tally_once
+        v1,
+        0,
+        n,
+        s1,
+        kernels.Collisions(kernels.MAXWELL, 1.0, 0.001, 1.0, False, b1, np.zeros(1), tally_once),
     )
     v2, s2, b2 = _gas(d, n)
     carry = np.zeros(1)
     for _ in range(10):
         kernels.collide_range(
-            v2, 0, n, s2, kernels.MAXWELL, 1.0, 0.001, 0.1, False, b2, carry, tally_split
+            v2,
+            0,
+            n,
+            s2,
+            kernels.Collisions(kernels.MAXWELL, 1.0, 0.001, 0.1, False, b2, carry, tally_split),
         )
     rate = 0.001 * n * (n - 1) / 2
     assert tally_once[0] == int(rate * 1.0)
@@ -174,9 +181,14 @@ def test_collisions_follow_the_hard_sphere_rate_in_a_heavy_tailed_gas(selection)
             assert np.allclose(v.sum(axis=1), velocity.sum(axis=1), atol=1e-10)
         else:
             kernels.collide_range(
-                v, 0, n, states[r], kernels.HARD_SPHERES, 1.0, coefficient, duration, True, b,
-                np.zeros(1), tally,
-            )  # fmt: skip
+                v,
+                0,
+                n,
+                states[r],
+                kernels.Collisions(
+                    kernels.HARD_SPHERES, 1.0, coefficient, duration, True, b, np.zeros(1), tally
+                ),
+            )
         assert tally[kernels.TALLY_EXCEEDED] == 0
         changed = ~np.isin(velocity[0], v[0])
         observed += np.bincount(classes[changed], minlength=8)

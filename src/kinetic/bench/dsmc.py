@@ -114,23 +114,20 @@ def _collision_stage(n: int, alpha: float, repeats: int, collisions_per_particle
     settings, gas = _relaxed_gas(n, alpha)
     duration = collisions_per_particle / (settings.collision_frequency / settings.tau) * 2
     tally = np.zeros(4, dtype=np.int64)
+    collisions = kernels.Collisions(
+        kernel=kernels.HARD_SPHERES,
+        restitution=float(alpha),
+        pair_coefficient=float(settings.pair_coefficient),
+        duration=float(duration),
+        poisson=False,
+        bounds=gas.bounds,
+        carry=gas.carry,
+        tally=tally,
+    )
 
     def work() -> float:
         before = int(tally[kernels.TALLY_ACCEPTED])
-        kernels.collide_range(
-            gas.velocity,
-            0,
-            n,
-            gas.rng,
-            kernels.HARD_SPHERES,
-            alpha,
-            settings.pair_coefficient,
-            duration,
-            False,
-            gas.bounds,
-            gas.carry,
-            tally,
-        )
+        kernels.collide_range(gas.velocity, 0, n, gas.rng, collisions)
         # restore the temperature (α < 1 cools): part of the timed work, O(N)
         kernels.force_and_thermostat(gas.velocity, 0.0, False, settings.target_energy, gas.bounds)
         return float(tally[kernels.TALLY_ACCEPTED] - before)
@@ -348,16 +345,16 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
         if rule == "paper"
         else (inhomogeneous_kernels.RULE_MAJORANT)
     )
+    cells = inhomogeneous_kernels.Cells(gas.cell_of, gas.cell_start, gas.cell_fill, carry, moments)
+    step = settings.step()._replace(rule=rule_id)
 
     def stage(count: int) -> None:
         for k in range(count):
             if k % RESTORE_EVERY == 0:
                 np.copyto(velocity, saved)
             inhomogeneous_kernels.collide_cells(
-                velocity, labels, gas.cell_start, carry, moments, rng, rule_id,
-                settings.restitution, settings.density_per_count, settings.pair_coefficient,
-                settings.time_step, stage_tally, energy,
-            )  # fmt: skip
+                velocity, labels, cells, rng, step, stage_tally, energy
+            )
 
     stage(1)
     for _ in range(repeats):

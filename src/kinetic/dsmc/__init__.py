@@ -109,15 +109,9 @@ def warmup() -> None:
     inhomogeneous_kernels.collide_cells(
         gas.velocity[now],
         gas.labels[now],
-        gas.cell_start,
-        gas.carry,
-        gas.cell_moments,
+        gas.cells(),
         gas.rng,
-        inhomogeneous_kernels.RULE_MAJORANT,
-        settings.restitution,
-        settings.density_per_count,
-        settings.pair_coefficient,
-        settings.time_step,
+        settings.step(),
         gas.tally,
         gas.energy,
     )

@@ -21,6 +21,9 @@ from kinetic.progress import Progress
 
 __all__ = ["simulate_free_flights"]
 
+_NO_CARRY = np.zeros(1)
+"""``Collisions.carry`` of the Poisson clock, which carries nothing."""
+
 
 def simulate_free_flights(
     *,
@@ -108,10 +111,26 @@ def simulate_free_flights(
 
     def observe(velocity, rng, bounds, begin, length, tally, last_collision, times, paths):
         """Collisions in [begin, begin + length), recording the flights started in the window."""
-        kernels.collide_observed(
-            velocity, rng, kernel_id, restitution, coefficient, begin, length, bounds, tally,
-            last_collision, 0.0, duration, time_width, times, path_width * free_path_unit, paths,
-        )  # fmt: skip
+        collisions = kernels.Collisions(
+            kernel=kernel_id,
+            restitution=float(restitution),
+            pair_coefficient=float(coefficient),
+            duration=float(length),
+            poisson=True,
+            bounds=bounds,
+            carry=_NO_CARRY,
+            tally=tally,
+        )
+        flights = kernels.Flights(
+            last_collision=last_collision,
+            record_start=0.0,
+            record_end=float(duration),
+            time_bin_width=float(time_width),
+            time_counts=times,
+            path_bin_width=float(path_width * free_path_unit),
+            path_counts=paths,
+        )
+        kernels.collide_observed(velocity, rng, collisions, float(begin), flights)
 
     tiny = np.zeros((d, 2))
     tiny[0] = [1.0, -1.0]

@@ -191,6 +191,19 @@ class CoolingModesSettings:
         n_sim = self.n_simulated
         return kernels.CROSS_SECTION * self.density_per_count * n_sim / (n_sim - 1.0)
 
+    def step(self) -> kernels.Step:
+        """The kernels' step settings."""
+        return kernels.Step(
+            rule=_RULE_ID[self.collision_rule],
+            restitution=float(self.restitution),
+            box_side=float(self.box_side),
+            cells_per_side=int(self.cells_per_side),
+            density_per_count=float(self.density_per_count),
+            pair_coefficient=float(self.pair_coefficient),
+            time_step=float(self.time_step),
+            drag_rate=float(self.drag_rate),
+        )
+
     def parameters(self) -> dict[str, Any]:
         return {
             "n_particles": self.n_particles,
@@ -258,17 +271,24 @@ class CoolingModesGas:
         """(N_sim,) int64 number of each particle in the initial state."""
         return self.labels[self.parity, 0].copy()
 
+    def arrays(self) -> kernels.Gas:
+        """The realization's arrays as the kernels take them (views, not copies)."""
+        return kernels.Gas(
+            self.position, self.velocity, self.labels, self.rng, self.tally, self.energy
+        )
+
+    def cells(self) -> kernels.Cells:
+        """The per-cell arrays as the kernels take them (views, not copies)."""
+        return kernels.Cells(
+            self.cell_of, self.cell_start, self.cell_fill, self.carry, self.cell_moments
+        )
+
     def advance(self, n_steps: int) -> None:
         """``n_steps`` steps of length ``settings.time_step`` (CPU time accumulated)."""
         integer("n_steps", n_steps, 0)
         s = self.settings
         start = time.process_time()
-        kernels.advance(
-            self.position, self.velocity, self.labels, self.cell_of, self.cell_start,
-            self.cell_fill, self.carry, self.cell_moments, self.rng, _RULE_ID[s.collision_rule],
-            s.restitution, s.box_side, s.cells_per_side, s.density_per_count, s.pair_coefficient,
-            s.time_step, s.drag_rate, n_steps, self.tally, self.energy,
-        )  # fmt: skip
+        kernels.advance(self.arrays(), self.cells(), s.step(), n_steps)
         self.cpu_seconds += time.process_time() - start
         self._check()
 
@@ -277,12 +297,15 @@ class CoolingModesGas:
         s = self.settings
         start = time.process_time()
         kernels.run_samples(
-            self.position, self.velocity, self.labels, self.cell_of, self.cell_start,
-            self.cell_fill, self.carry, self.cell_moments, self.rng, _RULE_ID[s.collision_rule],
-            s.restitution, s.box_side, s.cells_per_side, s.density_per_count, s.pair_coefficient,
-            s.time_step, s.drag_rate, self.tally, self.energy, steps_first, stride,
-            s.wavenumber, observables, dissipated,
-        )  # fmt: skip
+            self.arrays(),
+            self.cells(),
+            s.step(),
+            int(steps_first),
+            int(stride),
+            float(s.wavenumber),
+            observables,
+            dissipated,
+        )
         self.cpu_seconds += time.process_time() - start
         self._check()
 

@@ -74,6 +74,8 @@ its loops, prints, or touches files.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from kinetic.dsmc.kernels import (
@@ -102,6 +104,9 @@ __all__ = [
     "TALLY_REPEATED",
     "TALLY_SIZE",
     "TALLY_STEPS",
+    "Cells",
+    "Gas",
+    "Step",
     "advance",
     "collide_cells",
     "initial_state",
@@ -153,6 +158,55 @@ def initial_state(position, velocity, labels, state, box_side):
         labels[0, 1, i] = -1
     store_state(state, s0, s1, s2, s3)
     maxwellian(velocity[0], state, 1.0)
+
+
+class Step(NamedTuple):
+    """The settings of every step: ``rule`` (RULE_PAPER or RULE_MAJORANT), ``restitution``
+    α in (0, 1], ``box_side`` L, ``cells_per_side`` M, ``density_per_count`` 1/(Λ A_c)
+    (a cell's real density is count x density_per_count: RULE_PAPER),
+    ``pair_coefficient`` (collision rate per pair per unit relative speed:
+    RULE_MAJORANT), ``time_step`` Δτ and ``drag_rate`` ω0 (>= 0)."""
+
+    rule: int
+    restitution: float
+    box_side: float
+    cells_per_side: int
+    density_per_count: float
+    pair_coefficient: float
+    time_step: float
+    drag_rate: float
+
+
+class Cells(NamedTuple):
+    """Per-cell arrays: work arrays ``cell_of`` (n,) int64, ``cell_start`` (M² + 1,) int64
+    (left holding the cell ranges of the last sort), ``cell_fill`` (M²,) int64;
+    ``carry`` (M²,) float64, the carried fraction of each cell (a candidate for
+    RULE_MAJORANT, a collision for RULE_PAPER); ``moments`` (M², 5) float64, each cell's
+    Σw_x, Σw_y, Σ|w|² and two largest |w|² after the sort (its temperature and
+    relative-speed bound; zeros for a new state, then kept between calls: it holds the
+    momentum to remove)."""
+
+    cell_of: np.ndarray
+    cell_start: np.ndarray
+    cell_fill: np.ndarray
+    carry: np.ndarray
+    moments: np.ndarray
+
+
+class Gas(NamedTuple):
+    """One realization: ``position``, ``velocity`` (2, 2, n) float64 and ``labels`` (2, 2,
+    n) int64 (layout above; the current buffer is ``tally[TALLY_PARITY]``), ``state``
+    (4,) uint64 stream, ``tally`` (TALLY_SIZE,) int64 += candidates, collisions,
+    repeated collisions, particle steps, steps (and the parity, flipped each step),
+    ``energy`` (1,) float64 += energy lost in collisions (sum over simulated particles,
+    m = 1)."""
+
+    position: np.ndarray
+    velocity: np.ndarray
+    labels: np.ndarray
+    state: np.ndarray
+    tally: np.ndarray
+    energy: np.ndarray
 
 
 @inline
@@ -223,26 +277,17 @@ def _collided(velocity, ident, partner, i, j, half, h0, h1, c0, c1, top1, top2):
 
 
 @inline
-def _collide_cells(
-    velocity,
-    labels,
-    cell_start,
-    carry,
-    moments,
-    rule,
-    restitution,
-    density_per_count,
-    pair_coefficient,
-    time_step,
-    tally,
-    energy,
-    s0,
-    s1,
-    s2,
-    s3,
-):
+def _collide_cells(velocity, labels, cells, step, tally, energy, s0, s1, s2, s3):
     """Collision stage of every cell (particles sorted by cell, ``moments`` filled by
     ``_cell_moments`` or the sort). Returns the stream."""
+    cell_start = cells.cell_start
+    carry = cells.carry
+    moments = cells.moments
+    rule = step.rule
+    restitution = step.restitution
+    density_per_count = step.density_per_count
+    pair_coefficient = step.pair_coefficient
+    time_step = step.time_step
     n_cells = cell_start.shape[0] - 1
     half = 0.5 * (1.0 + restitution)
     loss = 0.25 * (1.0 - restitution * restitution)
@@ -346,90 +391,39 @@ def _collide_cells(
 
 
 @kernel
-def collide_cells(
-    velocity,
-    labels,
-    cell_start,
-    carry,
-    moments,
-    state,
-    rule,
-    restitution,
-    density_per_count,
-    pair_coefficient,
-    time_step,
-    tally,
-    energy,
-):
+def collide_cells(velocity, labels, cells, state, step, tally, energy):
     """The collision stage of one step alone (step 3), for particles already sorted.
 
     velocity: (2, n) float64 and labels: (2, n) int64 of one buffer (particles of cell
-    c at cell_start[c]..cell_start[c + 1] - 1). ``moments``: (M², 5) float64 work
-    array, filled here from the velocities. Other arguments as in ``advance``.
+    c at cells.cell_start[c]..cell_start[c + 1] - 1). ``cells.moments`` is filled here
+    from the velocities. state: (4,) uint64 stream. Other arguments as in ``advance``.
     """
-    _cell_moments(velocity, cell_start, moments)
+    _cell_moments(velocity, cells.cell_start, cells.moments)
     s0, s1, s2, s3 = _collide_cells(
-        velocity,
-        labels,
-        cell_start,
-        carry,
-        moments,
-        rule,
-        restitution,
-        density_per_count,
-        pair_coefficient,
-        time_step,
-        tally,
-        energy,
-        state[0],
-        state[1],
-        state[2],
-        state[3],
+        velocity, labels, cells, step, tally, energy, state[0], state[1], state[2], state[3]
     )
     store_state(state, s0, s1, s2, s3)
 
 
 @kernel
-def advance(
-    position,
-    velocity,
-    labels,
-    cell_of,
-    cell_start,
-    cell_fill,
-    carry,
-    moments,
-    state,
-    rule,
-    restitution,
-    box_side,
-    cells_per_side,
-    density_per_count,
-    pair_coefficient,
-    time_step,
-    drag_rate,
-    n_steps,
-    tally,
-    energy,
-):
-    """``n_steps`` steps of the inhomogeneous DSMC (see the module docstring).
-
-    position, velocity: (2, 2, n) float64; labels: (2, 2, n) int64 (layout above),
-    updated; the current buffer is ``tally[TALLY_PARITY]``. Work arrays: cell_of (n,)
-    int64; cell_start (M² + 1,) int64 (left holding the cell ranges of the last sort);
-    cell_fill (M²,) int64; moments (M², 5) float64 (each cell's Σw_x, Σw_y, Σ|w|² and
-    two largest |w|² after the sort: its temperature and relative-speed bound; zeros
-    for a new state, then kept between calls: it holds the momentum to remove). carry:
-    (M²,) float64 carried fraction of each cell (a candidate for RULE_MAJORANT, a
-    collision for RULE_PAPER). state: (4,) uint64 stream.
-    rule: RULE_PAPER or RULE_MAJORANT. restitution α in (0, 1]. box_side L.
-    cells_per_side M. density_per_count: 1/(Λ A_c), so that a cell's real density is
-    count x density_per_count (RULE_PAPER). pair_coefficient: collision rate per pair
-    per unit relative speed (RULE_MAJORANT). time_step Δτ, drag_rate ω0 (>= 0). tally: (TALLY_SIZE,)
-    int64 += candidates, collisions, repeated collisions, particle steps, steps (and
-    the parity, flipped each step). energy: (1,) float64 += energy lost in collisions
-    (sum over simulated particles, m = 1).
-    """
+def advance(gas, cells, step, n_steps):
+    """``n_steps`` steps of the inhomogeneous DSMC (see the module docstring) of ``gas``
+    (a :class:`Gas`, updated) with the :class:`Step` settings ``step``; ``cells``: the
+    :class:`Cells` arrays (zeros for a new state, then kept between calls)."""
+    position = gas.position
+    velocity = gas.velocity
+    labels = gas.labels
+    state = gas.state
+    tally = gas.tally
+    energy = gas.energy
+    cell_of = cells.cell_of
+    cell_start = cells.cell_start
+    cell_fill = cells.cell_fill
+    moments = cells.moments
+    box_side = step.box_side
+    cells_per_side = step.cells_per_side
+    time_step = step.time_step
+    drag_rate = step.drag_rate
     n = position.shape[2]
     m = cells_per_side
     n_cells = m * m
@@ -501,24 +495,7 @@ def advance(
             l_dst[1, p] = l_src[1, i]
             _accumulate(moments, c, wx, wy)
         # 3: collisions
-        s0, s1, s2, s3 = _collide_cells(
-            w_dst,
-            l_dst,
-            cell_start,
-            carry,
-            moments,
-            rule,
-            restitution,
-            density_per_count,
-            pair_coefficient,
-            time_step,
-            tally,
-            energy,
-            s0,
-            s1,
-            s2,
-            s3,
-        )
+        s0, s1, s2, s3 = _collide_cells(w_dst, l_dst, cells, step, tally, energy, s0, s1, s2, s3)
         tally[TALLY_PARITY] = 1 - now
         tally[TALLY_STEPS] += 1
         tally[TALLY_PARTICLE_STEPS] += n
@@ -574,65 +551,20 @@ def observe(position, velocity, parity, wavenumber, out):
 
 
 @kernel
-def run_samples(
-    position,
-    velocity,
-    labels,
-    cell_of,
-    cell_start,
-    cell_fill,
-    carry,
-    moments,
-    state,
-    rule,
-    restitution,
-    box_side,
-    cells_per_side,
-    density_per_count,
-    pair_coefficient,
-    time_step,
-    drag_rate,
-    tally,
-    energy,
-    steps_first,
-    stride,
-    wavenumber,
-    observables,
-    dissipated,
-):
+def run_samples(gas, cells, step, steps_first, stride, wavenumber, observables, dissipated):
     """Advance and sample ``observables.shape[0]`` times: ``steps_first`` steps before
     the first sample, ``stride`` steps before each later one.
 
     observables: (n_samples, N_OBSERVABLES) float64 rows of ``observe``. dissipated:
     (n_samples,) float64 energy lost per simulated particle since the previous sample
-    (``energy[0]`` is reset at each sample; the caller resets it where the first
+    (``gas.energy[0]`` is reset at each sample; the caller resets it where the first
     interval starts). Other arguments as in ``advance``.
     """
-    n = position.shape[2]
+    n = gas.position.shape[2]
+    energy = gas.energy
     for s in range(observables.shape[0]):
         steps = steps_first if s == 0 else stride
-        advance(
-            position,
-            velocity,
-            labels,
-            cell_of,
-            cell_start,
-            cell_fill,
-            carry,
-            moments,
-            state,
-            rule,
-            restitution,
-            box_side,
-            cells_per_side,
-            density_per_count,
-            pair_coefficient,
-            time_step,
-            drag_rate,
-            steps,
-            tally,
-            energy,
-        )
-        observe(position, velocity, tally[TALLY_PARITY], wavenumber, observables[s])
+        advance(gas, cells, step, steps)
+        observe(gas.position, gas.velocity, gas.tally[TALLY_PARITY], wavenumber, observables[s])
         dissipated[s] = energy[0] / n
         energy[0] = 0.0

@@ -47,6 +47,8 @@ advanced in place. No kernel allocates inside its loops, prints, or touches file
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from kinetic.gas import HARD_SPHERES, MAXWELL, VERY_HARD
@@ -71,6 +73,10 @@ __all__ = [
     "TALLY_EXCEEDED",
     "TALLY_RAISED",
     "VERY_HARD",
+    "Collisions",
+    "Flights",
+    "Forcing",
+    "Sampling",
     "accumulate_histograms",
     "accumulate_moments",
     "advance",
@@ -97,6 +103,84 @@ BOUND_SAFETY = 1.0 + 1e-12
 
 EULER_LIMIT = 0.5
 """Largest |ε V_x δt / 2| the Euler force step accepts (beyond it the step is not small)."""
+
+
+class Collisions(NamedTuple):
+    """How a range of particles collides during one call (``collide_range``, ``advance``,
+    ``collide_observed``).
+
+    kernel: HARD_SPHERES, MAXWELL or VERY_HARD. restitution: α in (0, 1].
+    pair_coefficient: candidate rate per pair per unit bound**p (see the module
+    docstring; it holds the range's density and 1/(n - 1)). duration: time of one call
+    (>= 0; ``advance``: the time step). poisson: False = NTC clock (carry[0] holds the
+    fraction of a candidate carried to the next call), True = exact exponential event
+    times (carry unused; ``collide_observed`` always uses them). bounds: (d + 2,)
+    float64 from ``speed_bounds`` (kept valid in place). carry: (1,) float64. tally: (4,)
+    int64 += candidates, accepted, bound raises, stale-bound detections.
+    """
+
+    kernel: int
+    restitution: float
+    pair_coefficient: float
+    duration: float
+    poisson: bool
+    bounds: np.ndarray
+    carry: np.ndarray
+    tally: np.ndarray
+
+
+class Forcing(NamedTuple):
+    """montanero2007's heat-flux force and thermostat in ``advance`` (Section 4).
+
+    half_field_step: a = ε δt/2 (0: no force). exact: the exact force step instead of
+    the paper's Euler step. strang: force and thermostat for half a step before and
+    after the collisions (Strang splitting) instead of a whole step after them (Lie).
+    target_energy: the thermostat's kinetic energy per particle. rate_exponent: p of the
+    collision rate ∝ T^(p/2) (1 hard spheres, 0 Maxwell, 2 very hard particles), for the
+    free-cooling clock.
+    """
+
+    half_field_step: float
+    exact: bool
+    strang: bool
+    target_energy: float
+    rate_exponent: float
+
+
+class Sampling(NamedTuple):
+    """Snapshot observers of ``advance``: every ``stride``-th step, the moments (``moment_sums``:
+    [0] += 1, [1:] += ``accumulate_moments`` with ``inverse_v0``) and, if ``histogram``,
+    the histograms of ``accumulate_histograms`` (c_x bins from ``cx_low``, width
+    ``cx_width``, into ``cx_counts`` and ``cx_weights``; speed bins of width
+    ``speed_width`` into ``speed_counts``)."""
+
+    stride: int
+    inverse_v0: float
+    moment_sums: np.ndarray
+    histogram: bool
+    cx_low: float
+    cx_width: float
+    cx_counts: np.ndarray
+    cx_weights: np.ndarray
+    speed_width: float
+    speed_counts: np.ndarray
+
+
+class Flights(NamedTuple):
+    """Free-flight observers of ``collide_observed``: the time of each particle's last
+    collision (``last_collision``, (N,) float64, < 0 if none) and the histograms of the
+    flights that start in [record_start, record_end): times in bins of ``time_bin_width``
+    (``time_counts``), paths in bins of ``path_bin_width`` (``path_counts``), both
+    (n_bins + 1,) int64 whose last entry is the overflow."""
+
+    last_collision: np.ndarray
+    record_start: float
+    record_end: float
+    time_bin_width: float
+    time_counts: np.ndarray
+    path_bin_width: float
+    path_counts: np.ndarray
+
 
 _SHIFT_32 = np.uint64(32)
 _SHIFT_11 = np.uint64(11)
@@ -313,22 +397,16 @@ def _majorant(kernel, pair_coefficient, n_pairs, top1, top2):
 
 
 @inline
-def _collide_loop(
-    velocity,
-    first,
-    last,
-    state,
-    kernel,
-    restitution,
-    pair_coefficient,
-    duration,
-    poisson,
-    bounds,
-    carry,
-    tally,
-    d,
-):
+def _collide_loop(velocity, first, last, state, collisions, d):
     """Body of ``collide_range`` for a literal dimension ``d`` (specialised by inlining)."""
+    kernel = collisions.kernel
+    restitution = collisions.restitution
+    pair_coefficient = collisions.pair_coefficient
+    duration = collisions.duration
+    poisson = collisions.poisson
+    bounds = collisions.bounds
+    carry = collisions.carry
+    tally = collisions.tally
     n = last - first
     if n < 2 or duration <= 0.0:
         return
@@ -383,41 +461,16 @@ def _collide_loop(
 
 
 @kernel
-def collide_range(
-    velocity,
-    first,
-    last,
-    state,
-    kernel,
-    restitution,
-    pair_coefficient,
-    duration,
-    poisson,
-    bounds,
-    carry,
-    tally,
-):
-    """Collide the particles ``first..last-1`` for a time ``duration``.
+def collide_range(velocity, first, last, state, collisions):
+    """Collide the particles ``first..last-1`` for a time ``collisions.duration``.
 
     velocity: (d, N) float64, updated in place. state: (4,) uint64 stream, advanced.
-    kernel: HARD_SPHERES, MAXWELL or VERY_HARD. restitution: α in (0, 1].
-    pair_coefficient: candidate rate per pair per unit bound**p (see the module
-    docstring; it holds the range's density and 1/(n - 1)). duration: time (>= 0).
-    poisson: False = NTC clock (carry[0] holds the fraction of a candidate carried to
-    the next call), True = exact exponential event times (carry unused).
-    bounds: (d + 2,) float64 from ``speed_bounds`` (kept valid in place).
-    tally: (4,) int64 += candidates, accepted, bound raises, stale-bound detections.
+    collisions: a :class:`Collisions` (its bounds, carry and tally updated in place).
     """
     if velocity.shape[0] == 3:
-        _collide_loop(
-            velocity, first, last, state, kernel, restitution, pair_coefficient, duration,
-            poisson, bounds, carry, tally, 3,
-        )  # fmt: skip
+        _collide_loop(velocity, first, last, state, collisions, 3)
     else:
-        _collide_loop(
-            velocity, first, last, state, kernel, restitution, pair_coefficient, duration,
-            poisson, bounds, carry, tally, 2,
-        )  # fmt: skip
+        _collide_loop(velocity, first, last, state, collisions, 2)
 
 
 @kernel
@@ -459,26 +512,21 @@ def _record_flight(
 
 
 @inline
-def _collide_observed_loop(
-    velocity,
-    state,
-    kernel,
-    restitution,
-    pair_coefficient,
-    start_time,
-    duration,
-    bounds,
-    tally,
-    last_collision,
-    record_start,
-    record_end,
-    time_bin_width,
-    time_counts,
-    path_bin_width,
-    path_counts,
-    d,
-):
+def _collide_observed_loop(velocity, state, collisions, start_time, flights, d):
     """Body of ``collide_observed`` for a literal dimension ``d`` (specialised by inlining)."""
+    kernel = collisions.kernel
+    restitution = collisions.restitution
+    pair_coefficient = collisions.pair_coefficient
+    duration = collisions.duration
+    bounds = collisions.bounds
+    tally = collisions.tally
+    last_collision = flights.last_collision
+    record_start = flights.record_start
+    record_end = flights.record_end
+    time_bin_width = flights.time_bin_width
+    time_counts = flights.time_counts
+    path_bin_width = flights.path_bin_width
+    path_counts = flights.path_counts
     n = velocity.shape[1]
     if n < 2 or duration <= 0.0:
         return
@@ -548,77 +596,22 @@ def _collide_observed_loop(
 
 
 @kernel
-def collide_observed(
-    velocity,
-    state,
-    kernel,
-    restitution,
-    pair_coefficient,
-    start_time,
-    duration,
-    bounds,
-    tally,
-    last_collision,
-    record_start,
-    record_end,
-    time_bin_width,
-    time_counts,
-    path_bin_width,
-    path_counts,
-):
+def collide_observed(velocity, state, collisions, start_time, flights):
     """Continuous-time collisions of all particles with free-flight observers.
 
     Exact event times (Poisson clock, thinning with the rigorous bound) from
-    ``start_time`` to ``start_time + duration`` (memoryless: consecutive calls make one
-    Poisson process). At each collision the free-flight time and the free path (speed
-    x time; speeds about the origin, the gas being at rest) of both partners since
-    their previous collision are histogrammed if that flight started in
+    ``start_time`` to ``start_time + collisions.duration`` (memoryless: consecutive calls
+    make one Poisson process; ``collisions.poisson`` and ``carry`` are not used). At each
+    collision the free-flight time and the free path (speed x time; speeds about the
+    origin, the gas being at rest) of both partners since their previous collision are
+    histogrammed into ``flights`` (a :class:`Flights`) if that flight started in
     [record_start, record_end) (run until record_end + the longest flight of interest
     so that every such flight is either complete or known to be longer).
-    last_collision: (N,) float64 time of each particle's last collision, < 0 if none.
-    time_counts, path_counts: (n_bins + 1,) int64, last entry = overflow.
-    Other arguments as in ``collide_range``.
     """
     if velocity.shape[0] == 3:
-        _collide_observed_loop(
-            velocity,
-            state,
-            kernel,
-            restitution,
-            pair_coefficient,
-            start_time,
-            duration,
-            bounds,
-            tally,
-            last_collision,
-            record_start,
-            record_end,
-            time_bin_width,
-            time_counts,
-            path_bin_width,
-            path_counts,
-            3,
-        )
+        _collide_observed_loop(velocity, state, collisions, start_time, flights, 3)
     else:
-        _collide_observed_loop(
-            velocity,
-            state,
-            kernel,
-            restitution,
-            pair_coefficient,
-            start_time,
-            duration,
-            bounds,
-            tally,
-            last_collision,
-            record_start,
-            record_end,
-            time_bin_width,
-            time_counts,
-            path_bin_width,
-            path_counts,
-            2,
-        )
+        _collide_observed_loop(velocity, state, collisions, start_time, flights, 2)
 
 
 # --------------------------------------------------------------- forcing and thermostat
@@ -821,36 +814,9 @@ def accumulate_histograms(
 
 
 @kernel
-def advance(
-    velocity,
-    state,
-    kernel,
-    restitution,
-    pair_coefficient,
-    time_step,
-    n_steps,
-    poisson,
-    half_field_step,
-    exact_force,
-    strang,
-    target_energy,
-    rate_exponent,
-    bounds,
-    carry,
-    tally,
-    clock,
-    sample_stride,
-    inverse_v0,
-    moment_sums,
-    histogram,
-    cx_low,
-    cx_width,
-    cx_counts,
-    cx_weights,
-    speed_width,
-    speed_counts,
-):
-    """``n_steps`` DSMC steps: collisions (time_step), force, thermostat, observers.
+def advance(velocity, state, collisions, forcing, sampling, clock, n_steps):
+    """``n_steps`` DSMC steps: collisions (:class:`Collisions`, whose ``duration`` is the
+    time step), force and thermostat (:class:`Forcing`), observers (:class:`Sampling`).
 
     Per step, in the order of montanero2007 Section 4 (``strang`` False, Lie splitting):
     collide all particles for ``time_step``; apply the force step and the thermostat
@@ -870,6 +836,16 @@ def advance(
     step).
     Returns a STATUS_* code (the step that failed is left applied).
     """
+    time_step = collisions.duration
+    bounds = collisions.bounds
+    half_field_step = forcing.half_field_step
+    exact_force = forcing.exact
+    strang = forcing.strang
+    target_energy = forcing.target_energy
+    rate_exponent = forcing.rate_exponent
+    sample_stride = sampling.stride
+    inverse_v0 = sampling.inverse_v0
+    moment_sums = sampling.moment_sums
     for _ in range(n_steps):
         log_scale = 0.0
         if strang:
@@ -878,20 +854,7 @@ def advance(
             )
             if status != STATUS_OK:
                 return status
-        collide_range(
-            velocity,
-            0,
-            velocity.shape[1],
-            state,
-            kernel,
-            restitution,
-            pair_coefficient,
-            time_step,
-            poisson,
-            bounds,
-            carry,
-            tally,
-        )
+        collide_range(velocity, 0, velocity.shape[1], state, collisions)
         status, second_scale = force_and_thermostat(
             velocity,
             0.5 * half_field_step if strang else half_field_step,
@@ -919,16 +882,16 @@ def advance(
         if int(clock[3]) % sample_stride == 0:
             moment_sums[0] += 1.0
             accumulate_moments(velocity, inverse_v0, moment_sums[1:])
-            if histogram:
+            if sampling.histogram:
                 accumulate_histograms(
                     velocity,
                     inverse_v0,
-                    cx_low,
-                    cx_width,
-                    cx_counts,
-                    cx_weights,
-                    speed_width,
-                    speed_counts,
+                    sampling.cx_low,
+                    sampling.cx_width,
+                    sampling.cx_counts,
+                    sampling.cx_weights,
+                    sampling.speed_width,
+                    sampling.speed_counts,
                 )
     return STATUS_OK
 

@@ -390,35 +390,38 @@ def advance_gas(gas: HomogeneousGas, n_steps: int, samples: Samples | None = Non
         stride = samples.stride
         histogram = samples.histogram
     inverse_v0 = 1.0 / units.thermal_speed(1.0)
+    collisions = kernels.Collisions(
+        kernel=_KERNEL_ID[s.kernel],
+        restitution=float(s.restitution),
+        pair_coefficient=float(s.pair_coefficient),
+        duration=float(s.time_step * s.tau),
+        poisson=s.selection == "poisson",
+        bounds=gas.bounds,
+        carry=gas.carry,
+        tally=gas.tally,
+    )
+    forcing = kernels.Forcing(
+        half_field_step=float(s.half_field_step),
+        exact=s.force_step == "exact",
+        strang=s.splitting == "strang",
+        target_energy=float(s.target_energy),
+        rate_exponent=float(units.rate_exponent(s.kernel)),
+    )
+    sampling = kernels.Sampling(
+        stride=int(stride),
+        inverse_v0=inverse_v0,
+        moment_sums=samples.moment_sums,
+        histogram=bool(histogram),
+        cx_low=-float(samples.cx_max),
+        cx_width=2.0 * samples.cx_max / samples.n_cx_bins,
+        cx_counts=samples.cx_counts,
+        cx_weights=samples.cx_weights,
+        speed_width=samples.speed_max / samples.n_speed_bins,
+        speed_counts=samples.speed_counts,
+    )
     start = time.process_time()
     status = kernels.advance(
-        gas.velocity,
-        gas.rng,
-        _KERNEL_ID[s.kernel],
-        s.restitution,
-        s.pair_coefficient,
-        s.time_step * s.tau,
-        n_steps,
-        s.selection == "poisson",
-        s.half_field_step,
-        s.force_step == "exact",
-        s.splitting == "strang",
-        s.target_energy,
-        float(units.rate_exponent(s.kernel)),
-        gas.bounds,
-        gas.carry,
-        gas.tally,
-        gas.clock,
-        stride,
-        inverse_v0,
-        samples.moment_sums,
-        histogram,
-        -samples.cx_max,
-        2.0 * samples.cx_max / samples.n_cx_bins,
-        samples.cx_counts,
-        samples.cx_weights,
-        samples.speed_max / samples.n_speed_bins,
-        samples.speed_counts,
+        gas.velocity, gas.rng, collisions, forcing, sampling, gas.clock, n_steps
     )
     gas.cpu_seconds += time.process_time() - start
     if status != kernels.STATUS_OK:
