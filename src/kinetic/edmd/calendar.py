@@ -10,7 +10,9 @@ from kinetic.edmd.layout import (
     C_STAGE1,
     C_STAGE2,
     C_WALKS,
+    CELL,
     EVENTS_PER_BUCKET,
+    FACE,
     I_DIM,
     I_PREFETCH,
     L_HEAP,
@@ -18,8 +20,11 @@ from kinetic.edmd.layout import (
     L_PLACE,
     L_PREV,
     N_CURSOR,
+    PARTNER,
     PLACE_HEAP,
     PREFETCH_WALKS,
+    T_CELL,
+    T_PAIR,
     WALK_LIMIT,
     cell_flat,
     smaller,
@@ -32,7 +37,7 @@ from kinetic.jit import inline, kernel, prefetch_row
 @inline
 def event_key(phase, i):
     """Time of particle i's next event: its earliest pair collision or crossing."""
-    return smaller(phase[i, 6], phase[i, 7])
+    return smaller(phase[i, T_PAIR], phase[i, T_CELL])
 
 
 @inline
@@ -219,11 +224,11 @@ def prefetch_scan(j, stage, phase, ints, members, occupancy, last_collision, gri
     n_cells = members.shape[0]
     dim = grid[I_DIM]
     layer = grid[0] * grid[1]
-    flat = cell_flat(ints[j, 5], ints[j, 6], ints[j, 7], grid)
+    flat = cell_flat(ints[j, CELL], ints[j, CELL + 1], ints[j, CELL + 2], grid)
     lo0, hi0, lo1, hi1 = -1, 1, -1, 1
     lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
-    if phase[j, 7] <= phase[j, 6]:
-        code = ints[j, 2]
+    if phase[j, T_CELL] <= phase[j, T_PAIR]:
+        code = ints[j, FACE]
         step = 1 if (code & 1) == 1 else -1
         stride = 1 if code >> 1 == 0 else (grid[0] if code >> 1 == 1 else layer)
         if stage == 2:
@@ -242,7 +247,7 @@ def prefetch_scan(j, stage, phase, ints, members, occupancy, last_collision, gri
         else:
             lo2, hi2 = 2 * step, 2 * step
     elif stage == 2:
-        partner = ints[j, 0]
+        partner = ints[j, PARTNER]
         if partner >= 0:
             prefetch_row(phase, partner)
             prefetch_row(ints, partner)

@@ -6,8 +6,10 @@ from __future__ import annotations
 import numpy as np
 
 from kinetic.edmd.layout import (
+    CELL,
     COUNT_EVENTS,
     COUNT_PAIR_TESTS,
+    FACE,
     G_L,
     G_SIGMA,
     G_SIGMA2,
@@ -16,6 +18,13 @@ from kinetic.edmd.layout import (
     I_DIM,
     I_N,
     I_WALL,
+    PARTNER,
+    PREDICTED_AT,
+    ROW_SLOT,
+    T_CELL,
+    T_PAIR,
+    X0,
+    V,
     smaller,
 )
 from kinetic.jit import inline
@@ -28,13 +37,13 @@ def cell_insert(i, flat, members, occupancy, ints):
     """Append particle i to cell ``flat``; False (nothing changed) if the cell is full.
 
     ``members`` (n_cells, C) int32 lists the particles of each cell in its first
-    ``occupancy[flat]`` entries; ``ints[i, 4]`` is i's position there.
+    ``occupancy[flat]`` entries; ``ints[i, ROW_SLOT]`` is i's position there.
     """
     count = occupancy[flat]
     if count >= members.shape[1]:
         return False
     members[flat, count] = i
-    ints[i, 4] = count
+    ints[i, ROW_SLOT] = count
     occupancy[flat] = count + 1
     return True
 
@@ -43,10 +52,10 @@ def cell_insert(i, flat, members, occupancy, ints):
 def cell_remove(i, flat, members, occupancy, ints):
     """Remove particle i from cell ``flat`` (the cell's last member takes its place)."""
     last = occupancy[flat] - 1
-    position = ints[i, 4]
+    position = ints[i, ROW_SLOT]
     moved = members[flat, last]
     members[flat, position] = moved
-    ints[moved, 4] = position
+    ints[moved, ROW_SLOT] = position
     occupancy[flat] = last
 
 
@@ -58,16 +67,16 @@ def pair_time(xi, yi, zi, ui, vi, wi, phase, j, sx, sy, sz, t, sigma2, dim):
     Uses the cancellation-free root (|r|² − σ²)/(−b + √disc); an approaching pair that
     already overlaps by round-off collides at once (returns t).
     """
-    dx = phase[j, 0] + phase[j, 3] * t + sx - xi
-    dy = phase[j, 1] + phase[j, 4] * t + sy - yi
-    du = phase[j, 3] - ui
-    dv = phase[j, 4] - vi
+    dx = phase[j, X0] + phase[j, V] * t + sx - xi
+    dy = phase[j, X0 + 1] + phase[j, V + 1] * t + sy - yi
+    du = phase[j, V] - ui
+    dv = phase[j, V + 1] - vi
     b = dx * du + dy * dv
     r2 = dx * dx + dy * dy
     g2 = du * du + dv * dv
     if dim == 3:
-        dz = phase[j, 2] + phase[j, 5] * t + sz - zi
-        dw = phase[j, 5] - wi
+        dz = phase[j, X0 + 2] + phase[j, V + 2] * t + sz - zi
+        dw = phase[j, V + 2] - wi
         b += dz * dw
         r2 += dz * dz
         g2 += dw * dw
@@ -131,12 +140,12 @@ def scan_neighbours(
     n0 = grid[0]
     n1 = grid[1]
     n2 = grid[2]
-    c0 = ints[i, 5 + 0]
-    c1 = ints[i, 5 + 1]
-    c2 = ints[i, 5 + 2]
-    xi = phase[i, 0] + phase[i, 3] * t
-    yi = phase[i, 1] + phase[i, 4] * t
-    zi = phase[i, 2] + phase[i, 5] * t
+    c0 = ints[i, CELL]
+    c1 = ints[i, CELL + 1]
+    c2 = ints[i, CELL + 2]
+    xi = phase[i, X0] + phase[i, V] * t
+    yi = phase[i, X0 + 1] + phase[i, V + 1] * t
+    zi = phase[i, X0 + 2] + phase[i, V + 2] * t
     count = 0
     ordinal = 0
     for o2 in range(lo2, hi2 + 1):
@@ -193,9 +202,9 @@ def scan_neighbours(
                         scratch[count + q] = (members[flat, q] << 5) | ordinal
                 count += occupied
                 ordinal += 1
-    ui = phase[i, 3]
-    vi = phase[i, 4]
-    wi = phase[i, 5]
+    ui = phase[i, V]
+    vi = phase[i, V + 1]
+    wi = phase[i, V + 2]
     tests = 0
     for q in range(count):
         code = scratch[q]
@@ -236,8 +245,8 @@ def next_crossing(i, phase, ints, geometry, grid):
     code = -1
     half_sigma = 0.5 * geometry[G_SIGMA]
     for k in range(dim):
-        velocity = phase[i, 3 + k]
-        c = ints[i, 5 + k]
+        velocity = phase[i, V + k]
+        c = ints[i, CELL + k]
         width = geometry[G_W + k]
         upper = (c + 1) * width
         lower = c * width
@@ -248,7 +257,7 @@ def next_crossing(i, phase, ints, geometry, grid):
                 lower = half_sigma
         upwards = velocity > 0.0
         boundary = upper if upwards else lower
-        tc = (boundary - phase[i, k]) / velocity
+        tc = (boundary - phase[i, X0 + k]) / velocity
         tc = tc if velocity != 0.0 else np.inf
         face = 2 * k + (1 if upwards else 0)
         earlier = tc < best
@@ -276,10 +285,10 @@ def predict(
         i, t, -1, 0, phase, ints, members, occupancy, geometry, grid, np.inf, -1, scratch, images
     )
     counters[COUNT_PAIR_TESTS] += tests
-    phase[i, 6] = best_t
-    ints[i, 0] = best_j
-    ints[i, 1] = counters[COUNT_EVENTS]
+    phase[i, T_PAIR] = best_t
+    ints[i, PARTNER] = best_j
+    ints[i, PREDICTED_AT] = counters[COUNT_EVENTS]
     tc, code = next_crossing(i, phase, ints, geometry, grid)
     # never schedule in the past (round-off right after a crossing)
-    phase[i, 7] = tc if tc > t else t
-    ints[i, 2] = code
+    phase[i, T_CELL] = tc if tc > t else t
+    ints[i, FACE] = code

@@ -35,6 +35,8 @@ from kinetic.edmd.calendar import (
 )
 from kinetic.edmd.cells import cell_insert, cell_remove, next_crossing, scan_neighbours
 from kinetic.edmd.layout import (
+    CELL,
+    CHANGED_AT,
     COUNT_COLLAPSE_PARTICLE,
     COUNT_COLLAPSE_PARTNER,
     COUNT_COLLISIONS,
@@ -46,6 +48,7 @@ from kinetic.edmd.layout import (
     COUNT_RESCALES,
     COUNT_STALL,
     COUNT_WALL_HITS,
+    FACE,
     G_ALPHA,
     G_COLLAPSE_TIME,
     G_CONTACT,
@@ -57,7 +60,9 @@ from kinetic.edmd.layout import (
     I_STREAK,
     I_WALL,
     N_CURSOR,
+    PARTNER,
     PLACE_HEAP,
+    PREDICTED_AT,
     STALL_LIMIT,
     STATUS_CELL_FULL,
     STATUS_COLLAPSE,
@@ -66,6 +71,10 @@ from kinetic.edmd.layout import (
     STATUS_NO_EVENTS,
     STATUS_STALLED,
     STATUS_TIME,
+    T_CELL,
+    T_PAIR,
+    X0,
+    V,
     cell_flat,
 )
 from kinetic.jit import inline, kernel, refcount_free
@@ -80,7 +89,7 @@ def temperature(phase, dim):
     n = phase.shape[0]
     for i in range(n):
         for k in range(dim):
-            total += phase[i, 3 + k] * phase[i, 3 + k]
+            total += phase[i, V + k] * phase[i, V + k]
     return total / (dim * n)
 
 
@@ -149,12 +158,12 @@ def rescale_velocities(t, target_temperature, phase, dim):
     inverse = 1.0 / s
     for i in range(n):
         for k in range(3):
-            phase[i, k] += phase[i, 3 + k] * t * (1.0 - s)
-            phase[i, 3 + k] *= s
-        if phase[i, 6] < np.inf:
-            phase[i, 6] = t + (phase[i, 6] - t) * inverse
-        if phase[i, 7] < np.inf:
-            phase[i, 7] = t + (phase[i, 7] - t) * inverse
+            phase[i, X0 + k] += phase[i, V + k] * t * (1.0 - s)
+            phase[i, V + k] *= s
+        if phase[i, T_PAIR] < np.inf:
+            phase[i, T_PAIR] = t + (phase[i, T_PAIR] - t) * inverse
+        if phase[i, T_CELL] < np.inf:
+            phase[i, T_CELL] = t + (phase[i, T_CELL] - t) * inverse
 
 
 @inline
@@ -176,7 +185,7 @@ def collide(i, j, t, phase, geometry, grid, last_collision):
     dr2 = 0.0
     norm2 = 0.0
     for k in range(dim):
-        d = (phase[j, k] + phase[j, 3 + k] * t) - (phase[i, k] + phase[i, 3 + k] * t)
+        d = (phase[j, X0 + k] + phase[j, V + k] * t) - (phase[i, X0 + k] + phase[i, V + k] * t)
         if not grid[I_WALL + k]:
             length = geometry[G_L + k]
             d -= length * np.round(d / length)
@@ -191,18 +200,18 @@ def collide(i, j, t, phase, geometry, grid, last_collision):
     n0 = dr0 * inv
     n1 = dr1 * inv
     n2 = dr2 * inv
-    gn = (phase[j, 3] - phase[i, 3]) * n0 + (phase[j, 4] - phase[i, 4]) * n1
+    gn = (phase[j, V] - phase[i, V]) * n0 + (phase[j, V + 1] - phase[i, V + 1]) * n1
     if dim == 3:
-        gn += (phase[j, 5] - phase[i, 5]) * n2
+        gn += (phase[j, V + 2] - phase[i, V + 2]) * n2
     # gn < 0: approaching. Δv_i = (1+α)/2 gn n, Δv_j = −Δv_i
     factor = 0.5 * (1.0 + alpha) * gn
     for k in range(dim):
         nk = n0 if k == 0 else (n1 if k == 1 else n2)
         delta = factor * nk
-        phase[i, 3 + k] += delta
-        phase[i, k] -= delta * t
-        phase[j, 3 + k] -= delta
-        phase[j, k] += delta * t
+        phase[i, V + k] += delta
+        phase[i, X0 + k] -= delta * t
+        phase[j, V + k] -= delta
+        phase[j, X0 + k] += delta * t
     return gn, alpha
 
 
@@ -323,7 +332,7 @@ def advance(run, state, queue, observers):
             counters[COUNT_STALL] += 1
             if counters[COUNT_STALL] > STALL_LIMIT:
                 counters[COUNT_COLLAPSE_PARTICLE] = i
-                counters[COUNT_COLLAPSE_PARTNER] = ints[i, 0]
+                counters[COUNT_COLLAPSE_PARTNER] = ints[i, PARTNER]
                 clock[0] = t
                 return STATUS_STALLED
         else:
@@ -340,24 +349,24 @@ def advance(run, state, queue, observers):
         offset = 0
         new_crossing = True
         collided = False
-        if phase[i, 7] <= phase[i, 6]:
+        if phase[i, T_CELL] <= phase[i, T_PAIR]:
             # ---------------------------------------------------------- crossing or wall
-            code = ints[i, 2]
+            code = ints[i, FACE]
             k = code >> 1
             upwards = (code & 1) == 1
-            c = ints[i, 5 + k]
+            c = ints[i, CELL + k]
             at_wall = False
             if grid[I_WALL + k] != 0:
                 at_wall = c == grid[I_N + k] - 1 if upwards else c == 0
             if at_wall:
-                velocity = phase[i, 3 + k]
+                velocity = phase[i, V + k]
                 speed = abs(velocity)
                 wall_statistics[code, 0] += 1.0
                 wall_statistics[code, 1] += speed
                 wall_statistics[code, 2] += 1.0 / speed
-                phase[i, k] += 2.0 * velocity * t
-                phase[i, 3 + k] = -velocity
-                ints[i, 3] = event_number
+                phase[i, X0 + k] += 2.0 * velocity * t
+                phase[i, V + k] = -velocity
+                ints[i, CHANGED_AT] = event_number
                 counters[COUNT_WALL_HITS] += 1
             else:
                 # arithmetic rather than a branch on the direction (a coin flip)
@@ -370,8 +379,8 @@ def advance(run, state, queue, observers):
                 elif c < 0:
                     c = grid[I_N + k] - 1
                     wrap = geometry[G_L + k]
-                old = cell_flat(ints[i, 5], ints[i, 6], ints[i, 7], grid)
-                new = old + (c - ints[i, 5 + k]) * (
+                old = cell_flat(ints[i, CELL], ints[i, CELL + 1], ints[i, CELL + 2], grid)
+                new = old + (c - ints[i, CELL + k]) * (
                     1 if k == 0 else (grid[0] if k == 1 else grid[0] * grid[1])
                 )
                 if occupancy[new] >= members.shape[1]:
@@ -381,14 +390,14 @@ def advance(run, state, queue, observers):
                     clock[0] = t_previous
                     return STATUS_CELL_FULL
                 cell_remove(i, old, members, occupancy, ints)
-                phase[i, k] += wrap
-                ints[i, 5 + k] = c
+                phase[i, X0 + k] += wrap
+                ints[i, CELL + k] = c
                 cell_insert(i, new, members, occupancy, ints)
                 counters[COUNT_CROSSINGS] += 1
                 axis = k
         else:
-            j = ints[i, 0]
-            if ints[j, 3] > ints[i, 1]:
+            j = ints[i, PARTNER]
+            if ints[j, CHANGED_AT] > ints[i, PREDICTED_AT]:
                 # ------------------------------------------------------ stale prediction
                 counters[COUNT_INVALID] += 1
                 new_crossing = False
@@ -396,13 +405,13 @@ def advance(run, state, queue, observers):
                 # ---------------------------------------------------------- pair collision
                 collided = True
                 second = j
-                speed_i = np.sqrt(phase[i, 3] ** 2 + phase[i, 4] ** 2 + phase[i, 5] ** 2)
-                speed_j = np.sqrt(phase[j, 3] ** 2 + phase[j, 4] ** 2 + phase[j, 5] ** 2)
+                speed_i = np.sqrt(phase[i, V] ** 2 + phase[i, V + 1] ** 2 + phase[i, V + 2] ** 2)
+                speed_j = np.sqrt(phase[j, V] ** 2 + phase[j, V + 1] ** 2 + phase[j, V + 2] ** 2)
                 gn, alpha_used = collide(i, j, t, phase, geometry, grid, last_collision)
                 if alpha_used < 1.0:
                     counters[COUNT_INELASTIC] += 1
-                ints[i, 3] = event_number
-                ints[j, 3] = event_number
+                ints[i, CHANGED_AT] = event_number
+                ints[j, CHANGED_AT] = event_number
                 if observing:
                     observe_flight(
                         i,
@@ -449,13 +458,16 @@ def advance(run, state, queue, observers):
             if new_crossing:
                 tc, new_code = next_crossing(p, phase, ints, geometry, grid)
                 # never schedule in the past (round-off right after a crossing)
-                phase[p, 7] = tc if tc > t else t
-                ints[p, 2] = new_code
+                phase[p, T_CELL] = tc if tc > t else t
+                ints[p, FACE] = new_code
                 if pipeline:
                     # the list head that the rescheduling below reads, if the crossing
                     # stays the next event (mostly): the scan hides the miss
                     bucket = calendar_place(
-                        phase[p, 7] if axis < 0 else event_key(phase, p), heads, calendar, cursor
+                        phase[p, T_CELL] if axis < 0 else event_key(phase, p),
+                        heads,
+                        calendar,
+                        cursor,
                     )
                     if bucket != PLACE_HEAP:
                         prefetch_row(heads, bucket)
@@ -476,10 +488,10 @@ def advance(run, state, queue, observers):
                 images,
             )
             counters[COUNT_PAIR_TESTS] += tests
-            if axis < 0 or best_t < phase[p, 6]:
-                phase[p, 6] = best_t
-                ints[p, 0] = best_j
-                ints[p, 1] = event_number
+            if axis < 0 or best_t < phase[p, T_PAIR]:
+                phase[p, T_PAIR] = best_t
+                ints[p, PARTNER] = best_j
+                ints[p, PREDICTED_AT] = event_number
             calendar_reschedule(
                 p, event_key(phase, p), links, heads, heap_time, heap_index, calendar, cursor
             )

@@ -15,18 +15,19 @@ that a large system pays two cache misses per event rather than one per array. S
 can be re-sorted in memory along the Z-order curve of the cells now and then (``label``
 keeps each slot's particle identity; ``HardSphereSystem(sort_every=...)``).
 
-``phase``   (N, 8) float64: columns 0..2 the *false position* x0 = x(t) − v t of the
-            current flight (the position at time t is ``x0 + v t`` without touching the
-            particle between its events), 3..5 the velocity (z = 0 in d = 2), 6 the time of
-            i's earliest predicted pair collision, 7 the time i next leaves its cell (or
-            touches a wall).
-``ints``    (N, 8) int64: 0 the predicted partner j (−1: none), 1 the number of the
-            event at which the prediction was made, 2 the face of the next crossing
-            (2 k + 1 upwards along axis k, 2 k downwards), 3 the number of the event at
-            which i's velocity last changed (collision or wall bounce; 0 before the first),
-            4 i's position in its cell row, 5..7 its cell coordinates (z = 0 in d = 2).
-            Lazy invalidation: i's pair prediction is valid iff ``ints[j, 3] <=
-            ints[i, 1]`` (j has not changed velocity since; within one event every
+``phase``   (N, 8) float64, columns named below: X0..X0 + 2 the *false position* x0 =
+            x(t) − v t of the current flight (the position at time t is ``x0 + v t``
+            without touching the particle between its events), V..V + 2 the velocity (z = 0
+            in d = 2), T_PAIR the time of i's earliest predicted pair collision, T_CELL the
+            time i next leaves its cell (or touches a wall).
+``ints``    (N, 8) int64: PARTNER the predicted partner j (−1: none), PREDICTED_AT the
+            number of the event at which the prediction was made, FACE the face of the next
+            crossing (2 k + 1 upwards along axis k, 2 k downwards), CHANGED_AT the number of
+            the event at which i's velocity last changed (collision or wall bounce; 0 before
+            the first), ROW_SLOT i's position in its cell row, CELL..CELL + 2 its cell
+            coordinates (z = 0 in d = 2).
+            Lazy invalidation: i's pair prediction is valid iff ``ints[j, CHANGED_AT] <=
+            ints[i, PREDICTED_AT]`` (j has not changed velocity since; within one event every
             velocity change precedes every prediction). Event numbers, unlike counts of
             j's changes, need nothing of j's row when the prediction is made (a cache miss
             per prediction in large systems).
@@ -39,7 +40,7 @@ keeps each slot's particle identity; ``HardSphereSystem(sort_every=...)``).
             [current bucket, heap size, then the prefetch pipeline's list positions (see
             ``prefetch_ahead``; ``N_CURSOR`` entries in all, 2 disable the pipeline)]:
             the event calendar (Paul 2007, J. Comput. Phys. 221, 615), the queue of the N
-            events min(phase[i, 6], phase[i, 7]). Bucket b of B = N covers the times
+            events min(phase[i, T_PAIR], phase[i, T_CELL]). Bucket b of B = N covers the times
             origin + [b, b + 1) · width (width ≈ EVENTS_PER_BUCKET mean intervals between
             events) in an unsorted doubly linked list (``heads[b]`` the first particle,
             ``links[i]`` = next, previous, bucket of i, heap position); list B is the
@@ -144,6 +145,20 @@ class ObserverBuffers(NamedTuple):
     record_pair: np.ndarray
     record_normal_speed: np.ndarray
 
+
+# columns of ``phase`` (float64)
+X0 = 0  # false position x0 = x(t) − v t: columns X0, X0 + 1, X0 + 2
+V = 3  # velocity: columns V, V + 1, V + 2 (z = 0 in d = 2)
+T_PAIR = 6  # time of the earliest predicted pair collision
+T_CELL = 7  # time the particle next leaves its cell (or touches a wall)
+
+# columns of ``ints`` (int64)
+PARTNER = 0  # predicted partner (−1: none)
+PREDICTED_AT = 1  # number of the event at which the pair prediction was made
+FACE = 2  # face of the next crossing (2 k + 1 upwards along axis k, 2 k downwards)
+CHANGED_AT = 3  # number of the event at which the velocity last changed
+ROW_SLOT = 4  # position in its cell row
+CELL = 5  # cell coordinates: columns CELL, CELL + 1, CELL + 2 (z = 0 in d = 2)
 
 # status codes returned by ``advance``
 STATUS_TIME = 0  # reached the requested time

@@ -8,7 +8,21 @@ import numpy as np
 
 from kinetic.edmd.calendar import calendar_build
 from kinetic.edmd.cells import cell_insert, predict
-from kinetic.edmd.layout import G_L, G_SIGMA, G_SIGMA2, G_W, I_DIM, I_N, I_WALL, cell_flat
+from kinetic.edmd.layout import (
+    CELL,
+    G_L,
+    G_SIGMA,
+    G_SIGMA2,
+    G_W,
+    I_DIM,
+    I_N,
+    I_WALL,
+    T_CELL,
+    T_PAIR,
+    X0,
+    V,
+    cell_flat,
+)
 from kinetic.jit import kernel
 from kinetic.rng import normal_pair, uniform
 
@@ -35,23 +49,23 @@ def place_random(phase, ints, members, occupancy, geometry, grid, state, max_att
         for _attempt in range(max_attempts):
             for k in range(3):
                 if k >= dim:
-                    phase[i, k] = 0.0
-                    ints[i, 5 + k] = 0
+                    phase[i, X0 + k] = 0.0
+                    ints[i, CELL + k] = 0
                     continue
                 length = geometry[G_L + k]
                 if grid[I_WALL + k]:
                     x = 0.5 * sigma + (length - sigma) * uniform(state)
                 else:
                     x = length * uniform(state)
-                phase[i, k] = x
+                phase[i, X0 + k] = x
                 c = int(x / geometry[G_W + k])
                 if c >= grid[I_N + k]:
                     c = grid[I_N + k] - 1
-                ints[i, 5 + k] = c
+                ints[i, CELL + k] = c
             for k in range(3, 6):
-                phase[i, k] = 0.0
+                phase[i, X0 + k] = 0.0
             if not overlaps_neighbours(i, phase, ints, members, occupancy, geometry, grid, sigma2):
-                flat = cell_flat(ints[i, 5], ints[i, 6], ints[i, 7], grid)
+                flat = cell_flat(ints[i, CELL], ints[i, CELL + 1], ints[i, CELL + 2], grid)
                 if not cell_insert(i, flat, members, occupancy, ints):
                     return -1  # a cell is full: the caller grows the capacity and retries
                 placed = True
@@ -69,7 +83,7 @@ def overlaps_neighbours(i, phase, ints, members, occupancy, geometry, grid, sigm
     for o2 in range(lo2, hi2 + 1):
         for o1 in range(-1, 2):
             for o0 in range(-1, 2):
-                ks = (ints[i, 5 + 0] + o0, ints[i, 5 + 1] + o1, ints[i, 5 + 2] + o2)
+                ks = (ints[i, CELL] + o0, ints[i, CELL + 1] + o1, ints[i, CELL + 2] + o2)
                 shift0 = 0.0
                 shift1 = 0.0
                 shift2 = 0.0
@@ -109,9 +123,9 @@ def overlaps_neighbours(i, phase, ints, members, occupancy, geometry, grid, sigm
                 flat = cell_flat(k0, k1, k2, grid)
                 for q in range(occupancy[flat]):
                     j = members[flat, q]
-                    dx = phase[j, 0] + shift0 - phase[i, 0]
-                    dy = phase[j, 1] + shift1 - phase[i, 1]
-                    dz = phase[j, 2] + shift2 - phase[i, 2]
+                    dx = phase[j, X0] + shift0 - phase[i, X0]
+                    dy = phase[j, X0 + 1] + shift1 - phase[i, X0 + 1]
+                    dz = phase[j, X0 + 2] + shift2 - phase[i, X0 + 2]
                     if dx * dx + dy * dy + dz * dz < sigma2:
                         return True
     return False
@@ -131,18 +145,22 @@ def build_cells(phase, ints, members, occupancy, geometry, grid, t):
     for i in range(n):
         for k in range(3):
             if k >= dim:
-                ints[i, 5 + k] = 0
+                ints[i, CELL + k] = 0
                 continue
-            x = phase[i, k] + phase[i, 3 + k] * t
+            x = phase[i, X0 + k] + phase[i, V + k] * t
             length = geometry[G_L + k]
             if x < 0.0 or x > length:
                 return i
             c = int(x / geometry[G_W + k])
             if c >= grid[I_N + k]:
                 c = grid[I_N + k] - 1
-            ints[i, 5 + k] = c
+            ints[i, CELL + k] = c
         if not cell_insert(
-            i, cell_flat(ints[i, 5], ints[i, 6], ints[i, 7], grid), members, occupancy, ints
+            i,
+            cell_flat(ints[i, CELL], ints[i, CELL + 1], ints[i, CELL + 2], grid),
+            members,
+            occupancy,
+            ints,
         ):
             return -2
     return -1
@@ -157,76 +175,74 @@ def relink_cells(ints, members, occupancy, grid):
         occupancy[flat] = 0
     for i in range(ints.shape[0]):
         if not cell_insert(
-            i, cell_flat(ints[i, 5], ints[i, 6], ints[i, 7], grid), members, occupancy, ints
+            i,
+            cell_flat(ints[i, CELL], ints[i, CELL + 1], ints[i, CELL + 2], grid),
+            members,
+            occupancy,
+            ints,
         ):
             return False
     return True
 
 
 @kernel
-def predict_all(
-    t,
-    phase,
-    ints,
-    members,
-    occupancy,
-    geometry,
-    grid,
-    links,
-    heads,
-    heap_time,
-    heap_index,
-    calendar,
-    cursor,
-    counters,
-    scratch,
-    images,
-):
-    """Predict every particle's events from time t and rebuild the calendar."""
+def predict_all(t, state, calendar):
+    """Predict every particle's events from time t and rebuild the calendar (``state`` a
+    ``layout.State``, ``calendar`` a ``layout.Calendar``)."""
+    phase = state.phase
     n = phase.shape[0]
     for i in range(n):
         predict(
             i,
             t,
             phase,
-            ints,
-            members,
-            occupancy,
-            geometry,
-            grid,
-            counters,
-            scratch,
-            images,
+            state.ints,
+            state.members,
+            state.occupancy,
+            state.geometry,
+            state.grid,
+            state.counters,
+            state.scratch,
+            state.images,
         )
-    calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor)
+    calendar_build(
+        phase,
+        calendar.links,
+        calendar.heads,
+        calendar.heap_time,
+        calendar.heap_index,
+        calendar.calendar,
+        calendar.cursor,
+    )
 
 
 @kernel
-def rebase(
-    t,
-    phase,
-    links,
-    heads,
-    heap_time,
-    heap_index,
-    calendar,
-    cursor,
-    last_collision,
-    window_end,
-    sample_times,
-    record_time,
-):
+def rebase(t, state, calendar, observers):
     """Move the time origin to t (every stored time −= t, x0 += v t), to keep round-off
     small in long runs, and rebuild the calendar on the new clock. Positions and the order
-    of events are unchanged."""
+    of events are unchanged. ``observers`` (a ``layout.ObserverBuffers``): the window ends,
+    sample times and record times shift with the clock."""
+    phase = state.phase
+    last_collision = state.last_collision
     n = phase.shape[0]
     for i in range(n):
         for k in range(3):
-            phase[i, k] += phase[i, 3 + k] * t
-        phase[i, 6] -= t
-        phase[i, 7] -= t
+            phase[i, X0 + k] += phase[i, V + k] * t
+        phase[i, T_PAIR] -= t
+        phase[i, T_CELL] -= t
         last_collision[i] -= t
-    calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor)
+    calendar_build(
+        phase,
+        calendar.links,
+        calendar.heads,
+        calendar.heap_time,
+        calendar.heap_index,
+        calendar.calendar,
+        calendar.cursor,
+    )
+    window_end = observers.window_end
+    sample_times = observers.sample_times
+    record_time = observers.record_time
     for w in range(window_end.shape[0]):
         window_end[w] -= t
     for s in range(sample_times.shape[0]):
@@ -241,9 +257,9 @@ def draw_velocities(phase, dim, state):
     n = phase.shape[0]
     for i in range(n):
         a, b = normal_pair(state)
-        phase[i, 3] = a
-        phase[i, 4] = b
-        phase[i, 5] = normal_pair(state)[0] if dim == 3 else 0.0
+        phase[i, V] = a
+        phase[i, V + 1] = b
+        phase[i, V + 2] = normal_pair(state)[0] if dim == 3 else 0.0
 
 
 @kernel
@@ -255,24 +271,24 @@ def min_pair_distance(phase, ints, members, occupancy, geometry, grid, t):
     best = np.inf
     lo2, hi2 = (-1, 1) if dim == 3 else (0, 0)
     for i in range(n):
-        xi0 = phase[i, 0] + phase[i, 3] * t
-        xi1 = phase[i, 1] + phase[i, 4] * t
-        xi2 = phase[i, 2] + phase[i, 5] * t
+        xi0 = phase[i, X0] + phase[i, V] * t
+        xi1 = phase[i, X0 + 1] + phase[i, V + 1] * t
+        xi2 = phase[i, X0 + 2] + phase[i, V + 2] * t
         for o2 in range(lo2, hi2 + 1):
             k2, s2, skip2 = _neighbour(
-                ints[i, 5 + 2] + o2, grid[2], grid[I_WALL + 2], geometry[G_L + 2]
+                ints[i, CELL + 2] + o2, grid[2], grid[I_WALL + 2], geometry[G_L + 2]
             )
             if skip2:
                 continue
             for o1 in range(-1, 2):
                 k1, s1, skip1 = _neighbour(
-                    ints[i, 5 + 1] + o1, grid[1], grid[I_WALL + 1], geometry[G_L + 1]
+                    ints[i, CELL + 1] + o1, grid[1], grid[I_WALL + 1], geometry[G_L + 1]
                 )
                 if skip1:
                     continue
                 for o0 in range(-1, 2):
                     k0, s0, skip0 = _neighbour(
-                        ints[i, 5 + 0] + o0, grid[0], grid[I_WALL], geometry[G_L]
+                        ints[i, CELL] + o0, grid[0], grid[I_WALL], geometry[G_L]
                     )
                     if skip0:
                         continue
@@ -280,9 +296,9 @@ def min_pair_distance(phase, ints, members, occupancy, geometry, grid, t):
                     for q in range(occupancy[flat]):
                         j = members[flat, q]
                         if j != i:
-                            d0 = phase[j, 0] + phase[j, 3] * t + s0 - xi0
-                            d1 = phase[j, 1] + phase[j, 4] * t + s1 - xi1
-                            d2 = phase[j, 2] + phase[j, 5] * t + s2 - xi2
+                            d0 = phase[j, X0] + phase[j, V] * t + s0 - xi0
+                            d1 = phase[j, X0 + 1] + phase[j, V + 1] * t + s1 - xi1
+                            d2 = phase[j, X0 + 2] + phase[j, V + 2] * t + s2 - xi2
                             r2 = d0 * d0 + d1 * d1 + (d2 * d2 if dim == 3 else 0.0)
                             if r2 < best:
                                 best = r2

@@ -445,19 +445,7 @@ class HardSphereSystem:
     def _predict_all(self, t: float) -> None:
         """Predict every event from kernel time t (pair tests not counted)."""
         tests = int(self.counters_array[k.COUNT_PAIR_TESTS])
-        k.predict_all(
-            t,
-            self.phase,
-            self.ints,
-            self.members,
-            self.occupancy,
-            self.geometry,
-            self.grid,
-            *self._calendar_arrays(),
-            self.counters_array,
-            self.scratch,
-            self.images,
-        )
+        k.predict_all(t, self._state(), self._calendar_arrays())
         self.counters_array[k.COUNT_PAIR_TESTS] = tests
 
     def sort_particles(self, observers: Observers | None = None) -> None:
@@ -491,15 +479,7 @@ class HardSphereSystem:
         t = float(self.clock[0])
         if t == 0.0 or not math.isfinite(t):
             return
-        k.rebase(
-            t,
-            self.phase,
-            *self._calendar_arrays(),
-            self.last_collision,
-            observers.window_end,
-            observers.sample_times,
-            observers.record_time,
-        )
+        k.rebase(t, self._state(), self._calendar_arrays(), observers.kernel_arguments())
         self.time_origin += t
         self.clock[0] = 0.0
 
