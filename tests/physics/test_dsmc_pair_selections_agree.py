@@ -51,9 +51,13 @@ def _cooling_state(selection: str, seed: int):
             )
         else:
             collide_speed_classes(
-                velocity, state, ALPHA, coefficient, duration, False, bounds, carry, tally,
-                *work.arrays(),
-            )  # fmt: skip
+                velocity,
+                state,
+                kernels.Collisions(
+                    kernels.HARD_SPHERES, ALPHA, coefficient, duration, False, bounds, carry, tally
+                ),
+                work.arrays(),
+            )
         collisions = int(tally[kernels.TALLY_ACCEPTED]) - before
         lost = 1.0 - float(np.sum(velocity**2)) / energy
         # back to T = 1 (the scaled HCS): momentum is conserved, so only a rescale

@@ -34,11 +34,7 @@ def fixed_speed_rate(kernel, dimension, speed, population=2000, duration=40.0, s
         work,
         state,
         duration / 40,
-        blocks,
-        6.0,
-        np.zeros(10),
-        rate_table(name, dimension),
-        TABLE_STEP,
+        kernels.Observers(blocks, 6.0, np.zeros(10), rate_table(name, dimension), TABLE_STEP),
     )
     column = kernels.BLOCK_FIELDS.index
     rates = -blocks[:, column("net_compensations")] / (population * blocks[:, 0])
@@ -82,9 +78,14 @@ def test_the_bound_follows_the_fastest_member_down():
     velocity[:, 0] = (30.0, 0.0)
     blocks = np.zeros((1, len(kernels.BLOCK_FIELDS)))
     kernels.run_blocks(
-        kernels.HARD_SPHERES, lam, velocity, speed, state, 50.0, blocks, 6.0, np.zeros(10),
-        rate_table("hard_spheres", 2), TABLE_STEP,
-    )  # fmt: skip
+        kernels.HARD_SPHERES,
+        lam,
+        velocity,
+        speed,
+        state,
+        50.0,
+        kernels.Observers(blocks, 6.0, np.zeros(10), rate_table("hard_spheres", 2), TABLE_STEP),
+    )
     fields = kernels.BLOCK_FIELDS
     row = blocks[0]
     assert row[fields.index("max_speed")] >= 30.0  # the bound started at the fast member

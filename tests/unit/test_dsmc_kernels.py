@@ -175,9 +175,13 @@ def test_collisions_follow_the_hard_sphere_rate_in_a_heavy_tailed_gas(selection)
         tally = np.zeros(4, dtype=np.int64)
         if selection == "speed_classes":
             collide_speed_classes(
-                v, states[r], 1.0, coefficient, duration, True, b, np.zeros(1), tally,
-                *work.arrays(),
-            )  # fmt: skip
+                v,
+                states[r],
+                kernels.Collisions(
+                    kernels.HARD_SPHERES, 1.0, coefficient, duration, True, b, np.zeros(1), tally
+                ),
+                work.arrays(),
+            )
             assert np.allclose(v.sum(axis=1), velocity.sum(axis=1), atol=1e-10)
         else:
             kernels.collide_range(
@@ -218,9 +222,13 @@ def test_speed_classes_conserve_the_particles_through_new_layouts(d):
         tally = np.zeros(4, dtype=np.int64)
         coefficient = 1.0 / (n - 1)  # each particle collides at about <|g|> ~ 2
         collide_speed_classes(
-            velocity, state, alpha, coefficient, 20.0, False,
-            bounds, np.zeros(1), tally, *SpeedClasses(n).arrays(),
-        )  # fmt: skip
+            velocity,
+            state,
+            kernels.Collisions(
+                kernels.HARD_SPHERES, alpha, coefficient, 20.0, False, bounds, np.zeros(1), tally
+            ),
+            SpeedClasses(n).arrays(),
+        )
         assert velocity.shape == (d, n) and np.all(np.isfinite(velocity))
         assert tally[kernels.TALLY_EXCEEDED] == 0
         assert tally[kernels.TALLY_ACCEPTED] > 4 * n

@@ -101,14 +101,26 @@ def _case(kernel_name, dimension, lam, population, duration, repeats, seconds_pe
     # relax to the tilted population first
     relax = np.zeros((1, len(kernels.BLOCK_FIELDS)))
     kernels.run_blocks(
-        code, lam, velocity, speed, state, 10.0, relax, 6.0, histogram, table, TABLE_STEP
+        code,
+        lam,
+        velocity,
+        speed,
+        state,
+        10.0,
+        kernels.Observers(relax, 6.0, histogram, table, TABLE_STEP),
     )
     totals = dict.fromkeys(kernels.BLOCK_FIELDS, 0.0)
 
     def work():
         blocks = np.zeros((1, len(kernels.BLOCK_FIELDS)))
         kernels.run_blocks(
-            code, lam, velocity, speed, state, duration, blocks, 6.0, histogram, table, TABLE_STEP
+            code,
+            lam,
+            velocity,
+            speed,
+            state,
+            duration,
+            kernels.Observers(blocks, 6.0, histogram, table, TABLE_STEP),
         )
         for k, name in enumerate(kernels.BLOCK_FIELDS):
             totals[name] += blocks[0, k]

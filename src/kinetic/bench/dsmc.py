@@ -151,21 +151,13 @@ def _collision_stage(n: int, alpha: float, repeats: int, collisions_per_particle
 
     classes = SpeedClasses(n)
     weighted_tally = np.zeros(4, dtype=np.int64)
+    weighted_collisions = collisions._replace(tally=weighted_tally)
     weighted_draws = [0]
 
     def weighted_work() -> float:
         before = int(weighted_tally[kernels.TALLY_ACCEPTED])
         weighted_draws[0] += collide_speed_classes(
-            gas.velocity,
-            gas.rng,
-            alpha,
-            settings.pair_coefficient,
-            duration,
-            False,
-            gas.bounds,
-            gas.carry,
-            weighted_tally,
-            *classes.arrays(),
+            gas.velocity, gas.rng, weighted_collisions, classes.arrays()
         )
         kernels.force_and_thermostat(gas.velocity, 0.0, False, settings.target_energy, gas.bounds)
         return float(weighted_tally[kernels.TALLY_ACCEPTED] - before)

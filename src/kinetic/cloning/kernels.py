@@ -50,6 +50,9 @@ shape (d, n), C order; ``speed[i] = |velocity[:, i]|``; ``state`` is one xoshiro
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
+
+import numpy as np
 
 from kinetic.gas import HARD_SPHERES, MAXWELL
 from kinetic.jit import inline, kernel, refcount_free
@@ -67,6 +70,7 @@ __all__ = [
     "BLOCK_FIELDS",
     "HARD_SPHERES",
     "MAXWELL",
+    "Observers",
     "compensation_parameters",
     "draw_population",
     "run_blocks",
@@ -348,20 +352,21 @@ def _snapshot_histogram(velocity, weight, half_width, histogram):
                 histogram[int(position)] += weight
 
 
+class Observers(NamedTuple):
+    """What ``run_blocks`` records: ``blocks`` (float64[n_blocks, len(BLOCK_FIELDS)], one
+    row per block), ``histogram`` (float64[n_bins], velocity components on [-half_width,
+    half_width)) and, for the ``integral_rate`` column, ``rate_table`` (the collision rate
+    of one member at the speeds k·table_step)."""
+
+    blocks: np.ndarray
+    half_width: float
+    histogram: np.ndarray
+    rate_table: np.ndarray
+    table_step: float
+
+
 @refcount_free
-def run_blocks(
-    kernel,
-    lam,
-    velocity,
-    speed,
-    state,
-    block_duration,
-    blocks,
-    half_width,
-    histogram,
-    rate_table,
-    table_step,
-):
+def run_blocks(kernel, lam, velocity, speed, state, block_duration, observers):
     """Advance the population through ``blocks.shape[0]`` blocks of ``block_duration``.
 
     Parameters
@@ -378,6 +383,8 @@ def run_blocks(
         xoshiro256+ state of this realisation, advanced in place.
     block_duration : float
         Time (units 1/ω) per block; a block ends at the first candidate at or past it.
+    observers : Observers
+        Its fields:
     blocks : float64[n_blocks, len(BLOCK_FIELDS)]
         Output, one row per block (columns in ``BLOCK_FIELDS``).
     half_width : float
@@ -405,6 +412,11 @@ def run_blocks(
     them to be reloaded (numba cannot prove that the arrays do not alias), on the critical
     path of every draw.
     """
+    blocks = observers.blocks
+    half_width = observers.half_width
+    histogram = observers.histogram
+    rate_table = observers.rate_table
+    table_step = observers.table_step
     d, n = velocity.shape
     rate_factor, keep, duplicating = compensation_parameters(lam)
     always_keep = keep >= 1.0

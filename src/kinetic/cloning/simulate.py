@@ -291,11 +291,13 @@ def simulate(
                 speed,
                 state,
                 duration,
-                blocks[r, lo:hi],
-                p["histogram_half_width"],
-                histograms[r] if measured_segment else scratch,
-                table,
-                TABLE_STEP,
+                kernels.Observers(
+                    blocks[r, lo:hi],
+                    p["histogram_half_width"],
+                    histograms[r] if measured_segment else scratch,
+                    table,
+                    TABLE_STEP,
+                ),
             )
             if measured_segment:
                 weight += added

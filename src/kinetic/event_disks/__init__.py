@@ -99,40 +99,28 @@ def simulate_box(
     cpu = np.zeros(realizations)
     progress = Progress(realizations, label=f"event-disks N={n_disks}", unit="realizations")
     x, v = starts[0]
-    kernels.observe(  # load the compiled kernel before the clock runs (a run of length 0)
-        x.copy(),
-        v.copy(),
-        float(sigma),
-        box,
-        0.0,
-        snapshot_interval,
-        occupancy[0],
-        snapshots[0],
-        lower,
-        upper,
-        walls[0],
-        pairs[0],
-        velocity_time[0],
-        1.0,
-    )
+
+    def observers(r: int, radius: float) -> kernels.Observers:
+        """Realization r's observers, velocities in units of ``radius``."""
+        return kernels.Observers(
+            occupancy[r],
+            snapshots[r],
+            float(snapshot_interval),
+            float(lower),
+            float(upper),
+            walls[r],
+            pairs[r],
+            velocity_time[r],
+            float(radius),
+        )
+
+    # load the compiled kernel before the clock runs (a run of length 0)
+    kernels.observe(x.copy(), v.copy(), float(sigma), box, 0.0, observers(0, 1.0))
     for r, (x, v) in enumerate(starts):
         radius2[r] = np.sum(v**2)
         begin = time.process_time()
         events[r] = kernels.observe(
-            x,
-            v,
-            float(sigma),
-            box,
-            duration,
-            snapshot_interval,
-            occupancy[r],
-            snapshots[r],
-            lower,
-            upper,
-            walls[r],
-            pairs[r],
-            velocity_time[r],
-            math.sqrt(radius2[r]),
+            x, v, float(sigma), box, float(duration), observers(r, math.sqrt(radius2[r]))
         )
         cpu[r] = time.process_time() - begin
         progress.update(1)
@@ -351,19 +339,7 @@ def warmup() -> None:
         )
     x = np.array([[0.3, 0.3], [0.7, 0.7]])
     v = np.array([[1.0, 0.5], [-0.5, -1.0]])
-    kernels.observe(
-        x,
-        v,
-        0.1,
-        np.ones(2),
-        2.0,
-        0.5,
-        np.zeros(4),
-        np.zeros(4),
-        0.1,
-        0.9,
-        np.zeros((4, 3)),
-        np.zeros(3),
-        np.zeros(4),
-        1.0,
+    observers = kernels.Observers(
+        np.zeros(4), np.zeros(4), 0.5, 0.1, 0.9, np.zeros((4, 3)), np.zeros(3), np.zeros(4), 1.0
     )
+    kernels.observe(x, v, 0.1, np.ones(2), 2.0, observers)

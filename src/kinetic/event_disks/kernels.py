@@ -25,6 +25,8 @@ Faces are numbered 2k + (1 if the wall is at L_k, 0 if at 0). Disks must start l
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from kinetic.jit import inline, kernel
@@ -152,32 +154,39 @@ def _flight_occupancy(y, vy, dt, histogram, lower, scale):
         b += 1
 
 
-@kernel
-def observe(
-    x,
-    v,
-    sigma,
-    box,
-    duration,
-    snapshot_interval,
-    occupancy,
-    snapshots,
-    lower,
-    upper,
-    wall_statistics,
-    pair_statistics,
-    velocity_time,
-    radius,
-):
-    """Run for ``duration`` from time 0, feeding the observers (all float64):
+class Observers(NamedTuple):
+    """What ``observe`` feeds (arrays float64): ``occupancy`` (bins on [lower, upper)), the
+    time spent by the disks in each bin of y (Eq. 4.3 times T); ``snapshots``, counts of
+    the disks' y every ``snapshot_interval`` (from time interval/2); ``wall_statistics``
+    (4, 3), per face hits, Σ|v⊥|, Σ 1/|v⊥|; ``pair_statistics`` (3,), collisions, Σ|Δv⊥|,
+    Σ 1/|Δv⊥|; ``velocity_time`` (bins on [-1, 1)), the time spent by every velocity
+    component v_i,a/``radius`` in each bin (both components of every disk, as velocities
+    are constant between events)."""
 
-    ``occupancy`` (bins on [lower, upper)): time spent by the disks in each bin of y
-    (Eq. 4.3 times T); ``snapshots``: counts of the disks' y every ``snapshot_interval``
-    (from time interval/2); ``wall_statistics`` (4, 3): per face hits, Σ|v⊥|, Σ 1/|v⊥|;
-    ``pair_statistics`` (3,): collisions, Σ|Δv⊥|, Σ 1/|Δv⊥|; ``velocity_time`` (bins on
-    [-1, 1)): time spent by every velocity component v_i,a/``radius`` in each bin (both
-    components of every disk, as velocities are constant between events). Returns the
-    events done."""
+    occupancy: np.ndarray
+    snapshots: np.ndarray
+    snapshot_interval: float
+    lower: float
+    upper: float
+    wall_statistics: np.ndarray
+    pair_statistics: np.ndarray
+    velocity_time: np.ndarray
+    radius: float
+
+
+@kernel
+def observe(x, v, sigma, box, duration, observers):
+    """Run for ``duration`` from time 0, feeding the :class:`Observers` ``observers``.
+    Returns the events done."""
+    occupancy = observers.occupancy
+    snapshots = observers.snapshots
+    snapshot_interval = observers.snapshot_interval
+    lower = observers.lower
+    upper = observers.upper
+    wall_statistics = observers.wall_statistics
+    pair_statistics = observers.pair_statistics
+    velocity_time = observers.velocity_time
+    radius = observers.radius
     n = x.shape[0]
     velocity_bins = velocity_time.shape[0]
     scale = occupancy.shape[0] / (upper - lower)

@@ -42,6 +42,8 @@ lines per candidate and this selection runs 2.5 times faster.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from kinetic.dsmc.kernels import (
@@ -110,6 +112,15 @@ def class_upper_speeds() -> np.ndarray:
 _UPPER = class_upper_speeds()
 
 
+class Work(NamedTuple):
+    """The work arrays of ``collide_speed_classes`` (``SpeedClasses.arrays()``)."""
+
+    records: np.ndarray
+    record_bits: np.ndarray
+    layout: np.ndarray
+    probability: np.ndarray
+
+
 class SpeedClasses:
     """Work arrays of ``collide_speed_classes`` for a gas of ``n`` particles."""
 
@@ -120,9 +131,9 @@ class SpeedClasses:
         self.layout = np.zeros((5, CLASS_COUNT), dtype=np.int64)
         self.probability = np.zeros(CLASS_COUNT)
 
-    def arrays(self):
-        """The arrays in the order ``collide_speed_classes`` takes them."""
-        return self.records, self.record_bits, self.layout, self.probability
+    def arrays(self) -> Work:
+        """The work arrays as ``collide_speed_classes`` takes them."""
+        return Work(self.records, self.record_bits, self.layout, self.probability)
 
 
 @inline
@@ -297,23 +308,19 @@ def _draw_j(records, slots, s0, s1, s2, s3):
 
 
 @inline
-def _classes_loop(
-    velocity,
-    state,
-    restitution,
-    pair_coefficient,
-    duration,
-    poisson,
-    bounds,
-    carry,
-    tally,
-    records,
-    record_bits,
-    layout,
-    probability,
-    d,
-):
+def _classes_loop(velocity, state, collisions, work, d):
     """Body of ``collide_speed_classes`` for a literal dimension ``d``; returns the draws of i."""
+    restitution = collisions.restitution
+    pair_coefficient = collisions.pair_coefficient
+    duration = collisions.duration
+    poisson = collisions.poisson
+    bounds = collisions.bounds
+    carry = collisions.carry
+    tally = collisions.tally
+    records = work.records
+    record_bits = work.record_bits
+    layout = work.layout
+    probability = work.probability
     n = velocity.shape[1]
     if n < 2 or duration <= 0.0:
         return 0
@@ -468,38 +475,20 @@ def _classes_loop(
 
 
 @kernel
-def collide_speed_classes(
-    velocity,
-    state,
-    restitution,
-    pair_coefficient,
-    duration,
-    poisson,
-    bounds,
-    carry,
-    tally,
-    records,
-    record_bits,
-    layout,
-    probability,
-):
-    """Hard-sphere collisions of all particles for ``duration`` (module docstring).
+def collide_speed_classes(velocity, state, collisions, work):
+    """Hard-sphere collisions of all particles for ``collisions.duration`` (module
+    docstring).
 
-    velocity (d, N), state, restitution, pair_coefficient, duration, poisson, carry as in
-    ``kernels.collide_range``; ``bounds[:d]`` is the centre c of the speeds s_i (any fixed
-    velocity is exact; the mean velocity is the tightest) and ``bounds[d], bounds[d+1]``
-    are refilled with bounds of the two largest speeds. The particles come back in
-    another order. Work arrays: ``SpeedClasses.arrays()``. ``tally`` += candidates,
+    velocity (d, N), state and ``collisions`` (a ``kernels.Collisions``; its kernel is
+    hard spheres whatever it says) as in ``kernels.collide_range``; ``bounds[:d]`` is the
+    centre c of the speeds s_i (any fixed velocity is exact; the mean velocity is the
+    tightest) and ``bounds[d], bounds[d+1]`` are refilled with bounds of the two largest
+    speeds. The particles come back in another order. Work arrays: ``work``, a
+    :class:`Work` (``SpeedClasses.arrays()``). ``tally`` += candidates,
     accepted, speed-bound raises, and in ``tally[TALLY_EXCEEDED]`` a particle beyond the
     last class (the call stops). Returns the number of draws of i (candidates plus
     redraws).
     """
     if velocity.shape[0] == 3:
-        return _classes_loop(
-            velocity, state, restitution, pair_coefficient, duration, poisson, bounds, carry,
-            tally, records, record_bits, layout, probability, 3,
-        )  # fmt: skip
-    return _classes_loop(
-        velocity, state, restitution, pair_coefficient, duration, poisson, bounds, carry,
-        tally, records, record_bits, layout, probability, 2,
-    )  # fmt: skip
+        return _classes_loop(velocity, state, collisions, work, 3)
+    return _classes_loop(velocity, state, collisions, work, 2)

@@ -344,13 +344,8 @@ def sample_disks(
                 n_disks, sigma, box_x, box_y, count, state, positions, histogram, lower, upper
             )
         return kernels.markov_disks(
-            n_disks,
-            sigma,
-            box_x,
-            box_y,
-            step,
-            count,
-            burn,
+            kernels.Box(int(n_disks), float(sigma), float(box_x), float(box_y)),
+            kernels.Chain(float(step), int(count), int(burn)),
             state,
             positions,
             histogram,

@@ -17,12 +17,14 @@ it in place, and adds its samples to a histogram (counts per bin of equal width 
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from kinetic.jit import inline, kernel
 from kinetic.rng import load_state, store_state, uniform, xoshiro_uniform
 
-__all__ = ["direct_pin", "naive_pin", "ring_markov"]
+__all__ = ["Box", "Chain", "direct_pin", "markov_disks", "naive_pin", "ring_markov"]
 
 
 @inline
@@ -195,14 +197,39 @@ def direct_disks(n, sigma, box_x, box_y, samples, state, positions, histogram, l
     return started
 
 
+class Box(NamedTuple):
+    """``n`` disks of radius ``sigma`` in the box [0, box_x] × [0, box_y] with walls."""
+
+    n: int
+    sigma: float
+    box_x: float
+    box_y: float
+
+
+class Chain(NamedTuple):
+    """A Markov chain's moves: displacements uniform in [−step, step]², ``sweeps`` recorded
+    sweeps after ``burn_in`` discarded ones."""
+
+    step: float
+    sweeps: int
+    burn_in: int
+
+
 @kernel
-def markov_disks(
-    n, sigma, box_x, box_y, step, sweeps, burn_in, state, positions, histogram, lower, upper
-):
-    """Alg. 4.5 from the legal configuration ``positions[:n]`` (updated in place): a random
-    disk tries a displacement uniform in [−δ, δ]², refused if it leaves [σ, L − σ]² or
-    overlaps another disk. After each sweep (n attempts) past ``burn_in``, the y of every
-    disk goes to ``histogram``. Returns the accepted moves."""
+def markov_disks(box, chain, state, positions, histogram, lower, upper):
+    """Alg. 4.5 in the :class:`Box` ``box`` from the legal configuration
+    ``positions[:box.n]`` (updated in place), with the :class:`Chain` settings ``chain``: a
+    random disk tries a displacement uniform in [−δ, δ]², refused if it leaves [σ, L − σ]²
+    or overlaps another disk. After each sweep (n attempts) past ``chain.burn_in``, the y of
+    every disk goes to ``histogram`` (bins over [lower, upper)). Returns the accepted
+    moves."""
+    n = box.n
+    sigma = box.sigma
+    box_x = box.box_x
+    box_y = box.box_y
+    step = chain.step
+    sweeps = chain.sweeps
+    burn_in = chain.burn_in
     scale = histogram.shape[0] / (upper - lower)
     reach2 = 4.0 * sigma * sigma
     accepted = 0
