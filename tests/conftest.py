@@ -23,12 +23,14 @@ _WORKER = os.environ.get("PYTEST_XDIST_WORKER")
 if _WORKER:
     os.environ["NUMBA_CACHE_DIR"] = str(_CACHES / _WORKER)
 
-SEEDS = (("edmd", "event_disks"), ("dsmc", "cloning", "samplers"))
+SEEDS = (("edmd", "event_disks"), ("dsmc", "cloning", "samplers", "experimental"))
 """Engines compiled by the controller before the workers start, in two processes (about
 equal compile times) and two caches of their own, which every worker's cache then starts
 from: each engine compiles once per test run instead of once per worker and once more in
 the first Snakemake build of each worker. ``kinetic.jit.warm``'s markers come with the
-copies, so the builds' jobs load the kernels instead of compiling them."""
+copies, so the builds' jobs load the kernels instead of compiling them. The experimental
+variants, which the tests compare with the engines, are compiled along (numba's own
+stamps keep them fresh; no marker)."""
 
 
 def _seed_caches() -> None:
@@ -39,7 +41,10 @@ def _seed_caches() -> None:
             [
                 sys.executable,
                 "-c",
-                f"from kinetic import jit\nfor engine in {engines!r}: jit.warm(engine)",
+                "import importlib\nfrom kinetic import jit\nfrom kinetic.sources import ENGINES\n"
+                f"for engine in {engines!r}:\n"
+                "    if engine in ENGINES: jit.warm(engine)\n"
+                "    else: importlib.import_module(f'kinetic.{engine}').warmup()",
             ],
             env={**os.environ, "NUMBA_CACHE_DIR": str(_CACHES / f"seed-{index}")},
         )

@@ -7,3 +7,25 @@ import).
   against the engine's uniform pairs (``kinetic.bench.dsmc``,
   ``tests/physics/test_dsmc_pair_selections_agree.py``).
 """
+
+
+def warmup() -> None:
+    """Compile the variants with the argument types the benchmarks and tests use (numba
+    cache=True: later processes load the machine code)."""
+    import numpy as np
+
+    from kinetic import rng
+    from kinetic.dsmc import kernels
+    from kinetic.experimental.speed_classes import SpeedClasses, collide_speed_classes
+
+    for d in (2, 3):
+        state = rng.stream_states(0, 1)[0].copy()
+        velocity = np.empty((d, 64))
+        kernels.maxwellian(velocity, state, 1.0)
+        bounds = np.empty(d + 2)
+        kernels.speed_bounds(velocity, 0, 64, bounds)
+        tally = np.zeros(4, dtype=np.int64)
+        collisions = kernels.Collisions(
+            kernels.HARD_SPHERES, 0.9, 1.0 / 63, 0.1, False, bounds, np.zeros(1), tally
+        )
+        collide_speed_classes(velocity, state, collisions, SpeedClasses(64).arrays())
