@@ -186,6 +186,20 @@ def relink_cells(ints, members, occupancy, grid):
 
 
 @kernel
+def _rebuild(phase, calendar):
+    """``calendar_build`` on the arrays of a ``layout.Calendar``."""
+    calendar_build(
+        phase,
+        calendar.links,
+        calendar.heads,
+        calendar.heap_time,
+        calendar.heap_index,
+        calendar.calendar,
+        calendar.cursor,
+    )
+
+
+@kernel
 def predict_all(t, state, calendar):
     """Predict every particle's events from time t and rebuild the calendar (``state`` a
     ``layout.State``, ``calendar`` a ``layout.Calendar``)."""
@@ -205,15 +219,7 @@ def predict_all(t, state, calendar):
             state.scratch,
             state.images,
         )
-    calendar_build(
-        phase,
-        calendar.links,
-        calendar.heads,
-        calendar.heap_time,
-        calendar.heap_index,
-        calendar.calendar,
-        calendar.cursor,
-    )
+    _rebuild(phase, calendar)
 
 
 @kernel
@@ -231,15 +237,7 @@ def rebase(t, state, calendar, observers):
         phase[i, T_PAIR] -= t
         phase[i, T_CELL] -= t
         last_collision[i] -= t
-    calendar_build(
-        phase,
-        calendar.links,
-        calendar.heads,
-        calendar.heap_time,
-        calendar.heap_index,
-        calendar.calendar,
-        calendar.cursor,
-    )
+    _rebuild(phase, calendar)
     window_end = observers.window_end
     sample_times = observers.sample_times
     record_time = observers.record_time
