@@ -19,6 +19,8 @@ ACM TOMS 47, 36 (2021); the upper 53 bits of xoshiro256+ pass BigCrush.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from kinetic.jit import inline, kernel
@@ -34,6 +36,7 @@ __all__ = [
     "random_unit_vector",
     "store_state",
     "stream_states",
+    "thread_state",
     "uniform",
     "uniform_open",
     "unit_vector_3d",
@@ -124,7 +127,7 @@ def xoshiro_normal_pair(s0, s1, s2, s3):
     """Two independent standard normal variates, as ``normal_pair`` (polar method):
     ``(z0, z1, s0, s1, s2, s3)``."""
     x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(s0, s1, s2, s3)
-    factor = np.sqrt(-2.0 * np.log(r2) / r2)
+    factor = math.sqrt(-2.0 * math.log(r2) / r2)
     return x * factor, y * factor, s0, s1, s2, s3
 
 
@@ -132,7 +135,7 @@ def xoshiro_normal_pair(s0, s1, s2, s3):
 def xoshiro_exponential(s0, s1, s2, s3):
     """Exponential variate of unit mean, as ``exponential``: ``(e, s0, s1, s2, s3)``."""
     x, s0, s1, s2, s3 = xoshiro_next(s0, s1, s2, s3)
-    return -np.log((float(x >> _SHIFT_11) + 1.0) * _TWO_M53), s0, s1, s2, s3
+    return -math.log((float(x >> _SHIFT_11) + 1.0) * _TWO_M53), s0, s1, s2, s3
 
 
 @kernel
@@ -141,7 +144,7 @@ def xoshiro_unit_3d(s0, s1, s2, s3):
     point. Returns ``(e0, e1, e2, s0, s1, s2, s3)``.
     """
     x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(s0, s1, s2, s3)
-    f = 2.0 * np.sqrt(1.0 - r2)
+    f = 2.0 * math.sqrt(1.0 - r2)
     return x * f, y * f, 1.0 - 2.0 * r2, s0, s1, s2, s3
 
 
@@ -152,6 +155,47 @@ def xoshiro_unit_2d(s0, s1, s2, s3):
     """
     x, y, r2, s0, s1, s2, s3 = xoshiro_disk_point(s0, s1, s2, s3)
     return (x * x - y * y) / r2, 2.0 * x * y / r2, s0, s1, s2, s3
+
+
+_GOLDEN = _U64(0x9E3779B97F4A7C15)
+_MIX_1 = _U64(0xBF58476D1CE4E5B9)
+_MIX_2 = _U64(0x94D049BB133111EB)
+_SHIFT_30 = _U64(30)
+_SHIFT_27 = _U64(27)
+_SHIFT_31 = _U64(31)
+
+
+@kernel
+def _splitmix64(z):
+    """One output of Vigna's splitmix64 and its next counter: ``(x, z)``."""
+    z = z + _GOLDEN
+    x = (z ^ (z >> _SHIFT_30)) * _MIX_1
+    x = (x ^ (x >> _SHIFT_27)) * _MIX_2
+    return x ^ (x >> _SHIFT_31), z
+
+
+@kernel
+def thread_state(key0, key1, key2, key3, index):
+    """The xoshiro256+ state of thread ``index`` of the stream whose state row is
+    ``(key0, key1, key2, key3)``: four splitmix64 outputs from a counter that mixes the
+    row's first word with the index, each XORed with a word of the row.
+
+    The GPU engines give every member (a clone, a particle group) its own stream this
+    way, from one ``stream_states`` row per realization: realization ``r`` of a batch has
+    the same numbers whatever else runs beside it, and no two threads share a stream.
+    Returns ``(s0, s1, s2, s3)``, never all zero.
+    """
+    z = key0 ^ (_U64(index) * _MIX_2)
+    a, z = _splitmix64(z)
+    b, z = _splitmix64(z)
+    c, z = _splitmix64(z)
+    e, z = _splitmix64(z)
+    a ^= key1
+    b ^= key2
+    c ^= key3
+    if (a | b | c | e) == _U64(0):
+        a = _U64(1)
+    return a, b, c, e
 
 
 @inline

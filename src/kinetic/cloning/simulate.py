@@ -19,7 +19,7 @@ import time
 
 import numpy as np
 
-from kinetic import io
+from kinetic import backends, io
 from kinetic.batches import REALIZATION
 from kinetic.cloning import kernels
 from kinetic.cloning.estimators import realization_observables, summarize_realizations
@@ -78,6 +78,26 @@ def is_collapsed(distinct_velocities, population):
     return bool(distinct_velocities < threshold)
 
 
+CONTROL_WEIGHT_VARIANCE = 1.0
+"""The ``cuda`` backend's control interval Δ keeps the relative variance of a clone's
+weight e^{-λK} below this value for a Poisson count K of mean Δ (the count of a clone at
+rest in a hard-sphere bath, r(0) = 1/√2, is slower; fast clones are more variable):
+exp(Δ (e^{-λ} - 1)²) - 1 <= CONTROL_WEIGHT_VARIANCE, and Δ <= ``MAX_CONTROL_INTERVAL``."""
+
+MAX_CONTROL_INTERVAL = 1.0
+"""Longest control interval of the ``cuda`` backend, in mean free times."""
+
+
+def default_control_interval(lam: float) -> float:
+    """Control interval Δ of the ``cuda`` backend at tilt ``lam`` (see
+    ``CONTROL_WEIGHT_VARIANCE``): Δ = ln(1 + v)/(e^{-λ} - 1)², at most
+    ``MAX_CONTROL_INTERVAL``."""
+    spread = math.expm1(-lam) ** 2
+    if spread == 0.0:
+        return MAX_CONTROL_INTERVAL
+    return min(MAX_CONTROL_INTERVAL, math.log1p(CONTROL_WEIGHT_VARIANCE) / spread)
+
+
 MAX_TRANSIENT_BLOCKS = 50
 """The discarded transient is split into at most this many blocks."""
 
@@ -132,6 +152,8 @@ def validate_parameters(
     seed,
     histogram_half_width,
     histogram_bins,
+    backend="cpu",
+    control_interval=None,
 ):
     """Check every argument of ``simulate``; return them normalised to Python types.
 
@@ -161,6 +183,9 @@ def validate_parameters(
         "histogram_half_width", histogram_half_width, strictly_positive=True
     )
     histogram_bins = _check_integer("histogram_bins", histogram_bins, 1, 10**6)
+    backends.check(backend)
+    if control_interval is not None:
+        control_interval = _check_real("control_interval", control_interval, strictly_positive=True)
     kept = transient * math.exp(-lam) * _slowest_rate(kernel)
     if kept < MIN_KEPT_COLLISIONS:
         needed = MIN_KEPT_COLLISIONS / (math.exp(-lam) * _slowest_rate(kernel))
@@ -171,7 +196,7 @@ def validate_parameters(
             f"hold clones of its initial bath sample (diversity collapse). "
             f"Use transient >= {needed:.4g}."
         )
-    return {
+    checked = {
         "kernel": kernel,
         "dimension": dimension,
         "lam": lam,
@@ -184,7 +209,11 @@ def validate_parameters(
         "seed": seed,
         "histogram_half_width": histogram_half_width,
         "histogram_bins": histogram_bins,
+        "backend": backend,
     }
+    if backend == "cuda":  # the CPU engine's algorithm has no control interval
+        checked["control_interval"] = control_interval or default_control_interval(lam)
+    return checked
 
 
 def simulate(
@@ -201,6 +230,8 @@ def simulate(
     seed: int,
     histogram_half_width: float = 6.0,
     histogram_bins: int = 120,
+    backend: str = "cpu",
+    control_interval: float | None = None,
     label: str | None = None,
 ):
     """Run the cloning Monte Carlo of visco2008 §IV.A and return an ``xarray.Dataset``.
@@ -224,6 +255,14 @@ def simulate(
         ``first_realization ...`` of ``stream_states(seed, ...)``; root seed of the streams.
     histogram_half_width, histogram_bins
         Range [-w, w) and bin count of the velocity-component histogram.
+    backend : {'cpu', 'cuda'}
+        ``cpu``: the continuous-time algorithm of ``kinetic.cloning.kernels``, one
+        realization after the other. ``cuda``: the discrete-time algorithm of
+        ``kinetic.cloning.gpu``, one GPU thread per member, all realizations in one launch;
+        refused before any work where there is no GPU.
+    control_interval : float, optional
+        ``cuda`` only: longest interval between two selections (default
+        ``default_control_interval(lam)``); each block is cut into whole intervals.
     label : str, optional
         Prefix of the progress lines.
 
@@ -244,7 +283,10 @@ def simulate(
         seed=seed,
         histogram_half_width=histogram_half_width,
         histogram_bins=histogram_bins,
+        backend=backend,
+        control_interval=control_interval,
     )
+    device = backends.require(p["backend"])  # before any work
     n, d = p["population"], p["dimension"]
     block_duration = p["duration"] / p["n_blocks"]
     # the transient runs in at most MAX_TRANSIENT_BLOCKS blocks (never shorter than a
@@ -253,16 +295,62 @@ def simulate(
     n_transient = math.ceil(p["transient"] / transient_block - 1e-9) if p["transient"] else 0
     total_blocks = n_transient + p["n_blocks"]
     durations = np.where(np.arange(total_blocks) < n_transient, transient_block, block_duration)
-    rate_factor, _, _ = kernels.compensation_parameters(p["lam"])
-
     first, count = p["first_realization"], p["n_realizations"]
     states = stream_states(p["seed"], first + count)[first:]
+    label = label or f"cloning {kernel_label(kernel, d)} lam={p['lam']:g} N={n}"
+    progress = Progress(count * durations.sum(), label=label, unit="collision times")
+    if p["backend"] == "cuda":
+        from kinetic.cloning.gpu import run
+    else:
+        run = _run_cpu
+    blocks, histograms, distinct, cpu_seconds = run(p, durations, n_transient, states, progress)
+
+    measured = np.arange(total_blocks) >= n_transient
+    per_realization = realization_observables(blocks, measured, n, d, p["lam"])
+    summary = summarize_realizations(blocks, measured, n, d, p["lam"])
+    collapsed = is_collapsed(min(distinct), n)
+    if collapsed:
+        logger.warning(
+            "[%s] diversity collapse: a realization ended with only %d distinct velocities among "
+            "%d members; T and a2 describe a few clones and are not estimates of the "
+            "eigenfunction, mu stays usable (biased low by r(v*) - r(0) of the surviving "
+            "clone, a few 1e-3 at lam = 8)",
+            label,
+            int(min(distinct)),
+            n,
+        )
+    dataset = _to_dataset(
+        p,
+        blocks,
+        measured,
+        durations,
+        n_transient,
+        histograms,
+        distinct,
+        cpu_seconds,
+        per_realization,
+        summary,
+    )
+    dataset.attrs["diversity_collapse"] = int(collapsed)
+    dataset.attrs["device"] = device
+    return io.stamp(
+        dataset, parameters={**p, "kernel_label": kernel_label(kernel, d)}, seed=p["seed"]
+    )
+
+
+def _run_cpu(p, durations, n_transient, states, progress):
+    """The continuous-time algorithm, one realization after the other: per-block sums
+    (realization, block, field), velocity-component densities, distinct final velocities
+    and process time per realization."""
+    rate_factor, _, _ = kernels.compensation_parameters(p["lam"])
+
+    count, n, d = states.shape[0], p["population"], p["dimension"]
+    total_blocks = durations.size
+    transient_block, block_duration = durations[0], durations[-1]
     blocks = np.zeros((count, total_blocks, len(kernels.BLOCK_FIELDS)))
     histograms = np.zeros((count, p["histogram_bins"]))
     distinct = np.zeros(count)
     cpu_seconds = np.zeros(count)
-    label = label or f"cloning {kernel_label(kernel, d)} lam={p['lam']:g} N={n}"
-    progress = Progress(count * durations.sum(), label=label, unit="collision times")
     code = KERNELS[p["kernel"]]
     table = rate_table(p["kernel"], d)
     segments = []  # (first block, end block, block duration, measured?)
@@ -307,36 +395,7 @@ def simulate(
         distinct[r] = np.unique(velocity[0]).size
         cpu_seconds[r] = time.process_time() - cpu_start
 
-    measured = np.arange(total_blocks) >= n_transient
-    per_realization = realization_observables(blocks, measured, n, d, p["lam"])
-    summary = summarize_realizations(blocks, measured, n, d, p["lam"])
-    collapsed = is_collapsed(min(distinct), n)
-    if collapsed:
-        logger.warning(
-            "[%s] diversity collapse: a realization ended with only %d distinct velocities among "
-            "%d members; T and a2 describe a few clones and are not estimates of the "
-            "eigenfunction, mu stays usable (biased low by r(v*) - r(0) of the surviving "
-            "clone, a few 1e-3 at lam = 8)",
-            label,
-            int(min(distinct)),
-            n,
-        )
-    dataset = _to_dataset(
-        p,
-        blocks,
-        measured,
-        durations,
-        n_transient,
-        histograms,
-        distinct,
-        cpu_seconds,
-        per_realization,
-        summary,
-    )
-    dataset.attrs["diversity_collapse"] = int(collapsed)
-    return io.stamp(
-        dataset, parameters={**p, "kernel_label": kernel_label(kernel, d)}, seed=p["seed"]
-    )
+    return blocks, histograms, distinct, cpu_seconds
 
 
 def _to_dataset(

@@ -1,0 +1,163 @@
+"""The CUDA target: the one module of the package that imports ``numba.cuda``.
+
+The GPU engines (``kinetic.cloning.gpu``, ``kinetic.dsmc.gpu``) take ``cuda`` from here,
+so that a move to another CUDA binding (numba-cuda is in maintenance mode) is a change of
+this file. What lives here:
+
+- :func:`require`: the machine's GPU, or ``BackendUnavailable`` before any work;
+- :func:`device_function`: the physics written once. A collision rule, a random draw, a
+  rate is a plain function compiled by ``kinetic.jit.kernel``/``inline`` for the CPU
+  engine (and covered by its tests); ``device_function`` compiles the *same source* as a
+  CUDA device function, with every package kernel it calls replaced by its own device
+  twin. The GPU layer is launch, grouping, random streams and reductions;
+- deterministic reductions: float sums are folded in a fixed order (a tree inside a
+  thread block, then one thread over the blocks), never with floating-point atomics, so
+  the same seed gives the same numbers on the same GPU model.
+
+Under ``NUMBA_ENABLE_CUDASIM=1`` numba runs the kernels as Python threads on the CPU (tests
+on machines without a GPU; slow, so tiny systems only). numpy then warns about the
+wrapping uint64 arithmetic of the random streams, which is intended.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import types
+
+import numpy as np
+from numba import cuda
+from numba.core.registry import CPUDispatcher
+
+from kinetic.backends import BackendUnavailable, simulated
+
+__all__ = [
+    "BLOCK",
+    "cuda",
+    "device_function",
+    "device_name",
+    "fold_partials",
+    "grid",
+    "require",
+    "synchronize",
+]
+
+BLOCK = 16 if simulated() else 128
+"""Threads per block of the engines' kernels (a power of two: the in-block reductions
+halve it); small under the simulator, which runs every thread of a block as a Python
+thread."""
+
+
+def require() -> str:
+    """The GPU that will run the kernels (its model name), or ``BackendUnavailable``."""
+    if simulated():
+        return "numba CUDA simulator (NUMBA_ENABLE_CUDASIM=1)"
+    if not cuda.is_available():
+        raise BackendUnavailable(
+            "backend 'cuda' was asked for, but this machine has no usable NVIDIA GPU "
+            "(numba.cuda.is_available() is False: no device, or no driver). Run the job "
+            "where a GPU is (on SLURM the workflow asks for one with the job's gpu "
+            "resource), or set backend: cpu"
+        )
+    return device_name()
+
+
+@functools.cache
+def device_name() -> str:
+    """Model of the current GPU, e.g. 'NVIDIA H100 80GB HBM3'."""
+    if simulated():
+        return "numba CUDA simulator"
+    name = cuda.get_current_device().name
+    return name.decode() if isinstance(name, bytes) else str(name)
+
+
+def _is_package_kernel(value) -> bool:
+    return isinstance(value, CPUDispatcher) and value.py_func.__module__.startswith("kinetic.")
+
+
+_TWINS: dict = {}
+
+
+def device_function(function):
+    """The CUDA device twin of a package kernel (a ``kinetic.jit`` dispatcher or its
+    Python function): the same code object, compiled by ``numba.cuda.jit(device=True)``
+    and inlined, with every package kernel it calls replaced by its twin in turn."""
+    py_func = getattr(function, "py_func", function)
+    twin = _TWINS.get(py_func)
+    if twin is not None:
+        return twin
+    namespace = dict(py_func.__globals__)
+    for name in py_func.__code__.co_names:
+        value = namespace.get(name)
+        if _is_package_kernel(value):
+            namespace[name] = device_function(value)
+    source = types.FunctionType(
+        py_func.__code__, namespace, py_func.__name__, py_func.__defaults__, py_func.__closure__
+    )
+    source.__qualname__ = py_func.__qualname__
+    source.__module__ = py_func.__module__
+    source.__doc__ = py_func.__doc__
+    twin = cuda.jit(device=True, inline="always")(source)
+    _TWINS[py_func] = twin
+    return twin
+
+
+def grid(n: int, block: int = BLOCK) -> int:
+    """Blocks of ``block`` threads that cover ``n`` threads."""
+    return max(1, math.ceil(n / block))
+
+
+def synchronize() -> None:
+    """Wait for the GPU (a no-op under the simulator)."""
+    cuda.synchronize()
+
+
+@cuda.jit
+def _fold(partials, out, field_of, scale):
+    """``out[r, field_of[f]] += scale * Σ_b partials[r, b, f]``, one thread per (r, f), the
+    blocks summed in index order."""
+    r = cuda.blockIdx.x
+    f = cuda.threadIdx.x
+    if r < partials.shape[0] and f < partials.shape[2]:
+        total = 0.0
+        for b in range(partials.shape[1]):
+            total += partials[r, b, f]
+        out[r, field_of[f]] += scale * total
+
+
+def fold_partials(partials, out, field_of, scale=1.0):
+    """Add ``scale`` times the per-block partial sums ``partials[r, b, f]`` (float64, one
+    row per realization ``r`` and thread block ``b``) to ``out[r, field_of[f]]``, in a
+    fixed order (deterministic; no atomics)."""
+    _fold[partials.shape[0], partials.shape[2]](partials, out, field_of, scale)
+
+
+def block_reduce_sum(shared, value):
+    """Sum of ``value`` over the threads of a block of ``BLOCK`` threads (a power of two), by
+    a fixed tree in the shared array ``shared[BLOCK]``; every thread must call it. Returns
+    the sum in thread 0 (other threads get a partial sum)."""
+    t = cuda.threadIdx.x
+    shared[t] = value
+    cuda.syncthreads()
+    stride = BLOCK // 2
+    while stride > 0:
+        if t < stride:
+            shared[t] += shared[t + stride]
+        cuda.syncthreads()
+        stride //= 2
+    total = shared[0]
+    cuda.syncthreads()
+    return total
+
+
+block_reduce_sum = cuda.jit(device=True, inline="always")(block_reduce_sum)
+
+
+def to_device(array):
+    """Copy a host array to the GPU."""
+    return cuda.to_device(np.ascontiguousarray(array))
+
+
+def device_zeros(shape, dtype=np.float64):
+    """A zeroed array on the GPU."""
+    return cuda.to_device(np.zeros(shape, dtype=dtype))

@@ -1,0 +1,116 @@
+"""The cloning engine's ``cuda`` backend (kinetic.cloning.gpu) under numba's CUDA simulator:
+tiny populations, exact results.
+
+- Maxwell molecules: a clone's collision count over a control interval is Poisson(Δ)
+  whatever its velocity, so the discrete-time algorithm gives μ(λ) = e^{-λ} - 1, T = 1,
+  a2 = 0 for every Δ and λ; only the log of the mean weight is biased, by about
+  -Var(w)/(2 N_c <w>²) per interval, which the tolerance adds to the error bar.
+- Hard disks at λ = 0: every weight is 1, μ = 0 exactly, and the population stays in
+  equilibrium: T = 1, a2 = 0, and the untilted clones collide at the bath's mean rate
+  ω = 1 (the GPU's per-clone uniformisation against the CPU engine's population-level one).
+- Same seed, same numbers; a batch of realizations repeats the same realizations of a
+  larger call; ``cuda`` is refused before any work where there is no GPU.
+"""
+
+import math
+import os
+import subprocess
+import sys
+
+os.environ.setdefault("NUMBA_ENABLE_CUDASIM", "1")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+pytest.importorskip("numba.cuda")
+
+from kinetic.cloning import simulate  # noqa: E402
+
+pytestmark = [pytest.mark.cuda, pytest.mark.filterwarnings("ignore:overflow encountered")]
+
+Z = 4.5  # standard errors of a fixed-seed run's tolerance
+
+
+def run(**overrides):
+    arguments = {
+        "kernel": "maxwell",
+        "dimension": 2,
+        "lam": 1.0,
+        "population": 16,
+        "duration": 8.0,
+        "transient": 4.0,
+        "n_blocks": 2,
+        "n_realizations": 4,
+        "seed": 11,
+        "backend": "cuda",
+        "control_interval": 2.0,
+    }
+    return simulate(**(arguments | overrides))
+
+
+@pytest.fixture(scope="module")
+def maxwell():
+    return run()
+
+
+def test_maxwell_molecules_have_the_exact_large_deviation_function(maxwell):
+    lam, n = 1.0, maxwell.attrs["population"]
+    interval = maxwell.attrs["control_interval"]
+    exact = math.expm1(-lam)
+    # relative variance of w = e^{-λK}, K ~ Poisson(Δ): the log's bias per unit time
+    spread = math.expm1(interval * math.expm1(-lam) ** 2)
+    bias = spread / (2 * n * interval)
+    assert abs(float(maxwell.mu) - exact) < Z * float(maxwell.mu_err) + bias
+    assert abs(float(maxwell.temperature) - 1.0) < Z * float(maxwell.temperature_err)
+    assert abs(float(maxwell.a2)) < Z * float(maxwell.a2_err)
+    assert maxwell.attrs["backend"] == "cuda"
+    assert "simulator" in maxwell.attrs["device"]
+
+
+def test_same_seed_same_numbers_and_batches_repeat_realizations(maxwell):
+    again = run(n_realizations=2, first_realization=2)
+    for name in ("mu_per_realization", "temperature_per_realization", "velocity_density"):
+        np.testing.assert_array_equal(
+            again[name].values, maxwell[name].sel(realization=[2, 3]).values
+        )
+    np.testing.assert_array_equal(
+        again["elastic_collisions"].values,
+        maxwell["elastic_collisions"].sel(realization=[2, 3]).values,
+    )
+
+
+def test_hard_disks_stay_in_equilibrium_and_collide_at_the_bath_rate():
+    ds = run(kernel="hard_spheres", lam=0.0, transient=2.0, control_interval=4.0)
+    assert float(ds.mu) == 0.0  # every weight is exactly 1
+    assert abs(float(ds.temperature) - 1.0) < Z * float(ds.temperature_err)
+    assert abs(float(ds.a2)) < Z * float(ds.a2_err)
+    measured = ds.measured.values.astype(bool)
+    member_time = ds.attrs["population"] * ds.elapsed_time.values[:, measured].sum(axis=1)
+    rates = ds.elastic_collisions.values[:, measured].sum(axis=1) / member_time
+    error = rates.std(ddof=1) / math.sqrt(rates.size)
+    assert abs(rates.mean() - 1.0) < Z * error
+
+
+def test_the_cuda_backend_is_refused_before_any_work_without_a_gpu():
+    with pytest.raises(ValueError, match="backend must be one of"):
+        run(backend="tpu")
+    script = (
+        "from kinetic.backends import BackendUnavailable\n"
+        "from kinetic.cloning import simulate\n"
+        "try:\n"
+        "    simulate(lam=1.0, population=8, duration=1.0, transient=4.0, seed=1,"
+        " backend='cuda')\n"
+        "except BackendUnavailable as error:\n"
+        "    print(error)\n"
+    )
+    environment = {k: v for k, v in os.environ.items() if k != "NUMBA_ENABLE_CUDASIM"}
+    environment["CUDA_VISIBLE_DEVICES"] = ""  # no GPU even on a machine that has one
+    result = subprocess.run(
+        [sys.executable, "-c", script],
+        env=environment,
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=120,
+    )
+    assert "no usable NVIDIA GPU" in result.stdout or "numba-cuda" in result.stdout
