@@ -33,6 +33,8 @@ from kinetic.backends import BackendUnavailable, simulated
 
 __all__ = [
     "BLOCK",
+    "block_exclusive_scan",
+    "block_reduce_sum",
     "cuda",
     "device_function",
     "device_name",
@@ -40,6 +42,7 @@ __all__ = [
     "grid",
     "require",
     "synchronize",
+    "to_device",
 ]
 
 BLOCK = 16 if simulated() else 128
@@ -112,24 +115,12 @@ def synchronize() -> None:
     cuda.synchronize()
 
 
-@cuda.jit
-def _fold(partials, out, field_of, scale):
-    """``out[r, field_of[f]] += scale * Σ_b partials[r, b, f]``, one thread per (r, f), the
-    blocks summed in index order."""
-    r = cuda.blockIdx.x
-    f = cuda.threadIdx.x
-    if r < partials.shape[0] and f < partials.shape[2]:
-        total = 0.0
-        for b in range(partials.shape[1]):
-            total += partials[r, b, f]
-        out[r, field_of[f]] += scale * total
-
-
 def fold_partials(partials, out, field_of, scale=1.0):
     """Add ``scale`` times the per-block partial sums ``partials[r, b, f]`` (float64, one
     row per realization ``r`` and thread block ``b``) to ``out[r, field_of[f]]``, in a
-    fixed order (deterministic; no atomics)."""
-    _fold[partials.shape[0], partials.shape[2]](partials, out, field_of, scale)
+    fixed order (deterministic; no atomics): one thread block per (r, f), each thread
+    summing the rows b = t, t + BLOCK, ... in order, then a fixed tree."""
+    _fold[(partials.shape[0], partials.shape[2]), BLOCK](partials, out, field_of, scale)
 
 
 def block_reduce_sum(shared, value):
@@ -151,6 +142,54 @@ def block_reduce_sum(shared, value):
 
 
 block_reduce_sum = cuda.jit(device=True, inline="always")(block_reduce_sum)
+
+
+@cuda.jit
+def _fold(partials, out, field_of, scale):
+    shared = cuda.shared.array(BLOCK, np.float64)
+    r = cuda.blockIdx.x
+    f = cuda.blockIdx.y
+    total = 0.0
+    for b in range(cuda.threadIdx.x, partials.shape[1], BLOCK):
+        total += partials[r, b, f]
+    total = block_reduce_sum(shared, total)
+    if cuda.threadIdx.x == 0:
+        out[r, field_of[f]] += scale * total
+
+
+def block_exclusive_scan(shared, values, count):
+    """Exclusive prefix sums of ``values[:count]`` in place, by one block of ``BLOCK``
+    threads (every thread must call it) in a fixed order: thread t sums its contiguous
+    chunk, a Hillis-Steele scan over the chunk totals in ``shared[BLOCK]``, then each
+    thread writes its chunk's prefixes. Returns the total (in every thread)."""
+    t = cuda.threadIdx.x
+    chunk = (count + BLOCK - 1) // BLOCK
+    first = min(t * chunk, count)
+    last = min(first + chunk, count)
+    total = 0.0
+    for k in range(first, last):
+        total += values[k]
+    shared[t] = total
+    cuda.syncthreads()
+    offset = 1
+    while offset < BLOCK:
+        add = shared[t - offset] if t >= offset else 0.0
+        cuda.syncthreads()
+        shared[t] += add
+        cuda.syncthreads()
+        offset *= 2
+    running = shared[t] - total  # exclusive prefix of this thread's chunk
+    grand = shared[BLOCK - 1]
+    cuda.syncthreads()
+    for k in range(first, last):
+        value = values[k]
+        values[k] = running
+        running += value
+    cuda.syncthreads()
+    return grand
+
+
+block_exclusive_scan = cuda.jit(device=True, inline="always")(block_exclusive_scan)
 
 
 def to_device(array):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import inspect
 import logging
 import pkgutil
 
@@ -22,10 +23,21 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("engine", choices=engines, help="engine to time")
     parser.add_argument("--quick", action="store_true", help="fewer sizes and repeats")
     parser.add_argument("--out", default="results/benchmarks", help="output directory")
+    parser.add_argument(
+        "--sections", help="comma-separated sections to run (engines that have sections: cuda)"
+    )
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     module = importlib.import_module(f"kinetic.bench.{args.engine}")
-    report = module.run(quick=args.quick)
+    options = {}
+    accepted = inspect.signature(module.run).parameters
+    if "checkpoint" in accepted:  # long reports are rewritten after every section
+        options["checkpoint"] = lambda report: bench.write_report(args.engine, report, args.out)
+    if args.sections:
+        if "sections" not in accepted:
+            parser.error(f"{args.engine} has no sections")
+        options["sections"] = args.sections.split(",")
+    report = module.run(quick=args.quick, **options)
     path = bench.write_report(args.engine, report, args.out)
     print(f"wrote {path}")
 

@@ -51,6 +51,7 @@ import numpy as np
 from kinetic.cloning import kernels
 from kinetic.gpu import (
     BLOCK,
+    block_exclusive_scan,
     block_reduce_sum,
     cuda,
     device_function,
@@ -215,18 +216,15 @@ def _weigh(counts, extremes, lam, cumulative, block_sums):
 
 @cuda.jit
 def _close_interval(block_sums, extremes, controls, lam, totals, uniforms, out, interval):
-    """One thread per realization: block offsets (exclusive scan of the block totals, in
-    order), the selection uniform, and N_c ln<w> into the block's ``net_compensations``.
-    ``extremes[r]`` holds (K min, K max, N_c); K min and max are reset for the next
-    interval."""
-    r = cuda.grid(1)
-    if r >= block_sums.shape[0]:
+    """One thread block per realization: the block offsets (exclusive scan of the block
+    totals, in a fixed order), then, in thread 0, the selection uniform and N_c ln<w>
+    into the block's ``net_compensations``. ``extremes[r]`` holds (K min, K max, N_c); K
+    min and max are reset for the next interval."""
+    shared = cuda.shared.array(BLOCK, np.float64)
+    r = cuda.blockIdx.x
+    total = block_exclusive_scan(shared, block_sums[r], block_sums.shape[1])
+    if cuda.threadIdx.x != 0:
         return
-    total = 0.0
-    for b in range(block_sums.shape[1]):
-        value = block_sums[r, b]
-        block_sums[r, b] = total
-        total += value
     totals[r] = total
     s0 = controls[r, 0]
     s1 = controls[r, 1]
@@ -350,7 +348,7 @@ def run(p, durations, n_transient, rows, progress):
                 velocity[0], states, counts, extremes, count_partials, code, interval, rate_a
             )
             _weigh[launch](counts, extremes, lam, cumulative, block_sums)
-            _close_interval[grid(count), BLOCK](
+            _close_interval[count, BLOCK](
                 block_sums, extremes, controls, lam, totals, uniforms, out, interval
             )
             _select[launch](

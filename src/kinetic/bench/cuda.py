@@ -1,0 +1,219 @@
+"""Speed and physics of the ``cuda`` backends on one GPU: ``python -m kinetic.bench cuda``
+writes ``results/benchmarks/cuda.json``.
+
+It needs a GPU (``kinetic.backends.require('cuda')``); every section is timed through the
+engines' fronts (``backend='cuda'``), so launches, seeding and copies count, and compile
+time is excluded by a first call of the same types. The report is rewritten after every
+section (a run stopped at a time limit keeps what it measured).
+
+Cloning (visco2008 §IV.A): collision events per second of the untilted clones (ΣK_i) at
+N_c = 10³, 10⁵, 10⁶ (hard disks at λ = 1 and -1, Maxwell molecules at λ = 1; N_c = 10³
+also with 100 realizations in one launch), against the CPU engine on one core of the
+same machine; then the physics: Maxwell μ(λ) = e^{-λ} - 1 at the figures' λ, hard-disk
+μ(1) extrapolated in 1/N_c against the Eq. 28 reference, T and a2 at N_c = 10³ against the
+CPU engine, and the bias of μ(1) in the control interval Δ.
+
+DSMC (montanero2007): collisions per second of the homogeneous engine at N = 2 × 10⁵
+with 50 realizations in one launch, against the CPU engine on one core, and the HCS
+cooling rate and a2 against the CPU engine.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import traceback
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+__all__ = ["run"]
+
+_BUDGET_SECONDS = 420.0  # sections not started after this are skipped (device leases are short)
+
+
+def _device() -> dict[str, Any]:
+    import numba
+
+    from kinetic import backends, gpu
+
+    info = {"device": backends.require("cuda"), "numba": numba.__version__}
+    try:
+        from importlib.metadata import version
+
+        info["numba_cuda"] = version("numba-cuda")
+    except Exception:  # pragma: no cover - metadata missing on a copied tree
+        info["numba_cuda"] = "unknown"
+    info["numpy"] = np.__version__
+    info["block_threads"] = gpu.BLOCK
+    return info
+
+
+def _cloning(
+    kernel, lam, population, duration, realizations=1, backend="cuda", seed=1, **extra
+) -> dict[str, Any]:
+    from kinetic.cloning import simulate
+
+    arguments = {
+        "kernel": kernel,
+        "dimension": 2,
+        "lam": lam,
+        "population": population,
+        "duration": duration,
+        "transient": max(4.0, 2.0 * math.exp(lam)),
+        "n_blocks": 10,
+        "n_realizations": realizations,
+        "seed": seed,
+        "backend": backend,
+        **extra,
+    }
+    start = time.perf_counter()
+    ds = simulate(**arguments)
+    wall = time.perf_counter() - start
+    events = float(ds.elastic_collisions.sum()) if backend == "cuda" else None
+    if backend == "cpu":
+        events = float(ds.collision_events.sum())
+    return {
+        "kernel": kernel,
+        "lambda": lam,
+        "population": population,
+        "realizations": realizations,
+        "duration": duration,
+        "control_interval": ds.attrs.get("control_interval"),
+        "wall_seconds": wall,
+        "events": events,
+        "events_per_second": events / wall,
+        "mu": float(ds.mu),
+        "mu_err": float(ds.mu_err),
+        "temperature": float(ds.temperature),
+        "temperature_err": float(ds.temperature_err),
+        "a2": float(ds.a2),
+        "a2_err": float(ds.a2_err),
+    }
+
+
+def cloning_speed(quick: bool) -> dict[str, Any]:
+    """Events per second against N_c, and the CPU engine on one core."""
+    _cloning("hard_spheres", 1.0, 256, 4.0, 2)  # compile (same types as every case)
+    _cloning("hard_spheres", 1.0, 256, 4.0, 2, backend="cpu")
+    cases = []
+    sizes = [(1000, 1, 20.0), (1000, 100, 20.0), (100_000, 1, 20.0), (1_000_000, 1, 40.0)]
+    for kernel, lam in (("hard_spheres", 1.0), ("hard_spheres", -1.0), ("maxwell", 1.0)):
+        for population, realizations, duration in sizes[: 2 if quick else None]:
+            runs = [
+                _cloning(kernel, lam, population, duration, realizations, seed=s) for s in range(3)
+            ]
+            best = sorted(runs, key=lambda r: r["events_per_second"])[1]
+            cases.append(best | {"rates": [r["events_per_second"] for r in runs]})
+    cpu = [_cloning("hard_spheres", 1.0, 1000, 2000.0, 1, backend="cpu", seed=s) for s in range(3)]
+    cpu_rate = float(np.median([r["events_per_second"] for r in cpu]))
+    for case in cases:
+        case["speedup_over_one_core"] = case["events_per_second"] / cpu_rate
+    return {"gpu": cases, "cpu_one_core_events_per_second": cpu_rate, "cpu_runs": cpu}
+
+
+def cloning_physics(quick: bool) -> dict[str, Any]:
+    """Maxwell exactness, hard-disk μ(1) extrapolated, T/a2 against the CPU engine, Δ bias."""
+    from kinetic.cloning import extrapolate_population
+    from kinetic.theory.visco2008_exact import reference_solution
+
+    out: dict[str, Any] = {}
+    maxwell = []
+    for lam in (-1.5, -1.0, -0.5, 0.5, 1.0, 2.0, 4.0):
+        r = _cloning("maxwell", lam, 10_000, 40.0, 10, seed=7)
+        exact = math.expm1(-lam)
+        maxwell.append(r | {"exact": exact, "z": (r["mu"] - exact) / r["mu_err"]})
+    out["maxwell_mu"] = maxwell
+    points = [(1000, 64), (10_000, 16), (100_000, 8), (1_000_000, 4)]
+    disks = [_cloning("hard_spheres", 1.0, n, 100.0, r, seed=11) for n, r in points]
+    fit = extrapolate_population(
+        [d["population"] for d in disks], [d["mu"] for d in disks], [d["mu_err"] for d in disks]
+    )
+    reference = reference_solution([1.0], 2)
+    out["hard_disks_mu_1"] = {
+        "points": disks,
+        "extrapolation": fit.as_dict(),
+        "reference_mu": float(reference[0][0]),
+        "reference_temperature": float(reference[1][0]),
+        "reference_a2": float(reference[2][0]),
+        "difference": fit.intercept - float(reference[0][0]),
+    }
+    gpu = _cloning("hard_spheres", 1.0, 1000, 400.0, 64, seed=13)
+    cpu = _cloning("hard_spheres", 1.0, 1000, 400.0, 8, backend="cpu", seed=13)
+    out["hard_disks_n1000_gpu_vs_cpu"] = {"gpu": gpu, "cpu": cpu}
+    bias = []
+    for interval in (0.1, 0.25, 0.5, 1.0, 2.0):
+        bias.append(
+            _cloning("hard_spheres", 1.0, 1000, 200.0, 64, seed=17, control_interval=interval)
+        )
+    out["control_interval_study"] = bias
+    return out
+
+
+def dsmc_speed(quick: bool) -> dict[str, Any]:
+    """Homogeneous DSMC: collisions per second at N = 2 × 10⁵ × 50 realizations."""
+    from kinetic.dsmc import simulate_homogeneous
+
+    def case(n, realizations, duration, backend, seed=3):
+        start = time.perf_counter()
+        ds = simulate_homogeneous(
+            n_particles=n,
+            restitution=0.9,
+            duration=duration,
+            time_step=0.05,
+            sample_interval=0.5,
+            reduced_field=0.02,
+            seed=seed,
+            n_realizations=realizations,
+            backend=backend,
+        )
+        wall = time.perf_counter() - start
+        collisions = float(ds.collisions.sum())
+        return {
+            "n_particles": n,
+            "realizations": realizations,
+            "backend": backend,
+            "wall_seconds": wall,
+            "collisions": collisions,
+            "collisions_per_second": collisions / wall,
+            "cooling_rate": float(ds.cooling_rate.mean()),
+            "a2": float(ds.a2.mean()),
+        }
+
+    case(2000, 2, 1.0, "cuda")  # compile
+    gpu = [case(200_000, 50, 5.0, "cuda", seed=s) for s in range(2)]
+    gpu += [case(200_000, 1, 5.0, "cuda"), case(2_000_000, 5, 5.0, "cuda")]
+    case(2000, 1, 1.0, "cpu")
+    cpu = case(200_000, 1, 2.0, "cpu")
+    return {"gpu": gpu, "cpu_one_core": cpu}
+
+
+SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
+    "cloning_speed": cloning_speed,
+    "cloning_physics": cloning_physics,
+    "dsmc_speed": dsmc_speed,
+}
+
+
+def run(quick: bool = False, checkpoint=None, sections=None) -> dict[str, Any]:
+    """Every section in order (or those named in ``sections``); ``checkpoint(report)`` is
+    called after each one. A failing section records its traceback and the next runs."""
+    started = time.perf_counter()
+    report: dict[str, Any] = {"gpu": _device(), "sections": {}}
+    for name, section in SECTIONS.items():
+        if sections and name not in sections:
+            continue
+        if time.perf_counter() - started > _BUDGET_SECONDS:
+            report["sections"][name] = {"skipped": "time budget spent"}
+            continue
+        begin = time.perf_counter()
+        try:
+            result = section(quick)
+        except Exception:
+            result = {"error": traceback.format_exc()}
+        result["section_seconds"] = time.perf_counter() - begin
+        report["sections"][name] = result
+        if checkpoint is not None:
+            checkpoint(report)
+    return report
