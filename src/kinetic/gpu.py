@@ -31,6 +31,13 @@ from numba.core.registry import CPUDispatcher
 
 from kinetic.backends import BackendUnavailable, simulated
 
+try:  # the engines launch small grids on purpose (one block per realization, say)
+    from numba.cuda.core import config as _cuda_config
+
+    _cuda_config.CUDA_LOW_OCCUPANCY_WARNINGS = 0
+except ImportError:  # another numba-cuda layout: the warning stays
+    pass
+
 __all__ = [
     "BLOCK",
     "block_exclusive_scan",

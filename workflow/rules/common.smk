@@ -225,6 +225,12 @@ def planned_mem_mb(wildcards, attempt, rulename):
     return job_cost.mem_mb(planned_job(wildcards, rulename).estimate, attempt)
 
 
+def planned_gpus(wildcards, rulename):
+    """resources.gpu of a simulation job: 1 for a backend 'cuda' job (the SLURM executor
+    asks for --gpus=1), else 0."""
+    return planned_job(wildcards, rulename).gpus
+
+
 # ---------------------------------------------------------------- the report's tables (report.smk)
 def workflow_job_outputs(wildcards):
     """Input function: the simulation outputs the job table reports on."""

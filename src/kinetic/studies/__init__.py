@@ -22,7 +22,16 @@ from typing import Any
 
 from kinetic.cost import Estimate
 
-__all__ = ["DOCUMENTS", "Job", "benchmark_file", "check", "front", "jobs", "run_jobs"]
+__all__ = [
+    "DOCUMENTS",
+    "Job",
+    "backend_arguments",
+    "benchmark_file",
+    "check",
+    "front",
+    "jobs",
+    "run_jobs",
+]
 
 DOCUMENTS = ("visco2008", "montanero2007", "krauth2025", "costantini2010")
 """The documents, each with a study module of its name."""
@@ -52,6 +61,18 @@ class Job:
     def seed(self) -> int:
         """The seed of the job's random streams."""
         return int(self.arguments["seed"])
+
+    @property
+    def gpus(self) -> int:
+        """GPUs the job asks the scheduler for: 1 for a ``backend='cuda'`` job, else 0."""
+        return 1 if self.arguments.get("backend") == "cuda" else 0
+
+
+def backend_arguments(config: Mapping[str, Any]) -> dict[str, str]:
+    """``{'backend': 'cuda'}`` where the config asks for the GPU backend, else nothing: the
+    keyword a front with a ``cuda`` backend gets. A ``cpu`` job's arguments (its Snakemake
+    params) stay what they were before the backends existed, so no result reruns."""
+    return {"backend": "cuda"} if config.get("backend", "cpu") == "cuda" else {}
 
 
 def benchmark_file(output: str) -> str:

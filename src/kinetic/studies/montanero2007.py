@@ -30,7 +30,7 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from kinetic.studies import Job, run_jobs
+from kinetic.studies import Job, backend_arguments, run_jobs
 
 __all__ = [
     "PROTOCOL_KEYS",
@@ -246,8 +246,17 @@ def _check_run(name: str, run: Mapping[str, Any]) -> None:
         raise ValueError(f"montanero2007 run {name}: needs >= 2 realizations for error bars")
 
 
-def simulate_batch(run: Mapping[str, Any], *, seed: int, first: int, count: int, label: str):
-    """Realizations ``first .. first+count-1`` of one run (an xarray.Dataset).
+def simulate_batch(
+    run: Mapping[str, Any],
+    *,
+    seed: int,
+    first: int,
+    count: int,
+    label: str,
+    backend: str = "cpu",
+):
+    """Realizations ``first .. first+count-1`` of one run (an xarray.Dataset), on the
+    ``backend`` of ``simulate_homogeneous``.
 
     The histograms of c_x start at ``steady_from`` rounded up to a window boundary, the
     same windows the steady-state time averages use.
@@ -276,6 +285,7 @@ def simulate_batch(run: Mapping[str, Any], *, seed: int, first: int, count: int,
         cx_max=float(run["cx_max"]),
         n_cx_bins=int(run["cx_bins"]),
         label=label,
+        **({"backend": backend} if backend != "cpu" else {}),
     )
     return dataset.assign_attrs(steady_from_tau=float(histogram_start))
 
@@ -315,6 +325,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
                 "first": job.first_realization,
                 "count": job.n_realizations,
                 "label": f"montanero2007 {name} {batch}",
+                **backend_arguments(config),
             },
             estimate=lambda job, run=run: cost.dsmc_homogeneous(
                 **{**run, "realizations": job.n_realizations}

@@ -16,7 +16,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from kinetic.studies import Job, run_jobs
+from kinetic.studies import Job, backend_arguments, run_jobs
 from kinetic.studies import visco2008_cloning as cloning_plan
 
 __all__ = [
@@ -194,7 +194,8 @@ def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
                 parameters = cloning_plan.job_parameters(
                     section, study, kernel, point, size, job.index, seed
                 )
-                return parameters | {"label": f"cloning {kernel} {point} {size} {batch}"}
+                label = {"label": f"cloning {kernel} {point} {size} {batch}"}
+                return parameters | backend_arguments(config) | label
 
             found += run_jobs(
                 document="visco2008",

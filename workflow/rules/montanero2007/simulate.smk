@@ -22,6 +22,7 @@ rule montanero2007_simulate_dsmc:
     resources:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
+        gpu=planned_gpus,
     params:
         front=job_param("montanero2007_simulate_dsmc", "front"),
         job=job_param("montanero2007_simulate_dsmc", "arguments"),

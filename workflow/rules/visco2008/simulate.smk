@@ -105,6 +105,7 @@ rule visco2008_simulate_cloning:
     resources:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
+        gpu=planned_gpus,
     params:
         front=job_param("visco2008_simulate_cloning", "front"),
         job=job_param("visco2008_simulate_cloning", "arguments"),
