@@ -41,6 +41,7 @@ except ImportError:  # another numba-cuda layout: the warning stays
 __all__ = [
     "BLOCK",
     "block_exclusive_scan",
+    "block_reduce_extreme",
     "block_reduce_sum",
     "cuda",
     "device_function",
@@ -151,6 +152,30 @@ def block_reduce_sum(shared, value):
 block_reduce_sum = cuda.jit(device=True, inline="always")(block_reduce_sum)
 
 
+def block_reduce_extreme(shared, value, largest):
+    """Largest (``largest``) or smallest ``value`` over the threads of a block, by a fixed
+    tree in ``shared[BLOCK]`` (of the values' type); every thread must call it and gets
+    the result. One atomic per block then replaces one per thread: thousands of threads
+    hitting one address serialise at the L2 cache."""
+    t = cuda.threadIdx.x
+    shared[t] = value
+    cuda.syncthreads()
+    stride = BLOCK // 2
+    while stride > 0:
+        if t < stride:
+            other = shared[t + stride]
+            if (other > shared[t]) == largest and other != shared[t]:
+                shared[t] = other
+        cuda.syncthreads()
+        stride //= 2
+    result = shared[0]
+    cuda.syncthreads()
+    return result
+
+
+block_reduce_extreme = cuda.jit(device=True, inline="always")(block_reduce_extreme)
+
+
 @cuda.jit
 def _fold(partials, out, field_of, scale):
     shared = cuda.shared.array(BLOCK, np.float64)
@@ -164,23 +189,24 @@ def _fold(partials, out, field_of, scale):
         out[r, field_of[f]] += scale * total
 
 
-def block_exclusive_scan(shared, values, count):
+def block_exclusive_scan(shared, values, count, zero):
     """Exclusive prefix sums of ``values[:count]`` in place, by one block of ``BLOCK``
     threads (every thread must call it) in a fixed order: thread t sums its contiguous
     chunk, a Hillis-Steele scan over the chunk totals in ``shared[BLOCK]``, then each
-    thread writes its chunk's prefixes. Returns the total (in every thread)."""
+    thread writes its chunk's prefixes. ``zero`` is 0 of the values' type (integer scans
+    are exact, hence monotone). Returns the total (in every thread)."""
     t = cuda.threadIdx.x
     chunk = (count + BLOCK - 1) // BLOCK
     first = min(t * chunk, count)
     last = min(first + chunk, count)
-    total = 0.0
+    total = zero
     for k in range(first, last):
         total += values[k]
     shared[t] = total
     cuda.syncthreads()
     offset = 1
     while offset < BLOCK:
-        add = shared[t - offset] if t >= offset else 0.0
+        add = shared[t - offset] if t >= offset else zero
         cuda.syncthreads()
         shared[t] += add
         cuda.syncthreads()

@@ -12,12 +12,16 @@ J. Stat. Mech. P03004 (2007)):
    velocity of the CPU engine's proposal functions (the same source, compiled for the
    GPU by ``kinetic.gpu.device_function``). It counts its collisions K_i.
 2. *Weigh*: w_i = e^{-λ (K_i - K*)}, shifted by the largest log-weight (K* = min K_i for
-   λ >= 0, max K_i for λ < 0), and their inclusive float64 scan in index order.
-3. *Select*: systematic resampling keeps N_c clones: slot j takes the clone whose
-   cumulative weight first exceeds (u + j)/N_c of the total (one uniform u per
-   realization and interval). μ(λ) accumulates ln(Σw/N_c) - λK*, i.e. ln<e^{-λK}>, and
-   the population after selection (distributed as the eigenfunction f̃(v, λ) of
-   visco2008 Eq. 28) gives the snapshot moments, rate and velocity histogram.
+   λ >= 0, max K_i for λ < 0), so that w_i <= 1; their float64 sum gives μ, and their
+   fixed-point values q_i = round(2³² w_i) an exact int64 scan Q_i (inclusive, in index
+   order) for the selection.
+3. *Select*: systematic resampling keeps N_c clones: slot j goes to the clone i with
+   Q_{i-1} <= (u + j) Q/N_c < Q_i (one uniform u per realization and interval). Clone i
+   computes its own slots, [g(Q_{i-1}), g(Q_i)) with g(E) = ceil(N_c E/Q - u), and copies
+   itself there: no search, and since the integer scan is monotone the slots tile
+   [0, N_c) exactly. μ(λ) accumulates ln(Σw/N_c) - λK*, i.e. ln<e^{-λK}>, and the
+   population after selection (distributed as the eigenfunction f̃(v, λ) of visco2008
+   Eq. 28) gives the snapshot moments, rate and velocity histogram.
 
 For any Δ the product of the mean weights is an unbiased estimate of the tilted
 partition function; its logarithm is biased by about -Var(w)/(2 N_c <w>²) per interval,
@@ -34,9 +38,11 @@ sums times Δ, ``collision_events`` = ``elastic_collisions`` = ΣK_i (collisions
 untilted clones), ``proposals`` = ``candidates``, ``max_speed`` the largest speed after a
 selection.
 
-Determinism: the float sums (weights' scan, block sums) are folded in a fixed order, the
-histogram counts and K*, max speed by integer (or max) atomics, whose results do not
-depend on the order: the same seed gives the same numbers on the same GPU model.
+Determinism: the float sums are folded in a fixed order (a tree in each thread block, then
+strided sums and a tree in one block), the scan is integer, and the histogram counts, K*
+and the max speed go through atomics (one per thread block, in shared memory for the
+histogram) whose results do not depend on the order: the same seed gives the same
+numbers on the same GPU model.
 Clone i of realization r draws from ``thread_state(row r, i)``; the selection uniforms from
 row r itself.
 """
@@ -49,13 +55,14 @@ import time
 import numpy as np
 
 from kinetic.cloning import kernels
+from kinetic.cloning.simulate import MAX_CUDA_HISTOGRAM_BINS
 from kinetic.gpu import (
     BLOCK,
     block_exclusive_scan,
+    block_reduce_extreme,
     block_reduce_sum,
     cuda,
     device_function,
-    fold_partials,
     grid,
     to_device,
 )
@@ -80,13 +87,17 @@ _uniform = device_function(xoshiro_uniform)
 _HARD_SPHERES = kernels.HARD_SPHERES
 _RATE_B = 1.0 / math.sqrt(2.0)  # channel B's rate (r(0), visco2008 Eq. 36)
 _NO_MIN = np.int64(2**62)
+_FIXED_POINT = 2.0**32  # q_i = round(2³² w_i): N_c 2³² < 2⁶³ up to N_c = 2 × 10⁹
+_ZERO = np.int64(0)
 
-# columns of the per-block partial sums written by the kernels
-_COUNT_FIELDS = ("elastic_collisions", "candidates")
-_SNAPSHOT_FIELDS = ("integral_v2", "integral_v4", "integral_rate")
 _FIELD = {name: k for k, name in enumerate(kernels.BLOCK_FIELDS)}
 _ELAPSED = _FIELD["elapsed_time"]
 _NET = _FIELD["net_compensations"]
+_COLLISIONS = _FIELD["elastic_collisions"]
+_CANDIDATES = _FIELD["candidates"]
+_SNAPSHOT = (_FIELD["integral_v2"], _FIELD["integral_v4"], _FIELD["integral_rate"])
+# columns of the per-thread-block partial sums
+_P_COLLISIONS, _P_CANDIDATES, _P_WEIGHT, _P_V2, _P_V4, _P_RATE = range(6)
 
 
 @cuda.jit
@@ -116,6 +127,7 @@ def _seed(states, velocity, rows):
 def _advance(velocity, states, counts, extremes, partials, code, interval, rate_a):
     """One control interval of the untilted process for every clone (thread (i, r))."""
     shared = cuda.shared.array(BLOCK, np.float64)
+    shared_counts = cuda.shared.array(BLOCK, np.int64)
     i = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
     r = cuda.blockIdx.y
     n = states.shape[1]
@@ -176,56 +188,84 @@ def _advance(velocity, states, counts, extremes, partials, code, interval, rate_
         states[r, i, 2] = s2
         states[r, i, 3] = s3
         counts[r, i] = collisions
-        cuda.atomic.min(extremes, (r, 0), collisions)
-        cuda.atomic.max(extremes, (r, 1), collisions)
+    low = block_reduce_extreme(shared_counts, collisions if i < n else _NO_MIN, False)
+    high = block_reduce_extreme(shared_counts, collisions if i < n else -1, True)
     total = block_reduce_sum(shared, float(collisions))
+    tried = block_reduce_sum(shared, float(candidates))
     if cuda.threadIdx.x == 0:
-        partials[r, cuda.blockIdx.x, 0] = total
-    total = block_reduce_sum(shared, float(candidates))
-    if cuda.threadIdx.x == 0:
-        partials[r, cuda.blockIdx.x, 1] = total
+        b = cuda.blockIdx.x
+        partials[r, b, _P_COLLISIONS] = total
+        partials[r, b, _P_CANDIDATES] = tried
+        cuda.atomic.min(extremes, (r, 0), low)
+        cuda.atomic.max(extremes, (r, 1), high)
 
 
 @cuda.jit
-def _weigh(counts, extremes, lam, cumulative, block_sums):
-    """w_i = e^{-λ(K_i - K*)} and its inclusive scan inside each thread block (a fixed
-    Hillis-Steele tree); the block's total in ``block_sums``."""
+def _weigh(counts, extremes, lam, cumulative, block_sums, partials):
+    """w_i = e^{-λ(K_i - K*)} <= 1: its sum per thread block (for μ), and the inclusive
+    scan of q_i = round(2³² w_i) inside each thread block (exact int64, a fixed
+    Hillis-Steele tree), the block's total in ``block_sums``."""
     shared = cuda.shared.array(BLOCK, np.float64)
+    shared_q = cuda.shared.array(BLOCK, np.int64)
     t = cuda.threadIdx.x
     i = cuda.blockIdx.x * cuda.blockDim.x + t
     r = cuda.blockIdx.y
     n = counts.shape[1]
     shift = extremes[r, 0] if lam >= 0.0 else extremes[r, 1]
-    value = 0.0
+    weight = 0.0
     if i < n:
-        value = math.exp(-lam * (counts[r, i] - shift))
-    shared[t] = value
+        weight = math.exp(-lam * (counts[r, i] - shift))
+    total = block_reduce_sum(shared, weight)
+    if t == 0:
+        partials[r, cuda.blockIdx.x, _P_WEIGHT] = total
+    shared_q[t] = np.int64(weight * _FIXED_POINT + 0.5)
     cuda.syncthreads()
     offset = 1
     while offset < BLOCK:
-        add = shared[t - offset] if t >= offset else 0.0
+        add = shared_q[t - offset] if t >= offset else _ZERO
         cuda.syncthreads()
-        shared[t] += add
+        shared_q[t] += add
         cuda.syncthreads()
         offset *= 2
     if i < n:
-        cumulative[r, i] = shared[t]
+        cumulative[r, i] = shared_q[t]
     if t == BLOCK - 1:
-        block_sums[r, cuda.blockIdx.x] = shared[t]
+        block_sums[r, cuda.blockIdx.x] = shared_q[t]
+
+
+@cuda.jit(device=True, inline="always")
+def _fold(shared, partials, r, column):
+    """Σ_b partials[r, b, column] in a fixed order (strided per thread, then a tree)."""
+    total = 0.0
+    for b in range(cuda.threadIdx.x, partials.shape[1], BLOCK):
+        total += partials[r, b, column]
+    return block_reduce_sum(shared, total)
 
 
 @cuda.jit
-def _close_interval(block_sums, extremes, controls, lam, totals, uniforms, out, interval):
-    """One thread block per realization: the block offsets (exclusive scan of the block
-    totals, in a fixed order), then, in thread 0, the selection uniform and N_c ln<w>
-    into the block's ``net_compensations``. ``extremes[r]`` holds (K min, K max, N_c); K
-    min and max are reset for the next interval."""
+def _close_interval(block_sums, extremes, controls, partials, out, lam, interval):
+    """One thread block per realization: the block offsets of the integer scan, the
+    interval's collision and candidate counts, ln<w> into ``net_compensations`` and the
+    next selection uniform. ``extremes[r]`` holds (K min, K max, N_c, Q, u); K min and
+    max are reset for the next interval."""
     shared = cuda.shared.array(BLOCK, np.float64)
+    shared_q = cuda.shared.array(BLOCK, np.int64)
     r = cuda.blockIdx.x
-    total = block_exclusive_scan(shared, block_sums[r], block_sums.shape[1])
+    total_q = block_exclusive_scan(shared_q, block_sums[r], block_sums.shape[1], _ZERO)
+    weight = _fold(shared, partials, r, _P_WEIGHT)
+    collisions = _fold(shared, partials, r, _P_COLLISIONS)
+    candidates = _fold(shared, partials, r, _P_CANDIDATES)
     if cuda.threadIdx.x != 0:
         return
-    totals[r] = total
+    n_clones = extremes[r, 2]
+    shift = extremes[r, 0] if lam >= 0.0 else extremes[r, 1]
+    out[r, _ELAPSED] += interval
+    out[r, _NET] += n_clones * (math.log(weight / n_clones) - lam * shift)
+    out[r, _COLLISIONS] += collisions
+    out[r, _CANDIDATES] += candidates
+    extremes[r, 0] = _NO_MIN
+    extremes[r, 1] = -1
+    extremes[r, 3] = total_q
     s0 = controls[r, 0]
     s1 = controls[r, 1]
     s2 = controls[r, 2]
@@ -235,60 +275,94 @@ def _close_interval(block_sums, extremes, controls, lam, totals, uniforms, out, 
     controls[r, 1] = s1
     controls[r, 2] = s2
     controls[r, 3] = s3
-    uniforms[r] = u
-    shift = extremes[r, 0] if lam >= 0.0 else extremes[r, 1]
-    n_clones = extremes[r, 2]
-    out[r, _ELAPSED] += interval
-    out[r, _NET] += n_clones * (math.log(total / n_clones) - lam * shift)
-    extremes[r, 0] = _NO_MIN
-    extremes[r, 1] = -1
+    controls[r, 4] = np.uint64(u * 2.0**53)  # the uniform, exactly, for the selection
+
+
+@cuda.jit(device=True, inline="always")
+def _slots_below(cumulative, offsets, r, i, n, total, u):
+    """g(Q_i) = ceil(N_c Q_i/Q - u) in [0, N_c]: the slots whose target lies below the
+    inclusive cumulative weight of clone i (0 for i = -1, N_c for the last clone)."""
+    if i < 0:
+        return 0
+    if i == n - 1:
+        return n
+    position = cumulative[r, i] + offsets[r, i // BLOCK]
+    g = math.ceil(n * (float(position) / total) - u)
+    return min(n, max(0, g))
 
 
 @cuda.jit
-def _select(source, target, cumulative, block_offsets, totals, uniforms, observers):
-    """Slot j of realization r takes the clone whose cumulative weight first exceeds
-    (u + j)/N_c of the total; then the snapshot sums and histogram of the new population."""
+def _select(source, target, cumulative, offsets, extremes, controls, partials, observers):
+    """Clone i copies itself into its slots [g(Q_{i-1}), g(Q_i)); then the snapshot sums
+    (each clone counted once per copy) and the histogram of the new population."""
     shared = cuda.shared.array(BLOCK, np.float64)
-    partials, table, table_step, histogram, half_width, block_max, record = observers
-    j = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    counts = cuda.shared.array(MAX_CUDA_HISTOGRAM_BINS, np.int64)
+    table, table_step, histogram, half_width, block_max, record = observers
+    t = cuda.threadIdx.x
+    i = cuda.blockIdx.x * cuda.blockDim.x + t
     r = cuda.blockIdx.y
     n = cumulative.shape[1]
     d = source.shape[1]
+    bins = histogram.shape[1]
+    if record:
+        for b in range(t, bins, BLOCK):
+            counts[b] = 0
+        cuda.syncthreads()
     v2 = 0.0
     v4 = 0.0
     rate = 0.0
-    if j < n:
-        goal = (uniforms[r] + j) * totals[r] / n
-        lo = 0
-        hi = n - 1
-        while lo < hi:  # first i with cumulative weight > goal
-            mid = (lo + hi) // 2
-            if cumulative[r, mid] + block_offsets[r, mid // BLOCK] > goal:
-                hi = mid
-            else:
-                lo = mid + 1
-        bins = histogram.shape[1]
-        for k in range(d):
-            value = source[r, k, lo]
-            target[r, k, j] = value
-            v2 += value * value
-            if record:
-                b = math.floor((value + half_width) * bins / (2.0 * half_width))
-                if 0 <= b < bins:
-                    cuda.atomic.add(histogram, (r, b), 1)
-        v4 = v2 * v2
-        speed = math.sqrt(v2)
-        rate = _tabulated_rate(speed, table, table_step)
-        cuda.atomic.max(block_max, r, speed)
+    speed = 0.0
+    if i < n:
+        total = float(extremes[r, 3])
+        u = float(controls[r, 4]) * 2.0**-53
+        first = _slots_below(cumulative, offsets, r, i - 1, n, total, u)
+        last = _slots_below(cumulative, offsets, r, i, n, total, u)
+        copies = last - first
+        if copies > 0:
+            for k in range(d):
+                value = source[r, k, i]
+                v2 += value * value
+                for j in range(first, last):
+                    target[r, k, j] = value
+                if record:
+                    b = math.floor((value + half_width) * bins / (2.0 * half_width))
+                    if 0 <= b < bins:
+                        cuda.atomic.add(counts, b, copies)
+            speed = math.sqrt(v2)
+            rate = copies * _tabulated_rate(speed, table, table_step)
+            v4 = copies * v2 * v2
+            v2 = copies * v2
     total = block_reduce_sum(shared, v2)
-    if cuda.threadIdx.x == 0:
-        partials[r, cuda.blockIdx.x, 0] = total
+    if t == 0:
+        partials[r, cuda.blockIdx.x, _P_V2] = total
     total = block_reduce_sum(shared, v4)
-    if cuda.threadIdx.x == 0:
-        partials[r, cuda.blockIdx.x, 1] = total
+    if t == 0:
+        partials[r, cuda.blockIdx.x, _P_V4] = total
     total = block_reduce_sum(shared, rate)
+    if t == 0:
+        partials[r, cuda.blockIdx.x, _P_RATE] = total
+    fastest = block_reduce_extreme(shared, speed, True)
+    if t == 0:
+        cuda.atomic.max(block_max, r, fastest)
+    if record:
+        cuda.syncthreads()
+        for b in range(t, bins, BLOCK):
+            if counts[b] != 0:
+                cuda.atomic.add(histogram, (r, b), counts[b])
+
+
+@cuda.jit
+def _fold_snapshot(partials, out, interval):
+    """One thread block per realization: the selection's snapshot sums, times Δ."""
+    shared = cuda.shared.array(BLOCK, np.float64)
+    r = cuda.blockIdx.x
+    v2 = _fold(shared, partials, r, _P_V2)
+    v4 = _fold(shared, partials, r, _P_V4)
+    rate = _fold(shared, partials, r, _P_RATE)
     if cuda.threadIdx.x == 0:
-        partials[r, cuda.blockIdx.x, 2] = total
+        out[r, _SNAPSHOT[0]] += interval * v2
+        out[r, _SNAPSHOT[1]] += interval * v4
+        out[r, _SNAPSHOT[2]] += interval * rate
 
 
 def run(p, durations, n_transient, rows, progress):
@@ -311,17 +385,12 @@ def run(p, durations, n_transient, rows, progress):
     velocity = [cuda.device_array((count, d, n)), cuda.device_array((count, d, n))]
     states = cuda.device_array((count, n, 4), dtype=np.uint64)
     _seed[launch](states, velocity[0], to_device(rows))
-    controls = to_device(rows)
+    controls = to_device(np.concatenate([rows, np.zeros((count, 1), np.uint64)], axis=1))
     counts = cuda.device_array((count, n), dtype=np.int64)
-    extremes = to_device(np.tile(np.array([_NO_MIN, -1, n], dtype=np.int64), (count, 1)))
-    cumulative = cuda.device_array((count, n))
-    block_sums = cuda.device_array((count, grid(n)))
-    totals = cuda.device_array(count)
-    uniforms = cuda.device_array(count)
-    count_partials = cuda.device_array((count, grid(n), len(_COUNT_FIELDS)))
-    snapshot_partials = cuda.device_array((count, grid(n), len(_SNAPSHOT_FIELDS)))
-    count_fields = to_device(np.array([_FIELD[f] for f in _COUNT_FIELDS], dtype=np.int64))
-    snapshot_fields = to_device(np.array([_FIELD[f] for f in _SNAPSHOT_FIELDS], dtype=np.int64))
+    extremes = to_device(np.tile(np.array([_NO_MIN, -1, n, 0], dtype=np.int64), (count, 1)))
+    cumulative = cuda.device_array((count, n), dtype=np.int64)
+    block_sums = cuda.device_array((count, grid(n)), dtype=np.int64)
+    partials = to_device(np.zeros((count, grid(n), 6)))
     histogram = to_device(np.zeros((count, n_bins), dtype=np.int64))
     blocks = to_device(np.zeros((count, len(durations), len(kernels.BLOCK_FIELDS))))
     table = to_device(rate_table(p["kernel"], d))
@@ -335,7 +404,6 @@ def run(p, durations, n_transient, rows, progress):
         record = b >= n_transient
         snapshots += steps if record else 0
         observers = (
-            snapshot_partials,
             table,
             TABLE_STEP,
             histogram,
@@ -345,23 +413,29 @@ def run(p, durations, n_transient, rows, progress):
         )
         for _ in range(steps):
             _advance[launch](
-                velocity[0], states, counts, extremes, count_partials, code, interval, rate_a
+                velocity[0], states, counts, extremes, partials, code, interval, rate_a
             )
-            _weigh[launch](counts, extremes, lam, cumulative, block_sums)
+            _weigh[launch](counts, extremes, lam, cumulative, block_sums, partials)
             _close_interval[count, BLOCK](
-                block_sums, extremes, controls, lam, totals, uniforms, out, interval
+                block_sums, extremes, controls, partials, out, lam, interval
             )
             _select[launch](
-                velocity[0], velocity[1], cumulative, block_sums, totals, uniforms, observers
+                velocity[0],
+                velocity[1],
+                cumulative,
+                block_sums,
+                extremes,
+                controls,
+                partials,
+                observers,
             )
-            fold_partials(count_partials, out, count_fields, 1.0)
-            fold_partials(snapshot_partials, out, snapshot_fields, interval)
+            _fold_snapshot[count, BLOCK](partials, out, interval)
             velocity.reverse()
         cuda.synchronize()
         progress.update(count * duration)
     sums = blocks.copy_to_host()
-    sums[:, :, _FIELD["collision_events"]] = sums[:, :, _FIELD["elastic_collisions"]]
-    sums[:, :, _FIELD["proposals"]] = sums[:, :, _FIELD["candidates"]]
+    sums[:, :, _FIELD["collision_events"]] = sums[:, :, _COLLISIONS]
+    sums[:, :, _FIELD["proposals"]] = sums[:, :, _CANDIDATES]
     bin_width = 2.0 * p["histogram_half_width"] / n_bins
     densities = histogram.copy_to_host() / (max(snapshots, 1) * d * n * bin_width)
     final = velocity[0].copy_to_host()

@@ -78,7 +78,7 @@ def is_collapsed(distinct_velocities, population):
     return bool(distinct_velocities < threshold)
 
 
-CONTROL_WEIGHT_VARIANCE = 1.0
+CONTROL_WEIGHT_VARIANCE = 0.5
 """The ``cuda`` backend's control interval Δ keeps the relative variance of a clone's
 weight e^{-λK} below this value for a Poisson count K of mean Δ (the count of a clone at
 rest in a hard-sphere bath, r(0) = 1/√2, is slower; fast clones are more variable):
@@ -97,6 +97,10 @@ def default_control_interval(lam: float) -> float:
         return MAX_CONTROL_INTERVAL
     return min(MAX_CONTROL_INTERVAL, math.log1p(CONTROL_WEIGHT_VARIANCE) / spread)
 
+
+MAX_CUDA_HISTOGRAM_BINS = 1024
+"""Most velocity-histogram bins of the ``cuda`` backend (one shared-memory histogram per
+thread block)."""
 
 MAX_TRANSIENT_BLOCKS = 50
 """The discarded transient is split into at most this many blocks."""
@@ -184,6 +188,11 @@ def validate_parameters(
     )
     histogram_bins = _check_integer("histogram_bins", histogram_bins, 1, 10**6)
     backends.check(backend)
+    if backend == "cuda" and histogram_bins > MAX_CUDA_HISTOGRAM_BINS:
+        raise ValueError(
+            f"histogram_bins must be <= {MAX_CUDA_HISTOGRAM_BINS} with backend 'cuda' "
+            f"(a shared-memory histogram per thread block), got {histogram_bins}"
+        )
     if control_interval is not None:
         control_interval = _check_real("control_interval", control_interval, strictly_positive=True)
     kept = transient * math.exp(-lam) * _slowest_rate(kernel)

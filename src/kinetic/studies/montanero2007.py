@@ -39,6 +39,7 @@ __all__ = [
     "jobs",
     "join_run",
     "load_runs",
+    "run_batches",
     "run_plan",
     "simulate_batch",
 ]
@@ -296,11 +297,21 @@ def check(config: Mapping[str, Any]) -> None:
         run_plan(config["montanero2007"])
 
 
+def run_batches(run: Mapping[str, Any], backend: str = "cpu") -> list:
+    """The ``kinetic.batches`` plan of one run: ``realizations_per_job`` at a time, or, with
+    the ``cuda`` backend, every realization in one job (one launch on the GPU)."""
+    from kinetic import batches
+
+    realizations = int(run["realizations"])
+    per_job = realizations if backend == "cuda" else int(run["realizations_per_job"])
+    return batches.plan(realizations=realizations, realizations_per_job=per_job)
+
+
 def jobs(config: Mapping[str, Any]) -> list[Job]:
     """The simulation jobs of the config's montanero2007 section (``kinetic.studies``):
     every run of :func:`run_plan` cut into batches, each ``simulate_batch`` of its
     realizations, stamped with the run's name, family and setting."""
-    from kinetic import batches, cost
+    from kinetic import cost
     from kinetic.seeds import derive_seed
 
     section = config.get("montanero2007")
@@ -315,10 +326,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
             run=f"montanero2007/runs/{name}",
             front="kinetic.studies.montanero2007:simulate_batch",
             engines=("dsmc",),
-            cut=batches.plan(
-                realizations=int(run["realizations"]),
-                realizations_per_job=int(run["realizations_per_job"]),
-            ),
+            cut=run_batches(run, config.get("backend", "cpu")),
             arguments=lambda job, batch, name=name, run=run, seed=seed: {
                 "run": dict(run),
                 "seed": seed,

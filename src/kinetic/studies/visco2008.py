@@ -179,6 +179,7 @@ def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
     section = config.get("visco2008", {}).get("cloning")
     if not section:
         return []
+    backend = config.get("backend", "cpu")
     found = []
     for study in ("scan", "error_vs_time"):
         for kernel, lam, population in cloning_plan.study_points(section, study):
@@ -192,7 +193,7 @@ def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
                 job, batch, study=study, kernel=kernel, point=point, size=size, seed=seed
             ):
                 parameters = cloning_plan.job_parameters(
-                    section, study, kernel, point, size, job.index, seed
+                    section, study, kernel, point, size, job.index, seed, backend
                 )
                 label = {"label": f"cloning {kernel} {point} {size} {batch}"}
                 return parameters | backend_arguments(config) | label
@@ -203,7 +204,7 @@ def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
                 run=f"visco2008/cloning/{study}/{kernel}/{point}/{size}",
                 front="kinetic.cloning:simulate",
                 engines=("cloning",),
-                cut=cloning_plan.jobs(section, study),
+                cut=cloning_plan.jobs(section, study, backend),
                 arguments=arguments,
                 estimate=lambda job, arguments=arguments: cost.cloning_batch(
                     **{k: v for k, v in arguments(job, "").items() if k != "label"}

@@ -82,21 +82,23 @@ def _study_settings(section: Mapping[str, Any], study: str) -> dict[str, Any]:
     return settings
 
 
-def jobs(section: Mapping[str, Any], study: str) -> list[batches.Job]:
-    """The jobs of every point of ``study`` (every point has the same plan)."""
+def jobs(section: Mapping[str, Any], study: str, backend: str = "cpu") -> list[batches.Job]:
+    """The jobs of every point of ``study`` (every point has the same plan). With the
+    ``cuda`` backend a point is one job: the GPU runs all its realizations in one launch."""
     settings = _study_settings(section, study)
-    return batches.plan(
-        realizations=int(settings["realizations"]),
-        realizations_per_job=int(settings["realizations_per_job"]),
-    )
+    realizations = int(settings["realizations"])
+    per_job = realizations if backend == "cuda" else int(settings["realizations_per_job"])
+    return batches.plan(realizations=realizations, realizations_per_job=per_job)
 
 
-def batch_keys(section: Mapping[str, Any], study: str) -> list[tuple[str, str, str, int]]:
+def batch_keys(
+    section: Mapping[str, Any], study: str, backend: str = "cpu"
+) -> list[tuple[str, str, str, int]]:
     """(kernel, λ token, N token, job index) of every job of ``study``."""
     return [
         (kernel, lambda_token(lam), population_token(n), job.index)
         for kernel, lam, n in study_points(section, study)
-        for job in jobs(section, study)
+        for job in jobs(section, study, backend)
     ]
 
 
@@ -119,8 +121,10 @@ def job_parameters(
     n_token: str,
     batch: int,
     seed: int,
+    backend: str = "cpu",
 ) -> dict[str, Any]:
-    """Keyword arguments of ``kinetic.cloning.simulate`` for one batch job.
+    """Keyword arguments of ``kinetic.cloning.simulate`` for one batch job (of the job plan
+    of ``backend``).
 
     The measured time is ``collisions_per_realization / (N_c c_λ)`` mean free times
     (c_λ = 1 for λ >= 0, 2e^{-λ} - 1 below: about ``collisions_per_realization`` collision
@@ -139,7 +143,7 @@ def job_parameters(
             f"no cloning point {kernel}/{lam_token}/{n_token} in study {study!r} of the config"
         ) from None
     settings = _study_settings(section, study)
-    plan = jobs(section, study)
+    plan = jobs(section, study, backend)
     if not 0 <= int(batch) < len(plan):
         raise ValueError(f"batch {batch} outside 0..{len(plan) - 1}")
     job = plan[int(batch)]

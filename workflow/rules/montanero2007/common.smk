@@ -5,7 +5,7 @@ import functools
 
 from kinetic import batches
 from kinetic.studies.montanero2007 import alpha_key, field_partner
-from kinetic.studies.montanero2007 import run_plan
+from kinetic.studies.montanero2007 import run_batches, run_plan
 
 # ---------------------------------------------------------------- for simulate.smk
 
@@ -18,12 +18,8 @@ def montanero2007_runs():
 
 
 def montanero2007_jobs(name):
-    """kinetic.batches plan of one run."""
-    run = montanero2007_runs()[name]
-    return batches.plan(
-        realizations=int(run["realizations"]),
-        realizations_per_job=int(run["realizations_per_job"]),
-    )
+    """kinetic.batches plan of one run (kinetic.studies.montanero2007.run_batches)."""
+    return run_batches(montanero2007_runs()[name], config["backend"])
 
 
 def montanero2007_batch_files(name):

@@ -169,7 +169,7 @@ def visco2008_cloning_batch_files(study):
             f"visco2008/cloning/{study}/{kernel}/{point}/{size}/{batches.batch_name(batch)}.nc"
         )
         for kernel, point, size, batch in cloning_plan.batch_keys(
-            visco2008_cloning(), study
+            visco2008_cloning(), study, config["backend"]
         )
     ]
 
