@@ -34,8 +34,11 @@ _BUDGET_SECONDS = 420.0  # sections not started after this are skipped (device l
 
 
 def _device() -> dict[str, Any]:
+    import logging
+
     import numba
 
+    logging.getLogger("numba").setLevel(logging.WARNING)  # numba-cuda's allocation log
     from kinetic import backends, gpu
 
     info = {"device": backends.require("cuda"), "numba": numba.__version__}
@@ -71,6 +74,8 @@ def _cloning(
     start = time.perf_counter()
     ds = simulate(**arguments)
     wall = time.perf_counter() - start
+    elapsed = float(ds.elapsed_time.isel(realization=0).sum())
+    interval = ds.attrs.get("control_interval")
     events = float(ds.elastic_collisions.sum()) if backend == "cuda" else None
     if backend == "cpu":
         events = float(ds.collision_events.sum())
@@ -80,8 +85,9 @@ def _cloning(
         "population": population,
         "realizations": realizations,
         "duration": duration,
-        "control_interval": ds.attrs.get("control_interval"),
+        "control_interval": interval,
         "wall_seconds": wall,
+        "seconds_per_interval": wall / (elapsed / interval) if interval else None,
         "events": events,
         "events_per_second": events / wall,
         "mu": float(ds.mu),
@@ -98,7 +104,13 @@ def cloning_speed(quick: bool) -> dict[str, Any]:
     _cloning("hard_spheres", 1.0, 256, 4.0, 2)  # compile (same types as every case)
     _cloning("hard_spheres", 1.0, 256, 4.0, 2, backend="cpu")
     cases = []
-    sizes = [(1000, 1, 20.0), (1000, 100, 20.0), (100_000, 1, 20.0), (1_000_000, 1, 40.0)]
+    sizes = [
+        (1000, 1, 20.0),
+        (1000, 100, 100.0),
+        (10_000, 32, 100.0),
+        (100_000, 1, 100.0),
+        (1_000_000, 1, 100.0),
+    ]
     for kernel, lam in (("hard_spheres", 1.0), ("hard_spheres", -1.0), ("maxwell", 1.0)):
         for population, realizations, duration in sizes[: 2 if quick else None]:
             runs = [

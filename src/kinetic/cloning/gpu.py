@@ -396,6 +396,8 @@ def run(p, durations, n_transient, rows, progress):
     table = to_device(rate_table(p["kernel"], d))
     code = kernels.HARD_SPHERES if p["kernel"] == "hard_spheres" else kernels.MAXWELL
     rate_a = kernels.channel_a_rate(d)
+    advance, weigh, select = _advance[launch], _weigh[launch], _select[launch]
+    close, fold = _close_interval[count, BLOCK], _fold_snapshot[count, BLOCK]
     snapshots = 0
     for b, duration in enumerate(durations):
         steps = max(1, math.ceil(duration / p["control_interval"] - 1e-9))
@@ -412,14 +414,10 @@ def run(p, durations, n_transient, rows, progress):
             record,
         )
         for _ in range(steps):
-            _advance[launch](
-                velocity[0], states, counts, extremes, partials, code, interval, rate_a
-            )
-            _weigh[launch](counts, extremes, lam, cumulative, block_sums, partials)
-            _close_interval[count, BLOCK](
-                block_sums, extremes, controls, partials, out, lam, interval
-            )
-            _select[launch](
+            advance(velocity[0], states, counts, extremes, partials, code, interval, rate_a)
+            weigh(counts, extremes, lam, cumulative, block_sums, partials)
+            close(block_sums, extremes, controls, partials, out, lam, interval)
+            select(
                 velocity[0],
                 velocity[1],
                 cumulative,
@@ -429,7 +427,7 @@ def run(p, durations, n_transient, rows, progress):
                 partials,
                 observers,
             )
-            _fold_snapshot[count, BLOCK](partials, out, interval)
+            fold(partials, out, interval)
             velocity.reverse()
         cuda.synchronize()
         progress.update(count * duration)
