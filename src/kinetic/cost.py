@@ -76,14 +76,17 @@ MIN_RUNTIME_MINUTES = 2
 class Estimate:
     """Estimated cost of one job.
 
-    cpu_seconds : expected CPU time of the computation (one core), start-up excluded
+    cpu_seconds : expected CPU time of the computation (one core), start-up excluded; for
+        a GPU job its wall time (the core that launches the kernels is busy throughout)
     memory_mb : expected peak memory of the particles and observers, base excluded
     work : what is counted, e.g. '4.0e+08 collisions'
+    gpus : GPUs the job runs on (1 for a ``backend='cuda'`` job)
     """
 
     cpu_seconds: float
     memory_mb: float
     work: str
+    gpus: int = 0
 
     @property
     def cpu_hours(self) -> float:
@@ -337,6 +340,27 @@ CLONING_BYTES_PER_MEMBER = 200.0
 the parent and offspring arrays of a cloning step."""
 
 
+CLONING_GPU_SECONDS_PER_INTERVAL = 4.0e-4
+"""``cuda`` backend, one H100: wall seconds of one control interval's five launches when
+the GPU has little to do (bench cuda, N_c = 10³, one realization)."""
+
+CLONING_GPU_EVENTS_PER_SECOND = 5.0e8
+"""``cuda`` backend, one H100: collision events per second of the untilted clones once the
+launches are full (bench cuda, hard disks at λ = 1, 10⁵-10⁶ clones in a launch)."""
+
+CLONING_GPU_BYTES_PER_MEMBER = 120.0
+"""``cuda`` backend: two velocity buffers, the stream, the count and the scan of a member."""
+
+
+def cloning_control_interval(lam: float) -> float:
+    """``kinetic.cloning.simulate.default_control_interval`` without loading the kernels
+    (the workflow plans jobs while it parses; a unit test keeps the two equal)."""
+    spread = math.expm1(-lam) ** 2
+    if spread == 0.0:
+        return 1.0
+    return min(1.0, math.log1p(0.5) / spread)
+
+
 def cloning_batch(
     *,
     lam: float,
@@ -346,16 +370,29 @@ def cloning_batch(
     n_blocks: int,
     n_realizations: int,
     histogram_bins: int = 120,
+    backend: str = "cpu",
+    control_interval: float | None = None,
     **_: object,
 ) -> Estimate:
     """``n_realizations`` realizations of kinetic.cloning.simulate: N_c c_λ events per unit
     time (c_λ = 1 for λ >= 0, 2e^{-λ} - 1 below) over the transient, rounded up to whole blocks, and
     the measured ``duration``. At large λ the transient (e^λ mean free times for a member
-    to keep a few collisions) dominates."""
+    to keep a few collisions) dominates. With ``backend='cuda'`` the untilted clones
+    collide at the bath's rate (c = 1) and every realization runs in the same launches:
+    the control intervals times their launch cost, plus the events at the GPU's rate."""
     rate_factor = 1.0 if lam >= 0 else 2.0 * math.exp(-lam) - 1.0
     block = duration / n_blocks
     transient_blocks = math.ceil(transient / block - 1e-9) if block > 0 else 0
     elapsed = duration + transient_blocks * block
+    if backend == "cuda":
+        interval = control_interval or cloning_control_interval(lam)
+        events = n_realizations * population * elapsed
+        seconds = (
+            elapsed / interval * CLONING_GPU_SECONDS_PER_INTERVAL
+            + events / CLONING_GPU_EVENTS_PER_SECOND
+        )
+        memory = _mb(CLONING_GPU_BYTES_PER_MEMBER * population * n_realizations)
+        return Estimate(seconds, memory, f"{events:.2e} collision events on one GPU", gpus=1)
     events = n_realizations * population * rate_factor * elapsed
     seconds = events / _interpolate(population, CLONING_EVENTS_PER_SECOND)
     memory = _mb(CLONING_BYTES_PER_MEMBER * population + 8.0 * histogram_bins * n_blocks * 4)

@@ -257,6 +257,8 @@ def summary_rows(jobs: Iterable[Job], cores: Iterable[int] = CORES) -> list[dict
             "document": document,
             "jobs": len(members),
             "cpu_hours": sum(job.estimate.cpu_seconds for job in members) / 3600.0,
+            "gpu_hours": sum(job.estimate.job_seconds for job in members if job.estimate.gpus)
+            / 3600.0,
             "longest_job_hours": max(seconds, default=0.0) / 3600.0,
             "mem_mb": max((cost.mem_mb(job.estimate) for job in members), default=0),
         }
@@ -295,10 +297,16 @@ def summary_line(jobs: Iterable[Job]) -> str:
     """One line: the estimated total of the config's simulation jobs."""
     (total,) = [row for row in summary_rows(jobs) if row["document"] == "total"]
     walls = ", ".join(f"{_hours(total[f'wall_hours_{p}'])} on {p}" for p in CORES)
+    gpu = (
+        f" ({_hours(total['gpu_hours'])} of it on one GPU, backend cuda)"
+        if total["gpu_hours"]
+        else ""
+    )
     return (
         f"estimated cost of the config's {total['jobs']} simulation jobs (kinetic.plan): "
-        f"{total['cpu_hours']:.3g} CPU-hours, longest job {_hours(total['longest_job_hours'])}, "
-        f"at most {total['mem_mb']} MB per job; wall {walls} cores"
+        f"{total['cpu_hours']:.3g} CPU-hours{gpu}, longest job "
+        f"{_hours(total['longest_job_hours'])}, at most {total['mem_mb']} MB per job; "
+        f"wall {walls} cores"
     )
 
 

@@ -148,3 +148,25 @@ def test_overruns_compare_the_cpu_time_a_job_used_with_its_request(tmp_path):
     checked, overruns = plan.benchmark_overruns(tmp_path, jobs)
     assert checked == 3
     assert [line.split(":")[0] for line in overruns] == ["overran", "unsampled"]
+
+
+def test_cuda_cloning_estimate_uses_the_fronts_control_interval():
+    """cost.cloning_control_interval repeats the front's rule without loading the kernels;
+    a cuda cloning job asks for one GPU and costs less than the same realizations on one
+    core."""
+    from kinetic.cloning.simulate import default_control_interval
+
+    for lam in (-4.0, -1.5, -0.5, 0.0, 0.25, 1.0, 8.0, 30.0):
+        assert cost.cloning_control_interval(lam) == default_control_interval(lam)
+    arguments = {
+        "lam": 1.0,
+        "population": 10_000,
+        "duration": 1e4,
+        "transient": 50.0,
+        "n_blocks": 20,
+        "n_realizations": 32,
+    }
+    gpu = cost.cloning_batch(**arguments, backend="cuda")
+    cpu = cost.cloning_batch(**arguments)
+    assert gpu.gpus == 1 and cpu.gpus == 0
+    assert gpu.cpu_seconds < cpu.cpu_seconds / 10
