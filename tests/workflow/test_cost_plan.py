@@ -1,5 +1,6 @@
 """The workflow's resource requests and budget check against kinetic.plan and kinetic.cost."""
 
+import copy
 import os
 import re
 import subprocess
@@ -109,3 +110,41 @@ def test_plan_command_prints_the_table_and_refuses_what_the_workflow_refuses(tmp
     refused = subprocess.run([*command, str(extra)], capture_output=True, text=True)
     assert refused.returncode == 1
     assert "max_job_cpu_hours = 1e-06" in refused.stderr
+
+
+def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
+    """backend: cuda (parsed on a machine without a GPU): the cloning and montanero2007
+    DSMC jobs ask the scheduler for one GPU (resources gpu=1, the SLURM executor's
+    --gpus=1), hold every realization of their point or run, and carry backend='cuda';
+    every other simulation job asks for none."""
+    extra = tmp_path / "cuda.yaml"
+    cut = {"visco2008": {"cloning": {"realizations_per_job": 1}}}  # several CPU jobs a point
+    extra.write_text(yaml.safe_dump({"backend": "cuda", **cut}))
+    result = _snakemake(tmp_path, "--configfile", str(CI_CONFIG), str(extra), "--dry-run")
+    output = result.stdout + result.stderr
+    assert result.returncode == 0, output
+    config = yaml.safe_load(CI_CONFIG.read_text())
+    config["visco2008"]["cloning"]["realizations_per_job"] = 1
+    cpu_config = copy.deepcopy(config)
+    config["backend"] = "cuda"
+    validate_config(config)
+    jobs = plan.plan_jobs(config)
+    gpus = {}
+    for block in re.split(r"\n(?=rule \w+:\n)", output):
+        files = re.search(r"^    output: ([^,\n]+)", block, flags=re.MULTILINE)
+        resources = re.search(r"^    resources: (.*)$", block, flags=re.MULTILINE)
+        if files and resources:
+            gpus[files.group(1)] = dict(re.findall(r"(\w+)=([^,]*)", resources.group(1)))
+    on_gpu = [job for job in jobs if job.gpus]
+    assert {job.rule for job in on_gpu} == {
+        "visco2008_simulate_cloning",
+        "montanero2007_simulate_dsmc",
+    }
+    for job in jobs:
+        assert gpus[job.output].get("gpu", "0") == str(job.gpus), job.output
+        assert (job.arguments.get("backend") == "cuda") == bool(job.gpus)
+    validate_config(cpu_config)
+    cpu_jobs = [job for job in plan.plan_jobs(cpu_config) if job.rule in {j.rule for j in on_gpu}]
+    runs = {job.output.rsplit("/", 1)[0] for job in cpu_jobs}
+    assert len(on_gpu) == len(runs) < len(cpu_jobs)  # one job a point or run
+    assert all(job.output.endswith("/batch0000.nc") for job in on_gpu)
