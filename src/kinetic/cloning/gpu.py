@@ -243,18 +243,22 @@ def _fold(shared, partials, r, column):
 
 
 @cuda.jit
-def _close_interval(block_sums, extremes, controls, partials, out, lam, interval):
+def _close_interval(block_sums, extremes, controls, partials, out, lam, intervals):
     """One thread block per realization: the block offsets of the integer scan, the
-    interval's collision and candidate counts, ln<w> into ``net_compensations`` and the
-    next selection uniform. ``extremes[r]`` holds (K min, K max, N_c, Q, u); K min and
-    max are reset for the next interval."""
+    interval's collision and candidate counts, ln<w> into ``net_compensations``, the
+    next selection uniform, and the previous selection's snapshot sums times its
+    interval ``intervals[1]`` (0 when they were folded already). ``extremes[r]`` holds
+    (K min, K max, N_c, Q); K min and max are reset for the next interval."""
     shared = cuda.shared.array(BLOCK, np.float64)
     shared_q = cuda.shared.array(BLOCK, np.int64)
     r = cuda.blockIdx.x
+    interval, previous = intervals
     total_q = block_exclusive_scan(shared_q, block_sums[r], block_sums.shape[1], _ZERO)
     weight = _fold(shared, partials, r, _P_WEIGHT)
     collisions = _fold(shared, partials, r, _P_COLLISIONS)
     candidates = _fold(shared, partials, r, _P_CANDIDATES)
+    if previous > 0.0:
+        _add_snapshot(shared, partials, out, r, previous)
     if cuda.threadIdx.x != 0:
         return
     n_clones = extremes[r, 2]
@@ -351,11 +355,9 @@ def _select(source, target, cumulative, offsets, extremes, controls, partials, o
                 cuda.atomic.add(histogram, (r, b), counts[b])
 
 
-@cuda.jit
-def _fold_snapshot(partials, out, interval):
-    """One thread block per realization: the selection's snapshot sums, times Δ."""
-    shared = cuda.shared.array(BLOCK, np.float64)
-    r = cuda.blockIdx.x
+@cuda.jit(device=True, inline="always")
+def _add_snapshot(shared, partials, out, r, interval):
+    """The selection's snapshot sums of realization r, times Δ, into ``out[r]``."""
     v2 = _fold(shared, partials, r, _P_V2)
     v4 = _fold(shared, partials, r, _P_V4)
     rate = _fold(shared, partials, r, _P_RATE)
@@ -363,6 +365,13 @@ def _fold_snapshot(partials, out, interval):
         out[r, _SNAPSHOT[0]] += interval * v2
         out[r, _SNAPSHOT[1]] += interval * v4
         out[r, _SNAPSHOT[2]] += interval * rate
+
+
+@cuda.jit
+def _fold_snapshot(partials, out, interval):
+    """One thread block per realization: the block's last selection's snapshot sums."""
+    shared = cuda.shared.array(BLOCK, np.float64)
+    _add_snapshot(shared, partials, out, cuda.blockIdx.x, interval)
 
 
 def run(p, durations, n_transient, rows, progress):
@@ -413,10 +422,19 @@ def run(p, durations, n_transient, rows, progress):
             blocks[:, b, _FIELD["max_speed"]],
             record,
         )
-        for _ in range(steps):
+        for step in range(steps):
             advance(velocity[0], states, counts, extremes, partials, code, interval, rate_a)
             weigh(counts, extremes, lam, cumulative, block_sums, partials)
-            close(block_sums, extremes, controls, partials, out, lam, interval)
+            # the previous selection's snapshot is folded here, but the block's last below
+            close(
+                block_sums,
+                extremes,
+                controls,
+                partials,
+                out,
+                lam,
+                (interval, interval if step else 0.0),
+            )
             select(
                 velocity[0],
                 velocity[1],
@@ -427,8 +445,8 @@ def run(p, durations, n_transient, rows, progress):
                 partials,
                 observers,
             )
-            fold(partials, out, interval)
             velocity.reverse()
+        fold(partials, out, interval)
         cuda.synchronize()
         progress.update(count * duration)
     sums = blocks.copy_to_host()
