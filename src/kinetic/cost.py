@@ -283,6 +283,18 @@ DSMC_BYTES_PER_PARTICLE = 100.0
 three velocity components), with histograms and scratch, rounded up."""
 
 
+DSMC_GPU_SECONDS_PER_STEP = 1.0e-3
+"""``cuda`` backend, one H100: wall seconds of one time step's launches when the GPU has
+little to do (bench cuda)."""
+
+DSMC_GPU_PARTICLE_STEPS_PER_SECOND = 2.0e9
+"""``cuda`` backend, one H100: particle-steps per second once the launches are full
+(bench cuda, N = 2 × 10⁵ × 50 realizations)."""
+
+DSMC_GPU_BYTES_PER_PARTICLE = 80.0
+"""``cuda`` backend: velocities in two buffers, the permutation and its scratch."""
+
+
 def dsmc_homogeneous(
     *,
     n_particles: int,
@@ -291,11 +303,19 @@ def dsmc_homogeneous(
     realizations: int,
     sample_stride: int = 10,
     splitting: str = "lie",
+    backend: str = "cpu",
     **_: object,
 ) -> Estimate:
-    """``realizations`` runs of kinetic.dsmc.simulate_homogeneous (montanero2007)."""
+    """``realizations`` runs of kinetic.dsmc.simulate_homogeneous (montanero2007); with
+    ``backend='cuda'`` all in the same launches: the steps times their launch cost, plus
+    the particle-steps at the GPU's rate."""
     steps = math.ceil(duration / time_step - 1e-9)
     particle_steps = steps * n_particles
+    if backend == "cuda":
+        work = realizations * particle_steps
+        seconds = steps * DSMC_GPU_SECONDS_PER_STEP + work / DSMC_GPU_PARTICLE_STEPS_PER_SECOND
+        memory = _mb(DSMC_GPU_BYTES_PER_PARTICLE * n_particles * realizations)
+        return Estimate(seconds, memory, f"{work:.2e} particle-steps on one GPU", gpus=1)
     collisions = n_particles / 2.0 * DSMC_COLLISIONS_PER_PARTICLE_TAU * duration
     step_cost = DSMC_SECONDS_PER_PARTICLE_STEP
     if splitting == "strang":

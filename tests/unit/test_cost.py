@@ -1,12 +1,15 @@
 """kinetic.cost and kinetic.plan: resource requests, the budget check, the summary."""
 
 import math
+from pathlib import Path
 
 import pytest
 
 from kinetic import cost, plan
 from kinetic.cost import Estimate
 from kinetic.studies import Job
+
+REPOSITORY = Path(__file__).resolve().parents[2]
 
 
 def _job(seconds, memory_mb=0.0, document="d", output="results/x.nc", benchmark=None):
@@ -170,3 +173,21 @@ def test_cuda_cloning_estimate_uses_the_fronts_control_interval():
     cpu = cost.cloning_batch(**arguments)
     assert gpu.gpus == 1 and cpu.gpus == 0
     assert gpu.cpu_seconds < cpu.cpu_seconds / 10
+
+
+def test_the_paper_gpu_layer_runs_cloning_and_montanero2007_on_one_gpu():
+    """config/paper-gpu.yaml over paper.yaml: its own results root, every cloning point and
+    montanero2007 run one GPU job, hard-disk populations up to 10⁶."""
+    from kinetic.config import load_configs
+
+    config = load_configs([REPOSITORY / "config/paper.yaml", REPOSITORY / "config/paper-gpu.yaml"])
+    assert config["results"] == "results/paper-gpu"
+    jobs = plan.plan_jobs(config)
+    on_gpu = {job.rule for job in jobs if job.estimate.gpus}
+    assert on_gpu == {"visco2008_simulate_cloning", "montanero2007_simulate_dsmc"}
+    sizes = {
+        job.arguments["population"]
+        for job in jobs
+        if job.rule == "visco2008_simulate_cloning" and job.arguments["kernel"] == "hard_spheres"
+    }
+    assert max(sizes) == 10**6

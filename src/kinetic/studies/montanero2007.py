@@ -336,7 +336,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
                 **backend_arguments(config),
             },
             estimate=lambda job, run=run: cost.dsmc_homogeneous(
-                **{**run, "realizations": job.n_realizations}
+                **{**run, "realizations": job.n_realizations, **backend_arguments(config)}
             ),
             parameters={"run": name, "family": run["family"], "setting": run.get("setting", "")},
         )
