@@ -3,7 +3,8 @@ particles, restitution α, the heat-flux force and thermostat of montanero2007, 
 continuous-time variant with free-flight observers (visco2008). Fronts: ``homogeneous``
 (``simulate_homogeneous``) and ``free_flights`` (``simulate_free_flights``); the gas
 state and stepping they share: ``state``; numba kernels: ``kernels`` (shared with the
-inhomogeneous engine).
+inhomogeneous engine). CUDA backend of ``simulate_homogeneous`` (``backend="cuda"``):
+``gpu``, imported only by such a run (it imports ``numba.cuda`` through ``kinetic.gpu``).
 
 Inhomogeneous engine (costantini2010, d = 2): ``simulate_cooling_modes`` in
 ``inhomogeneous`` (front) and ``inhomogeneous_kernels`` (numba kernels): fictive

@@ -38,7 +38,7 @@ import math
 
 import numpy as np
 
-from kinetic import io, validate
+from kinetic import backends, io, validate
 from kinetic.dsmc import kernels
 from kinetic.dsmc.state import (
     LINEAR_RESPONSE_FIELD,
@@ -78,6 +78,7 @@ def simulate_homogeneous(
     speed_max: float = 6.0,
     n_speed_bins: int = 120,
     label: str | None = None,
+    backend: str = "cpu",
 ):
     """Run independent realizations of the homogeneous (forced, thermostatted) gas.
 
@@ -104,6 +105,12 @@ def simulate_homogeneous(
         Realization k uses row k of ``stream_states(seed, ·)``.
     label
         Name of the run in progress lines.
+    backend
+        ``"cpu"`` (numba, one realization after the other) or ``"cuda"`` (numba-cuda, all
+        realizations of the call together on one GPU: :mod:`kinetic.dsmc.gpu`, collisions
+        in random groups of particles re-drawn every step; statistically equivalent, not
+        bit-identical). A ``cuda`` run on a machine without a GPU stops before any work
+        (``kinetic.backends.BackendUnavailable``).
 
     Returns
     -------
@@ -119,8 +126,10 @@ def simulate_homogeneous(
     ``cx_weights`` (sums of c_x (3/2 - c_x²) per bin, for β1 of Eq. 4.6), ``cx_outside``
     and ``cx_outside_weights`` (below, above), ``speed_counts``, ``speed_overflow`` and
     ``histogram_observations`` (particles x snapshots); per realization ``collisions``,
-    ``candidates``, ``bound_raises``, ``steps``, ``cpu_seconds``.
+    ``candidates``, ``bound_raises``, ``steps``, ``cpu_seconds`` (cuda: the batch's wall
+    time divided by the realizations). Attributes ``backend`` and ``device``.
     """
+    backends.check(backend)
     settings = HomogeneousSettings(
         n_particles=n_particles,
         restitution=restitution,
@@ -152,28 +161,9 @@ def simulate_homogeneous(
         speed_max=speed_max,
         n_speed_bins=n_speed_bins,
     )
+    device = backends.require(backend)  # before any work: no GPU, no run
 
     d = settings.dimension
-    shape = (n_realizations, n_windows)
-    moments = np.full((*shape, len(MOMENT_NAMES)), np.nan)
-    snapshots = np.zeros(shape, dtype=np.int64)
-    log_temperature = np.zeros(shape)
-    cooling_sum = np.zeros(shape)
-    time_free = np.zeros(shape)
-    collisions_per_particle = np.zeros(shape)
-    cx_counts = np.zeros((n_realizations, n_cx_bins), dtype=np.int64)
-    cx_weights = np.zeros((n_realizations, n_cx_bins))
-    cx_outside_weights = np.zeros((n_realizations, 2))
-    cx_outside = np.zeros((n_realizations, 2), dtype=np.int64)
-    speed_counts = np.zeros((n_realizations, n_speed_bins), dtype=np.int64)
-    speed_overflow = np.zeros(n_realizations, dtype=np.int64)
-    observations = np.zeros(n_realizations, dtype=np.int64)
-    totals = {
-        key: np.zeros(n_realizations, dtype=np.int64)
-        for key in ("collisions", "candidates", "bound_raises", "steps")
-    }
-    cpu_seconds = np.zeros(n_realizations)
-
     label = label or (
         f"dsmc d={d} {settings.kernel} alpha={settings.restitution:g} "
         f"eps*={settings.reduced_field:g} N={settings.n_particles}"
@@ -185,43 +175,20 @@ def simulate_homogeneous(
             "law tail (|c_x|^-5.5 at 0.2): high moments such as b'_2, b'_3 do not exist",
             settings.reduced_field,
         )
-    _compile_outside_the_timers(settings, samples)
     progress = Progress(n_realizations * n_windows, label=label, unit="windows")
     first_histogram_window = math.ceil(histogram_start / sample_interval - 1e-9)
-    for r in range(n_realizations):
-        gas = new_gas(settings, streams[r])
-        samples.cx_counts[:] = 0
-        samples.cx_weights[:] = 0.0
-        samples.speed_counts[:] = 0
-        histogram_snapshots = 0
-        for w in range(n_windows):
-            samples.reset_moments()
-            samples.histogram = w >= first_histogram_window
-            advance_gas(gas, steps_per_window, samples)
-            count = int(samples.moment_sums[0])
-            snapshots[r, w] = count
-            if count:
-                moments[r, w] = samples.moment_sums[1:] / count
-            if samples.histogram:
-                histogram_snapshots += count
-            log_temperature[r, w] = gas.log_temperature_free
-            cooling_sum[r, w] = gas.clock[4]
-            time_free[r, w] = gas.time_free
-            collisions_per_particle[r, w] = 2.0 * gas.collisions / settings.n_particles
-            progress.update(1)
-        cx_counts[r] = samples.cx_counts[1:-1]
-        cx_outside[r] = samples.cx_counts[[0, -1]]
-        cx_weights[r] = samples.cx_weights[1:-1]
-        cx_outside_weights[r] = samples.cx_weights[[0, -1]]
-        speed_counts[r] = samples.speed_counts[:-1]
-        speed_overflow[r] = samples.speed_counts[-1]
-        observations[r] = histogram_snapshots * settings.n_particles
-        totals["collisions"][r] = gas.collisions
-        totals["candidates"][r] = gas.candidates
-        totals["bound_raises"][r] = gas.tally[kernels.TALLY_RAISED]
-        totals["steps"][r] = gas.steps
-        cpu_seconds[r] = gas.cpu_seconds
+    out = _empty_results(n_realizations, n_windows, samples)
+    run = (settings, samples, streams, n_windows, steps_per_window, first_histogram_window)
+    if backend == "cuda":
+        from kinetic.dsmc import gpu
 
+        gpu.run_batch(*run, out, progress)
+    else:
+        _compile_outside_the_timers(settings, samples)
+        _run_cpu(*run, out, progress)
+    moments = out["moments"]
+    log_temperature = out["log_temperature"]
+    cooling_sum = out["cooling_sum"]
     window_ends = sample_interval * np.arange(1, n_windows + 1)
     previous = np.concatenate([np.zeros((n_realizations, 1)), log_temperature[:, :-1]], axis=1)
     thermostat_rate = (previous - log_temperature) / sample_interval
@@ -241,7 +208,7 @@ def simulate_homogeneous(
                 "1",
                 "window average of the snapshot moment (c = V/v0)",
             ),
-            "snapshots": (rt, snapshots, "1", "snapshots averaged in the window"),
+            "snapshots": (rt, out["snapshots"], "1", "snapshots averaged in the window"),
             "a2": (rt, a2, "1", "fourth cumulant a2 = 4<c^4>/(d(d+2)) - 1 (Eq. 2.13)"),
             "heat_flux": (rt, heat_flux, "n T v0", "reduced heat flux q_x/(n T v0) = <c^2 c_x>"),
             "thermostat_rate": (
@@ -264,71 +231,71 @@ def simulate_homogeneous(
             ),
             "time_free": (
                 rt,
-                time_free,
+                out["time_free"],
                 "tau(T0)",
                 "time of the freely cooling gas at the window end",
             ),
             "window_end": ("time", window_ends, "tau", "end of the sampling window"),
             "collisions_per_particle": (
                 rt,
-                collisions_per_particle,
+                out["collisions_per_particle"],
                 "1",
                 "cumulative collisions per particle at the window end",
             ),
             "cx_weights": (
                 ("realization", "cx"),
-                cx_weights,
+                out["cx_weights"],
                 "1",
                 "sum of c_x (3/2 - c_x^2) per c_x bin (the integrand of Eq. 4.6)",
             ),
             "cx_outside_weights": (
                 ("realization", "side"),
-                cx_outside_weights,
+                out["cx_outside_weights"],
                 "1",
                 "sum of c_x (3/2 - c_x^2) below / above the histogram range",
             ),
             "cx_counts": (
                 ("realization", "cx"),
-                cx_counts,
+                out["cx_counts"],
                 "1",
                 "histogram of c_x over the steady-state snapshots",
             ),
             "cx_outside": (
                 ("realization", "side"),
-                cx_outside,
+                out["cx_outside"],
                 "1",
                 "c_x observations below / above the histogram range",
             ),
             "cx_edges": ("cx_edge", cx_edges, "1", "bin edges of c_x"),
             "speed_counts": (
                 ("realization", "speed"),
-                speed_counts,
+                out["speed_counts"],
                 "1",
                 "histogram of |c| over the steady-state snapshots",
             ),
             "speed_overflow": (
                 "realization",
-                speed_overflow,
+                out["speed_overflow"],
                 "1",
                 "|c| observations beyond the histogram range",
             ),
             "speed_edges": ("speed_edge", speed_edges, "1", "bin edges of |c|"),
             "histogram_observations": (
                 "realization",
-                observations,
+                out["observations"],
                 "1",
                 "particle observations behind each histogram",
             ),
-            "collisions": ("realization", totals["collisions"], "1", "accepted collisions"),
-            "candidates": ("realization", totals["candidates"], "1", "candidate pairs"),
+            "collisions": ("realization", out["collisions"], "1", "accepted collisions"),
+            "candidates": ("realization", out["candidates"], "1", "candidate pairs"),
             "bound_raises": (
                 "realization",
-                totals["bound_raises"],
+                out["bound_raises"],
                 "1",
                 "raises of the relative-speed bound within collision stages",
             ),
-            "steps": ("realization", totals["steps"], "1", "time steps"),
-            "cpu_seconds": ("realization", cpu_seconds, "s", "CPU (process) time in the kernels"),
+            "steps": ("realization", out["steps"], "1", "time steps"),
+            "cpu_seconds": ("realization", out["cpu_seconds"], "s", _CPU_SECONDS[backend]),
         },
         coords={
             "realization": (
@@ -355,6 +322,8 @@ def simulate_homogeneous(
             "units": "m = sigma = T0 = 1; time in tau = lambda/v0, lambda = 1/(sqrt(2) S n); "
             "c = V/v0, v0 = sqrt(2 T0/m); eps* = lambda eps",
             "histogram_start_tau": histogram_start,
+            "backend": backend,
+            "device": device,
         },
     )
     parameters = {
@@ -367,3 +336,76 @@ def simulate_homogeneous(
         "first_realization": first_realization,
     }
     return io.stamp(dataset, parameters=parameters, seed=seed)
+
+
+_CPU_SECONDS = {
+    "cpu": "CPU (process) time in the kernels",
+    "cuda": "wall time of the GPU run (all realizations together) per realization",
+}
+
+
+def _empty_results(count: int, n_windows: int, samples: Samples) -> dict[str, np.ndarray]:
+    """The arrays a backend fills: per realization and window, and per realization."""
+    shape = (count, n_windows)
+    results = {
+        "moments": np.full((*shape, len(MOMENT_NAMES)), np.nan),
+        "snapshots": np.zeros(shape, dtype=np.int64),
+        "cx_counts": np.zeros((count, samples.n_cx_bins), dtype=np.int64),
+        "cx_weights": np.zeros((count, samples.n_cx_bins)),
+        "cx_outside_weights": np.zeros((count, 2)),
+        "cx_outside": np.zeros((count, 2), dtype=np.int64),
+        "speed_counts": np.zeros((count, samples.n_speed_bins), dtype=np.int64),
+        "speed_overflow": np.zeros(count, dtype=np.int64),
+        "cpu_seconds": np.zeros(count),
+    }
+    for key in ("log_temperature", "cooling_sum", "time_free", "collisions_per_particle"):
+        results[key] = np.zeros(shape)
+    for key in ("observations", "collisions", "candidates", "bound_raises", "steps"):
+        results[key] = np.zeros(count, dtype=np.int64)
+    return results
+
+
+def _run_cpu(
+    settings: HomogeneousSettings,
+    samples: Samples,
+    streams: np.ndarray,
+    n_windows: int,
+    steps_per_window: int,
+    first_histogram_window: int,
+    out: dict[str, np.ndarray],
+    progress: Progress,
+) -> None:
+    """The CPU backend: the realizations one after the other, into ``out``."""
+    for r in range(streams.shape[0]):
+        gas = new_gas(settings, streams[r])
+        samples.cx_counts[:] = 0
+        samples.cx_weights[:] = 0.0
+        samples.speed_counts[:] = 0
+        histogram_snapshots = 0
+        for w in range(n_windows):
+            samples.reset_moments()
+            samples.histogram = w >= first_histogram_window
+            advance_gas(gas, steps_per_window, samples)
+            count = int(samples.moment_sums[0])
+            out["snapshots"][r, w] = count
+            if count:
+                out["moments"][r, w] = samples.moment_sums[1:] / count
+            if samples.histogram:
+                histogram_snapshots += count
+            out["log_temperature"][r, w] = gas.log_temperature_free
+            out["cooling_sum"][r, w] = gas.clock[4]
+            out["time_free"][r, w] = gas.time_free
+            out["collisions_per_particle"][r, w] = 2.0 * gas.collisions / settings.n_particles
+            progress.update(1)
+        out["cx_counts"][r] = samples.cx_counts[1:-1]
+        out["cx_outside"][r] = samples.cx_counts[[0, -1]]
+        out["cx_weights"][r] = samples.cx_weights[1:-1]
+        out["cx_outside_weights"][r] = samples.cx_weights[[0, -1]]
+        out["speed_counts"][r] = samples.speed_counts[:-1]
+        out["speed_overflow"][r] = samples.speed_counts[-1]
+        out["observations"][r] = histogram_snapshots * settings.n_particles
+        out["collisions"][r] = gas.collisions
+        out["candidates"][r] = gas.candidates
+        out["bound_raises"][r] = gas.tally[kernels.TALLY_RAISED]
+        out["steps"][r] = gas.steps
+        out["cpu_seconds"][r] = gas.cpu_seconds

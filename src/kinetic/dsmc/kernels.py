@@ -47,6 +47,7 @@ advanced in place. No kernel allocates inside its loops, prints, or touches file
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -259,7 +260,7 @@ def _trial_relative(g0, g1, g2, d, kernel, bound_sq, s0, s1, s2, s3):
             return 0, 0.0, 0.0, 0.0, s0, s1, s2, s3
         if d == 3:
             n0, n1, n2, s0, s1, s2, s3 = _unit_3d(s0, s1, s2, s3)
-            gm = np.sqrt(gg)
+            gm = math.sqrt(gg)
             return (
                 1,
                 0.5 * (g0 - gm * n0),
@@ -273,7 +274,7 @@ def _trial_relative(g0, g1, g2, d, kernel, bound_sq, s0, s1, s2, s3):
         u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
         sine = 2.0 * u - 1.0
         c2 = 1.0 - sine * sine
-        cs = np.sqrt(c2) * sine
+        cs = math.sqrt(c2) * sine
         return 1, c2 * g0 - cs * g1, c2 * g1 + cs * g0, 0.0, s0, s1, s2, s3
     if d == 3:
         e0, e1, e2, s0, s1, s2, s3 = _unit_3d(s0, s1, s2, s3)
@@ -333,9 +334,9 @@ def _raise(sa, sb, top1, top2):
         sa, sb = sb, sa
     if sa <= top2 * top2:
         return False, top1, top2
-    a = np.sqrt(sa)
+    a = math.sqrt(sa)
     if a > top1:
-        return True, a, max(top1, np.sqrt(sb))
+        return True, a, max(top1, math.sqrt(sb))
     return True, top1, a
 
 
@@ -378,8 +379,8 @@ def speed_bounds(velocity, first, last, bounds):
                 top1 = s
             else:
                 top2 = s
-    bounds[d] = np.sqrt(top1)
-    bounds[d + 1] = np.sqrt(top2)
+    bounds[d] = math.sqrt(top1)
+    bounds[d + 1] = math.sqrt(top2)
 
 
 @inline
@@ -618,6 +619,40 @@ def collide_observed(velocity, state, collisions, start_time, flights):
 
 
 @kernel
+def _force_factor(ax, exact):
+    """Factor f of one particle's force step V -> f V, from ax = a V_x (a = ε δt/2):
+    Euler (Eq. 4.1) f = 1 - ax, exact f = 1/(1 + ax). Returns ``(status, f)``: status
+    STATUS_FORCE_BLOW_UP (exact, 1 + ax <= 0; f = 1), STATUS_EULER_STEP_TOO_LARGE (Euler,
+    |ax| > EULER_LIMIT) or STATUS_OK. Shared by ``force_and_thermostat`` and the GPU
+    engine (one thread per particle)."""
+    if exact:
+        denominator = 1.0 + ax
+        if denominator <= 0.0:
+            return STATUS_FORCE_BLOW_UP, 1.0
+        return STATUS_OK, 1.0 / denominator
+    if abs(ax) > EULER_LIMIT:
+        return STATUS_EULER_STEP_TOO_LARGE, 1.0 - ax
+    return STATUS_OK, 1.0 - ax
+
+
+@kernel
+def _thermostat_scale(sum0, sum1, sum2, total_sq, n, target_energy):
+    """The thermostat (Eq. 4.2) from the particle sums ΣV_k and Σ|V|² of n particles:
+    ``(status, u0, u1, u2, scale, log_scale)`` with u the mean velocity, scale =
+    sqrt(K0/K') (K' = <|V - u|²>/2, K0 = ``target_energy``) and its logarithm; status
+    STATUS_NONFINITE (and scale 1) if K' is not finite and positive. Shared by
+    ``force_and_thermostat`` and the GPU engine (sums from its reductions)."""
+    u0 = sum0 / n
+    u1 = sum1 / n
+    u2 = sum2 / n
+    energy = 0.5 * (total_sq / n - (u0 * u0 + u1 * u1 + u2 * u2))
+    if not (math.isfinite(energy) and energy > 0.0):
+        return STATUS_NONFINITE, u0, u1, u2, 1.0, 0.0
+    scale = math.sqrt(target_energy / energy)
+    return STATUS_OK, u0, u1, u2, scale, math.log(scale)
+
+
+@kernel
 def force_and_thermostat(velocity, half_field_step, exact, target_energy, bounds):
     """Heat-flux force step then the thermostat of montanero2007 (Eqs. 4.1, 4.2).
 
@@ -646,17 +681,9 @@ def force_and_thermostat(velocity, half_field_step, exact, target_energy, bounds
         v1 = velocity[1, i]
         v2 = velocity[2, i] if d == 3 else 0.0
         if half_field_step != 0.0:
-            ax = half_field_step * v0
-            if exact:
-                denominator = 1.0 + ax
-                if denominator <= 0.0:
-                    status = STATUS_FORCE_BLOW_UP
-                    denominator = 1.0
-                f = 1.0 / denominator
-            else:
-                if abs(ax) > EULER_LIMIT:
-                    status = STATUS_EULER_STEP_TOO_LARGE
-                f = 1.0 - ax
+            code, f = _force_factor(half_field_step * v0, exact)
+            if code != STATUS_OK:
+                status = code
             v0 *= f
             v1 *= f
             v2 *= f
@@ -670,13 +697,11 @@ def force_and_thermostat(velocity, half_field_step, exact, target_energy, bounds
         total_sq += v0 * v0 + v1 * v1 + v2 * v2
     if status != STATUS_OK:
         return status, 0.0
-    u0 = sum0 / n
-    u1 = sum1 / n
-    u2 = sum2 / n
-    energy = 0.5 * (total_sq / n - (u0 * u0 + u1 * u1 + u2 * u2))
-    if not (np.isfinite(energy) and energy > 0.0):
-        return STATUS_NONFINITE, 0.0
-    scale = np.sqrt(target_energy / energy)
+    status, u0, u1, u2, scale, log_scale = _thermostat_scale(
+        sum0, sum1, sum2, total_sq, n, target_energy
+    )
+    if status != STATUS_OK:
+        return status, 0.0
     s1 = 0.0
     s2 = 0.0
     for i in range(n):
@@ -697,9 +722,9 @@ def force_and_thermostat(velocity, half_field_step, exact, target_energy, bounds
                 s2 = s
     for k in range(d):
         bounds[k] = 0.0
-    bounds[d] = np.sqrt(s1)
-    bounds[d + 1] = np.sqrt(s2)
-    return STATUS_OK, np.log(scale)
+    bounds[d] = math.sqrt(s1)
+    bounds[d + 1] = math.sqrt(s2)
+    return STATUS_OK, log_scale
 
 
 # ------------------------------------------------------------------------- observers
@@ -723,6 +748,38 @@ def _laguerre_123(p, x):
 
 
 @kernel
+def _particle_moments(velocity, i, d, inverse_v0, p_full):
+    """The N_MOMENTS terms of particle i (c = V * inverse_v0, p_full = d/2), in the order
+    of ``accumulate_moments``: c_x, c², c_x², c⁴, c² c_x, c_x L_k^(d/2)(c²) (k = 1..3),
+    c_x L_k^(1/2)(c_x²) (k = 1..3), c⁶, c_x⁴, c_x c_y. Shared with the GPU engine."""
+    cx = velocity[0, i] * inverse_v0
+    cy = velocity[1, i] * inverse_v0
+    c2 = cx * cx + cy * cy
+    if d == 3:
+        cz = velocity[2, i] * inverse_v0
+        c2 += cz * cz
+    cx2 = cx * cx
+    f1, f2, f3 = _laguerre_123(p_full, c2)
+    g1, g2, g3 = _laguerre_123(0.5, cx2)
+    return (
+        cx,
+        c2,
+        cx2,
+        c2 * c2,
+        c2 * cx,
+        cx * f1,
+        cx * f2,
+        cx * f3,
+        cx * g1,
+        cx * g2,
+        cx * g3,
+        c2 * c2 * c2,
+        cx2 * cx2,
+        cx * cy,
+    )
+
+
+@kernel
 def accumulate_moments(velocity, inverse_v0, sums):
     """Add the particle averages of one snapshot to ``sums`` (N_MOMENTS,).
 
@@ -735,29 +792,23 @@ def accumulate_moments(velocity, inverse_v0, sums):
     p_full = 0.5 * d
     m0 = m1 = m2 = m3 = m4 = m5 = m6 = m7 = m8 = m9 = m10 = m11 = m12 = m13 = 0.0
     for i in range(n):
-        cx = velocity[0, i] * inverse_v0
-        cy = velocity[1, i] * inverse_v0
-        c2 = cx * cx + cy * cy
-        if d == 3:
-            cz = velocity[2, i] * inverse_v0
-            c2 += cz * cz
-        cx2 = cx * cx
-        m0 += cx
-        m1 += c2
-        m2 += cx2
-        m3 += c2 * c2
-        m4 += c2 * cx
-        f1, f2, f3 = _laguerre_123(p_full, c2)
-        m5 += cx * f1
-        m6 += cx * f2
-        m7 += cx * f3
-        g1, g2, g3 = _laguerre_123(0.5, cx2)
-        m8 += cx * g1
-        m9 += cx * g2
-        m10 += cx * g3
-        m11 += c2 * c2 * c2
-        m12 += cx2 * cx2
-        m13 += cx * cy
+        t0, t1, t2, t3, t4, t5, t6, t7, t8, t9, t10, t11, t12, t13 = _particle_moments(
+            velocity, i, d, inverse_v0, p_full
+        )
+        m0 += t0
+        m1 += t1
+        m2 += t2
+        m3 += t3
+        m4 += t4
+        m5 += t5
+        m6 += t6
+        m7 += t7
+        m8 += t8
+        m9 += t9
+        m10 += t10
+        m11 += t11
+        m12 += t12
+        m13 += t13
     sums[0] += m0 / n
     sums[1] += m1 / n
     sums[2] += m2 / n
@@ -772,6 +823,27 @@ def accumulate_moments(velocity, inverse_v0, sums):
     sums[11] += m11 / n
     sums[12] += m12 / n
     sums[13] += m13 / n
+
+
+@kernel
+def _histogram_bins(velocity, i, d, inverse_v0, cx_low, inverse_cx, n_cx, inverse_speed, n_speed):
+    """Particle i's bins in ``accumulate_histograms``: ``(cx_bin, weight, speed_bin)``, with
+    cx_bin in 0..n_cx + 1 (0 below, n_cx + 1 above the range), weight = c_x (3/2 - c_x²)
+    and speed_bin in 0..n_speed (n_speed: beyond the range). Shared with the GPU engine."""
+    cx = velocity[0, i] * inverse_v0
+    c2 = 0.0
+    for k in range(d):
+        c = velocity[k, i] * inverse_v0
+        c2 += c * c
+    position = (cx - cx_low) * inverse_cx
+    if position < 0.0:
+        b = 0
+    elif position >= n_cx:
+        b = n_cx + 1
+    else:
+        b = 1 + int(position)
+    s = int(math.sqrt(c2) * inverse_speed)
+    return b, cx * (1.5 - cx * cx), min(s, n_speed)
 
 
 @kernel
@@ -792,25 +864,35 @@ def accumulate_histograms(
     inverse_cx = 1.0 / cx_width
     inverse_speed = 1.0 / speed_width
     for i in range(n):
-        cx = velocity[0, i] * inverse_v0
-        c2 = 0.0
-        for k in range(d):
-            c = velocity[k, i] * inverse_v0
-            c2 += c * c
-        position = (cx - cx_low) * inverse_cx
-        if position < 0.0:
-            b = 0
-        elif position >= n_cx:
-            b = n_cx + 1
-        else:
-            b = 1 + int(position)
+        b, weight, s = _histogram_bins(
+            velocity, i, d, inverse_v0, cx_low, inverse_cx, n_cx, inverse_speed, n_speed
+        )
         cx_counts[b] += 1
-        cx_weights[b] += cx * (1.5 - cx * cx)
-        b = int(np.sqrt(c2) * inverse_speed)
-        speed_counts[min(b, n_speed)] += 1
+        cx_weights[b] += weight
+        speed_counts[s] += 1
 
 
 # ----------------------------------------------------------------------- composition
+
+
+@kernel
+def _advance_clock(clock, time_step, rate_exponent, log_scale):
+    """Close one step in ``clock`` (see ``advance``) from the step's ``log_scale`` (the
+    logarithm of the thermostat's total rescaling factor). Shared with the GPU engine."""
+    # free-cooling picture: during the step the internal velocities are the physical
+    # ones times sqrt(T0/T_k), T_k the physical temperature at the step's start, so
+    # the step lasts time_step (T0/T_k)^(p/2) of physical time (exactly)
+    clock[2] += time_step * math.exp(-0.5 * rate_exponent * clock[1])
+    clock[1] -= 2.0 * log_scale
+    clock[0] += time_step
+    clock[3] += 1.0
+    # Haff within the step: T^(-p/2) grows linearly, so the cooling rate at the
+    # step's start is (2/p)((T_k/T_k+1)^(p/2) - 1)/time_step (2 ln(scale)/time_step
+    # for p = 0), exact whatever the step
+    if rate_exponent > 0.0:
+        clock[4] += (2.0 / rate_exponent) * math.expm1(rate_exponent * log_scale)
+    else:
+        clock[4] += 2.0 * log_scale
 
 
 @kernel
@@ -865,20 +947,7 @@ def advance(velocity, state, collisions, forcing, sampling, clock, n_steps):
         if status != STATUS_OK:
             return status
         log_scale += second_scale
-        # free-cooling picture: during the step the internal velocities are the physical
-        # ones times sqrt(T0/T_k), T_k the physical temperature at the step's start, so
-        # the step lasts time_step (T0/T_k)^(p/2) of physical time (exactly)
-        clock[2] += time_step * np.exp(-0.5 * rate_exponent * clock[1])
-        clock[1] -= 2.0 * log_scale
-        clock[0] += time_step
-        clock[3] += 1.0
-        # Haff within the step: T^(-p/2) grows linearly, so the cooling rate at the
-        # step's start is (2/p)((T_k/T_k+1)^(p/2) - 1)/time_step (2 ln(scale)/time_step
-        # for p = 0), exact whatever the step
-        if rate_exponent > 0.0:
-            clock[4] += (2.0 / rate_exponent) * np.expm1(rate_exponent * log_scale)
-        else:
-            clock[4] += 2.0 * log_scale
+        _advance_clock(clock, time_step, rate_exponent, log_scale)
         if int(clock[3]) % sample_stride == 0:
             moment_sums[0] += 1.0
             accumulate_moments(velocity, inverse_v0, moment_sums[1:])

@@ -1,0 +1,739 @@
+"""CUDA backend of the homogeneous DSMC engine: ``simulate_homogeneous(backend="cuda")``.
+
+All realizations of a call advance together, on one GPU: the velocities of realization r
+are row r of a ``(R, d, N)`` float64 array (each row the CPU engine's struct of arrays).
+One time step is a short sequence of launches, each covering every realization (the
+realization is the grid's y index; the kernels over particles run THREADS x blocks
+threads per realization, each looping over the particles with the grid's stride): 4
+launches with the Lie splitting, 6 with the Strang splitting, 2 more on a sampled step.
+
+1. **Regrouping** (``_permute``): the particles are copied in a new random order,
+   ``target[p] = source[π(p)]``. π is a bijection of ``0..N-1``: a 4-round Feistel
+   network on the 2h bits of the smallest power of four >= N (round function: the
+   ``lowbias32`` hash of the right half and a round key), walked along its cycle until
+   the image falls below N. The four round keys are ``kinetic.rng.thread_state`` of the
+   realization's stream row and the step, so a step's grouping is a function of (seed,
+   realization, step) only. No sort, no atomics.
+2. **Collisions** (``_collide``, one thread per group): the reordered particles form
+   G = max(1, N // GROUP_SIZE) groups of consecutive indices, N/G of the particles each
+   (GROUP_SIZE = 128 to 2 GROUP_SIZE - 1 of them; a gas of fewer than 2 GROUP_SIZE
+   particles is one group, as on the CPU). For a spatially homogeneous gas a
+   random group is a collision cell, and one thread per group writes only its own
+   particles. Each thread runs the CPU engine's own collision stage
+   (``kernels.collide_range``, compiled for the GPU by ``kinetic.gpu.device_function``:
+   the same NTC or Poisson clock, majorant, acceptance, collision rule and restitution)
+   on its group for one time step, with
+   - the majorant (mean velocity and two largest speeds) from the group's own
+     velocities (``kernels.speed_bounds``), raised on the fly as on the CPU;
+   - the pair coefficient of a group of m particles ``pair_coefficient (N - 1)/(m - 1)``:
+     a particle meets each of its m - 1 group mates at the rate of the whole-box NTC
+     times (N - 1)/(m - 1), so its collision rate is the CPU engine's, whatever m;
+   - NTC: the fraction of a candidate (``carry``) is a fresh uniform number each step
+     (the group changes every step), so the number of candidates is the expected one
+     rounded up or down at random, without bias.
+   Each group has its own xoshiro256+ stream (``thread_state`` of the realization's
+   row after its Maxwellian start and the group index), kept on the device.
+3. **Force and thermostat** (``_force``, ``_finish``): the force step of every particle
+   (``kernels._force_factor``: Euler or exact) with the sums ΣV_k, Σ|V|² per realization,
+   then ``kernels._thermostat_scale`` and the step's clock (``kernels._advance_clock``)
+   on one thread per realization. The thermostat V -> scale (V - u) itself is applied by
+   the next kernel that reads the velocities (the next permutation, force step or
+   snapshot: no pass of its own). Lie splitting: once after the collisions; Strang: with
+   half the field before and after them.
+4. **Observers** on sampled steps (``_observe``): the moments of
+   ``kernels._particle_moments`` and, in the histogram windows, the bins of
+   ``kernels._histogram_bins``.
+
+Determinism: the same call gives the same numbers twice (on one GPU model). Float sums
+are folded in a fixed order: each thread sums a fixed set of particles (stride THREADS
+x blocks), a tree sums the threads of a block (``_block_sums``: the tree of
+``kinetic.gpu.block_reduce_sum`` on several fields at once), one thread sums the blocks
+in index order; the number of blocks per realization depends on N only, so a
+realization's numbers do not depend on the other realizations of the batch. Histogram
+counts are integer atomics. The ``cx_weights`` sums (c_x (3/2 - c_x²) per bin) are
+accumulated as integers in units of WEIGHT_UNIT = 2**-20 per observation (rounded to
+nearest: an error below 5e-7 per observation) by integer atomics, exact and
+order-independent. There are no floating-point atomics.
+
+Not bit-identical with the CPU engine (other grouping, other random numbers, other
+summation order): the two agree statistically (tests/gpu/test_dsmc_cuda.py). Units,
+outputs and parameters are those of :mod:`kinetic.dsmc.homogeneous`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+
+import numpy as np
+from numba.core.errors import NumbaPerformanceWarning
+
+from kinetic import gas as units
+from kinetic import rng
+from kinetic.backends import simulated
+from kinetic.dsmc import kernels
+from kinetic.dsmc.kernels import Collisions
+from kinetic.dsmc.state import (
+    _KERNEL_ID,
+    _STATUS_MESSAGES,
+    HomogeneousSettings,
+    Samples,
+    new_gas,
+)
+from kinetic.gpu import (
+    BLOCK,
+    cuda,
+    device_function,
+    device_zeros,
+    grid,
+    synchronize,
+    to_device,
+)
+
+__all__ = ["GROUP_SIZE", "WEIGHT_UNIT", "run_batch"]
+
+GROUP_SIZE = 128
+"""Fewest particles of a collision group (groups hold GROUP_SIZE to 2 GROUP_SIZE - 1).
+
+Measured on an H100 (N = 2 x 10^4, α = 0.9, δt = 0.1 τ): at ε* = 0.025 (48 realizations,
+two seeds) the cooling rate of groups of 32 is 0.16-0.2 % above the CPU engine's (about 5
+standard errors; the same at δt = 0.05 τ and 0.025 τ, so not a within-step effect), of
+64 0.1 % above, of 128 equal to it within 0.03 %; in the HCS (16 realizations) groups of
+32 are 0.17 % above (2 standard errors), groups of 128 agree. κ', a2 and the c_x
+histogram agree within their errors for all sizes. Groups of 128 cost no more time on
+the GPU (N = 2 x 10^5, 50 realizations: 2.98 against 3.05 ms a step)."""
+
+_SMALL = 32
+"""Threads per block of the kernels with one thread per realization."""
+
+THREADS = 32 if simulated() else BLOCK
+"""Threads per block of the kernels over particles (a power of two: the block sums halve
+it). Under the simulator, where every thread is a Python thread, 32."""
+
+MAX_BLOCKS = 1 if simulated() else 64
+"""Most thread blocks per realization of the kernels over particles, whose threads loop
+over the particles with the grid's stride (the number of blocks depends on N only)."""
+
+WEIGHT_UNIT = 2.0**-20
+"""Resolution of the fixed-point ``cx_weights`` sums (per observation)."""
+
+N_MOMENTS = kernels.N_MOMENTS
+_N_FORCE_SUMS = 4
+
+# settings of a batch, read by the kernels from two small device arrays
+_RESTITUTION, _PAIR_BASE, _DURATION, _TARGET, _RATE_EXPONENT = 0, 1, 2, 3, 4
+_INVERSE_V0, _CX_LOW, _INVERSE_CX, _INVERSE_SPEED = 5, 6, 7, 8
+_KERNEL, _POISSON, _EXACT, _N_CX, _N_SPEED, _N = 0, 1, 2, 3, 4, 5
+
+_collide_range = device_function(kernels.collide_range)
+_speed_bounds = device_function(kernels.speed_bounds)
+_force_factor = device_function(kernels._force_factor)
+_thermostat_scale = device_function(kernels._thermostat_scale)
+_advance_clock = device_function(kernels._advance_clock)
+_particle_moments = device_function(kernels._particle_moments)
+_histogram_bins = device_function(kernels._histogram_bins)
+_uniform = device_function(rng.xoshiro_uniform)
+_thread_state = device_function(rng.thread_state)
+
+_LOW_32 = np.uint64(0xFFFFFFFF)
+_SHIFT_32 = np.uint64(32)
+_SHIFT_16 = np.uint64(16)
+_SHIFT_15 = np.uint64(15)
+_MIX_1 = np.uint64(0x7FEB352D)
+_MIX_2 = np.uint64(0x846CA68B)
+
+
+# ------------------------------------------------------------------------- reductions
+
+
+def _block_sums(shared, values, out):
+    """``out[f]`` = Σ over the THREADS threads of a block of ``values[f]`` (a local array,
+    f < shared.shape[1]), by the fixed tree of ``kinetic.gpu.block_reduce_sum`` run on all
+    fields at once in ``shared[THREADS, fields]``; every thread must call it, thread 0
+    writes ``out``."""
+    t = cuda.threadIdx.x
+    fields = shared.shape[1]
+    for f in range(fields):
+        shared[t, f] = values[f]
+    cuda.syncthreads()
+    stride = THREADS // 2
+    while stride > 0:
+        if t < stride:
+            for f in range(fields):
+                shared[t, f] += shared[t + stride, f]
+        cuda.syncthreads()
+        stride //= 2
+    if t == 0:
+        for f in range(fields):
+            out[f] = shared[0, f]
+
+
+_block_sums = cuda.jit(device=True, inline="always")(_block_sums)
+
+
+# ------------------------------------------------------------------------- regrouping
+
+
+def _hash32(x):
+    """C. Wellons' ``lowbias32`` integer hash of x < 2**32 (held in a uint64): every
+    product is below 2**64, so the arithmetic never wraps (the same numbers on the GPU and
+    under the simulator, where numpy would warn about wrapping)."""
+    x ^= x >> _SHIFT_16
+    x = (x * _MIX_1) & _LOW_32
+    x ^= x >> _SHIFT_15
+    x = (x * _MIX_2) & _LOW_32
+    return x ^ (x >> _SHIFT_16)
+
+
+_hash32 = cuda.jit(device=True, inline="always")(_hash32)
+
+
+def _round(right, key):
+    """Round function of the Feistel network: the half word ``right`` (< 2**32) hashed
+    with the low and then the high half of the 64-bit round key."""
+    return _hash32(_hash32(right ^ (key & _LOW_32)) ^ (key >> _SHIFT_32))
+
+
+_round = cuda.jit(device=True, inline="always")(_round)
+
+
+def _feistel(x, half_bits, mask, k0, k1, k2, k3):
+    """Four Feistel rounds on the 2 half_bits-bit word x (uint64, half_bits <= 32): a
+    bijection of 0..4**half_bits - 1."""
+    left = x >> half_bits
+    right = x & mask
+    left, right = right, left ^ (_round(right, k0) & mask)
+    left, right = right, left ^ (_round(right, k1) & mask)
+    left, right = right, left ^ (_round(right, k2) & mask)
+    left, right = right, left ^ (_round(right, k3) & mask)
+    return (left << half_bits) | right
+
+
+_feistel = cuda.jit(device=True, inline="always")(_feistel)
+
+
+def _permuted_index(p, n, half_bits, k0, k1, k2, k3):
+    """π(p) for p in 0..n-1: the Feistel bijection of the 4**half_bits words, walked along
+    its cycle until the image is below n (a bijection of 0..n-1)."""
+    one = np.uint64(1)
+    mask = (one << half_bits) - one
+    limit = np.uint64(n)
+    x = np.uint64(p)
+    while True:
+        x = _feistel(x, half_bits, mask, k0, k1, k2, k3)
+        if x < limit:
+            return x
+
+
+_permuted_index = cuda.jit(device=True, inline="always")(_permuted_index)
+
+
+@cuda.jit
+def _permute(source, target, keys, half_bits, thermo, rescale):
+    """``target[r, :, p] = source[r, :, π_r(p)]``, π_r the bijection of realization r with
+    the round keys ``keys[r, 4:]`` of the step; with ``rescale`` the pending thermostat is
+    applied on the way (``_thermostat``)."""
+    r = cuda.blockIdx.y
+    n = source.shape[2]
+    k0 = keys[r, 4]
+    k1 = keys[r, 5]
+    k2 = keys[r, 6]
+    k3 = keys[r, 7]
+    for p in range(cuda.blockIdx.x * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
+        i = _permuted_index(p, n, half_bits, k0, k1, k2, k3)
+        for k in range(source.shape[1]):
+            value = source[r, k, i]
+            if rescale:
+                value = _thermostat(value, thermo, r, k)
+            target[r, k, p] = value
+
+
+def _round_keys(keys, r, step):
+    """``keys[r, 4:]`` = the Feistel round keys of ``step``: ``thread_state`` of the
+    realization's stream row ``keys[r, :4]`` and the step."""
+    k0, k1, k2, k3 = _thread_state(keys[r, 0], keys[r, 1], keys[r, 2], keys[r, 3], step)
+    keys[r, 4] = k0
+    keys[r, 5] = k1
+    keys[r, 6] = k2
+    keys[r, 7] = k3
+
+
+_round_keys = cuda.jit(device=True, inline="always")(_round_keys)
+
+
+# ------------------------------------------------------------------------- collisions
+
+
+@cuda.jit
+def _seed_groups(group_keys, states, keys):
+    """``states[r, g] = thread_state(group_keys[r], g)``: one stream per group; and the
+    round keys of step 0."""
+    g = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    r = cuda.blockIdx.y
+    if g >= states.shape[1]:
+        return
+    if g == 0:
+        _round_keys(keys, r, 0)
+    s0, s1, s2, s3 = _thread_state(
+        group_keys[r, 0], group_keys[r, 1], group_keys[r, 2], group_keys[r, 3], g
+    )
+    states[r, g, 0] = s0
+    states[r, g, 1] = s1
+    states[r, g, 2] = s2
+    states[r, g, 3] = s3
+
+
+@cuda.jit
+def _collide(velocity, states, bounds, carry, tally, reals, flags):
+    """One time step of collisions in group g of realization r: ``kernels.collide_range``
+    on the particles ``g N // G .. (g + 1) N // G - 1`` of the regrouped velocities."""
+    g = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    r = cuda.blockIdx.y
+    n_groups = states.shape[1]
+    if g >= n_groups:
+        return
+    n = velocity.shape[2]
+    first = g * n // n_groups
+    last = (g + 1) * n // n_groups
+    v = velocity[r]
+    state = states[r, g]
+    _speed_bounds(v, first, last, bounds[r, g])
+    u, s0, s1, s2, s3 = _uniform(state[0], state[1], state[2], state[3])
+    state[0] = s0
+    state[1] = s1
+    state[2] = s2
+    state[3] = s3
+    carry[r, g, 0] = u
+    if bounds[r, g, v.shape[0]] == 0.0:
+        return  # all the group's particles have one velocity: no collision
+    collisions = Collisions(
+        flags[_KERNEL],
+        reals[_RESTITUTION],
+        reals[_PAIR_BASE] / (last - first - 1),
+        reals[_DURATION],
+        flags[_POISSON] != 0,
+        bounds[r, g],
+        carry[r, g],
+        tally[r, g],
+    )
+    _collide_range(v, first, last, state, collisions)
+
+
+# --------------------------------------------------------------- force and thermostat
+
+
+@cuda.jit
+def _force(velocity, partials, status, field_step, exact, thermo, rescale):
+    """Force step V -> f V of every particle (a = ``field_step``; after the pending
+    thermostat if ``rescale``), and the per-block sums ``partials[r, b, :4]`` = ΣV_x,
+    ΣV_y, ΣV_z, Σ|V|² after it; a failed step raises ``status[r]`` to its STATUS_* code."""
+    shared = cuda.shared.array((THREADS, _N_FORCE_SUMS), np.float64)
+    r = cuda.blockIdx.y
+    b = cuda.blockIdx.x
+    d = velocity.shape[1]
+    n = velocity.shape[2]
+    sum0 = 0.0
+    sum1 = 0.0
+    sum2 = 0.0
+    total_sq = 0.0
+    failed = 0
+    for i in range(b * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
+        v0 = velocity[r, 0, i]
+        v1 = velocity[r, 1, i]
+        v2 = velocity[r, 2, i] if d == 3 else 0.0
+        if rescale:
+            v0 = _thermostat(v0, thermo, r, 0)
+            v1 = _thermostat(v1, thermo, r, 1)
+            v2 = _thermostat(v2, thermo, r, 2) if d == 3 else 0.0
+        if field_step != 0.0:
+            code, f = _force_factor(field_step * v0, exact)
+            if code != 0:
+                failed = code
+            v0 *= f
+            v1 *= f
+            v2 *= f
+        if rescale or field_step != 0.0:
+            velocity[r, 0, i] = v0
+            velocity[r, 1, i] = v1
+            if d == 3:
+                velocity[r, 2, i] = v2
+        sum0 += v0
+        sum1 += v1
+        sum2 += v2
+        total_sq += v0 * v0 + v1 * v1 + v2 * v2
+    if failed != 0:
+        cuda.atomic.max(status, r, failed)
+    sums = cuda.local.array(_N_FORCE_SUMS, np.float64)
+    sums[0] = sum0
+    sums[1] = sum1
+    sums[2] = sum2
+    sums[3] = total_sq
+    _block_sums(shared, sums, partials[r, b])
+
+
+@cuda.jit
+def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step, keys):
+    """One thread per realization: the thermostat's mean velocity and scale
+    (``thermo[r, :4]`` = u, scale) from the block sums; ``thermo[r, 4]`` collects the
+    step's ln(scale); at the ``end_of_step`` the step is closed in ``clock[r]`` and the
+    next step's round keys are drawn (``_round_keys``)."""
+    r = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    if r >= partials.shape[0]:
+        return
+    sum0 = 0.0
+    sum1 = 0.0
+    sum2 = 0.0
+    total_sq = 0.0
+    for b in range(n_blocks):
+        sum0 += partials[r, b, 0]
+        sum1 += partials[r, b, 1]
+        sum2 += partials[r, b, 2]
+        total_sq += partials[r, b, 3]
+    code, u0, u1, u2, scale, log_scale = _thermostat_scale(
+        sum0, sum1, sum2, total_sq, flags[_N], reals[_TARGET]
+    )
+    if code != 0:
+        cuda.atomic.max(status, r, code)
+    if status[r] != 0:
+        u0 = 0.0
+        u1 = 0.0
+        u2 = 0.0
+        scale = 1.0
+        log_scale = 0.0
+    thermo[r, 0] = u0
+    thermo[r, 1] = u1
+    thermo[r, 2] = u2
+    thermo[r, 3] = scale
+    log_scale += thermo[r, 4]
+    if end_of_step:
+        thermo[r, 4] = 0.0
+        _advance_clock(clock[r], reals[_DURATION], reals[_RATE_EXPONENT], log_scale)
+        _round_keys(keys, r, np.int64(clock[r, 3]))
+    else:
+        thermo[r, 4] = log_scale
+
+
+def _thermostat(value, thermo, r, k):
+    """Component k of the thermostat of realization r: scale (V_k - u_k) (Eq. 4.2)."""
+    return thermo[r, 3] * (value - thermo[r, k])
+
+
+_thermostat = cuda.jit(device=True, inline="always")(_thermostat)
+
+
+# -------------------------------------------------------------------------- observers
+
+
+@cuda.jit
+def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, rescale):
+    """One snapshot (after the pending thermostat if ``rescale``): per-block sums of the
+    N_MOMENTS particle moments in ``partials`` and, if ``histogram``, the c_x and |c|
+    histograms ``histograms`` = (cx_counts, cx_weights, speed_counts) (integer atomics;
+    the c_x weights in units of WEIGHT_UNIT)."""
+    cx_counts, cx_weights, speed_counts = histograms
+    shared = cuda.shared.array((THREADS, N_MOMENTS), np.float64)
+    sums = cuda.local.array(N_MOMENTS, np.float64)
+    r = cuda.blockIdx.y
+    b = cuda.blockIdx.x
+    d = velocity.shape[1]
+    n = velocity.shape[2]
+    inverse_v0 = reals[_INVERSE_V0]
+    p_full = 0.5 * d
+    for f in range(N_MOMENTS):
+        sums[f] = 0.0
+    v = velocity[r]
+    for i in range(b * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
+        if rescale:
+            for k in range(d):
+                v[k, i] = _thermostat(v[k, i], thermo, r, k)
+        terms = _particle_moments(v, i, d, inverse_v0, p_full)
+        for f in range(N_MOMENTS):
+            sums[f] += terms[f]
+        if histogram:
+            cx_bin, weight, speed_bin = _histogram_bins(
+                v,
+                i,
+                d,
+                inverse_v0,
+                reals[_CX_LOW],
+                reals[_INVERSE_CX],
+                flags[_N_CX],
+                reals[_INVERSE_SPEED],
+                flags[_N_SPEED],
+            )
+            cuda.atomic.add(cx_counts, (r, cx_bin), 1)
+            cuda.atomic.add(cx_weights, (r, cx_bin), _fixed_point(weight))
+            cuda.atomic.add(speed_counts, (r, speed_bin), 1)
+    _block_sums(shared, sums, partials[r, b])
+
+
+@cuda.jit
+def _fold_moments(partials, n_blocks, moment_sums, inverse_n):
+    """One thread per realization: ``moment_sums[r] += inverse_n Σ_b partials[r, b]``, the
+    blocks summed in index order."""
+    r = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    if r >= partials.shape[0]:
+        return
+    for f in range(N_MOMENTS):
+        total = 0.0
+        for b in range(n_blocks):
+            total += partials[r, b, f]
+        moment_sums[r, f] += inverse_n * total
+
+
+def _fixed_point(weight):
+    """``weight`` in units of WEIGHT_UNIT, rounded to the nearest integer (int64)."""
+    return np.int64(math.floor(weight * (1.0 / WEIGHT_UNIT) + 0.5))
+
+
+_fixed_point = cuda.jit(device=True, inline="always")(_fixed_point)
+
+
+# ------------------------------------------------------------------------------ host
+
+
+class _Batch:
+    """Device state of R realizations and the launches of one step."""
+
+    def __init__(self, settings: HomogeneousSettings, samples: Samples, streams: np.ndarray):
+        d, n = settings.dimension, settings.n_particles
+        count = streams.shape[0]
+        velocity = np.empty((count, d, n))
+        group_keys = np.empty((count, 4), dtype=np.uint64)
+        for r in range(count):
+            gas = new_gas(settings, streams[r])  # the CPU engine's Maxwellian start
+            velocity[r] = gas.velocity
+            group_keys[r] = gas.rng
+        self.settings = settings
+        self.count = count
+        self.n_groups = max(1, n // GROUP_SIZE)
+        self.n_blocks = min(grid(n, THREADS), MAX_BLOCKS)
+        self.half_bits = np.uint64(max(1, math.ceil(math.log2(n) / 2)))
+        self.velocity = to_device(velocity)
+        self.spare = device_zeros(velocity.shape)
+        keys = np.zeros((count, 8), dtype=np.uint64)
+        keys[:, :4] = streams
+        self.keys = to_device(keys)
+        self.states = device_zeros((count, self.n_groups, 4), np.uint64)
+        _seed_groups[(grid(self.n_groups, _SMALL), count), _SMALL](
+            to_device(group_keys), self.states, self.keys
+        )
+        self.bounds = device_zeros((count, self.n_groups, d + 2))
+        self.carry = device_zeros((count, self.n_groups, 1))
+        self.tally = device_zeros((count, self.n_groups, 4), np.int64)
+        self.partials = device_zeros((count, self.n_blocks, N_MOMENTS))
+        self.thermo = device_zeros((count, 5))
+        self.clock = device_zeros((count, 5))
+        self.status = device_zeros(count, np.int64)
+        self.moment_sums = device_zeros((count, N_MOMENTS))
+        self.histograms = (
+            device_zeros((count, samples.n_cx_bins + 2), np.int64),
+            device_zeros((count, samples.n_cx_bins + 2), np.int64),
+            device_zeros((count, samples.n_speed_bins + 1), np.int64),
+        )
+        self.reals, self.flags = _settings_arrays(settings, samples)
+        self.pending = False
+
+    def step(self, sample: bool, histogram: bool) -> None:
+        """Launch one time step for every realization: 4 launches
+        (Lie splitting) or 6 (Strang), and 2 more on a sampled step."""
+        s = self.settings
+        strang = s.splitting == "strang"
+        field_step = 0.5 * s.half_field_step if strang else s.half_field_step
+        if strang:
+            self._force_and_thermostat(field_step)
+            self._finish(end_of_step=False)
+        _permute[(self.n_blocks, self.count), THREADS](
+            self.velocity,
+            self.spare,
+            self.keys,
+            self.half_bits,
+            self.thermo,
+            self.pending,
+        )
+        self.pending = False
+        self.velocity, self.spare = self.spare, self.velocity
+        groups = min(BLOCK, self.n_groups)
+        _collide[(grid(self.n_groups, groups), self.count), groups](
+            self.velocity,
+            self.states,
+            self.bounds,
+            self.carry,
+            self.tally,
+            self.reals,
+            self.flags,
+        )
+        self._force_and_thermostat(field_step)
+        self._finish(end_of_step=True)
+        if sample:
+            _observe[(self.n_blocks, self.count), THREADS](
+                self.velocity,
+                self.partials,
+                self.histograms,
+                self.reals,
+                self.flags,
+                histogram,
+                self.thermo,
+                self.pending,
+            )
+            self.pending = False
+            _fold_moments[grid(self.count, _SMALL), _SMALL](
+                self.partials, self.n_blocks, self.moment_sums, 1.0 / s.n_particles
+            )
+
+    def _force_and_thermostat(self, field_step: float) -> None:
+        """The force step and the sums of the thermostat (the pending thermostat first)."""
+        exact = 1 if self.settings.force_step == "exact" else 0
+        _force[(self.n_blocks, self.count), THREADS](
+            self.velocity,
+            self.partials,
+            self.status,
+            field_step,
+            exact,
+            self.thermo,
+            self.pending,
+        )
+        self.pending = False
+
+    def _finish(self, end_of_step: bool) -> None:
+        """The thermostat's u and scale (applied later: ``pending``) and the clock."""
+        _finish[grid(self.count, _SMALL), _SMALL](
+            self.partials,
+            self.n_blocks,
+            self.thermo,
+            self.clock,
+            self.status,
+            self.reals,
+            self.flags,
+            end_of_step,
+            self.keys,
+        )
+        self.pending = True
+
+    def check(self, step: int) -> None:
+        """RuntimeError if a realization's force step failed or a bound was exceeded."""
+        status = self.status.copy_to_host()
+        failed = np.flatnonzero(status)
+        if failed.size:
+            s = self.settings
+            per_unit = s.reduced_field * s.time_step / 2.0
+            message = _STATUS_MESSAGES[int(status[failed[0]])].format(
+                limit=-1.0 / per_unit if per_unit else -math.inf,
+                euler=kernels.EULER_LIMIT / per_unit if per_unit else math.inf,
+            )
+            raise RuntimeError(
+                f"realization {failed[0]} (of the batch), by step {step} (t = "
+                f"{step * s.time_step:.6g} τ) of the run with {s.parameters()} on the GPU: "
+                f"{message}; reduce time_step or reduced_field"
+            )
+
+
+def _settings_arrays(settings: HomogeneousSettings, samples: Samples):
+    """The device arrays ``reals`` (float64) and ``flags`` (int64) the kernels read."""
+    s = settings
+    reals = np.zeros(9)
+    reals[_RESTITUTION] = s.restitution
+    reals[_PAIR_BASE] = s.pair_coefficient * (s.n_particles - 1)
+    reals[_DURATION] = s.time_step * s.tau
+    reals[_TARGET] = s.target_energy
+    reals[_RATE_EXPONENT] = units.rate_exponent(s.kernel)
+    reals[_INVERSE_V0] = 1.0 / units.thermal_speed(1.0)
+    reals[_CX_LOW] = -samples.cx_max
+    reals[_INVERSE_CX] = 1.0 / (2.0 * samples.cx_max / samples.n_cx_bins)
+    reals[_INVERSE_SPEED] = 1.0 / (samples.speed_max / samples.n_speed_bins)
+    flags = np.zeros(6, dtype=np.int64)
+    flags[_KERNEL] = _KERNEL_ID[s.kernel]
+    flags[_POISSON] = s.selection == "poisson"
+    flags[_EXACT] = s.force_step == "exact"
+    flags[_N_CX] = samples.n_cx_bins
+    flags[_N_SPEED] = samples.n_speed_bins
+    flags[_N] = s.n_particles
+    return to_device(reals), to_device(flags)
+
+
+def run_batch(
+    settings: HomogeneousSettings,
+    samples: Samples,
+    streams: np.ndarray,
+    n_windows: int,
+    steps_per_window: int,
+    first_histogram_window: int,
+    out: dict[str, np.ndarray],
+    progress=None,
+) -> None:
+    """Run the realizations of ``streams`` (one row each) together on the GPU.
+
+    Fills ``out``, the per-window and per-realization arrays of ``simulate_homogeneous``
+    (``homogeneous._empty_results``); ``cpu_seconds`` is the wall time of the run
+    (launches and the GPU), compilation excluded, divided by the number of
+    realizations. ``progress`` (a ``Progress`` over realizations x windows) is updated
+    once per window.
+    """
+    count = streams.shape[0]
+    _compile_outside_the_timer(settings, samples)
+    batch = _Batch(settings, samples, streams)
+    zeros = np.zeros((count, N_MOMENTS))
+    synchronize()
+    start = time.perf_counter()
+    step = 0
+    histogram_snapshots = 0
+    for w in range(n_windows):
+        batch.moment_sums.copy_to_device(zeros)
+        histogram = w >= first_histogram_window
+        count_w = 0
+        for _ in range(steps_per_window):
+            sample = (step + 1) % samples.stride == 0
+            batch.step(sample, histogram)
+            count_w += sample
+            step += 1
+        batch.check(step)
+        sums = batch.moment_sums.copy_to_host()
+        clock = batch.clock.copy_to_host()
+        accepted = batch.tally.copy_to_host()[:, :, kernels.TALLY_ACCEPTED].sum(axis=1)
+        out["snapshots"][:, w] = count_w
+        if count_w:
+            out["moments"][:, w] = sums / count_w
+        if histogram:
+            histogram_snapshots += count_w
+        out["log_temperature"][:, w] = clock[:, 1]
+        out["cooling_sum"][:, w] = clock[:, 4]
+        out["time_free"][:, w] = clock[:, 2] / settings.tau
+        out["collisions_per_particle"][:, w] = 2.0 * accepted / settings.n_particles
+        if progress is not None:
+            progress.update(count)
+    tally = batch.tally.copy_to_host().sum(axis=1)
+    synchronize()
+    elapsed = time.perf_counter() - start
+    if tally[:, kernels.TALLY_EXCEEDED].any():
+        raise RuntimeError(
+            "internal error: the collision bound was exceeded "
+            f"{tally[:, kernels.TALLY_EXCEEDED].sum()} times although it is kept rigorous"
+        )
+    cx_counts, cx_weights, speed_counts = (h.copy_to_host() for h in batch.histograms)
+    cx_weights = cx_weights * WEIGHT_UNIT
+    out["cx_counts"][:] = cx_counts[:, 1:-1]
+    out["cx_outside"][:] = cx_counts[:, [0, -1]]
+    out["cx_weights"][:] = cx_weights[:, 1:-1]
+    out["cx_outside_weights"][:] = cx_weights[:, [0, -1]]
+    out["speed_counts"][:] = speed_counts[:, :-1]
+    out["speed_overflow"][:] = speed_counts[:, -1]
+    out["observations"][:] = histogram_snapshots * settings.n_particles
+    out["collisions"][:] = tally[:, kernels.TALLY_ACCEPTED]
+    out["candidates"][:] = tally[:, kernels.TALLY_CANDIDATES]
+    out["bound_raises"][:] = tally[:, kernels.TALLY_RAISED]
+    out["steps"][:] = step
+    out["cpu_seconds"][:] = elapsed / count
+
+
+def _compile_outside_the_timer(settings: HomogeneousSettings, samples: Samples) -> None:
+    """One sampled step of a tiny batch with the same argument types, so that the timed
+    run does not include numba-cuda's compilation (skipped under the simulator)."""
+    if simulated():
+        return
+    tiny = HomogeneousSettings(**{**settings.parameters_init(), "n_particles": 4})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NumbaPerformanceWarning)  # a grid of one block
+        batch = _Batch(tiny, samples, np.array([[1, 2, 3, 4]], dtype=np.uint64))
+        batch.step(sample=True, histogram=True)
+        synchronize()

@@ -1,0 +1,219 @@
+"""The CUDA backend of the homogeneous DSMC engine (``simulate_homogeneous(backend="cuda")``,
+kinetic.dsmc.gpu) against the CPU engine and theory.
+
+Runs under numba's CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``, set here unless the
+environment says otherwise: with ``NUMBA_ENABLE_CUDASIM=0`` on a GPU machine the same
+tests run on the GPU). The simulator runs every GPU thread as a Python thread, so the
+systems are tiny (N = 128, 2 realizations, a few dozen steps) and the physics checks are
+coarse: their tolerances are a few combined standard errors of the window averages.
+"""
+
+import os
+
+os.environ.setdefault("NUMBA_ENABLE_CUDASIM", "1")
+
+import sys
+from math import hypot
+
+import numpy as np
+import pytest
+
+pytest.importorskip("numba.cuda")
+
+from kinetic import backends
+from kinetic.analysis.statistics import mean_and_sem
+from kinetic.dsmc import simulate_homogeneous
+from kinetic.theory import montanero2007 as theory
+
+pytestmark = [
+    pytest.mark.cuda,
+    pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning"),
+    pytest.mark.filterwarnings("ignore::numba.core.errors.NumbaPerformanceWarning"),
+]
+
+TINY = {
+    "n_particles": 128,
+    "n_realizations": 2,
+    "time_step": 0.2,
+    "sample_interval": 0.4,
+    "duration": 0.8,
+    "sample_stride": 1,
+    "histogram_start": 0.4,
+}
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _groups_of_32():
+    """Under the simulator, groups of 32 (instead of GROUP_SIZE = 128): four collision
+    groups at N = 128."""
+    from kinetic.dsmc import gpu
+
+    size = gpu.GROUP_SIZE
+    if backends.simulated():
+        gpu.GROUP_SIZE = 32
+    yield
+    gpu.GROUP_SIZE = size
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _short_switch_interval():
+    """The simulator's block manager polls its threads: with Python's default 5 ms GIL
+    switch interval every ``syncthreads`` costs tens of milliseconds."""
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1e-4)
+    yield
+    sys.setswitchinterval(interval)
+
+
+def _run(backend, **overrides):
+    return simulate_homogeneous(
+        **{**TINY, "restitution": 0.9, "seed": 5, **overrides}, backend=backend
+    )
+
+
+@pytest.fixture(scope="module")
+def forced_runs():
+    """The same forced run (Strang splitting, exact force step) twice on the GPU, once on
+    the CPU."""
+    options = {"reduced_field": 0.1, "splitting": "strang", "force_step": "exact"}
+    return _run("cuda", **options), _run("cuda", **options), _run("cpu", **options)
+
+
+def test_unknown_backend_is_rejected_before_any_work(monkeypatch):
+    def no_work(*args, **kwargs):
+        raise AssertionError("work started")
+
+    monkeypatch.setattr("kinetic.dsmc.homogeneous.realization_streams", no_work)
+    with pytest.raises(ValueError, match="backend must be one of"):
+        _run("gpu")
+
+
+def test_cuda_without_a_gpu_stops_before_any_work(monkeypatch):
+    from kinetic import gpu
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("work started")
+
+    monkeypatch.setattr(gpu, "simulated", lambda: False)
+    monkeypatch.setattr(gpu.cuda, "is_available", lambda: False)
+    monkeypatch.setattr("kinetic.dsmc.homogeneous._empty_results", no_work)
+    with pytest.raises(backends.BackendUnavailable, match="no usable NVIDIA GPU"):
+        _run("cuda")
+
+
+def test_dataset_has_the_cpu_layout(forced_runs):
+    cuda, _, cpu = forced_runs
+    assert set(cuda.data_vars) == set(cpu.data_vars)
+    assert set(cuda.coords) == set(cpu.coords)
+    for name in list(cpu.data_vars) + list(cpu.coords):
+        assert cuda[name].dims == cpu[name].dims, name
+        assert cuda[name].shape == cpu[name].shape, name
+        assert cuda[name].dtype == cpu[name].dtype, name
+        assert cuda[name].attrs["units"] == cpu[name].attrs["units"], name
+    for name in cpu.coords:
+        np.testing.assert_array_equal(cuda[name].values, cpu[name].values)
+    assert "per realization" in cuda.cpu_seconds.attrs["long_name"]
+    assert cuda.attrs["backend"] == "cuda" and cpu.attrs["backend"] == "cpu"
+    assert cuda.attrs["device"] == backends.require("cuda")
+    assert cpu.attrs["device"] == "cpu"
+    for key, value in cpu.attrs.items():
+        if key not in ("backend", "device", "git_revision"):
+            assert cuda.attrs[key] == value, key
+
+
+def test_counts_are_consistent(forced_runs):
+    run = forced_runs[0]
+    n = TINY["n_particles"]
+    assert np.all(run.steps == 4)
+    np.testing.assert_array_equal(run.snapshots, 2)
+    np.testing.assert_array_equal(run.histogram_observations, 2 * n)
+    counted = run.cx_counts.sum("cx") + run.cx_outside.sum("side")
+    np.testing.assert_array_equal(counted, run.histogram_observations)
+    np.testing.assert_array_equal(
+        run.speed_counts.sum("speed") + run.speed_overflow, run.histogram_observations
+    )
+    assert np.all(run.collisions > 0) and np.all(run.candidates >= run.collisions)
+    cumulative = run.collisions_per_particle.isel(time=-1).values
+    np.testing.assert_allclose(cumulative, 2 * run.collisions.values / n)
+    # the thermostat holds the energy and zero momentum: <c²> = d/2, <c_x> = 0
+    moments = run.moments.mean("time")
+    np.testing.assert_allclose(moments.sel(moment="c2"), 1.5, rtol=1e-12)
+    np.testing.assert_allclose(moments.sel(moment="cx"), 0.0, atol=1e-12)
+    # the fixed-point weights of β1 are the float sums to 2**-21 per observation
+    weights = run.cx_weights.sum("cx") + run.cx_outside_weights.sum("side")
+    assert np.all(np.isfinite(weights))
+
+
+def test_same_seed_gives_identical_datasets(forced_runs):
+    first, second, _ = forced_runs
+    for name in first.data_vars:
+        if name != "cpu_seconds":
+            np.testing.assert_array_equal(first[name].values, second[name].values, err_msg=name)
+    other = _run("cuda", seed=6, duration=0.4, sample_interval=0.4, histogram_start=0.0)
+    assert not np.array_equal(other.moments.values, first.moments.values[:, :1])
+
+
+def test_elastic_collisions_conserve_energy_and_momentum():
+    run = _run(
+        "cuda", restitution=1.0, time_step=0.4, duration=1.6, sample_interval=0.8, sample_stride=2
+    )
+    assert np.all(run.collisions > 30)
+    # α = 1, zero field: the thermostat has nothing to restore but rounding
+    assert np.max(np.abs(run.thermostat_rate.values)) < 1e-12
+    assert np.max(np.abs(run.cooling_rate.values)) < 1e-12
+    np.testing.assert_allclose(run.moments.sel(moment="cx"), 0.0, atol=1e-12)
+
+
+def _window_statistics(run, name):
+    """Mean and standard error of the per-realization, per-window values of ``name``
+    (windows of a tiny system decorrelate within about a collision time)."""
+    return mean_and_sem(run[name].values.ravel())
+
+
+def test_hcs_cooling_rate_and_a2_match_the_cpu_engine_and_theory():
+    alpha = 0.5
+    # zero field: the thermostat only rescales, which commutes with the collisions, so
+    # even δt = 0.4 τ has no splitting error
+    options = {"restitution": alpha, "time_step": 0.4, "duration": 4.0, "sample_interval": 0.8}
+    cuda = _run("cuda", **options)
+    cpu = _run("cpu", **options)
+    zeta, zeta_sem = _window_statistics(cuda, "cooling_rate")
+    zeta_cpu, zeta_cpu_sem = _window_statistics(cpu, "cooling_rate")
+    a2, a2_sem = _window_statistics(cuda, "a2")
+    a2_cpu, a2_cpu_sem = _window_statistics(cpu, "a2")
+    assert abs(zeta - zeta_cpu) < 4 * hypot(zeta_sem, zeta_cpu_sem)
+    assert abs(a2 - a2_cpu) < 4 * hypot(a2_sem, a2_cpu_sem)
+    # Eq. 2.14 holds for N -> oo: the CPU engine's ζ at N = 128 is about 5 % above it
+    expected = float(theory.reduced_cooling_rate(alpha) * theory.nu0_tau())
+    assert abs(zeta - expected) < 4 * zeta_sem + 0.06 * expected
+    # a2 relaxes from 0 (the Gaussian start) within a collision time; the energy shell
+    # of N particles biases it by about -2/(d N)
+    finite_n = 2 / (3 * TINY["n_particles"])
+    assert abs(a2 - float(theory.hcs_a2(alpha))) < 4 * a2_sem + finite_n
+
+
+@pytest.mark.skipif(backends.simulated(), reason="needs a GPU: too slow under the simulator")
+def test_kappa_prime_matches_the_cpu_engine():
+    """montanero2007's κ'/κ0 (heat flux under the field, Strang splitting) at α = 0.9 from
+    realization averages, GPU against CPU (runs on a GPU only)."""
+    options = {
+        "n_particles": 5000,
+        "n_realizations": 16,
+        "restitution": 0.9,
+        "reduced_field": 0.05,
+        "splitting": "strang",
+        "force_step": "exact",
+        "time_step": 0.1,
+        "duration": 20.0,
+        "sample_interval": 1.0,
+        "sample_stride": 1,
+        "histogram_start": 5.0,
+    }
+    ratios = {}
+    for backend, seed in (("cuda", 21), ("cpu", 22)):
+        run = simulate_homogeneous(**options, seed=seed, backend=backend)
+        flux = run.heat_flux.where(run.time > 5, drop=True).mean("time").values
+        ratios[backend] = mean_and_sem(theory.kappa_prime_ratio_from_heat_flux(flux, 0.05))
+    (gpu, gpu_sem), (cpu, cpu_sem) = ratios["cuda"], ratios["cpu"]
+    assert gpu_sem < 0.05
+    assert abs(gpu - cpu) < 4 * hypot(gpu_sem, cpu_sem)

@@ -1,0 +1,83 @@
+"""The CUDA kernels of kinetic.dsmc.gpu and kinetic.cloning.gpu compile for a Hopper GPU
+(sm_90), checked without a GPU: ``numba.cuda.compile_ptx`` of every kernel with the
+argument types the engine launches it with. The simulator (``NUMBA_ENABLE_CUDASIM=1``)
+runs the kernels as Python and checks none of the typing, so this runs only outside it,
+where the CUDA toolkit (NVVM, NVRTC) is installed, e.g.::
+
+    NUMBA_ENABLE_CUDASIM=0 python -m pytest -o addopts="" tests/gpu/test_kernels_compile.py
+"""
+
+import pytest
+
+pytest.importorskip("numba.cuda")
+
+from kinetic import backends
+
+pytestmark = [
+    pytest.mark.cuda,
+    pytest.mark.skipif(backends.simulated(), reason="the CUDA simulator compiles nothing"),
+]
+
+
+def _signatures():
+    from numba import boolean, float64, int64, types, uint64
+    from numba.core.types import UniTuple
+
+    f3, f1 = float64[:, :, ::1], float64[::1]
+    i2 = int64[:, ::1]
+    u3, u2 = uint64[:, :, ::1], uint64[:, ::1]
+    a2, a1 = types.Array(float64, 2, "A"), types.Array(float64, 1, "A")
+    observers = types.Tuple((f1, float64, i2, float64, a1, boolean))
+    cloning = {
+        "_seed": (u3, f3, u2),
+        "_advance": (f3, u3, i2, i2, f3, int64, float64, float64),
+        "_weigh": (i2, i2, float64, i2, i2, f3),
+        "_close_interval": (i2, i2, u2, f3, a2, float64, UniTuple(float64, 2)),
+        "_select": (f3, f3, i2, i2, i2, u2, f3, observers),
+        "_fold_snapshot": (f3, a2, float64),
+    }
+    return {("cloning", name): signature for name, signature in cloning.items()} | {
+        ("dsmc", name): signature for name, signature in _dsmc_signatures().items()
+    }
+
+
+def _dsmc_signatures():
+    from numba import boolean, float64, int64, uint64
+    from numba.core.types import UniTuple
+
+    f3, f2, f1 = float64[:, :, ::1], float64[:, ::1], float64[::1]
+    i3, i2, i1 = int64[:, :, ::1], int64[:, ::1], int64[::1]
+    u3, u2 = uint64[:, :, ::1], uint64[:, ::1]
+    return {
+        "_permute": (f3, f3, u2, uint64, f2, boolean),
+        "_seed_groups": (u2, u3, u2),
+        "_collide": (f3, u3, f3, f3, i3, f1, i1),
+        "_force": (f3, f3, i1, float64, int64, f2, boolean),
+        "_finish": (f3, int64, f2, f2, i1, f1, i1, boolean, u2),
+        "_observe": (f3, f3, UniTuple(i2, 3), f1, i1, boolean, f2, boolean),
+        "_fold_moments": (f3, int64, f2, float64),
+    }
+
+
+@pytest.fixture(scope="module")
+def compile_ptx():
+    from numba import cuda, float64
+
+    def probe(x):
+        x[0] = 1.0
+
+    try:
+        cuda.compile_ptx(probe, (float64[::1],), cc=(9, 0))
+    except Exception as error:  # any missing piece of the toolkit
+        pytest.skip(f"no CUDA toolkit to compile with: {error}")
+    return cuda.compile_ptx
+
+
+@pytest.mark.parametrize(("engine", "name"), sorted(_signatures()))
+def test_kernel_compiles_for_sm90(compile_ptx, engine, name):
+    import importlib
+
+    module = importlib.import_module(f"kinetic.{engine}.gpu")
+    signature = _signatures()[(engine, name)]
+    ptx, _ = compile_ptx(getattr(module, name).py_func, signature, cc=(9, 0))
+    assert ".entry" in ptx
