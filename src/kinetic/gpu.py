@@ -48,7 +48,6 @@ __all__ = [
     "device_name",
     "fold_partials",
     "grid",
-    "launcher",
     "require",
     "synchronize",
     "to_device",
@@ -112,30 +111,6 @@ def device_function(function):
     twin = cuda.jit(device=True, inline="always")(source)
     _TWINS[py_func] = twin
     return twin
-
-
-def launcher(kernel, griddim, blockdim):
-    """``kernel[griddim, blockdim]`` for a loop that launches it many times with arguments
-    of the same types: the first call compiles and launches through numba's dispatcher;
-    later calls go straight to the compiled kernel's ``launch``, skipping the per-call
-    type inference of every argument and the launch-configuration bookkeeping (on an
-    H100 about 90 µs of Python per launch through the dispatcher, which bounds a control
-    interval of the cloning engine at small populations). The argument types must not
-    change between calls. Under the simulator this is the plain configured kernel."""
-    configured = kernel[griddim, blockdim]
-    if simulated():
-        return configured
-    compiled = []
-
-    def launch(*args):
-        if compiled:
-            compiled[0].launch(args, griddim, blockdim, 0, 0)
-            return
-        configured(*args)
-        types_ = tuple(kernel.typeof_pyval(value) for value in args)
-        compiled.append(kernel.overloads[types_])
-
-    return launch
 
 
 def grid(n: int, block: int = BLOCK) -> int:

@@ -64,7 +64,6 @@ from kinetic.gpu import (
     cuda,
     device_function,
     grid,
-    launcher,
     to_device,
 )
 from kinetic.rng import (
@@ -406,9 +405,8 @@ def run(p, durations, n_transient, rows, progress):
     table = to_device(rate_table(p["kernel"], d))
     code = kernels.HARD_SPHERES if p["kernel"] == "hard_spheres" else kernels.MAXWELL
     rate_a = kernels.channel_a_rate(d)
-    advance, weigh, select = (launcher(k, *launch) for k in (_advance, _weigh, _select))
-    close = launcher(_close_interval, count, BLOCK)
-    fold = launcher(_fold_snapshot, count, BLOCK)
+    advance, weigh, select = _advance[launch], _weigh[launch], _select[launch]
+    close, fold = _close_interval[count, BLOCK], _fold_snapshot[count, BLOCK]
     snapshots = 0
     for b, duration in enumerate(durations):
         steps = max(1, math.ceil(duration / p["control_interval"] - 1e-9))
