@@ -283,13 +283,20 @@ DSMC_BYTES_PER_PARTICLE = 100.0
 three velocity components), with histograms and scratch, rounded up."""
 
 
-DSMC_GPU_SECONDS_PER_STEP = 1.0e-3
+DSMC_GPU_SECONDS_PER_STEP = 5.0e-4
 """``cuda`` backend, one H100: wall seconds of one time step's launches when the GPU has
-little to do (bench cuda)."""
+little to do (bench cuda: 0.52 ms a step at N = 2 × 10⁵, one realization, Strang, sampled
+every step)."""
 
-DSMC_GPU_PARTICLE_STEPS_PER_SECOND = 2.0e9
-"""``cuda`` backend, one H100: particle-steps per second once the launches are full
-(bench cuda, N = 2 × 10⁵ × 50 realizations)."""
+DSMC_GPU_SECONDS_PER_PARTICLE_STEP = 1.5e-10
+"""``cuda`` backend, one H100: seconds per particle-step once the launches are full, Lie
+splitting, snapshots every 10 steps (1.5 ms a step at N = 2 × 10⁵ × 50 realizations,
+montanero2007's δt = 0.003 τ, Euler force); times DSMC_STRANG_FACTOR for Strang."""
+
+DSMC_GPU_SECONDS_PER_SAMPLED_PARTICLE = 2.8e-10
+"""``cuda`` backend, one H100: seconds per particle of a snapshot (moments, histograms):
+bench cuda's 1.8-2.1 × 10⁹ particle-steps/s with Strang and a snapshot every step, less
+the step itself."""
 
 DSMC_GPU_BYTES_PER_PARTICLE = 80.0
 """``cuda`` backend: velocities in two buffers, the permutation and its scratch."""
@@ -313,7 +320,10 @@ def dsmc_homogeneous(
     particle_steps = steps * n_particles
     if backend == "cuda":
         work = realizations * particle_steps
-        seconds = steps * DSMC_GPU_SECONDS_PER_STEP + work / DSMC_GPU_PARTICLE_STEPS_PER_SECOND
+        per_particle_step = DSMC_GPU_SECONDS_PER_PARTICLE_STEP * (
+            DSMC_STRANG_FACTOR if splitting == "strang" else 1.0
+        ) + DSMC_GPU_SECONDS_PER_SAMPLED_PARTICLE / max(1, sample_stride)
+        seconds = steps * DSMC_GPU_SECONDS_PER_STEP + work * per_particle_step
         memory = _mb(DSMC_GPU_BYTES_PER_PARTICLE * n_particles * realizations)
         return Estimate(seconds, memory, f"{work:.2e} particle-steps on one GPU", gpus=1)
     collisions = n_particles / 2.0 * DSMC_COLLISIONS_PER_PARTICLE_TAU * duration
@@ -361,12 +371,14 @@ the parent and offspring arrays of a cloning step."""
 
 
 CLONING_GPU_SECONDS_PER_INTERVAL = 4.0e-4
-"""``cuda`` backend, one H100: wall seconds of one control interval's five launches when
-the GPU has little to do (bench cuda, N_c = 10³, one realization)."""
+"""``cuda`` backend, one H100: wall seconds of one control interval's four launches when
+the GPU has little to do (bench cuda: 0.28-0.43 ms from 10³ to 3 × 10⁵ clones a launch,
+numba's dispatch of about 90 µs a launch)."""
 
-CLONING_GPU_EVENTS_PER_SECOND = 5.0e8
-"""``cuda`` backend, one H100: collision events per second of the untilted clones once the
-launches are full (bench cuda, hard disks at λ = 1, 10⁵-10⁶ clones in a launch)."""
+CLONING_GPU_EVENTS_PER_SECOND = 2.5e9
+"""``cuda`` backend, one H100: collision events per second of the untilted clones beyond
+the launch cost (bench cuda: hard disks at λ = 1, 4 × 10⁶ clones, 2.2 × 10⁹ events per
+wall second with the launches included)."""
 
 CLONING_GPU_BYTES_PER_MEMBER = 120.0
 """``cuda`` backend: two velocity buffers, the stream, the count and the scan of a member."""
