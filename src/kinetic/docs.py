@@ -352,11 +352,11 @@ def _speed(summary: dict[str, Any], engine: str) -> str:
     )
 
 
-def _plan(config: str) -> str:
+def _plan(*configs: str) -> str:
     from kinetic import plan
     from kinetic.config import load_configs
 
-    jobs = plan.plan_jobs(load_configs([REPOSITORY / config]))
+    jobs = plan.plan_jobs(load_configs([REPOSITORY / config for config in configs]))
     return plan.summary_table(jobs) + "\n"
 
 
@@ -369,6 +369,7 @@ def blocks(summary: dict[str, Any]) -> dict[str, str]:
         "benchmarks": _benchmark_table(summary),
         "plan-default": _plan("config/config.yaml"),
         "plan-paper": _plan("config/paper.yaml"),
+        "plan-paper-gpu": _plan("config/paper.yaml", "config/paper-gpu.yaml"),
         "plan-ci": _plan("config/ci.yaml"),
     }
     for engine in ("edmd", "dsmc", "cloning", "samplers"):

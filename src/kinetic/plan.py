@@ -257,7 +257,7 @@ def summary_rows(jobs: Iterable[Job], cores: Iterable[int] = CORES) -> list[dict
             "document": document,
             "jobs": len(members),
             "cpu_hours": sum(job.estimate.cpu_seconds for job in members) / 3600.0,
-            "gpu_hours": sum(job.estimate.job_seconds for job in members if job.estimate.gpus)
+            "gpu_hours": sum(job.estimate.cpu_seconds for job in members if job.estimate.gpus)
             / 3600.0,
             "longest_job_hours": max(seconds, default=0.0) / 3600.0,
             "mem_mb": max((cost.mem_mb(job.estimate) for job in members), default=0),
@@ -275,20 +275,19 @@ def _hours(value: float) -> str:
 
 
 def summary_table(jobs: Iterable[Job], cores: Iterable[int] = CORES) -> str:
-    """Markdown table of :func:`summary_rows`."""
+    """Markdown table of :func:`summary_rows` (with a GPU-hours column where some jobs run
+    on a GPU)."""
     cores = list(cores)
-    header = ["document", "jobs", "CPU-hours", "longest job", "mem_mb per job"] + [
-        f"wall, {count} cores" for count in cores
-    ]
+    rows = summary_rows(jobs, cores)
+    gpu = any(row["gpu_hours"] for row in rows)
+    header = ["document", "jobs", "CPU-hours"] + (["of it on a GPU"] if gpu else [])
+    header += ["longest job", "mem_mb per job"] + [f"wall, {count} cores" for count in cores]
     lines = ["| " + " | ".join(header) + " |", "|" + " --- |" * len(header)]
-    for row in summary_rows(jobs, cores):
-        cells = [
-            row["document"],
-            str(row["jobs"]),
-            f"{row['cpu_hours']:.3g}",
-            _hours(row["longest_job_hours"]),
-            str(row["mem_mb"]),
-        ] + [_hours(row[f"wall_hours_{count}"]) for count in cores]
+    for row in rows:
+        cells = [row["document"], str(row["jobs"]), f"{row['cpu_hours']:.3g}"]
+        cells += [_hours(row["gpu_hours"])] if gpu else []
+        cells += [_hours(row["longest_job_hours"]), str(row["mem_mb"])]
+        cells += [_hours(row[f"wall_hours_{count}"]) for count in cores]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
