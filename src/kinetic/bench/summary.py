@@ -84,7 +84,38 @@ def _samplers(report: dict[str, Any]):
     )
 
 
-EXTRACTORS = {"dsmc": _dsmc, "edmd": _edmd, "cloning": _cloning, "samplers": _samplers}
+def _cuda(report: dict[str, Any]):
+    """The GPU cases of ``python -m kinetic.bench cuda`` (rates per wall second through the
+    fronts, on the report's GPU); a section that failed or did not run gives no row."""
+    device = report.get("gpu", {}).get("device", "GPU")
+    cloning = report["sections"].get("cloning_speed", {})
+    for case in cloning.get("gpu", []):
+        kernel = "hard disks" if case["kernel"] == "hard_spheres" else "Maxwell"
+        yield (
+            f"cloning on {device}, {kernel}, lambda = {case['lambda']:g}, "
+            f"N_c = {case['population']:.0e} x {case['realizations']} realizations",
+            case["events_per_second"],
+            "collision events per wall-s",
+            kernel == "hard disks" and case["lambda"] == 1.0 and case["population"] == 10**6,
+        )
+    dsmc = report["sections"].get("dsmc_speed", {})
+    for case in dsmc.get("gpu", []):
+        yield (
+            f"homogeneous DSMC on {device}, N = {case['n_particles']:.0e} x "
+            f"{case['realizations']} realizations",
+            case["collisions_per_second"],
+            "collisions per wall-s",
+            case["n_particles"] == 200_000 and case["realizations"] == 50,
+        )
+
+
+EXTRACTORS = {
+    "dsmc": _dsmc,
+    "edmd": _edmd,
+    "cloning": _cloning,
+    "samplers": _samplers,
+    "cuda": _cuda,
+}
 """Engine -> the cases of its report."""
 
 
