@@ -15,6 +15,11 @@ matplotlib.use("Agg")
 
 REPOSITORY = Path(__file__).resolve().parents[1]
 
+# The GPU kernels (tests/gpu) run under numba's CUDA simulator unless NUMBA_ENABLE_CUDASIM=0
+# asks for a real GPU. Set before any test module can import numba.cuda (kinetic.trace and
+# the packaging tests import every module of the package), which reads it once.
+os.environ.setdefault("NUMBA_ENABLE_CUDASIM", "1")
+
 # Two processes compiling the same kernel into one numba cache can corrupt it (numba
 # issue 4807). Each xdist worker (and every Snakemake build a workflow test starts from
 # it, which inherits the variable) gets a cache of its own, set before numba is imported.
