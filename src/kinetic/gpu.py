@@ -41,6 +41,7 @@ except ImportError:  # another numba-cuda layout: the warning stays
 __all__ = [
     "BLOCK",
     "block_exclusive_scan",
+    "block_inclusive_scan",
     "block_reduce_extreme",
     "block_reduce_sum",
     "cuda",
@@ -189,20 +190,12 @@ def _fold(partials, out, field_of, scale):
         out[r, field_of[f]] += scale * total
 
 
-def block_exclusive_scan(shared, values, count, zero):
-    """Exclusive prefix sums of ``values[:count]`` in place, by one block of ``BLOCK``
-    threads (every thread must call it) in a fixed order: thread t sums its contiguous
-    chunk, a Hillis-Steele scan over the chunk totals in ``shared[BLOCK]``, then each
-    thread writes its chunk's prefixes. ``zero`` is 0 of the values' type (integer scans
-    are exact, hence monotone). Returns the total (in every thread)."""
+def block_inclusive_scan(shared, value, zero):
+    """Inclusive prefix sum of ``value`` over the threads of a block of ``BLOCK`` threads, by
+    a fixed Hillis-Steele tree in ``shared[BLOCK]`` (of the values' type, ``zero`` its 0);
+    every thread must call it. Returns ``(this thread's prefix, the block's total)``."""
     t = cuda.threadIdx.x
-    chunk = (count + BLOCK - 1) // BLOCK
-    first = min(t * chunk, count)
-    last = min(first + chunk, count)
-    total = zero
-    for k in range(first, last):
-        total += values[k]
-    shared[t] = total
+    shared[t] = value
     cuda.syncthreads()
     offset = 1
     while offset < BLOCK:
@@ -211,9 +204,30 @@ def block_exclusive_scan(shared, values, count, zero):
         shared[t] += add
         cuda.syncthreads()
         offset *= 2
-    running = shared[t] - total  # exclusive prefix of this thread's chunk
-    grand = shared[BLOCK - 1]
+    prefix = shared[t]
+    total = shared[BLOCK - 1]
     cuda.syncthreads()
+    return prefix, total
+
+
+block_inclusive_scan = cuda.jit(device=True, inline="always")(block_inclusive_scan)
+
+
+def block_exclusive_scan(shared, values, count, zero):
+    """Exclusive prefix sums of ``values[:count]`` in place, by one block of ``BLOCK``
+    threads (every thread must call it) in a fixed order: thread t sums its contiguous
+    chunk, :func:`block_inclusive_scan` over the chunk totals, then each thread writes its
+    chunk's prefixes. ``zero`` is 0 of the values' type (integer scans are exact, hence
+    monotone). Returns the total (in every thread)."""
+    t = cuda.threadIdx.x
+    chunk = (count + BLOCK - 1) // BLOCK
+    first = min(t * chunk, count)
+    last = min(first + chunk, count)
+    total = zero
+    for k in range(first, last):
+        total += values[k]
+    prefix, grand = block_inclusive_scan(shared, total, zero)
+    running = prefix - total  # exclusive prefix of this thread's chunk
     for k in range(first, last):
         value = values[k]
         values[k] = running

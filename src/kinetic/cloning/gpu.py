@@ -59,6 +59,7 @@ from kinetic.cloning.simulate import MAX_CUDA_HISTOGRAM_BINS
 from kinetic.gpu import (
     BLOCK,
     block_exclusive_scan,
+    block_inclusive_scan,
     block_reduce_extreme,
     block_reduce_sum,
     cuda,
@@ -203,8 +204,8 @@ def _advance(velocity, states, counts, extremes, partials, code, interval, rate_
 @cuda.jit
 def _weigh(counts, extremes, lam, cumulative, block_sums, partials):
     """w_i = e^{-λ(K_i - K*)} <= 1: its sum per thread block (for μ), and the inclusive
-    scan of q_i = round(2³² w_i) inside each thread block (exact int64, a fixed
-    Hillis-Steele tree), the block's total in ``block_sums``."""
+    scan of q_i = round(2³² w_i) inside each thread block (exact int64), the block's
+    total in ``block_sums``."""
     shared = cuda.shared.array(BLOCK, np.float64)
     shared_q = cuda.shared.array(BLOCK, np.int64)
     t = cuda.threadIdx.x
@@ -218,19 +219,13 @@ def _weigh(counts, extremes, lam, cumulative, block_sums, partials):
     total = block_reduce_sum(shared, weight)
     if t == 0:
         partials[r, cuda.blockIdx.x, _P_WEIGHT] = total
-    shared_q[t] = np.int64(weight * _FIXED_POINT + 0.5)
-    cuda.syncthreads()
-    offset = 1
-    while offset < BLOCK:
-        add = shared_q[t - offset] if t >= offset else _ZERO
-        cuda.syncthreads()
-        shared_q[t] += add
-        cuda.syncthreads()
-        offset *= 2
+    prefix, block_total = block_inclusive_scan(
+        shared_q, np.int64(weight * _FIXED_POINT + 0.5), _ZERO
+    )
     if i < n:
-        cumulative[r, i] = shared_q[t]
-    if t == BLOCK - 1:
-        block_sums[r, cuda.blockIdx.x] = shared_q[t]
+        cumulative[r, i] = prefix
+    if t == 0:
+        block_sums[r, cuda.blockIdx.x] = block_total
 
 
 @cuda.jit(device=True, inline="always")
