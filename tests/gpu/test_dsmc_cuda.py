@@ -183,9 +183,11 @@ def test_hcs_cooling_rate_and_a2_match_the_cpu_engine_and_theory():
     a2_cpu, a2_cpu_sem = _window_statistics(cpu, "a2")
     assert abs(zeta - zeta_cpu) < 4 * hypot(zeta_sem, zeta_cpu_sem)
     assert abs(a2 - a2_cpu) < 4 * hypot(a2_sem, a2_cpu_sem)
-    # Eq. 2.14 holds for N -> oo: the CPU engine's ζ at N = 128 is about 5 % above it
+    # Eq. 2.14 holds for N -> oo: at N = 128 the CPU engine's ζ stands about 5 % above it,
+    # and the GPU may stand off by as much (within both error bars), no more
     expected = float(theory.reduced_cooling_rate(alpha) * theory.nu0_tau())
-    assert abs(zeta - expected) < 4 * zeta_sem + 0.06 * expected
+    finite_n_offset = abs(zeta_cpu - expected)
+    assert abs(zeta - expected) < finite_n_offset + 4 * hypot(zeta_sem, zeta_cpu_sem)
     # a2 relaxes from 0 (the Gaussian start) within a collision time; the energy shell
     # of N particles biases it by about -2/(d N)
     finite_n = 2 / (3 * TINY["n_particles"])
