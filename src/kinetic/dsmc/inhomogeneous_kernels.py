@@ -277,20 +277,132 @@ def _collided(velocity, ident, partner, i, j, half, h0, h1, c0, c1, top1, top2):
 
 
 @inline
+def _collide_cell(
+    velocity,
+    ident,
+    partner,
+    first,
+    last,
+    moments,
+    c,
+    carry,
+    rule,
+    half,
+    density_per_count,
+    pair_coefficient,
+    time_step,
+    candidates,
+    collisions,
+    repeated,
+    exceeded,
+    lost,
+    s0,
+    s1,
+    s2,
+    s3,
+):
+    """Collision stage of cell c for one step: particles ``first..last-1`` of ``velocity``
+    (2, n) (``ident``, ``partner``: their labels), the cell's moments row ``moments[c]``
+    and carried fraction ``carry[c]`` (updated), settings of the :class:`Step` (``half`` =
+    (1+α)/2). The tallies ``candidates``, ``collisions``, ``repeated``, ``exceeded``, the
+    sum of |h|² ``lost`` and the stream are passed through and returned, in that order:
+    ``_collide_cells`` runs it on every cell of a realization with one stream (CPU), the
+    CUDA backend on one thread per cell, each with its own stream
+    (:mod:`kinetic.dsmc.inhomogeneous_gpu`)."""
+    count = last - first
+    if count < 2:
+        return candidates, collisions, repeated, exceeded, lost, s0, s1, s2, s3
+    # speeds about the origin (the gas is at rest): |w_ij| <= top1 + top2
+    c0 = 0.0
+    c1 = 0.0
+    top1 = np.sqrt(moments[c, 3])
+    top2 = np.sqrt(moments[c, 4])
+    if top1 + top2 <= 0.0:
+        # all velocities equal: no pair approaches
+        return candidates, collisions, repeated, exceeded, lost, s0, s1, s2, s3
+    if rule == RULE_MAJORANT:
+        n_pairs = 0.5 * count * (count - 1.0)
+        coefficient = pair_coefficient
+        bound_sq, spacing = _majorant(HARD_SPHERES, coefficient, n_pairs, top1, top2)
+        budget = time_step + carry[c] * spacing
+        while spacing <= budget:
+            budget -= spacing
+            candidates += 1
+            a, b, s0, s1, s2, s3 = _pair(count, s0, s1, s2, s3)
+            i = first + a
+            j = first + b
+            code, h0, h1, _h2, s0, s1, s2, s3 = _trial(
+                velocity, i, j, 2, HARD_SPHERES, bound_sq, s0, s1, s2, s3
+            )
+            if code == 0:
+                continue
+            if code == 2:  # impossible with a rigorous bound; counted, bound redone
+                exceeded += 1
+                c0, c1, total, top1, top2 = _cell_statistics(velocity, first, last)
+                bound_sq, spacing = _majorant(HARD_SPHERES, coefficient, n_pairs, top1, top2)
+                continue
+            again, hh, raised, top1, top2 = _collided(
+                velocity, ident, partner, i, j, half, h0, h1, c0, c1, top1, top2
+            )
+            collisions += 1
+            repeated += again
+            lost += hh
+            if raised:
+                bound_sq, spacing = _majorant(HARD_SPHERES, coefficient, n_pairs, top1, top2)
+        carry[c] = budget / spacing
+    else:
+        m0 = moments[c, 0]
+        m1 = moments[c, 1]
+        total = moments[c, 2] - (m0 * m0 + m1 * m1) / count  # Σ|w - ū|²
+        temperature = max(total, 0.0) / (2.0 * (count - 1.0))
+        real_density = count * density_per_count
+        omega = 2.0 * real_density * np.sqrt(np.pi * temperature)
+        expected = 0.5 * count * omega * time_step + carry[c]
+        n_collisions = int(expected)
+        carry[c] = expected - n_collisions
+        bound = (top1 + top2) * BOUND_SAFETY
+        bound_sq = bound * bound
+        for _ in range(n_collisions):
+            code = 0
+            for _attempt in range(MAX_ATTEMPTS):
+                candidates += 1
+                a, b, s0, s1, s2, s3 = _pair(count, s0, s1, s2, s3)
+                i = first + a
+                j = first + b
+                code, h0, h1, _h2, s0, s1, s2, s3 = _trial(
+                    velocity, i, j, 2, HARD_SPHERES, bound_sq, s0, s1, s2, s3
+                )
+                if code == 1:
+                    break
+                if code == 2:
+                    exceeded += 1
+                    c0, c1, total, top1, top2 = _cell_statistics(velocity, first, last)
+                    bound = (top1 + top2) * BOUND_SAFETY
+                    bound_sq = bound * bound
+            if code != 1:  # no pair approaches (equal velocities): nothing to do
+                carry[c] = 0.0
+                break
+            again, hh, raised, top1, top2 = _collided(
+                velocity, ident, partner, i, j, half, h0, h1, c0, c1, top1, top2
+            )
+            collisions += 1
+            repeated += again
+            lost += hh
+            if raised:
+                bound = (top1 + top2) * BOUND_SAFETY
+                bound_sq = bound * bound
+    return candidates, collisions, repeated, exceeded, lost, s0, s1, s2, s3
+
+
+@inline
 def _collide_cells(velocity, labels, cells, step, tally, energy, s0, s1, s2, s3):
     """Collision stage of every cell (particles sorted by cell, ``moments`` filled by
-    ``_cell_moments`` or the sort). Returns the stream."""
+    ``_cell_moments`` or the sort), the cells in order with one stream. Returns the
+    stream."""
     cell_start = cells.cell_start
-    carry = cells.carry
-    moments = cells.moments
-    rule = step.rule
-    restitution = step.restitution
-    density_per_count = step.density_per_count
-    pair_coefficient = step.pair_coefficient
-    time_step = step.time_step
     n_cells = cell_start.shape[0] - 1
-    half = 0.5 * (1.0 + restitution)
-    loss = 0.25 * (1.0 - restitution * restitution)
+    half = 0.5 * (1.0 + step.restitution)
+    loss = 0.25 * (1.0 - step.restitution * step.restitution)
     ident = labels[0]
     partner = labels[1]
     candidates = 0
@@ -299,89 +411,30 @@ def _collide_cells(velocity, labels, cells, step, tally, energy, s0, s1, s2, s3)
     exceeded = 0
     lost = 0.0
     for c in range(n_cells):
-        first = cell_start[c]
-        last = cell_start[c + 1]
-        count = last - first
-        if count < 2:
-            continue
-        # speeds about the origin (the gas is at rest): |w_ij| <= top1 + top2
-        c0 = 0.0
-        c1 = 0.0
-        top1 = np.sqrt(moments[c, 3])
-        top2 = np.sqrt(moments[c, 4])
-        if top1 + top2 <= 0.0:
-            continue  # all velocities equal: no pair approaches
-        if rule == RULE_MAJORANT:
-            n_pairs = 0.5 * count * (count - 1.0)
-            coefficient = pair_coefficient
-            bound_sq, spacing = _majorant(HARD_SPHERES, coefficient, n_pairs, top1, top2)
-            budget = time_step + carry[c] * spacing
-            while spacing <= budget:
-                budget -= spacing
-                candidates += 1
-                a, b, s0, s1, s2, s3 = _pair(count, s0, s1, s2, s3)
-                i = first + a
-                j = first + b
-                code, h0, h1, _h2, s0, s1, s2, s3 = _trial(
-                    velocity, i, j, 2, HARD_SPHERES, bound_sq, s0, s1, s2, s3
-                )
-                if code == 0:
-                    continue
-                if code == 2:  # impossible with a rigorous bound; counted, bound redone
-                    exceeded += 1
-                    c0, c1, total, top1, top2 = _cell_statistics(velocity, first, last)
-                    bound_sq, spacing = _majorant(HARD_SPHERES, coefficient, n_pairs, top1, top2)
-                    continue
-                again, hh, raised, top1, top2 = _collided(
-                    velocity, ident, partner, i, j, half, h0, h1, c0, c1, top1, top2
-                )
-                collisions += 1
-                repeated += again
-                lost += hh
-                if raised:
-                    bound_sq, spacing = _majorant(HARD_SPHERES, coefficient, n_pairs, top1, top2)
-            carry[c] = budget / spacing
-        else:
-            m0 = moments[c, 0]
-            m1 = moments[c, 1]
-            total = moments[c, 2] - (m0 * m0 + m1 * m1) / count  # Σ|w - ū|²
-            temperature = max(total, 0.0) / (2.0 * (count - 1.0))
-            real_density = count * density_per_count
-            omega = 2.0 * real_density * np.sqrt(np.pi * temperature)
-            expected = 0.5 * count * omega * time_step + carry[c]
-            n_collisions = int(expected)
-            carry[c] = expected - n_collisions
-            bound = (top1 + top2) * BOUND_SAFETY
-            bound_sq = bound * bound
-            for _ in range(n_collisions):
-                code = 0
-                for _attempt in range(MAX_ATTEMPTS):
-                    candidates += 1
-                    a, b, s0, s1, s2, s3 = _pair(count, s0, s1, s2, s3)
-                    i = first + a
-                    j = first + b
-                    code, h0, h1, _h2, s0, s1, s2, s3 = _trial(
-                        velocity, i, j, 2, HARD_SPHERES, bound_sq, s0, s1, s2, s3
-                    )
-                    if code == 1:
-                        break
-                    if code == 2:
-                        exceeded += 1
-                        c0, c1, total, top1, top2 = _cell_statistics(velocity, first, last)
-                        bound = (top1 + top2) * BOUND_SAFETY
-                        bound_sq = bound * bound
-                if code != 1:  # no pair approaches (equal velocities): nothing to do
-                    carry[c] = 0.0
-                    break
-                again, hh, raised, top1, top2 = _collided(
-                    velocity, ident, partner, i, j, half, h0, h1, c0, c1, top1, top2
-                )
-                collisions += 1
-                repeated += again
-                lost += hh
-                if raised:
-                    bound = (top1 + top2) * BOUND_SAFETY
-                    bound_sq = bound * bound
+        candidates, collisions, repeated, exceeded, lost, s0, s1, s2, s3 = _collide_cell(
+            velocity,
+            ident,
+            partner,
+            cell_start[c],
+            cell_start[c + 1],
+            cells.moments,
+            c,
+            cells.carry,
+            step.rule,
+            half,
+            step.density_per_count,
+            step.pair_coefficient,
+            step.time_step,
+            candidates,
+            collisions,
+            repeated,
+            exceeded,
+            lost,
+            s0,
+            s1,
+            s2,
+            s3,
+        )
     tally[TALLY_CANDIDATES] += candidates
     tally[TALLY_COLLISIONS] += collisions
     tally[TALLY_REPEATED] += repeated
@@ -453,25 +506,18 @@ def advance(gas, cells, step, n_steps):
         for c in range(n_cells + 1):
             cell_start[c] = 0
         for i in range(n):
-            x = r_src[0, i] + (w_src[0, i] - u0) * shift
-            y = r_src[1, i] + (w_src[1, i] - u1) * shift
-            if x >= box_side or x < 0.0:
-                x -= box_side * np.floor(x / box_side)
-                if x >= box_side:  # rounding of a tiny negative x + L
-                    x = 0.0
-            if y >= box_side or y < 0.0:
-                y -= box_side * np.floor(y / box_side)
-                if y >= box_side:
-                    y = 0.0
+            x, y, c = _streamed(
+                r_src[0, i],
+                r_src[1, i],
+                w_src[0, i] - u0,
+                w_src[1, i] - u1,
+                shift,
+                box_side,
+                inverse_cell,
+                m,
+            )
             r_src[0, i] = x
             r_src[1, i] = y
-            ix = int(x * inverse_cell)
-            iy = int(y * inverse_cell)
-            if ix >= m:
-                ix = m - 1
-            if iy >= m:
-                iy = m - 1
-            c = iy * m + ix
             cell_of[i] = c
             cell_start[c + 1] += 1
         for c in range(n_cells):
@@ -502,6 +548,49 @@ def advance(gas, cells, step, n_steps):
     store_state(state, s0, s1, s2, s3)
 
 
+@inline
+def _streamed(x, y, wx, wy, shift, box_side, inverse_cell, m):
+    """Free flight of a particle at (x, y) with velocity (wx, wy) (the centre-of-mass
+    velocity already removed) over a step (``shift`` = (e^{ω0 Δτ} - 1)/ω0), wrapped into
+    [0, L)²; returns ``(x, y, c)``, c = iy M + ix its cell (``inverse_cell`` = M/L)."""
+    x = x + wx * shift
+    y = y + wy * shift
+    if x >= box_side or x < 0.0:
+        x -= box_side * np.floor(x / box_side)
+        if x >= box_side:  # rounding of a tiny negative x + L
+            x = 0.0
+    if y >= box_side or y < 0.0:
+        y -= box_side * np.floor(y / box_side)
+        if y >= box_side:
+            y = 0.0
+    ix = int(x * inverse_cell)
+    iy = int(y * inverse_cell)
+    if ix >= m:
+        ix = m - 1
+    if iy >= m:
+        iy = m - 1
+    return x, y, iy * m + ix
+
+
+@inline
+def _observables(n, px, py, re_y, im_y, re_x, im_x, sum_xx, sum_yy, out):
+    """Row ``out`` of ``observe`` from the sums over the n particles of w_x, w_y, the mode
+    terms w_y cos/sin(k x), w_x cos/sin(k y), w_x² and w_y²."""
+    ux = px / n
+    uy = py / n
+    temperature = (sum_xx + sum_yy - n * (ux * ux + uy * uy)) / (2.0 * n)
+    norm = 1.0 / (n * np.sqrt(temperature))
+    out[0] = temperature
+    out[1] = re_y
+    out[2] = im_y
+    out[3] = re_x
+    out[4] = im_x
+    out[5] = sum_yy
+    out[6] = sum_xx
+    out[7] = px * norm
+    out[8] = py * norm
+
+
 @kernel
 def observe(position, velocity, parity, wavenumber, out):
     """Observables of the current buffer ``parity`` into ``out`` (N_OBSERVABLES,).
@@ -518,8 +607,6 @@ def observe(position, velocity, parity, wavenumber, out):
     for i in range(n):
         px += w[0, i]
         py += w[1, i]
-    ux = px / n
-    uy = py / n
     re_y = 0.0
     im_y = 0.0
     re_x = 0.0
@@ -537,17 +624,7 @@ def observe(position, velocity, parity, wavenumber, out):
         im_x += wx * np.sin(ay)
         sum_xx += wx * wx
         sum_yy += wy * wy
-    temperature = (sum_xx + sum_yy - n * (ux * ux + uy * uy)) / (2.0 * n)
-    norm = 1.0 / (n * np.sqrt(temperature))
-    out[0] = temperature
-    out[1] = re_y
-    out[2] = im_y
-    out[3] = re_x
-    out[4] = im_x
-    out[5] = sum_yy
-    out[6] = sum_xx
-    out[7] = px * norm
-    out[8] = py * norm
+    _observables(n, px, py, re_y, im_y, re_x, im_x, sum_xx, sum_yy, out)
 
 
 @kernel
