@@ -1,4 +1,5 @@
-"""The CUDA kernels of kinetic.dsmc.gpu and kinetic.cloning.gpu compile for a Hopper GPU
+"""The CUDA kernels of kinetic.dsmc.gpu, kinetic.dsmc.inhomogeneous_gpu and kinetic.cloning.gpu
+compile for a Hopper GPU
 (sm_90), checked without a GPU: ``numba.cuda.compile_ptx`` of every kernel with the
 argument types the engine launches it with. The simulator (``NUMBA_ENABLE_CUDASIM=1``)
 runs the kernels as Python and checks none of the typing, so this runs only outside it,
@@ -36,9 +37,21 @@ def _signatures():
         "_select": (f3, f3, i2, i2, i2, u2, f3, observers),
         "_fold_snapshot": (f3, a2, float64),
     }
-    return {("cloning", name): signature for name, signature in cloning.items()} | {
-        ("dsmc", name): signature for name, signature in _dsmc_signatures().items()
-    }
+    return (
+        {("cloning", name): signature for name, signature in cloning.items()}
+        | {("dsmc", name): signature for name, signature in _dsmc_signatures().items()}
+        | {
+            ("dsmc_inhomogeneous", name): signature
+            for name, signature in _inhomogeneous_signatures().items()
+        }
+    )
+
+
+MODULES = {
+    "cloning": "kinetic.cloning.gpu",
+    "dsmc": "kinetic.dsmc.gpu",
+    "dsmc_inhomogeneous": "kinetic.dsmc.inhomogeneous_gpu",
+}
 
 
 def _dsmc_signatures():
@@ -56,6 +69,40 @@ def _dsmc_signatures():
         "_finish": (f3, int64, f2, f2, i1, f1, i1, boolean, u2),
         "_observe": (f3, f3, UniTuple(i2, 3), f1, i1, boolean, f2, boolean),
         "_fold_moments": (f3, int64, f2, float64),
+    }
+
+
+def _inhomogeneous_signatures():
+    from numba import float64, int64, types, uint64
+
+    f3, f2 = float64[:, :, ::1], float64[:, ::1]
+    i3, i2 = int64[:, :, ::1], int64[:, ::1]
+    u3, u2 = uint64[:, :, ::1], uint64[:, ::1]
+    buffers = types.Tuple((f3, f3, i3))
+    return {
+        "_seed": (u2, u3),
+        "_centre": (f3, f2, i2, float64),
+        "_stream": (f3, f3, i2, i2, f2, float64, float64, float64, float64, int64),
+        "_scan": (i2, i2),
+        "_scatter": (i2, i2, i2),
+        "_collide": (
+            buffers,
+            buffers,
+            i2,
+            i2,
+            f3,
+            f2,
+            u3,
+            i3,
+            f2,
+            int64,
+            float64,
+            float64,
+            float64,
+            float64,
+        ),
+        "_observe": (f3, f3, f3, float64),
+        "_finish": (f3, int64, f2, float64, int64, f3, f2, int64),
     }
 
 
@@ -77,7 +124,7 @@ def compile_ptx():
 def test_kernel_compiles_for_sm90(compile_ptx, engine, name):
     import importlib
 
-    module = importlib.import_module(f"kinetic.{engine}.gpu")
+    module = importlib.import_module(MODULES[engine])
     signature = _signatures()[(engine, name)]
     ptx, _ = compile_ptx(getattr(module, name).py_func, signature, cc=(9, 0))
     assert ".entry" in ptx

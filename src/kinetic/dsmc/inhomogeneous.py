@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from kinetic import io
+from kinetic import backends, io
 from kinetic.dsmc import inhomogeneous_kernels as kernels
 from kinetic.dsmc.state import realization_streams
 from kinetic.progress import Progress, logger
@@ -73,6 +73,12 @@ CHUNK_PARTICLE_STEPS = 50_000_000
 
 MODES = ("wy_kx", "wx_ky")
 _TIME_UNIT = "sigma*sqrt(m/T0)"
+
+
+_CPU_SECONDS = {
+    "cpu": "CPU (process) time of the realization in the kernels",
+    "cuda": "wall time of the GPU run (all realizations together) per realization",
+}
 
 
 def _whole_steps(name: str, value: float, time_step: float, minimum: int) -> int:
@@ -380,6 +386,7 @@ def simulate_cooling_modes(
     n_realizations: int = 1,
     first_realization: int = 0,
     label: str | None = None,
+    backend: str = "cpu",
 ):
     """Transverse modes of the homogeneous cooling state by inhomogeneous DSMC (costantini2010).
 
@@ -413,6 +420,13 @@ def simulate_cooling_modes(
         Realization k uses row k of ``kinetic.rng.stream_states(seed, ·)``.
     label
         Prefix of the progress lines.
+    backend
+        ``"cpu"`` (numba, one realization after the other) or ``"cuda"`` (numba-cuda, all
+        realizations of the call together on one GPU: :mod:`kinetic.dsmc.inhomogeneous_gpu`,
+        one thread per cell running the CPU engine's per-cell collision code with a
+        stream of its own; statistically equivalent, not bit-identical). A ``cuda`` run on
+        a machine without a GPU stops before any work
+        (``kinetic.backends.BackendUnavailable``).
 
     Returns
     -------
@@ -424,8 +438,10 @@ def simulate_cooling_modes(
     sample_interval ending at τ_j (NaN for the first sample when equilibration <
     sample_interval: that interval is not inside the run); ``momentum`` (realization,
     time, axis) Σ w/(N_sim √T); per realization ``collisions``, ``candidates``,
-    ``particle_steps``, ``repeated_collisions``, ``cpu_seconds``.
+    ``particle_steps``, ``repeated_collisions``, ``cpu_seconds`` (cuda: the batch's wall
+    time divided by the realizations). Attributes ``backend`` and ``device``.
     """
+    backends.check(backend)
     settings = CoolingModesSettings(
         n_particles=n_particles,
         density=density,
@@ -446,6 +462,7 @@ def simulate_cooling_modes(
     streams = realization_streams(seed, first_realization, n_realizations)
     if label is not None and not isinstance(label, str):
         raise TypeError(f"label must be a string or None, got {label!r}")
+    device = backends.require(backend)  # before any work: no GPU, no run
 
     if settings.fictive_factor == 1 and settings.real_particles_per_cell < 1.0:
         logger.warning(
@@ -480,33 +497,33 @@ def simulate_cooling_modes(
         f"alpha={settings.restitution:g} Lambda={settings.fictive_factor} "
         f"M={settings.cells_per_side}"
     )
-    _compile_outside_the_timers(settings)
     progress = Progress(max(1, n_realizations * total_steps), label=label, unit="steps")
-    for r in range(n_realizations):
-        gas = new_cooling_gas(settings, streams[r])
-        done = 0
-        while done < warm:
-            steps = min(chunk_steps, warm - done)
-            gas.advance(steps)
-            done += steps
-            progress.update(steps)
-        gas.energy[0] = 0.0
-        sample = 0
-        while sample < n_samples:
-            stop = min(n_samples, sample + samples_per_chunk)
-            steps_first = first_steps if sample == 0 else stride
-            gas.run_samples(
-                steps_first, stride, observables[r, sample:stop], dissipated[r, sample:stop]
-            )
-            progress.update(steps_first + (stop - sample - 1) * stride)
-            sample = stop
+    if backend == "cuda":
+        from kinetic.dsmc import inhomogeneous_gpu
+
+        out = {"observables": observables, "dissipated": dissipated, "cpu_seconds": cpu_seconds}
+        inhomogeneous_gpu.run_batch(
+            settings, streams, warm, first_steps, stride, n_samples, out | totals, progress
+        )
         if first_steps == 0:
-            dissipated[r, 0] = np.nan
-        totals["collisions"][r] = gas.collisions
-        totals["candidates"][r] = gas.tally[kernels.TALLY_CANDIDATES]
-        totals["particle_steps"][r] = gas.tally[kernels.TALLY_PARTICLE_STEPS]
-        totals["repeated_collisions"][r] = gas.tally[kernels.TALLY_REPEATED]
-        cpu_seconds[r] = gas.cpu_seconds
+            dissipated[:, 0] = np.nan
+    else:
+        _compile_outside_the_timers(settings)
+        _run_cpu(
+            settings,
+            streams,
+            warm,
+            first_steps,
+            stride,
+            n_samples,
+            chunk_steps,
+            samples_per_chunk,
+            observables,
+            dissipated,
+            totals,
+            cpu_seconds,
+            progress,
+        )
     if total_steps == 0:
         progress.update(1)
 
@@ -578,7 +595,7 @@ def simulate_cooling_modes(
                 "realization",
                 cpu_seconds,
                 "s",
-                "CPU (process) time of the realization in the kernels",
+                _CPU_SECONDS[backend],
             ),
         },
         coords={
@@ -599,6 +616,8 @@ def simulate_cooling_modes(
         },
         attrs={
             "units": "m = sigma = T0 = 1; time in sigma sqrt(m/T0); w the rescaled velocities",
+            "backend": backend,
+            "device": device,
         },
     )
     parameters = {
@@ -618,3 +637,46 @@ def simulate_cooling_modes(
         "collisions_per_particle_per_step_at_T0": settings.collision_frequency * settings.time_step,
     }
     return io.stamp(dataset, parameters=parameters, seed=seed)
+
+
+def _run_cpu(
+    settings,
+    streams,
+    warm,
+    first_steps,
+    stride,
+    n_samples,
+    chunk_steps,
+    samples_per_chunk,
+    observables,
+    dissipated,
+    totals,
+    cpu_seconds,
+    progress,
+):
+    """The CPU backend: the realizations one after the other, into the arrays given."""
+    for r in range(streams.shape[0]):
+        gas = new_cooling_gas(settings, streams[r])
+        done = 0
+        while done < warm:
+            steps = min(chunk_steps, warm - done)
+            gas.advance(steps)
+            done += steps
+            progress.update(steps)
+        gas.energy[0] = 0.0
+        sample = 0
+        while sample < n_samples:
+            stop = min(n_samples, sample + samples_per_chunk)
+            steps_first = first_steps if sample == 0 else stride
+            gas.run_samples(
+                steps_first, stride, observables[r, sample:stop], dissipated[r, sample:stop]
+            )
+            progress.update(steps_first + (stop - sample - 1) * stride)
+            sample = stop
+        if first_steps == 0:
+            dissipated[r, 0] = np.nan
+        totals["collisions"][r] = gas.collisions
+        totals["candidates"][r] = gas.tally[kernels.TALLY_CANDIDATES]
+        totals["particle_steps"][r] = gas.tally[kernels.TALLY_PARTICLE_STEPS]
+        totals["repeated_collisions"][r] = gas.tally[kernels.TALLY_REPEATED]
+        cpu_seconds[r] = gas.cpu_seconds

@@ -74,6 +74,7 @@ its loops, prints, or touches files.
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -234,7 +235,7 @@ def _cell_statistics(velocity, first, last):
                 top1 = s
             else:
                 top2 = s
-    return m0, m1, total, np.sqrt(top1), np.sqrt(top2)
+    return m0, m1, total, math.sqrt(top1), math.sqrt(top2)
 
 
 @inline
@@ -315,8 +316,8 @@ def _collide_cell(
     # speeds about the origin (the gas is at rest): |w_ij| <= top1 + top2
     c0 = 0.0
     c1 = 0.0
-    top1 = np.sqrt(moments[c, 3])
-    top2 = np.sqrt(moments[c, 4])
+    top1 = math.sqrt(moments[c, 3])
+    top2 = math.sqrt(moments[c, 4])
     if top1 + top2 <= 0.0:
         # all velocities equal: no pair approaches
         return candidates, collisions, repeated, exceeded, lost, s0, s1, s2, s3
@@ -356,7 +357,7 @@ def _collide_cell(
         total = moments[c, 2] - (m0 * m0 + m1 * m1) / count  # Σ|w - ū|²
         temperature = max(total, 0.0) / (2.0 * (count - 1.0))
         real_density = count * density_per_count
-        omega = 2.0 * real_density * np.sqrt(np.pi * temperature)
+        omega = 2.0 * real_density * math.sqrt(math.pi * temperature)
         expected = 0.5 * count * omega * time_step + carry[c]
         n_collisions = int(expected)
         carry[c] = expected - n_collisions
@@ -556,11 +557,11 @@ def _streamed(x, y, wx, wy, shift, box_side, inverse_cell, m):
     x = x + wx * shift
     y = y + wy * shift
     if x >= box_side or x < 0.0:
-        x -= box_side * np.floor(x / box_side)
+        x -= box_side * math.floor(x / box_side)
         if x >= box_side:  # rounding of a tiny negative x + L
             x = 0.0
     if y >= box_side or y < 0.0:
-        y -= box_side * np.floor(y / box_side)
+        y -= box_side * math.floor(y / box_side)
         if y >= box_side:
             y = 0.0
     ix = int(x * inverse_cell)
@@ -579,7 +580,7 @@ def _observables(n, px, py, re_y, im_y, re_x, im_x, sum_xx, sum_yy, out):
     ux = px / n
     uy = py / n
     temperature = (sum_xx + sum_yy - n * (ux * ux + uy * uy)) / (2.0 * n)
-    norm = 1.0 / (n * np.sqrt(temperature))
+    norm = 1.0 / (n * math.sqrt(temperature))
     out[0] = temperature
     out[1] = re_y
     out[2] = im_y

@@ -1,0 +1,505 @@
+"""CUDA backend of the inhomogeneous DSMC engine (costantini2010):
+``simulate_cooling_modes(backend="cuda")``.
+
+All realizations of a call advance together on one GPU: realization r is row r of
+``(R, 2, N_sim)`` arrays (each row the CPU engine's struct of arrays, double-buffered by
+swapping two device arrays) and of ``(R, M², ·)`` per-cell arrays; every kernel covers
+all realizations (the realization is the grid's y index). One step is five launches:
+
+1. ``_centre`` (one block per realization): the centre-of-mass velocity u of the
+   previous step, Σ_c of the cells' Σw (``moments[:, :, :2]``) by a fixed tree over the
+   cells (strided sums, then ``kinetic.gpu.block_reduce_sum``), divided by N_sim; and
+   the cell counts zeroed. As on the CPU, u is the velocity before the previous step's
+   collisions (which conserve momentum) and is removed in the streaming of this step.
+2. ``_stream`` (threads over particles): ``kernels._streamed``, the CPU engine's free
+   flight with drag and periodic wrap and the particle's cell, and w -> (w - u) e^{ω0 Δτ}
+   in place; each particle adds one to its cell's count (an integer atomic).
+3. ``_scan`` (one block per realization): the exclusive prefix sum of the counts over
+   the cells in index order (``kinetic.gpu.block_exclusive_scan``, exact in integers):
+   ``cell_start``, the cells' ranges as on the CPU.
+4. ``_scatter`` (threads over particles): each particle takes a slot of its cell's range
+   by an integer atomic on the cell's fill pointer and writes its index there
+   (``order``). The slots a cell's particles get depend on the order in which the
+   atomics land, which the GPU does not fix.
+5. ``_collide`` (one thread per cell): the thread sorts its cell's slice of ``order`` by
+   particle index (insertion sort: the slice is then exactly the CPU's stable counting
+   sort, whatever order the atomics landed in), copies its particles into the other
+   buffer in that order, accumulates the cell's moments on the way
+   (``kernels._accumulate``: Σw, Σ|w|², two largest |w|², in the CPU's order) and runs
+   ``kernels._collide_cell``, the CPU engine's per-cell collision code ("paper" or
+   "majorant" rule, Λ, restitution, recollision tally), with the cell's own xoshiro256+
+   stream (``kinetic.rng.thread_state`` of the realization's row after its initial
+   state, and the cell index), its carried fraction and its tallies.
+
+Cost of the sort: the insertion sort is O(count²) per cell in the worst case and about
+O(count) when the atomics land nearly in index order (threads of a warp scatter in index
+order); a cell holds a few to a few hundred simulated particles (costantini2010: cells of
+0.5 λ, 60 at Λ = 10). The gather by one thread per cell reads scattered addresses.
+
+Sampled steps add two launches: ``_observe`` (per-block sums of the 8 particle sums of
+``kernels.observe``, a fixed tree per block) and ``_finish`` (one block per realization:
+the blocks summed in index order by one thread, ``kernels._observables`` for the row, and
+the energy lost in collisions since the previous sample, summed over the cells by a fixed
+tree and reset).
+
+Determinism: the same call gives the same numbers twice (on one GPU model). Every float
+sum has a fixed order (above); the only atomics are integer counts and fill pointers, and
+the per-cell sort removes the order they land in. A realization's numbers do not depend
+on the other realizations of the batch (the number of blocks over particles depends on
+N_sim only). Not bit-identical with the CPU engine, which draws every cell's collisions
+from one stream per realization: the two agree statistically
+(tests/gpu/test_dsmc_inhomogeneous_cuda.py). The initial states are the CPU engine's
+(``new_cooling_gas`` of each realization's stream row).
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+
+import numpy as np
+from numba.core.errors import NumbaPerformanceWarning
+
+from kinetic import rng
+from kinetic.backends import simulated
+from kinetic.dsmc import inhomogeneous_kernels as kernels
+from kinetic.dsmc.gpu import MAX_BLOCKS, THREADS, _block_sums
+from kinetic.dsmc.inhomogeneous import CoolingModesSettings, new_cooling_gas
+from kinetic.gpu import (
+    BLOCK,
+    block_exclusive_scan,
+    block_reduce_sum,
+    cuda,
+    device_function,
+    device_zeros,
+    grid,
+    synchronize,
+    to_device,
+)
+
+__all__ = ["N_SUMS", "run_batch"]
+
+N_SUMS = 8
+"""Particle sums of an observation: Σw_x, Σw_y, the four mode terms, Σw_x², Σw_y²."""
+
+# per-cell tallies
+_CANDIDATES, _COLLISIONS, _REPEATED, _EXCEEDED = 0, 1, 2, 3
+_N_TALLIES = 4
+
+_collide_cell = device_function(kernels._collide_cell)
+_accumulate = device_function(kernels._accumulate)
+_streamed = device_function(kernels._streamed)
+_observables = device_function(kernels._observables)
+_thread_state = device_function(rng.thread_state)
+
+
+@cuda.jit
+def _seed(keys, states):
+    """``states[r, c] = thread_state(keys[r], c)``: one stream per cell."""
+    c = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    r = cuda.blockIdx.y
+    if c >= states.shape[1]:
+        return
+    s0, s1, s2, s3 = _thread_state(keys[r, 0], keys[r, 1], keys[r, 2], keys[r, 3], c)
+    states[r, c, 0] = s0
+    states[r, c, 1] = s1
+    states[r, c, 2] = s2
+    states[r, c, 3] = s3
+
+
+@cuda.jit
+def _centre(moments, u, cell_start, inverse_n):
+    """One block per realization: ``u[r]`` = Σ_c moments[r, c, :2] / N_sim (fixed tree),
+    and ``cell_start[r]`` zeroed (the counts of the coming sort)."""
+    shared = cuda.shared.array(BLOCK, np.float64)
+    r = cuda.blockIdx.x
+    t = cuda.threadIdx.x
+    n_cells = moments.shape[1]
+    sum0 = 0.0
+    sum1 = 0.0
+    for c in range(t, n_cells, BLOCK):
+        sum0 += moments[r, c, 0]
+        sum1 += moments[r, c, 1]
+    for c in range(t, n_cells + 1, BLOCK):
+        cell_start[r, c] = 0
+    sum0 = block_reduce_sum(shared, sum0)
+    sum1 = block_reduce_sum(shared, sum1)
+    if t == 0:
+        u[r, 0] = sum0 * inverse_n
+        u[r, 1] = sum1 * inverse_n
+
+
+@cuda.jit
+def _stream(position, velocity, cell_of, cell_start, u, shift, growth, box_side, inverse_cell, m):
+    """Free flight with drag of every particle (``kernels._streamed``, in place), its
+    velocity (w - u) e^{ω0 Δτ} (in place), its cell, and the cells' counts (integer
+    atomics on ``cell_start[r, c]``)."""
+    r = cuda.blockIdx.y
+    n = position.shape[2]
+    u0 = u[r, 0]
+    u1 = u[r, 1]
+    for i in range(cuda.blockIdx.x * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
+        w0 = velocity[r, 0, i] - u0
+        w1 = velocity[r, 1, i] - u1
+        x, y, c = _streamed(
+            position[r, 0, i], position[r, 1, i], w0, w1, shift, box_side, inverse_cell, m
+        )
+        position[r, 0, i] = x
+        position[r, 1, i] = y
+        velocity[r, 0, i] = w0 * growth
+        velocity[r, 1, i] = w1 * growth
+        cell_of[r, i] = c
+        cuda.atomic.add(cell_start, (r, c), 1)
+
+
+@cuda.jit
+def _scan(cell_start, fill):
+    """One block per realization: ``cell_start[r]`` = exclusive prefix sums of the counts
+    (``cell_start[r, M²]`` = N_sim), and the fill pointers ``fill[r] = cell_start[r, :M²]``."""
+    shared = cuda.shared.array(BLOCK, np.int64)
+    r = cuda.blockIdx.x
+    n_cells = fill.shape[1]
+    total = block_exclusive_scan(shared, cell_start[r], n_cells, np.int64(0))
+    if cuda.threadIdx.x == 0:
+        cell_start[r, n_cells] = total
+    for c in range(cuda.threadIdx.x, n_cells, BLOCK):
+        fill[r, c] = cell_start[r, c]
+
+
+@cuda.jit
+def _scatter(cell_of, fill, order):
+    """Each particle takes a slot of its cell's range (integer atomic on the cell's fill
+    pointer) and writes its index there."""
+    r = cuda.blockIdx.y
+    n = cell_of.shape[1]
+    for i in range(cuda.blockIdx.x * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
+        p = cuda.atomic.add(fill, (r, cell_of[r, i]), 1)
+        order[r, p] = i
+
+
+@cuda.jit
+def _collide(
+    source,
+    target,
+    order,
+    cell_start,
+    moments,
+    carry,
+    states,
+    tally,
+    lost,
+    rule,
+    half,
+    density_per_count,
+    pair_coefficient,
+    time_step,
+):
+    """One thread per cell c of realization r: sort its slice of ``order`` by particle
+    index, copy its particles from the ``source`` buffers (position, velocity, labels)
+    into the ``target`` buffers in that order with the cell's moments, then
+    ``kernels._collide_cell`` with the cell's stream, carry, tallies and lost energy."""
+    position, velocity, labels = source
+    position_to, velocity_to, labels_to = target
+    c = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    r = cuda.blockIdx.y
+    if c >= carry.shape[1]:
+        return
+    first = cell_start[r, c]
+    last = cell_start[r, c + 1]
+    for a in range(first + 1, last):  # insertion sort: the CPU's stable order
+        key = order[r, a]
+        b = a - 1
+        while b >= first and order[r, b] > key:
+            order[r, b + 1] = order[r, b]
+            b -= 1
+        order[r, b + 1] = key
+    cell_moments = moments[r]
+    for k in range(5):
+        cell_moments[c, k] = 0.0
+    for p in range(first, last):
+        i = order[r, p]
+        wx = velocity[r, 0, i]
+        wy = velocity[r, 1, i]
+        position_to[r, 0, p] = position[r, 0, i]
+        position_to[r, 1, p] = position[r, 1, i]
+        velocity_to[r, 0, p] = wx
+        velocity_to[r, 1, p] = wy
+        labels_to[r, 0, p] = labels[r, 0, i]
+        labels_to[r, 1, p] = labels[r, 1, i]
+        _accumulate(cell_moments, c, wx, wy)
+    if last - first < 2:
+        return
+    state = states[r, c]
+    counts = tally[r, c]
+    candidates, collisions, repeated, exceeded, hh, s0, s1, s2, s3 = _collide_cell(
+        velocity_to[r],
+        labels_to[r, 0],
+        labels_to[r, 1],
+        first,
+        last,
+        cell_moments,
+        c,
+        carry[r],
+        rule,
+        half,
+        density_per_count,
+        pair_coefficient,
+        time_step,
+        counts[_CANDIDATES],
+        counts[_COLLISIONS],
+        counts[_REPEATED],
+        counts[_EXCEEDED],
+        lost[r, c],
+        state[0],
+        state[1],
+        state[2],
+        state[3],
+    )
+    counts[_CANDIDATES] = candidates
+    counts[_COLLISIONS] = collisions
+    counts[_REPEATED] = repeated
+    counts[_EXCEEDED] = exceeded
+    lost[r, c] = hh
+    state[0] = s0
+    state[1] = s1
+    state[2] = s2
+    state[3] = s3
+
+
+@cuda.jit
+def _observe(position, velocity, partials, wavenumber):
+    """Per-block sums ``partials[r, b]`` of Σw_x, Σw_y, Σw_y cos(kx), Σw_y sin(kx),
+    Σw_x cos(ky), Σw_x sin(ky), Σw_x², Σw_y² (each thread a fixed strided set of
+    particles, then a fixed tree)."""
+    shared = cuda.shared.array((THREADS, N_SUMS), np.float64)
+    sums = cuda.local.array(N_SUMS, np.float64)
+    r = cuda.blockIdx.y
+    b = cuda.blockIdx.x
+    n = position.shape[2]
+    for f in range(N_SUMS):
+        sums[f] = 0.0
+    for i in range(b * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
+        wx = velocity[r, 0, i]
+        wy = velocity[r, 1, i]
+        ax = wavenumber * position[r, 0, i]
+        ay = wavenumber * position[r, 1, i]
+        sums[0] += wx
+        sums[1] += wy
+        sums[2] += wy * np.cos(ax)
+        sums[3] += wy * np.sin(ax)
+        sums[4] += wx * np.cos(ay)
+        sums[5] += wx * np.sin(ay)
+        sums[6] += wx * wx
+        sums[7] += wy * wy
+    _block_sums(shared, sums, partials[r, b])
+
+
+@cuda.jit
+def _finish(partials, n_blocks, lost, loss, n, observables, dissipated, sample):
+    """One block per realization: ``observables[r, sample]`` (``kernels._observables`` of
+    the block sums, folded in index order) and ``dissipated[r, sample]`` = loss Σ_c
+    lost[r, c] / N_sim (a fixed tree over the cells), the cells' ``lost`` reset."""
+    shared = cuda.shared.array(BLOCK, np.float64)
+    r = cuda.blockIdx.x
+    t = cuda.threadIdx.x
+    total = 0.0
+    for c in range(t, lost.shape[1], BLOCK):
+        total += lost[r, c]
+        lost[r, c] = 0.0
+    total = block_reduce_sum(shared, total)
+    if t != 0:
+        return
+    dissipated[r, sample] = loss * total / n
+    px = 0.0
+    py = 0.0
+    re_y = 0.0
+    im_y = 0.0
+    re_x = 0.0
+    im_x = 0.0
+    sum_xx = 0.0
+    sum_yy = 0.0
+    for b in range(n_blocks):
+        px += partials[r, b, 0]
+        py += partials[r, b, 1]
+        re_y += partials[r, b, 2]
+        im_y += partials[r, b, 3]
+        re_x += partials[r, b, 4]
+        im_x += partials[r, b, 5]
+        sum_xx += partials[r, b, 6]
+        sum_yy += partials[r, b, 7]
+    _observables(n, px, py, re_y, im_y, re_x, im_x, sum_xx, sum_yy, observables[r, sample])
+
+
+# ------------------------------------------------------------------------------ host
+
+
+class _Batch:
+    """Device state of R realizations of one setting and the launches of one step."""
+
+    def __init__(self, settings, streams: np.ndarray, n_samples: int):
+        n = settings.n_simulated
+        n_cells = settings.cells_per_side**2
+        count = streams.shape[0]
+        position = np.empty((count, 2, n))
+        velocity = np.empty((count, 2, n))
+        labels = np.empty((count, 2, n), dtype=np.int64)
+        keys = np.empty((count, 4), dtype=np.uint64)
+        for r in range(count):
+            gas = new_cooling_gas(settings, streams[r])  # the CPU engine's initial state
+            position[r] = gas.position[0]
+            velocity[r] = gas.velocity[0]
+            labels[r] = gas.labels[0]
+            keys[r] = gas.rng
+        self.settings = settings
+        self.count = count
+        self.n = n
+        self.n_cells = n_cells
+        self.n_blocks = min(grid(n, THREADS), MAX_BLOCKS)
+        spare = (
+            device_zeros((count, 2, n)),
+            device_zeros((count, 2, n)),
+            device_zeros((count, 2, n), np.int64),
+        )
+        self.buffers = ((to_device(position), to_device(velocity), to_device(labels)), spare)
+        self.cell_of = device_zeros((count, n), np.int64)
+        self.order = device_zeros((count, n), np.int64)
+        self.cell_start = device_zeros((count, n_cells + 1), np.int64)
+        self.fill = device_zeros((count, n_cells), np.int64)
+        self.moments = device_zeros((count, n_cells, 5))
+        self.carry = device_zeros((count, n_cells))
+        self.states = device_zeros((count, n_cells, 4), np.uint64)
+        _seed[(grid(n_cells), count), BLOCK](to_device(keys), self.states)
+        self.tally = device_zeros((count, n_cells, _N_TALLIES), np.int64)
+        self.lost = device_zeros((count, n_cells))
+        self.u = device_zeros((count, 2))
+        self.partials = device_zeros((count, self.n_blocks, N_SUMS))
+        self.observables = device_zeros((count, n_samples, kernels.N_OBSERVABLES))
+        self.dissipated = device_zeros((count, n_samples))
+        s = settings
+        m = s.cells_per_side
+        self.stream_arguments = (
+            float(np.expm1(s.drag_rate * s.time_step) / s.drag_rate)
+            if s.drag_rate != 0.0
+            else s.time_step,
+            float(np.exp(s.drag_rate * s.time_step)),
+            float(s.box_side),
+            float(m / s.box_side),
+            int(m),
+        )
+        step = s.step()
+        self.collide_arguments = (
+            int(step.rule),
+            0.5 * (1.0 + step.restitution),
+            float(step.density_per_count),
+            float(step.pair_coefficient),
+            float(step.time_step),
+        )
+        self.loss = 0.25 * (1.0 - s.restitution * s.restitution)
+        self.steps = 0
+
+    def advance(self, n_steps: int) -> None:
+        """Launch ``n_steps`` steps of every realization (five launches each)."""
+        particles = (self.n_blocks, self.count)
+        cells = (grid(self.n_cells), self.count)
+        for _ in range(n_steps):
+            source, target = self.buffers
+            position, velocity, _labels = source
+            _centre[self.count, BLOCK](self.moments, self.u, self.cell_start, 1.0 / self.n)
+            _stream[particles, THREADS](
+                position, velocity, self.cell_of, self.cell_start, self.u, *self.stream_arguments
+            )
+            _scan[self.count, BLOCK](self.cell_start, self.fill)
+            _scatter[particles, THREADS](self.cell_of, self.fill, self.order)
+            _collide[cells, BLOCK](
+                source,
+                target,
+                self.order,
+                self.cell_start,
+                self.moments,
+                self.carry,
+                self.states,
+                self.tally,
+                self.lost,
+                *self.collide_arguments,
+            )
+            self.buffers = (target, source)
+            self.steps += 1
+
+    def observe(self, sample: int) -> None:
+        """Row ``sample`` of the observables and of the energy lost since the last one."""
+        position, velocity, _labels = self.buffers[0]
+        _observe[(self.n_blocks, self.count), THREADS](
+            position, velocity, self.partials, float(self.settings.wavenumber)
+        )
+        _finish[self.count, BLOCK](
+            self.partials,
+            self.n_blocks,
+            self.lost,
+            self.loss,
+            self.n,
+            self.observables,
+            self.dissipated,
+            sample,
+        )
+
+    def reset_lost(self) -> None:
+        self.lost.copy_to_device(np.zeros((self.count, self.n_cells)))
+
+
+def run_batch(settings, streams, warm, first_steps, stride, n_samples, out, progress=None):
+    """Run the realizations of ``streams`` (one row each) together on the GPU.
+
+    ``warm`` steps, then ``first_steps`` before the first sample and ``stride`` before
+    each later one (the CPU front's schedule). Fills ``out`` (numpy arrays):
+    ``observables`` (R, n_samples, N_OBSERVABLES), ``dissipated`` (R, n_samples),
+    ``collisions``, ``candidates``, ``particle_steps``, ``repeated_collisions`` and
+    ``cpu_seconds`` (R,), the last the wall time of the run (launches and the GPU,
+    compilation excluded) divided by the number of realizations. ``progress`` (a
+    ``Progress`` over realizations x steps) is updated after every sample.
+    """
+    count = streams.shape[0]
+    _compile_outside_the_timer(settings)
+    batch = _Batch(settings, streams, n_samples)
+    synchronize()
+    start = time.perf_counter()
+    batch.advance(warm)
+    if progress is not None and warm:
+        progress.update(count * warm)
+    batch.reset_lost()
+    for sample in range(n_samples):
+        steps = first_steps if sample == 0 else stride
+        batch.advance(steps)
+        batch.observe(sample)
+        if progress is not None and steps:
+            progress.update(count * steps)
+    out["observables"][:] = batch.observables.copy_to_host()
+    out["dissipated"][:] = batch.dissipated.copy_to_host()
+    tally = batch.tally.copy_to_host().sum(axis=1)
+    synchronize()
+    elapsed = time.perf_counter() - start
+    if tally[:, _EXCEEDED].any():
+        raise RuntimeError(
+            "internal error: the relative-speed bound of a cell was exceeded "
+            f"{tally[:, _EXCEEDED].sum()} times although it is kept rigorous"
+        )
+    out["collisions"][:] = tally[:, _COLLISIONS]
+    out["candidates"][:] = tally[:, _CANDIDATES]
+    out["repeated_collisions"][:] = tally[:, _REPEATED]
+    out["particle_steps"][:] = batch.steps * batch.n
+    out["cpu_seconds"][:] = elapsed / count
+
+
+def _compile_outside_the_timer(settings) -> None:
+    """Two steps and a sample of a tiny batch with the same argument types, so that the
+    timed run does not include numba-cuda's compilation (skipped under the simulator)."""
+    if simulated():
+        return
+    tiny = CoolingModesSettings(
+        **{**settings.parameters(), "n_particles": 4, "fictive_factor": 1, "cells_per_side": 1}
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NumbaPerformanceWarning)  # grids of one block
+        batch = _Batch(tiny, np.array([[1, 2, 3, 4]], dtype=np.uint64), 1)
+        batch.advance(2)
+        batch.observe(0)
+        synchronize()
