@@ -1,0 +1,251 @@
+"""The CUDA backend of the inhomogeneous DSMC engine (``simulate_cooling_modes(backend="cuda")``,
+kinetic.dsmc.inhomogeneous_gpu) against the CPU engine and exact properties.
+
+Runs under numba's CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``, set here unless the
+environment says otherwise: with ``NUMBA_ENABLE_CUDASIM=0`` on a GPU machine the same
+tests run on the GPU). The simulator costs about a quarter of a second per realization
+and step whatever the size (every thread block is a set of Python threads), so the
+systems are tiny (40-100 real particles, Λ = 2, 2 x 2 cells) and the runs a dozen steps;
+the statistical checks are dilute gases (n σ² = 0.005, a step of 0.09 collisions per
+particle and a box of about one mean free path) whose samples decorrelate within a few
+steps, compared at 4 standard errors taken from the runs themselves.
+"""
+
+import os
+
+os.environ.setdefault("NUMBA_ENABLE_CUDASIM", "1")
+
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("numba.cuda")
+
+from kinetic import backends
+from kinetic.analysis.costantini2010 import block_correlations
+from kinetic.dsmc import (
+    CoolingModesSettings,
+    new_cooling_gas,
+    realization_streams,
+    simulate_cooling_modes,
+)
+from kinetic.dsmc import inhomogeneous as front
+
+pytestmark = [
+    pytest.mark.cuda,
+    pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning"),
+    pytest.mark.filterwarnings("ignore::numba.core.errors.NumbaPerformanceWarning"),
+]
+
+TINY = {
+    "n_particles": 40,
+    "density": 0.05,
+    "restitution": 0.8,
+    "drag_rate": 0.02,
+    "equilibration": 1.0,
+    "sample_interval": 0.5,
+    "n_samples": 4,
+    "seed": 5,
+    "fictive_factor": 2,
+    "cells_per_side": 2,
+    "time_step": 0.5,
+    "collision_rule": "paper",
+    "n_realizations": 2,
+}
+
+DILUTE = {
+    "n_particles": 100,
+    "density": 0.005,
+    "fictive_factor": 2,
+    "cells_per_side": 2,
+    "time_step": 5.0,  # ω_c(T0) Δτ = 0.089
+    "equilibration": 0.0,
+    "sample_interval": 5.0,
+    "n_samples": 12,
+}
+
+
+def _run(backend, **overrides):
+    return simulate_cooling_modes(**{**TINY, **overrides}, backend=backend)
+
+
+@pytest.fixture(scope="module")
+def tiny_runs():
+    """The same run twice on the GPU (α = 0.8 with drag, paper rule), once on the CPU."""
+    return _run("cuda"), _run("cuda"), _run("cpu")
+
+
+def test_unknown_backend_is_rejected_before_any_work(monkeypatch):
+    def no_work(*args, **kwargs):
+        raise AssertionError("work started")
+
+    monkeypatch.setattr(front, "realization_streams", no_work)
+    with pytest.raises(ValueError, match="backend must be one of"):
+        _run("gpu")
+
+
+def test_cuda_without_a_gpu_stops_before_any_work(monkeypatch):
+    from kinetic import gpu
+    from kinetic.dsmc import inhomogeneous_gpu
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("work started")
+
+    monkeypatch.setattr(gpu, "simulated", lambda: False)
+    monkeypatch.setattr(gpu.cuda, "is_available", lambda: False)
+    monkeypatch.setattr(front, "new_cooling_gas", no_work)
+    monkeypatch.setattr(front, "_compile_outside_the_timers", no_work)
+    monkeypatch.setattr(inhomogeneous_gpu, "run_batch", no_work)
+    with pytest.raises(backends.BackendUnavailable, match="no usable NVIDIA GPU"):
+        _run("cuda")
+
+
+def test_dataset_has_the_cpu_layout(tiny_runs):
+    cuda, _, cpu = tiny_runs
+    assert set(cuda.data_vars) == set(cpu.data_vars)
+    assert set(cuda.coords) == set(cpu.coords)
+    for name in list(cpu.data_vars) + list(cpu.coords):
+        assert cuda[name].dims == cpu[name].dims, name
+        assert cuda[name].shape == cpu[name].shape, name
+        assert cuda[name].dtype == cpu[name].dtype, name
+        assert cuda[name].attrs["units"] == cpu[name].attrs["units"], name
+    for name in cpu.coords:
+        np.testing.assert_array_equal(cuda[name].values, cpu[name].values)
+    assert "per realization" in cuda.cpu_seconds.attrs["long_name"]
+    assert cuda.attrs["backend"] == "cuda" and cpu.attrs["backend"] == "cpu"
+    assert cuda.attrs["device"] == backends.require("cuda")
+    assert cpu.attrs["device"] == "cpu"
+    for key, value in cpu.attrs.items():
+        if key not in ("backend", "device", "git_revision"):
+            assert cuda.attrs[key] == value, key
+    # 2 steps of equilibration and 3 between the samples, of 80 simulated particles
+    np.testing.assert_array_equal(cuda.particle_steps.values, 5 * 80)
+    np.testing.assert_array_equal(cuda.particle_steps.values, cpu.particle_steps.values)
+    assert np.all(cuda.collisions > 0) and np.all(cuda.candidates >= cuda.collisions)
+    assert np.all(np.isfinite(cuda.dissipated_energy.values))
+    assert np.all(cuda.dissipated_energy.values > 0)
+
+
+def test_same_seed_gives_identical_datasets(tiny_runs):
+    first, second, _ = tiny_runs
+    for name in first.data_vars:
+        if name != "cpu_seconds":
+            np.testing.assert_array_equal(first[name].values, second[name].values, err_msg=name)
+    # realization 6 alone is realization 6 of the batch: it does not depend on its neighbour
+    alone = _run("cuda", n_realizations=1, first_realization=1)
+    for name in first.data_vars:
+        if name != "cpu_seconds":
+            np.testing.assert_array_equal(
+                alone[name].values[0], first[name].values[1], err_msg=name
+            )
+    other = _run("cuda", seed=6, n_realizations=1, n_samples=1)
+    assert not np.array_equal(other.mode_real.values[0, 0], first.mode_real.values[0, 0])
+
+
+def test_momentum_stays_zero_with_drag(tiny_runs):
+    """The centre-of-mass removal: Σw/(N_sim √T) at round-off although the drag would
+    amplify any momentum (α = 0.8, ω0 > 0)."""
+    cuda = tiny_runs[0]
+    assert np.max(np.abs(cuda.momentum.values)) < 1e-12
+
+
+@pytest.mark.parametrize("rule", ["paper", "majorant"])
+def test_first_step_sorts_like_the_cpu(rule):
+    """After one step the GPU's positions, their order in the buffer (the identities) and
+    the cells' moments (Σw, Σ|w|², two largest |w|², accumulated in that order) are the
+    CPU engine's bit for bit: the same initial state and streaming, and the per-cell sort
+    gives back the CPU's stable counting-sort order whatever order the atomics landed in
+    (only the collisions, with other random streams, differ)."""
+    from kinetic.dsmc import inhomogeneous_gpu
+
+    settings = CoolingModesSettings(
+        **{key: TINY[key] for key in ("n_particles", "density", "restitution", "drag_rate")},
+        fictive_factor=3,
+        cells_per_side=3,
+        time_step=0.5,
+        collision_rule=rule,
+    )
+    streams = realization_streams(9, 0, 2)
+    batch = inhomogeneous_gpu._Batch(settings, streams, 1)
+    batch.advance(1)
+    position, _velocity, labels = (array.copy_to_host() for array in batch.buffers[0])
+    moments = batch.moments.copy_to_host()
+    for r in range(2):
+        gas = new_cooling_gas(settings, streams[r])
+        gas.advance(1)
+        np.testing.assert_array_equal(position[r].T, gas.positions())
+        np.testing.assert_array_equal(labels[r, 0], gas.identities())
+        np.testing.assert_array_equal(moments[r], gas.cell_moments)
+
+
+@pytest.fixture(scope="module")
+def elastic_run():
+    """α = 1 without drag (the elastic gas at equilibrium from its first sample)."""
+    return simulate_cooling_modes(
+        **DILUTE,
+        restitution=1.0,
+        drag_rate=0.0,
+        collision_rule="paper",
+        seed=31,
+        n_realizations=2,
+        backend="cuda",
+    )
+
+
+def test_elastic_collisions_conserve_energy_and_momentum(elastic_run):
+    run = elastic_run
+    assert np.all(run.collisions > 50)
+    # T0 = 1 exactly at the start; α = 1 collisions conserve it to round-off
+    np.testing.assert_allclose(run.temperature.values, 1.0, rtol=1e-12)
+    np.testing.assert_array_equal(run.dissipated_energy.values[:, 1:], 0.0)
+    assert np.max(np.abs(run.momentum.values)) < 1e-12
+
+
+def test_transverse_correlation_at_lag_zero_is_one_at_alpha_one(elastic_run):
+    """costantini2010's C(0) = <|w⊥|²>/<Σ w_y²> = 1 in the elastic gas (positions
+    uniform and independent of the velocities), by the analysis' own block estimator;
+    error bar: the scatter of the blocks."""
+    run = elastic_run
+    modes = (run.mode_real + 1j * run.mode_imag).transpose("realization", "time", "mode")
+    norms = run.mode_norm.transpose("realization", "time", "mode").values
+    blocks = block_correlations(modes.values, norms, n_lags=1, blocks_per_realization=4)[:, 0]
+    mean = blocks.mean()
+    sem = blocks.std(ddof=1) / math.sqrt(blocks.size)
+    assert 0.0 < sem < 0.5
+    assert abs(mean - 1.0) < 4 * sem
+
+
+def _agree(gpu, cpu, name):
+    """The means of the per-realization values ``gpu`` and ``cpu`` agree within 4 standard
+    errors (the two backends are one process: the pooled scatter of the realizations)."""
+    gpu, cpu = np.asarray(gpu, dtype=float), np.asarray(cpu, dtype=float)
+    squares = np.sum((gpu - gpu.mean()) ** 2) + np.sum((cpu - cpu.mean()) ** 2)
+    spread = math.sqrt(squares / (gpu.size + cpu.size - 2))
+    error = spread * math.sqrt(1 / gpu.size + 1 / cpu.size)
+    assert error > 0, name
+    assert abs(gpu.mean() - cpu.mean()) < 4 * error, (name, gpu.mean(), cpu.mean(), error)
+
+
+@pytest.mark.parametrize("rule", ["paper", "majorant"])
+def test_temperature_and_modes_match_the_cpu_engine(rule):
+    """A cooling gas (α = 0.5, weak drag: T falls by about 12 % over the run), GPU (3
+    realizations) against CPU (32): per realization the mean of T(τ) over the samples,
+    the last T, the mean mode amplitude |w⊥|²/Σw_y² and the collisions."""
+    options = {**DILUTE, "restitution": 0.5, "drag_rate": 0.002, "collision_rule": rule}
+    cuda = simulate_cooling_modes(**options, seed=41, n_realizations=3, backend="cuda")
+    cpu = simulate_cooling_modes(**options, seed=42, n_realizations=32)
+
+    def observables(run):
+        amplitude = (run.mode_real**2 + run.mode_imag**2) / run.mode_norm
+        return {
+            "mean temperature": run.temperature.mean("time").values,
+            "last temperature": run.temperature.isel(time=-1).values,
+            "mode amplitude": amplitude.mean(("time", "mode")).values,
+            "collisions": run.collisions.values,
+        }
+
+    gpu_values, cpu_values = observables(cuda), observables(cpu)
+    assert cpu_values["last temperature"].mean() < 0.95  # the gas does cool
+    for name in gpu_values:
+        _agree(gpu_values[name], cpu_values[name], name)
