@@ -16,6 +16,13 @@ CPU engine, and the bias of μ(1) in the control interval Δ.
 DSMC (montanero2007): collisions per second of the homogeneous engine at N = 2 × 10⁵
 with 50 realizations in one launch, against the CPU engine on one core, and the HCS
 cooling rate and a2 against the CPU engine.
+
+Inhomogeneous DSMC (costantini2010, ``inhomogeneous_speed``): particle-steps and
+collisions per second of ``simulate_cooling_modes(backend="cuda")`` at N = 3000 × Λ = 10
+with 100 realizations in one batch and at N = 3 × 10⁶ (Λ = 1, one realization), both
+collision rules, at the paper config's density (nσ² = 0.005), cells of 0.5 λ and a step of
+0.025 mean free times, α = 0.8 with the drag ω0 = ζ(T0)/2; the same cases, shorter, on one
+CPU core for the ratio.
 """
 
 from __future__ import annotations
@@ -228,10 +235,99 @@ def dsmc_speed(quick: bool) -> dict[str, Any]:
     return {"gpu": gpu, "cpu_one_core": cpu, "physics": physics}
 
 
+def _inhomogeneous(
+    n, fictive, realizations, steps, backend, rule, seed=17, samples=10
+) -> dict[str, Any]:
+    """One costantini2010-like run of the inhomogeneous DSMC: ``steps`` steps (a sample
+    every steps/samples). The rates divide by the kernels' time (``cpu_seconds``: on the
+    GPU the batch's wall time, launches and device included, compilation and the initial
+    states excluded; on the CPU the process time)."""
+    from kinetic.dsmc import simulate_cooling_modes
+    from kinetic.theory.costantini2010 import zeta_star
+
+    density, alpha = 0.005, 0.8
+    mean_free_time = 1.0 / (2.0 * density * math.sqrt(math.pi))
+    mean_free_path = 1.0 / (2.0 * math.sqrt(2.0) * density)
+    time_step = 0.025 * mean_free_time
+    cells = max(1, round(math.sqrt(n / density) / (0.5 * mean_free_path)))
+    stride = max(1, steps // samples)
+    arguments = {
+        "n_particles": n,
+        "density": density,
+        "restitution": alpha,
+        "drag_rate": 0.5 * float(zeta_star(alpha)) * density * math.sqrt(2.0),
+        "equilibration": 0.0,
+        "sample_interval": stride * time_step,
+        "n_samples": steps // stride + 1,
+        "seed": seed,
+        "fictive_factor": fictive,
+        "cells_per_side": cells,
+        "time_step": time_step,
+        "collision_rule": rule,
+        "n_realizations": realizations,
+        "backend": backend,
+    }
+    start = time.perf_counter()
+    ds = simulate_cooling_modes(**arguments)
+    wall = time.perf_counter() - start
+    kernel_seconds = float(ds.cpu_seconds.sum())
+    particle_steps = float(ds.particle_steps.sum())
+    collisions = float(ds.collisions.sum())
+    amplitude = (ds.mode_real**2 + ds.mode_imag**2) / ds.mode_norm
+    return {
+        "n_particles": n,
+        "fictive_factor": fictive,
+        "simulated_particles": n * fictive,
+        "cells_per_side": cells,
+        "realizations": realizations,
+        "collision_rule": rule,
+        "backend": backend,
+        "steps": int(ds.particle_steps.values[0]) // (n * fictive),
+        "wall_seconds": wall,
+        "kernel_seconds": kernel_seconds,
+        "particle_steps": particle_steps,
+        "collisions": collisions,
+        "particle_steps_per_second": particle_steps / kernel_seconds,
+        "collisions_per_second": collisions / kernel_seconds,
+        "collisions_per_particle_step": collisions / particle_steps,
+        "repeated_fraction": float(ds.repeated_collisions.sum()) / max(collisions, 1.0),
+        "final_temperature": float(ds.temperature.isel(time=-1).mean()),
+        "mode_amplitude": float(amplitude.isel(time=slice(1, None)).mean()),
+        "max_momentum": float(abs(ds.momentum).max()),
+    }
+
+
+def inhomogeneous_speed(quick: bool) -> dict[str, Any]:
+    """Inhomogeneous DSMC: particle-steps and collisions per second at N = 3000 × Λ = 10
+    × 100 realizations and N = 3 × 10⁶ × Λ = 1, both rules, on the GPU and on one CPU
+    core (shorter runs), and the ratio."""
+    scale = 10 if quick else 1
+    _inhomogeneous(3000, 10, 2, 20, "cuda", "paper")  # compile (the front's own tiny batch)
+    _inhomogeneous(300, 1, 1, 4, "cpu", "paper")
+    gpu, cpu = [], []
+    for rule in ("paper", "majorant"):
+        gpu.append(_inhomogeneous(3000, 10, 100, 2000 // scale, "cuda", rule))
+        gpu.append(_inhomogeneous(3_000_000, 1, 1, 1000 // scale, "cuda", rule))
+        cpu.append(_inhomogeneous(3000, 10, 1, 400 // scale, "cpu", rule))
+        cpu.append(_inhomogeneous(3_000_000, 1, 1, 10 // scale, "cpu", rule))
+    for case in gpu:
+        same = next(
+            c
+            for c in cpu
+            if c["n_particles"] == case["n_particles"]
+            and c["collision_rule"] == case["collision_rule"]
+        )
+        case["speedup_over_one_core"] = (
+            case["particle_steps_per_second"] / same["particle_steps_per_second"]
+        )
+    return {"gpu": gpu, "cpu_one_core": cpu}
+
+
 SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
     "cloning_speed": cloning_speed,
     "cloning_physics": cloning_physics,
     "dsmc_speed": dsmc_speed,
+    "inhomogeneous_speed": inhomogeneous_speed,
 }
 
 

@@ -107,6 +107,16 @@ def _cuda(report: dict[str, Any]):
             "collisions per wall-s",
             case["n_particles"] == 200_000 and case["realizations"] == 50,
         )
+    inhomogeneous = report["sections"].get("inhomogeneous_speed", {})
+    for case in inhomogeneous.get("gpu", []):
+        yield (
+            f"inhomogeneous DSMC on {device}, {case['collision_rule']} rule, "
+            f"N = {case['n_particles']:.0e} x Lambda = {case['fictive_factor']} x "
+            f"{case['realizations']} realizations",
+            case["particle_steps_per_second"],
+            "particle-steps per wall-s",
+            False,
+        )
 
 
 EXTRACTORS = {
