@@ -6,11 +6,11 @@
 #   snakemake --cores all --configfile config/ci.yaml  the whole workflow in minutes
 #
 # This file is a table of contents. Each document's rules live in
-# workflow/rules/<document>/: simulate.smk (<document>_simulate_<what> and
-# <document>_aggregate_<what>: jobs of realizations and their joining), theory.smk
-# (<document>_theory...) where the document has theory files of its own, and figures.smk
-# (<document>_figNN, tables, studies and checks); the helpers those rules call live in the
-# folder's common.smk. workflow/rules/common.smk holds what every document shares.
+# workflow/rules/<document>/rules.smk, in the order its pipelines run them: theory
+# (<document>_theory...) where the document has theory files of its own, simulations and
+# their joins (<document>_simulate_<what>, <document>_aggregate_<what>), then analyses,
+# figures, tables and checks (<document>_figNN, ...); the helpers those rules call live in
+# the folder's common.smk. workflow/rules/common.smk holds what every document shares.
 
 from snakemake.utils import min_version
 
@@ -30,19 +30,13 @@ report: "workflow/report/workflow.rst"
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/visco2008/common.smk"
-include: "workflow/rules/visco2008/theory.smk"
-include: "workflow/rules/visco2008/simulate.smk"
-include: "workflow/rules/visco2008/figures.smk"
+include: "workflow/rules/visco2008/rules.smk"
 include: "workflow/rules/montanero2007/common.smk"
-include: "workflow/rules/montanero2007/simulate.smk"
-include: "workflow/rules/montanero2007/figures.smk"
+include: "workflow/rules/montanero2007/rules.smk"
 include: "workflow/rules/krauth2025/common.smk"
-include: "workflow/rules/krauth2025/simulate.smk"
-include: "workflow/rules/krauth2025/theory.smk"
-include: "workflow/rules/krauth2025/figures.smk"
+include: "workflow/rules/krauth2025/rules.smk"
 include: "workflow/rules/costantini2010/common.smk"
-include: "workflow/rules/costantini2010/simulate.smk"
-include: "workflow/rules/costantini2010/figures.smk"
+include: "workflow/rules/costantini2010/rules.smk"
 include: "workflow/rules/report.smk"
 include: "workflow/rules/targets.smk"
 include: "workflow/rules/budget.smk"

@@ -160,7 +160,7 @@ def test_a_new_figure_needs_a_rule_entry_a_script_and_a_caption(tmp_path):
     shutil.copy(REPOSITORY / "Snakefile", tree / "Snakefile")
     for name in ("workflow", "config"):
         shutil.copytree(REPOSITORY / name, tree / name)
-    with open(tree / "workflow" / "rules" / "krauth2025" / "figures.smk", "a") as rules:
+    with open(tree / "workflow" / "rules" / "krauth2025" / "rules.smk", "a") as rules:
         rules.write(TOY_RULE)
     (tree / "workflow" / "scripts" / "krauth2025_figtoy.py").write_text(TOY_SCRIPT)
     (tree / "workflow" / "report" / "krauth2025_figtoy.rst").write_text("A toy figure.\n")

@@ -12,8 +12,10 @@ import numpy as np
 
 from kinetic.io import make_dataset
 from kinetic.theory import visco2008
+from kinetic.theory.visco2008_exact import RESOLVED_LAMBDA_MAX, reference_solution
 
 __all__ = [
+    "visco2008_cloning_reference",
     "visco2008_closures",
     "visco2008_finite_time",
     "visco2008_free_flights",
@@ -267,4 +269,31 @@ def visco2008_finite_time(*, windows, rate_max: float, d: int = 2):
             "count": ("count", counts, "1", "number of collisions k"),
         },
         attrs={"dimension": d},
+    )
+
+
+def visco2008_cloning_reference(*, lambdas, n_nodes: int = 300, d: int = 2):
+    """μ, T, a2 of the deterministic solution of Eq. (28)
+    (``kinetic.theory.visco2008_exact.reference_solution``) on the grid ``lambdas``, drawn
+    beside the cloning data; T and a2 are NaN above ``RESOLVED_LAMBDA_MAX`` (the
+    eigenfunction's logarithmic spread towards v = 0 is not resolved there), μ is kept (it
+    equals -1/√2 to 1e-7 there)."""
+    lams = np.asarray(lambdas, dtype=float)
+    mu, temperature, a2 = reference_solution(lams, d, n_nodes=n_nodes)
+    unresolved = lams > RESOLVED_LAMBDA_MAX
+    temperature = np.where(unresolved, np.nan, temperature)
+    a2 = np.where(unresolved, np.nan, a2)
+    what = "deterministic solution of visco2008 Eq. 28 (Nystrom quadrature)"
+    return make_dataset(
+        {
+            "mu": ("lam", mu, "omega", f"mu(lambda), {what}"),
+            "temperature": ("lam", temperature, "T0", f"T(lambda), {what}"),
+            "a2": ("lam", a2, "1", f"a2(lambda), {what}"),
+        },
+        coords={"lam": ("lam", lams, "1", "counting field lambda")},
+        attrs={
+            "dimension": int(d),
+            "n_nodes": int(n_nodes),
+            "resolved_lambda_max": RESOLVED_LAMBDA_MAX,
+        },
     )

@@ -50,7 +50,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
-__all__ = ["RESOLVED_LAMBDA_MAX", "collision_rate", "reference_dataset", "reference_solution"]
+__all__ = ["RESOLVED_LAMBDA_MAX", "collision_rate", "reference_solution"]
 
 _K = np.sqrt(np.pi)
 
@@ -141,30 +141,3 @@ def reference_solution(lams, dimension=2, *, n_nodes=300, v_max=9.0, grade=2.0):
 
 RESOLVED_LAMBDA_MAX = 2.5
 """Largest λ at which the d = 2 eigenvector (hence T and a2) is resolved by the grid."""
-
-
-def reference_dataset(lams, dimension=2, *, n_nodes=300):
-    """μ, T, a2 of ``reference_solution`` on the grid ``lams`` as a dataset; T and a2 are
-    NaN above ``RESOLVED_LAMBDA_MAX`` (the eigenfunction's logarithmic spread towards
-    v = 0 is not resolved there), μ is kept (it equals -1/√2 to 1e-7 there)."""
-    from kinetic.io import make_dataset
-
-    lams = np.asarray(lams, dtype=float)
-    mu, temperature, a2 = reference_solution(lams, dimension, n_nodes=n_nodes)
-    unresolved = lams > RESOLVED_LAMBDA_MAX
-    temperature = np.where(unresolved, np.nan, temperature)
-    a2 = np.where(unresolved, np.nan, a2)
-    what = "deterministic solution of visco2008 Eq. 28 (Nystrom quadrature)"
-    return make_dataset(
-        {
-            "mu": ("lam", mu, "omega", f"mu(lambda), {what}"),
-            "temperature": ("lam", temperature, "T0", f"T(lambda), {what}"),
-            "a2": ("lam", a2, "1", f"a2(lambda), {what}"),
-        },
-        coords={"lam": ("lam", lams, "1", "counting field lambda")},
-        attrs={
-            "dimension": int(dimension),
-            "n_nodes": int(n_nodes),
-            "resolved_lambda_max": RESOLVED_LAMBDA_MAX,
-        },
-    )

@@ -3,7 +3,7 @@
 
 from kinetic.studies import costantini2010 as costantini2010_study
 
-# ---------------------------------------------------------------- for simulate.smk
+# ---------------------------------------------------------------- for the simulation rules
 
 COSTANTINI2010_PACKAGES = {"dsmc": "dsmc", "md": "edmd"}
 
@@ -49,7 +49,7 @@ def costantini2010_analysis(wildcards):
     }
 
 
-# ---------------------------------------------------------------- for figures.smk
+# ---------------------------------------------------------------- for the analysis rules
 def costantini2010_files(runs):
     return [results_file(costantini2010_study.run_file(run)) for run in runs]
 

@@ -3,7 +3,7 @@
 
 from kinetic.studies import krauth2025 as krauth2025_study
 
-# ---------------------------------------------------------------- for simulate.smk
+# ---------------------------------------------------------------- for the simulation rules
 
 
 def krauth2025_pins():
@@ -25,7 +25,7 @@ def krauth2025_disks():
     return config["krauth2025"]["disks"]
 
 
-# ---------------------------------------------------------------- for theory.smk
+# ---------------------------------------------------------------- for the theory rules
 def krauth2025_line_lengths():
     """{file token: length} of the line lengths of the pins runs (looked up, not parsed)."""
     pins = krauth2025_pins()
@@ -68,7 +68,7 @@ def krauth2025_ring_theory(wildcards):
     }
 
 
-# ---------------------------------------------------------------- for figures.smk
+# ---------------------------------------------------------------- for the analysis rules
 def krauth2025_snapshot_panels(wildcards):
     """Events drawn in Fig 4.1 after the start."""
     return krauth2025_disks()["snapshot_events"]

@@ -7,7 +7,7 @@ from kinetic import batches
 from kinetic.studies.montanero2007 import alpha_key, field_partner
 from kinetic.studies.montanero2007 import run_batches, run_plan
 
-# ---------------------------------------------------------------- for simulate.smk
+# ---------------------------------------------------------------- for the simulation rules
 
 
 @functools.cache
@@ -44,7 +44,7 @@ def montanero2007_run_names():
     return "|".join(sorted(montanero2007_runs()))
 
 
-# ---------------------------------------------------------------- for figures.smk
+# ---------------------------------------------------------------- for the analysis rules
 
 
 def montanero2007_runs_of(family):

@@ -8,7 +8,7 @@ from kinetic import batches
 from kinetic.studies import visco2008 as visco2008_study
 from kinetic.studies import visco2008_cloning as cloning_plan
 
-# ---------------------------------------------------------------- for theory.smk
+# ---------------------------------------------------------------- for the theory rules
 
 VISCO2008_THEORY_FAMILIES = [
     "large_deviations",
@@ -53,18 +53,24 @@ def visco2008_theory_grid(wildcards):
     return grids[wildcards.family]
 
 
-def visco2008_cloning_reference_lambdas(wildcards):
-    """λ grid of the deterministic solution: a regular grid over the scan plus every
-    λ of the scan and of the error study (so exact values are looked up, not interpolated).
-    """
-    return cloning_plan.reference_lambdas(config["visco2008"]["cloning"])
+def visco2008_cloning_reference_grid(wildcards):
+    """Keyword arguments of kinetic.theory.tabulate.visco2008_cloning_reference: a regular
+    λ grid over the scan plus every λ of the scan and of the error study (so exact values
+    are looked up, not interpolated), and the quadrature's nodes."""
+    cloning = config["visco2008"]["cloning"]
+    return {
+        "lambdas": cloning_plan.reference_lambdas(cloning),
+        "n_nodes": int(cloning["reference_nodes"]),
+    }
 
 
-def visco2008_cloning_reference_nodes(wildcards):
-    return config["visco2008"]["cloning"]["reference_nodes"]
+def visco2008_cloning_reference_parameters(wildcards):
+    """The provenance stamped on the reference file: the nodes and the number of λ."""
+    grid = visco2008_cloning_reference_grid(wildcards)
+    return {"n_nodes": grid["n_nodes"], "points": len(grid["lambdas"])}
 
 
-# ---------------------------------------------------------------- for simulate.smk
+# ---------------------------------------------------------------- for the simulation rules
 
 
 BATCH = r"batch[0-9]{4}"
@@ -182,7 +188,7 @@ def visco2008_cloning_error_batches(wildcards):
     return visco2008_cloning_batch_files("error_vs_time")
 
 
-# ---------------------------------------------------------------- for figures.smk
+# ---------------------------------------------------------------- for the analysis rules
 def visco2008_md_figure_data(wildcards):
     """Aggregated MD observers of the run drawn in Figs 1, 2, 9 and 10."""
     return visco2008_md_data(visco2008_md()["figure_run"])

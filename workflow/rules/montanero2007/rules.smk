@@ -1,5 +1,64 @@
+# montanero2007: every rule of the document, in the order its pipelines run them
+# (simulations and joins, then analyses, figures, tables and checks); the helpers they call
+# are in common.smk.
+
+
+# ======================================================================================
+# simulations (montanero2007_simulate_<what>) and their joins
+# (montanero2007_aggregate_<what>)
+# ======================================================================================
+# montanero2007 simulations: DSMC of the heat-flux-forced granular gas (kinetic.dsmc).
+#
+#   <results>/montanero2007/runs/<run>/batchNNNN.nc   one job: realizations of one run
+#   <results>/montanero2007/runs/<run>.nc              the run's batches joined (what figures read)
+#
+# Run names come from kinetic.studies.montanero2007.run_plan(config["montanero2007"]).
+
+
+rule montanero2007_simulate_dsmc:
+    input:
+        code=job_code("montanero2007_simulate_dsmc"),
+    output:
+        results_file("montanero2007/runs/{run}/{batch}.nc"),
+    log:
+        log_file("montanero2007/runs/{run}/{batch}.log"),
+    benchmark:
+        log_file("benchmarks/montanero2007/runs/{run}/{batch}.tsv")
+    wildcard_constraints:
+        run=montanero2007_run_names(),
+        batch=r"batch[0-9]{4}",
+    threads: 1
+    resources:
+        runtime=planned_runtime,
+        mem_mb=planned_mem_mb,
+        gpu=planned_gpus,
+    params:
+        front=job_param("montanero2007_simulate_dsmc", "front"),
+        job=job_param("montanero2007_simulate_dsmc", "arguments"),
+        parameters=job_param("montanero2007_simulate_dsmc", "parameters"),
+    script:
+        "../../scripts/simulate.py"
+
+
+rule montanero2007_aggregate_run:
+    input:
+        batches=montanero2007_run_batches,
+        code=script_code("montanero2007_aggregate"),
+    output:
+        results_file("montanero2007/runs/{run}.nc"),
+    log:
+        log_file("montanero2007/runs/{run}.log"),
+    wildcard_constraints:
+        run=montanero2007_run_names(),
+    script:
+        "../../scripts/montanero2007_aggregate.py"
+
+
+# ======================================================================================
+# analyses named after what they compute, figures, tables and checks
+# ======================================================================================
 # montanero2007 figures and tables: Figs 1-7, Table 1, the error-against-run-time study,
-# the extreme cases and the checks, from the runs of simulate.smk.
+# the extreme cases and the checks, from the runs of the simulation rules.
 #
 #   <results>/montanero2007/figNN.pdf|png, table1.csv|md, error_vs_time.*, extreme.*, checks.*
 
