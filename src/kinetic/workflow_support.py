@@ -1,4 +1,5 @@
-"""Glue for workflow scripts: logging to the rule's log file, and reading parameters.
+"""Glue for workflow scripts: logging to the rule's log file, writing netCDF with its
+provenance (``write_output``) and rendering captions (``write_caption``).
 
 Every script in ``workflow/scripts`` starts with::
 
@@ -23,9 +24,10 @@ from __future__ import annotations
 import logging
 import os
 import sys
+from pathlib import Path
 from typing import Any
 
-__all__ = ["run_job", "start", "warm_engines", "write_output"]
+__all__ = ["run_job", "start", "warm_engines", "write_caption", "write_output"]
 
 
 def start(snakemake: Any) -> logging.Logger:
@@ -125,3 +127,14 @@ def run_job(snakemake: Any) -> tuple[logging.Logger, Any]:
     else:
         log.info("wrote %s (%s)", snakemake.output[0], snakemake.params.front)
     return log, dataset
+
+
+def write_caption(template: str | os.PathLike, path: str | os.PathLike, **values) -> str:
+    """Render a caption template (reStructuredText with ``str.format`` fields such as
+    ``{z_k2:.1f}``) with numbers taken from the data files, and write it to ``path``
+    (the report reads it there). Returns the text."""
+    text = Path(template).read_text(encoding="utf-8").format(**values)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+    return text

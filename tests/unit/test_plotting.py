@@ -6,6 +6,7 @@ import pytest
 from scipy.special import erf
 
 from kinetic import plotting
+from kinetic.workflow_support import write_caption
 
 
 def test_bin_average_is_exact_for_polynomials():
@@ -26,7 +27,7 @@ def test_bin_average_of_a_gaussian_differs_from_its_midpoint_value():
 def test_caption_is_rendered_from_values(tmp_path):
     template = tmp_path / "t.rst"
     template.write_text("k2 = {k2:.3f} ({z:+.1f} sigma)")
-    text = plotting.write_caption(template, tmp_path / "out" / "c.rst", k2=0.12345, z=-1.26)
+    text = write_caption(template, tmp_path / "out" / "c.rst", k2=0.12345, z=-1.26)
     assert text == "k2 = 0.123 (-1.3 sigma)"
     assert (tmp_path / "out" / "c.rst").read_text() == text
 

@@ -13,7 +13,7 @@ import pandas as pd
 from kinetic import io, plotting
 from kinetic.analysis.krauth2025 import pair_collisions_per_disk, parting_table
 from kinetic.analysis.statistics import mean_and_sem
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 log = start(snakemake)
 data = io.read_dataset(snakemake.input.chaos)
@@ -68,4 +68,4 @@ for key, comparison in (("f32", "float32 against float64"), ("ulp", "float64_ulp
     else:
         for name in ("parting_event", "pair_collisions_per_disk"):
             numbers[f"{key}_{name}"] = numbers[f"{key}_{name}_sem"] = np.nan
-plotting.write_caption(snakemake.input.template, snakemake.output.caption, **numbers)
+write_caption(snakemake.input.template, snakemake.output.caption, **numbers)

@@ -10,7 +10,7 @@ from scipy import stats
 from kinetic import io, plotting
 from kinetic.analysis.statistics import chi2_per_dof, mean_and_sem
 from kinetic.theory import krauth2025 as theory
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 log = start(snakemake)
 md = io.read_dataset(snakemake.input.md)
@@ -41,7 +41,7 @@ bottom.set_xlabel(r"$u = v_a/R$")
 bottom.set_ylabel("MD/sphere − 1")
 plotting.figure_legend(fig, ncols=1)
 plotting.save(fig, snakemake.output.pdf)
-plotting.write_caption(
+write_caption(
     snakemake.input.template,
     snakemake.output.caption,
     n=n,

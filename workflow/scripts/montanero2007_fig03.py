@@ -10,7 +10,7 @@ from kinetic import plotting
 from kinetic.analysis import montanero2007 as analysis
 from kinetic.studies.montanero2007 import load_runs
 from kinetic.theory import montanero2007 as theory
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 log = start(snakemake)
 rows = analysis.rows_with_field_bias(
@@ -66,7 +66,7 @@ plotting.save(fig, snakemake.output.pdf)
 
 z_bias = bias / bias_err
 elastic = int(np.argmin(abs(alpha - 1.0)))
-plotting.write_caption(
+write_caption(
     snakemake.input.template,
     snakemake.output.caption,
     field=field,

@@ -11,7 +11,7 @@ from kinetic import plotting
 from kinetic.analysis import montanero2007 as analysis
 from kinetic.studies.montanero2007 import load_runs
 from kinetic.theory import montanero2007 as theory
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 log = start(snakemake)
 rows = analysis.rows_with_field_bias(
@@ -75,7 +75,7 @@ ratio = b3 / b2
 ratio_err = np.abs(ratio) * np.hypot(b3_err / b3, b2_err / b2)
 at = int(np.argmin(abs(alpha - 0.9)))
 strongest = int(np.argmin(alpha))
-plotting.write_caption(
+write_caption(
     snakemake.input.template,
     snakemake.output.caption,
     field=field,

@@ -12,7 +12,7 @@ from kinetic import plotting
 from kinetic.analysis import montanero2007 as analysis
 from kinetic.studies.montanero2007 import load_runs
 from kinetic.theory import montanero2007 as theory
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 CX2 = 6.0
 PAPER = {1.0: 0.87, 0.3: 0.66}
@@ -96,4 +96,4 @@ for alpha, key in ((1.0, "elastic"), (0.3, "strong")):
     numbers[f"{key}_reach"] = (
         CX2 + (numbers[f"{key}_paper"] - values[alpha]["share"]) / values[alpha]["slope"]
     )
-plotting.write_caption(snakemake.input.template, snakemake.output.caption, **numbers)
+write_caption(snakemake.input.template, snakemake.output.caption, **numbers)

@@ -11,7 +11,7 @@ from kinetic.plotting.visco2008 import (
     Histogram,
     comparison_figure,
 )
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 start(snakemake)
 curves = io.read_dataset(snakemake.input.curves)
@@ -64,7 +64,7 @@ fig, numbers = comparison_figure(
 )
 plotting.save(fig, snakemake.output.pdf)
 values = list(numbers.values())
-plotting.write_caption(
+write_caption(
     snakemake.input.template,
     snakemake.output.caption,
     rho_low=runs[0].attrs["density"],

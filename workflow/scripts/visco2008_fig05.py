@@ -8,7 +8,7 @@ import numpy as np
 
 from kinetic import io, plotting
 from kinetic.plotting.visco2008_cloning import data_limits, draw_series, finite, scan_series
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 start(snakemake)
 series = scan_series(snakemake.input.scan, "hard_disks", "mu")
@@ -58,7 +58,7 @@ plotting.save(fig, snakemake.output.pdf)
 
 single_lam, single_mu, single_err = drawn["single"]
 below = single_mu < BOUND
-plotting.write_caption(
+write_caption(
     snakemake.input.template,
     snakemake.output.caption,
     population=series.single_population,

@@ -6,7 +6,7 @@ import numpy as np
 
 from kinetic import io, plotting
 from kinetic.plotting.visco2008_cloning import data_limits, draw_series, finite, scan_series
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 start(snakemake)
 LAMBDA_MIN = 0.5  # the ratio is shown where e^{-λ} is small, as in the document
@@ -65,7 +65,7 @@ ax.set_ylabel(r"$\mu(\lambda)\,/\,[(e^{-\lambda}-1)\,\omega/\sqrt{2}]$")
 fig.legend(loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=2)
 plotting.save(fig, snakemake.output.pdf)
 single_lam, single_ratio, _ = drawn["single"]
-plotting.write_caption(
+write_caption(
     snakemake.input.template,
     snakemake.output.caption,
     population=series.single_population,

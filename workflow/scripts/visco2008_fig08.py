@@ -6,7 +6,7 @@ import numpy as np
 
 from kinetic import io, plotting
 from kinetic.plotting.visco2008_cloning import data_limits, draw_series, finite, scan_series
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 start(snakemake)
 series = scan_series(snakemake.input.scan, "hard_disks", "a2")
@@ -39,7 +39,7 @@ ax.set_xlabel(r"$\lambda$")
 ax.set_ylabel(r"$a_2(\lambda)$")
 ax.legend(loc="upper left")
 plotting.save(fig, snakemake.output.pdf)
-plotting.write_caption(
+write_caption(
     snakemake.input.template,
     snakemake.output.caption,
     population=series.single_population,

@@ -11,7 +11,7 @@ import numpy as np
 
 from kinetic import io, plotting
 from kinetic.analysis import collision_statistics
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 log = start(snakemake)
 md = io.read_dataset(snakemake.input.md)
@@ -92,4 +92,4 @@ labels = [label.replace(f"$t = {windows[0]:g}$", "finite $t$") for label in labe
 fig.legend(handles, labels, loc="lower center", ncol=3, bbox_to_anchor=(0.5, 0.0))
 fig.subplots_adjust(bottom=0.33, wspace=0.1)
 plotting.save(fig, snakemake.output.pdf)
-plotting.write_caption(snakemake.input.template, snakemake.output.caption, **numbers)
+write_caption(snakemake.input.template, snakemake.output.caption, **numbers)

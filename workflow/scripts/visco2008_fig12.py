@@ -11,7 +11,7 @@ from kinetic.plotting.visco2008 import (
     Histogram,
     comparison_figure,
 )
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 start(snakemake)
 dsmc = io.read_dataset(snakemake.input.dsmc)
@@ -44,7 +44,7 @@ fig, numbers = comparison_figure(
     reference_label="Eq. (D3)",
 )
 plotting.save(fig, snakemake.output.pdf)
-plotting.write_caption(
+write_caption(
     snakemake.input.template,
     snakemake.output.caption,
     chi2=numbers["DSMC"]["chi2"],

@@ -3,9 +3,9 @@
 the original contract, source,rho,t,k1,k2,k3,k1_err,k2_err,k3_err), and its caption with
 every number from the table."""
 
-from kinetic import io, plotting
+from kinetic import io
 from kinetic.analysis import visco2008 as analysis
-from kinetic.workflow_support import start
+from kinetic.workflow_support import start, write_caption
 
 log = start(snakemake)
 windows = snakemake.params.extrapolation_windows
@@ -16,7 +16,7 @@ table = analysis.table1(
 )
 io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".5f")
 numbers = analysis.table1_caption_numbers(table, windows)
-caption = plotting.write_caption(snakemake.input.template, snakemake.output.caption, **numbers)
+caption = write_caption(snakemake.input.template, snakemake.output.caption, **numbers)
 with open(snakemake.output.md, "a", encoding="utf-8") as markdown:
     markdown.write("\n" + caption)
 log.info("Table I:\n%s", table.to_string(index=False))

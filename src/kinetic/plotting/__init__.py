@@ -37,7 +37,6 @@ __all__ = [
     "residual_panel",
     "save",
     "theory_steps",
-    "write_caption",
 ]
 
 STYLE = Path(__file__).with_name("kinetic.mplstyle")
@@ -176,14 +175,3 @@ def residual_panel(ax, x, data, error, theory, *, method: str = "md", label=None
         label=label,
         **kwargs,
     )
-
-
-def write_caption(template: str | os.PathLike, path: str | os.PathLike, **values) -> str:
-    """Render a caption template (reStructuredText with ``str.format`` fields such as
-    ``{z_k2:.1f}``) with numbers taken from the data files, and write it to ``path``
-    (the report reads it there). Returns the text."""
-    text = Path(template).read_text(encoding="utf-8").format(**values)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
-    return text
