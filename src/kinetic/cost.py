@@ -380,6 +380,24 @@ CLONING_GPU_EVENTS_PER_SECOND = 2.5e9
 the launch cost (bench cuda: hard disks at λ = 1, 4 × 10⁶ clones, 2.2 × 10⁹ events per
 wall second with the launches included)."""
 
+CLONING_GPU_RESIDENT_MAX_POPULATION = 10_000
+"""``kinetic.cloning.gpu.RESIDENT_MAX_POPULATION`` (a unit test keeps the two equal): up to
+this N_c a realization's control intervals run in one thread block, one launch per block
+of the run, without the four launches per interval."""
+
+CLONING_GPU_THREADS_PER_BLOCK = 128
+"""``kinetic.gpu.BLOCK`` on a GPU: the threads that share a resident realization's clones."""
+
+CLONING_GPU_RESIDENT_SECONDS_PER_EVENT = 5.0e-7
+"""``cuda`` backend, resident kernel: wall seconds of one event in one thread (an
+exponential, a uniform, a square root and the proposal's Gaussian pair in float64,
+latency-bound at a few warps per multiprocessor). A model, not yet measured:
+``python -m kinetic.bench cuda`` times the resident kernel (section cloning_speed)."""
+
+CLONING_GPU_RESIDENT_SECONDS_PER_INTERVAL = 5.0e-6
+"""``cuda`` backend, resident kernel: the barriers of one control interval (eight block
+reductions and a scan, about 60 barriers). A model, not yet measured."""
+
 CLONING_GPU_BYTES_PER_MEMBER = 120.0
 """``cuda`` backend: two velocity buffers, the stream, the count and the scan of a member."""
 
@@ -410,8 +428,11 @@ def cloning_batch(
     time (c_λ = 1 for λ >= 0, 2e^{-λ} - 1 below) over the transient, rounded up to whole blocks, and
     the measured ``duration``. At large λ the transient (e^λ mean free times for a member
     to keep a few collisions) dominates. With ``backend='cuda'`` the untilted clones
-    collide at the bath's rate (c = 1) and every realization runs in the same launches:
-    the control intervals times their launch cost, plus the events at the GPU's rate."""
+    collide at the bath's rate (c = 1) and every realization runs in the same launches.
+    Up to ``CLONING_GPU_RESIDENT_MAX_POPULATION`` clones, one thread block per realization
+    runs all its intervals (the blocks in parallel): each interval costs its barriers plus
+    the events of one thread's share of the clones, one after the other; larger
+    populations cost the intervals' launches plus the events at the GPU's rate."""
     rate_factor = 1.0 if lam >= 0 else 2.0 * math.exp(-lam) - 1.0
     block = duration / n_blocks
     transient_blocks = math.ceil(transient / block - 1e-9) if block > 0 else 0
@@ -419,10 +440,19 @@ def cloning_batch(
     if backend == "cuda":
         interval = control_interval or cloning_control_interval(lam)
         events = n_realizations * population * elapsed
-        seconds = (
-            elapsed / interval * CLONING_GPU_SECONDS_PER_INTERVAL
-            + events / CLONING_GPU_EVENTS_PER_SECOND
-        )
+        intervals = elapsed / interval
+        if population <= CLONING_GPU_RESIDENT_MAX_POPULATION:
+            per_thread = math.ceil(population / CLONING_GPU_THREADS_PER_BLOCK) * interval
+            latency = intervals * (
+                per_thread * CLONING_GPU_RESIDENT_SECONDS_PER_EVENT
+                + CLONING_GPU_RESIDENT_SECONDS_PER_INTERVAL
+            )
+            seconds = max(latency, events / CLONING_GPU_EVENTS_PER_SECOND)
+        else:
+            seconds = (
+                intervals * CLONING_GPU_SECONDS_PER_INTERVAL
+                + events / CLONING_GPU_EVENTS_PER_SECOND
+            )
         memory = _mb(CLONING_GPU_BYTES_PER_MEMBER * population * n_realizations)
         return Estimate(seconds, memory, f"{events:.2e} collision events on one GPU", gpus=1)
     events = n_realizations * population * rate_factor * elapsed

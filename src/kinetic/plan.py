@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from kinetic import cost, studies
+from kinetic.backends import BACKENDS
 from kinetic.config import load_configs, results_root
 from kinetic.studies import Job
 
@@ -321,9 +322,17 @@ def main(argv: list[str] | None = None) -> int:
         default=["config/config.yaml"],
         help="config file(s), merged in order as snakemake does (default: config/config.yaml)",
     )
+    parser.add_argument(
+        "--backend",
+        choices=BACKENDS,
+        help="run the GPU-capable engines on this backend (the config's 'backend' key, "
+        "as snakemake's --config backend=cuda would set it)",
+    )
     parser.add_argument("--jobs", action="store_true", help="also list every job")
     arguments = parser.parse_args(argv)
     config = load_configs(arguments.configfile)
+    if arguments.backend:
+        config["backend"] = arguments.backend
     try:
         studies.check(config)
     except ValueError as error:

@@ -10,6 +10,10 @@ tiny populations, exact results.
   ω = 1 (the GPU's per-clone uniformisation against the CPU engine's population-level one).
 - Same seed, same numbers; a batch of realizations repeats the same realizations of a
   larger call; ``cuda`` is refused before any work where there is no GPU.
+- The two ways of running the control intervals (``_resident``: one thread block per
+  realization for a whole block of the run; four launches per interval over many thread
+  blocks) draw the same random numbers and make the same selections: the same populations,
+  collision counts and histograms, and μ, T, a2 equal up to the summation order.
 """
 
 import math
@@ -25,7 +29,7 @@ import pytest
 pytest.importorskip("numba.cuda")
 
 from kinetic import backends
-from kinetic.cloning import simulate
+from kinetic.cloning import gpu, simulate
 
 pytestmark = [pytest.mark.cuda, pytest.mark.filterwarnings("ignore:overflow encountered")]
 
@@ -90,6 +94,28 @@ def test_hard_disks_stay_in_equilibrium_and_collide_at_the_bath_rate():
     rates = ds.elastic_collisions.values[:, measured].sum(axis=1) / member_time
     error = rates.std(ddof=1) / math.sqrt(rates.size)
     assert abs(rates.mean() - 1.0) < Z * error
+
+
+@pytest.mark.parametrize(("kernel", "dimension", "lam"), [("hard_spheres", 3, -0.5)])
+def test_resident_and_launched_intervals_make_the_same_selections(
+    monkeypatch, kernel, dimension, lam
+):
+    arguments = {
+        "kernel": kernel,
+        "dimension": dimension,
+        "lam": lam,
+        "population": 24,
+        "n_realizations": 2,
+        "control_interval": 1.0,
+    }
+    assert arguments["population"] <= gpu.RESIDENT_MAX_POPULATION
+    resident = run(**arguments)
+    monkeypatch.setattr(gpu, "RESIDENT_MAX_POPULATION", 0)
+    launched = run(**arguments)
+    for name in ("elastic_collisions", "candidates", "velocity_density", "max_speed"):
+        np.testing.assert_array_equal(resident[name].values, launched[name].values)
+    for name in ("mu_per_realization", "temperature_per_realization", "a2_per_realization"):
+        np.testing.assert_allclose(resident[name].values, launched[name].values, rtol=1e-12)
 
 
 def test_the_cuda_backend_is_refused_before_any_work_without_a_gpu():

@@ -175,6 +175,26 @@ def test_cuda_cloning_estimate_uses_the_fronts_control_interval():
     assert gpu.cpu_seconds < cpu.cpu_seconds / 10
 
 
+def test_cuda_cloning_estimate_switches_path_where_the_engine_does():
+    """Up to the engine's RESIDENT_MAX_POPULATION a realization runs in one thread block:
+    the estimate then no longer pays four launches per control interval."""
+    pytest.importorskip("numba.cuda")
+    from kinetic.cloning import gpu
+
+    assert cost.CLONING_GPU_RESIDENT_MAX_POPULATION == gpu.RESIDENT_MAX_POPULATION
+    arguments = {"lam": 1.0, "duration": 1e5, "transient": 50.0, "n_blocks": 20}
+    largest = gpu.RESIDENT_MAX_POPULATION
+    resident = cost.cloning_batch(
+        **arguments, population=largest, n_realizations=32, backend="cuda"
+    )
+    launched = cost.cloning_batch(
+        **arguments, population=largest + 1, n_realizations=32, backend="cuda"
+    )
+    intervals = (arguments["duration"] + 50.0) / cost.cloning_control_interval(1.0)
+    assert launched.cpu_seconds >= intervals * cost.CLONING_GPU_SECONDS_PER_INTERVAL
+    assert resident.cpu_seconds < launched.cpu_seconds
+
+
 def test_the_paper_gpu_layer_runs_cloning_and_montanero2007_on_one_gpu():
     """config/paper-gpu.yaml over paper.yaml: its own results root, every cloning point and
     montanero2007 run one GPU job, hard-disk populations up to 10⁶."""

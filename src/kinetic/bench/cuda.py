@@ -7,9 +7,12 @@ time is excluded by a first call of the same types. The report is rewritten afte
 section (a run stopped at a time limit keeps what it measured).
 
 Cloning (visco2008 §IV.A): collision events per second of the untilted clones (ΣK_i) at
-N_c = 10³, 10⁵, 10⁶ (hard disks at λ = 1 and -1, Maxwell molecules at λ = 1; N_c = 10³
-also with 100 realizations in one launch), against the CPU engine on one core of the
-same machine; then the physics: Maxwell μ(λ) = e^{-λ} - 1 at the figures' λ, hard-disk
+N_c = 10³, 10⁴, 10⁵, 10⁶ (hard disks at λ = 1 and -1, Maxwell molecules at λ = 1; N_c = 10³
+also with 100 realizations in one launch), each on the path the engine picks (``path``:
+the resident kernel up to ``RESIDENT_MAX_POPULATION`` clones, four launches per control
+interval above), both paths at the paper config's shape (32 realizations of 10³ and 10⁴
+clones: ``paths``), against the CPU engine on one core of the same machine; then the
+physics: Maxwell μ(λ) = e^{-λ} - 1 at every λ of the paper config's Fig. 4, hard-disk
 μ(1) extrapolated in 1/N_c against the Eq. 28 reference, T and a2 at N_c = 10³ against the
 CPU engine, and the bias of μ(1) in the control interval Δ.
 
@@ -27,6 +30,7 @@ CPU core for the ratio.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import time
 import traceback
@@ -106,9 +110,36 @@ def _cloning(
     }
 
 
+@contextlib.contextmanager
+def _cloning_path(resident: bool):
+    """Force the cuda cloning backend's resident kernel (one thread block per realization)
+    or its four launches per control interval, whatever the population."""
+    from kinetic.cloning import gpu
+
+    saved = gpu.RESIDENT_MAX_POPULATION
+    gpu.RESIDENT_MAX_POPULATION = 2**62 if resident else 0
+    try:
+        yield
+    finally:
+        gpu.RESIDENT_MAX_POPULATION = saved
+
+
+def _median_run(*arguments, **keywords) -> dict[str, Any]:
+    """The median of three seeds' runs by events per second, with all three rates."""
+    runs = [_cloning(*arguments, **keywords, seed=s) for s in range(3)]
+    best = sorted(runs, key=lambda r: r["events_per_second"])[1]
+    return best | {"rates": [r["events_per_second"] for r in runs]}
+
+
 def cloning_speed(quick: bool) -> dict[str, Any]:
-    """Events per second against N_c, and the CPU engine on one core."""
-    _cloning("hard_spheres", 1.0, 256, 4.0, 2)  # compile (same types as every case)
+    """Events per second against N_c (each population on the engine's own path), the
+    resident kernel against the four launches per interval at the paper config's
+    populations, and the CPU engine on one core."""
+    from kinetic.cloning import gpu
+
+    for resident in (True, False):  # compile both paths (same types as every case)
+        with _cloning_path(resident):
+            _cloning("hard_spheres", 1.0, 256, 4.0, 2)
     _cloning("hard_spheres", 1.0, 256, 4.0, 2, backend="cpu")
     cases = []
     sizes = [
@@ -120,16 +151,36 @@ def cloning_speed(quick: bool) -> dict[str, Any]:
     ]
     for kernel, lam in (("hard_spheres", 1.0), ("hard_spheres", -1.0), ("maxwell", 1.0)):
         for population, realizations, duration in sizes[: 2 if quick else None]:
-            runs = [
-                _cloning(kernel, lam, population, duration, realizations, seed=s) for s in range(3)
-            ]
-            best = sorted(runs, key=lambda r: r["events_per_second"])[1]
-            cases.append(best | {"rates": [r["events_per_second"] for r in runs]})
+            case = _median_run(kernel, lam, population, duration, realizations)
+            resident = population <= gpu.RESIDENT_MAX_POPULATION
+            cases.append(case | {"path": "resident" if resident else "launched"})
+    paths = []
+    for population, duration in ((1000, 2000.0), (10_000, 200.0))[: 1 if quick else None]:
+        for resident in (True, False):
+            with _cloning_path(resident):
+                case = _median_run("hard_spheres", 1.0, population, duration, 32)
+            paths.append(case | {"path": "resident" if resident else "launched"})
     cpu = [_cloning("hard_spheres", 1.0, 1000, 2000.0, 1, backend="cpu", seed=s) for s in range(3)]
     cpu_rate = float(np.median([r["events_per_second"] for r in cpu]))
-    for case in cases:
+    for case in cases + paths:
         case["speedup_over_one_core"] = case["events_per_second"] / cpu_rate
-    return {"gpu": cases, "cpu_one_core_events_per_second": cpu_rate, "cpu_runs": cpu}
+    return {
+        "gpu": cases,
+        "paths": paths,
+        "resident_max_population": gpu.RESIDENT_MAX_POPULATION,
+        "cpu_one_core_events_per_second": cpu_rate,
+        "cpu_runs": cpu,
+    }
+
+
+def _paper_lambdas(kernel: str) -> list[float]:
+    """The counting fields of the paper config's cloning figures for ``kernel``."""
+    from pathlib import Path
+
+    from kinetic.config import load_configs
+
+    paper = Path(__file__).resolve().parents[3] / "config" / "paper.yaml"
+    return list(load_configs([paper])["visco2008"]["cloning"]["kernels"][kernel]["lambdas"])
 
 
 def cloning_physics(quick: bool) -> dict[str, Any]:
@@ -139,7 +190,7 @@ def cloning_physics(quick: bool) -> dict[str, Any]:
 
     out: dict[str, Any] = {}
     maxwell = []
-    for lam in (-1.5, -1.0, -0.5, 0.5, 1.0, 2.0, 4.0):
+    for lam in _paper_lambdas("maxwell")[:: 4 if quick else 1]:
         r = _cloning("maxwell", lam, 10_000, 40.0, 10, seed=7)
         exact = math.expm1(-lam)
         maxwell.append(r | {"exact": exact, "z": (r["mu"] - exact) / r["mu_err"]})

@@ -23,6 +23,12 @@ J. Stat. Mech. P03004 (2007)):
    population after selection (distributed as the eigenfunction f̃(v, λ) of visco2008
    Eq. 28) gives the snapshot moments, rate and velocity histogram.
 
+The intervals run one of two ways, chosen by N_c alone: up to ``RESIDENT_MAX_POPULATION``
+clones, ``_resident`` runs all the intervals of a block of the run in one thread block per
+realization (the phases separated by block barriers); above, four launches per interval
+(``_advance``, ``_weigh``, ``_close_interval``, ``_select``) over N_c/BLOCK thread blocks
+per realization. Both draw the same random numbers and make the same integer selections.
+
 For any Δ the product of the mean weights is an unbiased estimate of the tilted
 partition function; its logarithm is biased by about -Var(w)/(2 N_c <w>²) per interval,
 which grows with Δ and the tilt: ``kinetic.cloning.simulate`` picks Δ from λ so that
@@ -97,6 +103,7 @@ _NET = _FIELD["net_compensations"]
 _COLLISIONS = _FIELD["elastic_collisions"]
 _CANDIDATES = _FIELD["candidates"]
 _SNAPSHOT = (_FIELD["integral_v2"], _FIELD["integral_v4"], _FIELD["integral_rate"])
+_MAX_SPEED = _FIELD["max_speed"]
 # columns of the per-thread-block partial sums
 _P_COLLISIONS, _P_CANDIDATES, _P_WEIGHT, _P_V2, _P_V4, _P_RATE = range(6)
 
@@ -124,6 +131,66 @@ def _seed(states, velocity, rows):
     states[r, i, 3] = s3
 
 
+@cuda.jit(device=True, inline="always")
+def _advance_clone(velocity, states, r, i, code, interval, rate_a):
+    """One control interval of the untilted process for clone i of realization r: its
+    velocity and stream advance in place; returns (collisions, candidates)."""
+    d = velocity.shape[1]
+    collisions = 0
+    candidates = 0
+    s0 = states[r, i, 0]
+    s1 = states[r, i, 1]
+    s2 = states[r, i, 2]
+    s3 = states[r, i, 3]
+    waiting = False
+    held = 0.0
+    if code == _HARD_SPHERES:
+        vx = velocity[r, 0, i]
+        vy = velocity[r, 1, i]
+        vz = velocity[r, 2, i] if d == 3 else 0.0
+        t = 0.0
+        while True:
+            speed = math.sqrt(vx * vx + vy * vy + vz * vz)
+            rate = rate_a * speed + _RATE_B
+            e, s0, s1, s2, s3 = _exponential(s0, s1, s2, s3)
+            t += e / rate
+            if t > interval:
+                break
+            candidates += 1
+            w, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+            use_a = w * rate < rate_a * speed
+            if d == 2:
+                ok, vx, vy, s0, s1, s2, s3, waiting, held = _proposal_2d(
+                    vx, vy, speed, use_a, s0, s1, s2, s3, waiting, held
+                )
+            else:
+                ok, vx, vy, vz, s0, s1, s2, s3, waiting, held = _proposal_3d(
+                    vx, vy, vz, speed, use_a, s0, s1, s2, s3, waiting, held
+                )
+            if ok:
+                collisions += 1
+        velocity[r, 0, i] = vx
+        velocity[r, 1, i] = vy
+        if d == 3:
+            velocity[r, 2, i] = vz
+    else:
+        members = velocity[r]
+        t = 0.0
+        while True:
+            e, s0, s1, s2, s3 = _exponential(s0, s1, s2, s3)
+            t += e
+            if t > interval:
+                break
+            candidates += 1
+            collisions += 1
+            _, s0, s1, s2, s3, waiting, held = _maxwell(members, i, s0, s1, s2, s3, waiting, held)
+    states[r, i, 0] = s0
+    states[r, i, 1] = s1
+    states[r, i, 2] = s2
+    states[r, i, 3] = s3
+    return collisions, candidates
+
+
 @cuda.jit
 def _advance(velocity, states, counts, extremes, partials, code, interval, rate_a):
     """One control interval of the untilted process for every clone (thread (i, r))."""
@@ -132,62 +199,10 @@ def _advance(velocity, states, counts, extremes, partials, code, interval, rate_
     i = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
     r = cuda.blockIdx.y
     n = states.shape[1]
-    d = velocity.shape[1]
     collisions = 0
     candidates = 0
     if i < n:
-        s0 = states[r, i, 0]
-        s1 = states[r, i, 1]
-        s2 = states[r, i, 2]
-        s3 = states[r, i, 3]
-        waiting = False
-        held = 0.0
-        if code == _HARD_SPHERES:
-            vx = velocity[r, 0, i]
-            vy = velocity[r, 1, i]
-            vz = velocity[r, 2, i] if d == 3 else 0.0
-            t = 0.0
-            while True:
-                speed = math.sqrt(vx * vx + vy * vy + vz * vz)
-                rate = rate_a * speed + _RATE_B
-                e, s0, s1, s2, s3 = _exponential(s0, s1, s2, s3)
-                t += e / rate
-                if t > interval:
-                    break
-                candidates += 1
-                w, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
-                use_a = w * rate < rate_a * speed
-                if d == 2:
-                    ok, vx, vy, s0, s1, s2, s3, waiting, held = _proposal_2d(
-                        vx, vy, speed, use_a, s0, s1, s2, s3, waiting, held
-                    )
-                else:
-                    ok, vx, vy, vz, s0, s1, s2, s3, waiting, held = _proposal_3d(
-                        vx, vy, vz, speed, use_a, s0, s1, s2, s3, waiting, held
-                    )
-                if ok:
-                    collisions += 1
-            velocity[r, 0, i] = vx
-            velocity[r, 1, i] = vy
-            if d == 3:
-                velocity[r, 2, i] = vz
-        else:
-            members = velocity[r]
-            t = 0.0
-            while True:
-                e, s0, s1, s2, s3 = _exponential(s0, s1, s2, s3)
-                t += e
-                if t > interval:
-                    break
-                candidates += 1
-                collisions += 1
-                _, s0, s1, s2, s3, waiting, held = _maxwell(
-                    members, i, s0, s1, s2, s3, waiting, held
-                )
-        states[r, i, 0] = s0
-        states[r, i, 1] = s1
-        states[r, i, 2] = s2
-        states[r, i, 3] = s3
+        collisions, candidates = _advance_clone(velocity, states, r, i, code, interval, rate_a)
         counts[r, i] = collisions
     low = block_reduce_extreme(shared_counts, collisions if i < n else _NO_MIN, False)
     high = block_reduce_extreme(shared_counts, collisions if i < n else -1, True)
@@ -369,6 +384,139 @@ def _fold_snapshot(partials, out, interval):
     _add_snapshot(shared, partials, out, cuda.blockIdx.x, interval)
 
 
+RESIDENT_MAX_POPULATION = 10_000
+"""Largest population run by ``_resident`` (one thread block per realization for the
+whole of a block of the run); larger ones run ``_advance``/``_weigh``/``_close_interval``/
+``_select``, four launches per control interval over many thread blocks. Below about 10⁵
+clones those four launches cost more than the work (0.28-0.43 ms per interval on an H100,
+whatever N_c: docs/gpu.md); the resident kernel pays a few block barriers instead. The
+crossover is a model, not a measurement: ``python -m kinetic.bench cuda`` times both
+paths at N_c = 10³ and 10⁴."""
+
+
+@cuda.jit(device=True, inline="always")
+def _slot(position, n, total, u):
+    """g(E) = ceil(N_c E/Q - u), clamped to [0, N_c]: the first slot at or above the
+    cumulative fixed-point weight E (as ``_slots_below``)."""
+    g = math.ceil(n * (float(position) / total) - u)
+    return min(n, max(0, g))
+
+
+@cuda.jit
+def _resident(first, second, states, counts, controls, out, observers, run):
+    """``steps`` control intervals of every clone of realization r = blockIdx.x, in one
+    thread block: advance (clones t, t + BLOCK, ...), weigh and scan (thread t the
+    contiguous chunk t of the clones), select, the snapshot sums, with block barriers
+    between the phases instead of launches. The same random numbers, collision counts,
+    integer scan and selections as the four-launch path, so the same populations; μ and
+    the snapshot sums differ from it in the last bits only (other summation order).
+    ``first`` holds the population at the start; after an odd ``steps`` it is in
+    ``second``."""
+    shared = cuda.shared.array(BLOCK, np.float64)
+    shared_q = cuda.shared.array(BLOCK, np.int64)
+    counts_shared = cuda.shared.array(MAX_CUDA_HISTOGRAM_BINS, np.int64)
+    selection = cuda.shared.array(1, np.float64)
+    table, table_step, histogram, half_width, record = observers
+    code, interval, steps, lam, rate_a = run
+    t = cuda.threadIdx.x
+    r = cuda.blockIdx.x
+    n = states.shape[1]
+    d = first.shape[1]
+    bins = histogram.shape[1]
+    chunk = (n + BLOCK - 1) // BLOCK
+    start = min(t * chunk, n)
+    stop = min(start + chunk, n)
+    if record:
+        for b in range(t, bins, BLOCK):
+            counts_shared[b] = 0
+    cuda.syncthreads()
+    for step in range(steps):
+        source = first if step % 2 == 0 else second
+        target = second if step % 2 == 0 else first
+        collisions = 0
+        candidates = 0
+        low = _NO_MIN
+        high = np.int64(-1)
+        for i in range(t, n, BLOCK):
+            k, c = _advance_clone(source, states, r, i, code, interval, rate_a)
+            counts[r, i] = k
+            collisions += k
+            candidates += c
+            low = min(low, k)
+            high = max(high, k)
+        low = block_reduce_extreme(shared_q, low, False)
+        high = block_reduce_extreme(shared_q, high, True)
+        total_collisions = block_reduce_sum(shared, float(collisions))
+        total_candidates = block_reduce_sum(shared, float(candidates))
+        shift = low if lam >= 0.0 else high
+        weights = 0.0
+        chunk_q = _ZERO
+        for k in range(start, stop):
+            w = math.exp(-lam * (counts[r, k] - shift))
+            weights += w
+            chunk_q += np.int64(w * _FIXED_POINT + 0.5)
+        weight = block_reduce_sum(shared, weights)
+        prefix, total_q = block_inclusive_scan(shared_q, chunk_q, _ZERO)
+        if t == 0:
+            out[r, _ELAPSED] += interval
+            out[r, _NET] += n * (math.log(weight / n) - lam * shift)
+            out[r, _COLLISIONS] += total_collisions
+            out[r, _CANDIDATES] += total_candidates
+            s0 = controls[r, 0]
+            s1 = controls[r, 1]
+            s2 = controls[r, 2]
+            s3 = controls[r, 3]
+            u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+            controls[r, 0] = s0
+            controls[r, 1] = s1
+            controls[r, 2] = s2
+            controls[r, 3] = s3
+            selection[0] = float(np.uint64(u * 2.0**53)) * 2.0**-53
+        cuda.syncthreads()
+        u = selection[0]
+        total = float(total_q)
+        running = prefix - chunk_q
+        v2_sum = 0.0
+        v4_sum = 0.0
+        rate_sum = 0.0
+        fastest = 0.0
+        for k in range(start, stop):
+            q = np.int64(math.exp(-lam * (counts[r, k] - shift)) * _FIXED_POINT + 0.5)
+            low_slot = 0 if k == 0 else _slot(running, n, total, u)
+            running += q
+            high_slot = n if k == n - 1 else _slot(running, n, total, u)
+            copies = high_slot - low_slot
+            if copies > 0:
+                v2 = 0.0
+                for dim in range(d):
+                    value = source[r, dim, k]
+                    v2 += value * value
+                    for j in range(low_slot, high_slot):
+                        target[r, dim, j] = value
+                    if record:
+                        b = math.floor((value + half_width) * bins / (2.0 * half_width))
+                        if 0 <= b < bins:
+                            cuda.atomic.add(counts_shared, b, copies)
+                speed = math.sqrt(v2)
+                fastest = max(fastest, speed)
+                rate_sum += copies * _tabulated_rate(speed, table, table_step)
+                v4_sum += copies * v2 * v2
+                v2_sum += copies * v2
+        v2_sum = block_reduce_sum(shared, v2_sum)
+        v4_sum = block_reduce_sum(shared, v4_sum)
+        rate_sum = block_reduce_sum(shared, rate_sum)
+        fastest = block_reduce_extreme(shared, fastest, True)
+        if t == 0:
+            out[r, _SNAPSHOT[0]] += interval * v2_sum
+            out[r, _SNAPSHOT[1]] += interval * v4_sum
+            out[r, _SNAPSHOT[2]] += interval * rate_sum
+            out[r, _MAX_SPEED] = max(out[r, _MAX_SPEED], fastest)
+        cuda.syncthreads()
+    if record:
+        for b in range(t, bins, BLOCK):
+            histogram[r, b] += counts_shared[b]
+
+
 def run(p, durations, n_transient, rows, progress):
     """Run every realization of ``rows`` (one ``stream_states`` row each) at once.
 
@@ -382,54 +530,86 @@ def run(p, durations, n_transient, rows, progress):
     from kinetic.cloning.rates import TABLE_STEP, rate_table
 
     count, n, d = rows.shape[0], p["population"], p["dimension"]
-    lam = p["lam"]
-    n_bins = p["histogram_bins"]
-    launch = ((grid(n), count), BLOCK)
     started = time.perf_counter()
     velocity = [cuda.device_array((count, d, n)), cuda.device_array((count, d, n))]
     states = cuda.device_array((count, n, 4), dtype=np.uint64)
-    _seed[launch](states, velocity[0], to_device(rows))
+    _seed[(grid(n), count), BLOCK](states, velocity[0], to_device(rows))
     controls = to_device(np.concatenate([rows, np.zeros((count, 1), np.uint64)], axis=1))
     counts = cuda.device_array((count, n), dtype=np.int64)
-    extremes = to_device(np.tile(np.array([_NO_MIN, -1, n, 0], dtype=np.int64), (count, 1)))
-    cumulative = cuda.device_array((count, n), dtype=np.int64)
-    block_sums = cuda.device_array((count, grid(n)), dtype=np.int64)
-    partials = to_device(np.zeros((count, grid(n), 6)))
-    histogram = to_device(np.zeros((count, n_bins), dtype=np.int64))
+    histogram = to_device(np.zeros((count, p["histogram_bins"]), dtype=np.int64))
     blocks = to_device(np.zeros((count, len(durations), len(kernels.BLOCK_FIELDS))))
     table = to_device(rate_table(p["kernel"], d))
     code = kernels.HARD_SPHERES if p["kernel"] == "hard_spheres" else kernels.MAXWELL
     rate_a = kernels.channel_a_rate(d)
-    advance, weigh, select = _advance[launch], _weigh[launch], _select[launch]
-    close, fold = _close_interval[count, BLOCK], _fold_snapshot[count, BLOCK]
+    if n <= RESIDENT_MAX_POPULATION:
+        advance = _resident_intervals(velocity, states, counts, controls, p["lam"])
+    else:
+        advance = _launched_intervals(velocity, states, counts, controls, p["lam"])
     snapshots = 0
     for b, duration in enumerate(durations):
         steps = max(1, math.ceil(duration / p["control_interval"] - 1e-9))
-        interval = duration / steps
-        out = blocks[:, b, :]
         record = b >= n_transient
         snapshots += steps if record else 0
-        observers = (
-            table,
-            TABLE_STEP,
-            histogram,
-            p["histogram_half_width"],
-            blocks[:, b, _FIELD["max_speed"]],
-            record,
+        observers = (table, TABLE_STEP, histogram, p["histogram_half_width"], record)
+        advance(blocks[:, b, :], observers, (code, duration / steps, steps, rate_a))
+        cuda.synchronize()
+        progress.update(count * duration)
+    sums = blocks.copy_to_host()
+    sums[:, :, _FIELD["collision_events"]] = sums[:, :, _COLLISIONS]
+    sums[:, :, _FIELD["proposals"]] = sums[:, :, _CANDIDATES]
+    bin_width = 2.0 * p["histogram_half_width"] / p["histogram_bins"]
+    densities = histogram.copy_to_host() / (max(snapshots, 1) * d * n * bin_width)
+    final = velocity[0].copy_to_host()
+    distinct = np.array([np.unique(final[r, 0]).size for r in range(count)], dtype=float)
+    seconds = np.full(count, (time.perf_counter() - started) / count)
+    return sums, densities, distinct, seconds
+
+
+def _resident_intervals(velocity, states, counts, controls, lam):
+    """Control intervals by ``_resident``: one launch per block of the run."""
+    count = states.shape[0]
+
+    def advance(out, observers, run):
+        code, interval, steps, rate_a = run
+        _resident[count, BLOCK](
+            velocity[0],
+            velocity[1],
+            states,
+            counts,
+            controls,
+            out,
+            observers,
+            (code, interval, steps, lam, rate_a),
         )
+        if steps % 2:
+            velocity.reverse()
+
+    return advance
+
+
+def _launched_intervals(velocity, states, counts, controls, lam):
+    """Control intervals by four launches each over ``grid(N_c)`` thread blocks per
+    realization (``_advance``, ``_weigh``, ``_close_interval``, ``_select``)."""
+    count, n = states.shape[0], states.shape[1]
+    launch = ((grid(n), count), BLOCK)
+    extremes = to_device(np.tile(np.array([_NO_MIN, -1, n, 0], dtype=np.int64), (count, 1)))
+    cumulative = cuda.device_array((count, n), dtype=np.int64)
+    block_sums = cuda.device_array((count, grid(n)), dtype=np.int64)
+    partials = to_device(np.zeros((count, grid(n), 6)))
+    launch_advance, weigh, select = _advance[launch], _weigh[launch], _select[launch]
+    close, fold = _close_interval[count, BLOCK], _fold_snapshot[count, BLOCK]
+
+    def advance(out, observers, run):
+        code, interval, steps, rate_a = run
+        table, table_step, histogram, half_width, record = observers
+        fastest = out[:, _MAX_SPEED]
+        observers = (table, table_step, histogram, half_width, fastest, record)
         for step in range(steps):
-            advance(velocity[0], states, counts, extremes, partials, code, interval, rate_a)
+            launch_advance(velocity[0], states, counts, extremes, partials, code, interval, rate_a)
             weigh(counts, extremes, lam, cumulative, block_sums, partials)
-            # the previous selection's snapshot is folded here, but the block's last below
-            close(
-                block_sums,
-                extremes,
-                controls,
-                partials,
-                out,
-                lam,
-                (interval, interval if step else 0.0),
-            )
+            # the previous selection's snapshot is folded here, the last one by ``fold``
+            previous = interval if step else 0.0
+            close(block_sums, extremes, controls, partials, out, lam, (interval, previous))
             select(
                 velocity[0],
                 velocity[1],
@@ -442,14 +622,5 @@ def run(p, durations, n_transient, rows, progress):
             )
             velocity.reverse()
         fold(partials, out, interval)
-        cuda.synchronize()
-        progress.update(count * duration)
-    sums = blocks.copy_to_host()
-    sums[:, :, _FIELD["collision_events"]] = sums[:, :, _COLLISIONS]
-    sums[:, :, _FIELD["proposals"]] = sums[:, :, _CANDIDATES]
-    bin_width = 2.0 * p["histogram_half_width"] / n_bins
-    densities = histogram.copy_to_host() / (max(snapshots, 1) * d * n * bin_width)
-    final = velocity[0].copy_to_host()
-    distinct = np.array([np.unique(final[r, 0]).size for r in range(count)], dtype=float)
-    seconds = np.full(count, (time.perf_counter() - started) / count)
-    return sums, densities, distinct, seconds
+
+    return advance
