@@ -18,7 +18,12 @@ CPU engine, and the bias of μ(1) in the control interval Δ.
 
 DSMC (montanero2007): collisions per second of the homogeneous engine at N = 2 × 10⁵
 with 50 realizations in one launch, against the CPU engine on one core, and the HCS
-cooling rate and a2 against the CPU engine.
+cooling rate and a2 against the CPU engine (``dsmc_speed``); accepted collisions per
+second at α = 1 and 0.5 for N = 2 × 10⁵ × 100, 2 × 10⁶ × 10, 2 × 10⁷ × 1
+(``dsmc_scaling``); one montanero2007 job of paper.yaml (α = 0.3, N = 2 × 10⁵, δt = 0.003,
+60 τ, 200 realizations) timed on the GPU for 25 of its realizations and on one CPU core
+for one realization over a tenth of the duration, both scaled to the whole job
+(``dsmc_paper_job``).
 
 Inhomogeneous DSMC (costantini2010, ``inhomogeneous_speed``): particle-steps and
 collisions per second of ``simulate_cooling_modes(backend="cuda")`` at N = 3000 × Λ = 10
@@ -374,10 +379,83 @@ def inhomogeneous_speed(quick: bool) -> dict[str, Any]:
     return {"gpu": gpu, "cpu_one_core": cpu}
 
 
+def dsmc_scaling(quick: bool) -> dict[str, Any]:
+    """Homogeneous DSMC at α = 1 and 0.5: accepted collisions per second at the same
+    particle-steps (2 × 10⁹) spread as N = 2 × 10⁵ × 100 realizations, 2 × 10⁶ × 10 and
+    2 × 10⁷ × 1, groups re-dealt every step."""
+    _dsmc(2000, 2, 1.0, "cuda", restitution=1.0)  # compile (same types as every case)
+    sizes = [(200_000, 100), (2_000_000, 10), (20_000_000, 1)]
+    cases = []
+    for restitution in (1.0, 0.5):
+        for n, realizations in sizes[: 1 if quick else None]:
+            case = _dsmc(n, realizations, 10.0, "cuda", restitution=restitution)
+            cases.append(case | {"restitution": restitution})
+    return {"gpu": cases}
+
+
+def _paper_job(backend: str) -> tuple[Any, Any]:
+    """The first montanero2007 job of the paper config with ``backend`` (α = 0.3,
+    N = 2 × 10⁵, the paper's δt and duration, a batch of realizations) and its front."""
+    from pathlib import Path
+
+    from kinetic import studies
+    from kinetic.config import load_configs
+
+    paper = Path(__file__).resolve().parents[3] / "config" / "paper.yaml"
+    config = load_configs([paper]) | {"backend": backend}
+    job = next(j for j in studies.jobs(config) if j.rule == "montanero2007_simulate_dsmc")
+    return job, studies.front(job.front)
+
+
+def dsmc_paper_job(quick: bool) -> dict[str, Any]:
+    """One montanero2007 job of paper.yaml on the GPU (a fraction of its realizations, the
+    full duration: the GPU is full from a few realizations of 2 × 10⁵), and the same run
+    on one CPU core (one realization over a tenth of the duration); both scaled to the
+    whole job."""
+    job, front = _paper_job("cuda")
+    run = job.arguments["run"]
+    steps = run["duration"] / run["time_step"]
+    count = 5 if quick else 25
+    warm = {**run, "duration": run["sample_interval"], "steady_from": 0.0}
+    short = {**job.arguments, "count": 2, "run": warm}
+    front(**short)  # compile
+    start = time.perf_counter()
+    front(**{**job.arguments, "count": count})
+    gpu_wall = time.perf_counter() - start
+    cpu_job, cpu_front = _paper_job("cpu")
+    cpu_run = {**run, "duration": run["duration"] / 10, "steady_from": run["duration"] / 20}
+    warm = {**cpu_run, "duration": run["sample_interval"], "steady_from": 0.0}
+    cpu_front(**{**cpu_job.arguments, "count": 1, "run": warm})  # compile
+    start = time.perf_counter()
+    cpu_front(**{**cpu_job.arguments, "count": 1, "run": cpu_run})
+    cpu_wall = time.perf_counter() - start
+    job_realizations = job.arguments["count"]
+    gpu_job = gpu_wall * job_realizations / count
+    cpu_job_seconds = cpu_wall * job_realizations * 10
+    return {
+        "label": job.arguments["label"],
+        "n_particles": run["n_particles"],
+        "restitution": run["restitution"],
+        "time_step": run["time_step"],
+        "duration": run["duration"],
+        "steps": steps,
+        "job_realizations": job_realizations,
+        "gpu_realizations_timed": count,
+        "gpu_wall_seconds": gpu_wall,
+        "gpu_job_seconds": gpu_job,
+        "cpu_one_core_wall_seconds_per_tenth_realization": cpu_wall,
+        "cpu_one_core_job_seconds": cpu_job_seconds,
+        "speedup_over_one_core": cpu_job_seconds / gpu_job,
+        "planned_gpu_seconds": job.estimate.cpu_seconds,
+    }
+
+
 SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
     "cloning_speed": cloning_speed,
     "cloning_physics": cloning_physics,
     "dsmc_speed": dsmc_speed,
+    "dsmc_scaling": dsmc_scaling,
+    "dsmc_paper_job": dsmc_paper_job,
     "inhomogeneous_speed": inhomogeneous_speed,
 }
 
