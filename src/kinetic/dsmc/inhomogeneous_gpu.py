@@ -86,6 +86,12 @@ N_SUMS = 8
 _CANDIDATES, _COLLISIONS, _REPEATED, _EXCEEDED = 0, 1, 2, 3
 _N_TALLIES = 4
 
+_SPREAD_BLOCKS = 1 if simulated() else 2048
+"""Most thread blocks per realization of the streaming and the scatter, which reduce no
+floats (their grid may change without changing a number): a single realization of 3 x
+10⁶ particles fills the GPU. The observer keeps ``MAX_BLOCKS`` (its partial sums need a
+grid that depends on N_sim only)."""
+
 _collide_cell = device_function(kernels._collide_cell)
 _accumulate = device_function(kernels._accumulate)
 _streamed = device_function(kernels._streamed)
@@ -355,6 +361,7 @@ class _Batch:
         self.n = n
         self.n_cells = n_cells
         self.n_blocks = min(grid(n, THREADS), MAX_BLOCKS)
+        self.spread_blocks = min(grid(n, THREADS), _SPREAD_BLOCKS)
         spare = (
             device_zeros((count, 2, n)),
             device_zeros((count, 2, n)),
@@ -399,7 +406,7 @@ class _Batch:
 
     def advance(self, n_steps: int) -> None:
         """Launch ``n_steps`` steps of every realization (five launches each)."""
-        particles = (self.n_blocks, self.count)
+        particles = (self.spread_blocks, self.count)
         cells = (grid(self.n_cells), self.count)
         for _ in range(n_steps):
             source, target = self.buffers
