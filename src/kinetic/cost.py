@@ -209,6 +209,18 @@ mode observer every other step): 2.6 × 10⁻⁸ s per particle-step measured at
 Λ = 10 on the busy 2-core machine before the kernel's last speed-ups; the bench gives
 0.9 × 10⁻⁸ for the step alone."""
 
+COOLING_DSMC_GPU_SECONDS_PER_STEP = 6.0e-4
+"""``cuda`` backend of simulate_cooling_modes: the fixed cost of one step, five launches
+through numba's dispatcher (about 90 µs each on an H100, as the cloning and homogeneous
+DSMC kernels measured) plus the one-block scan over the cells. A model, not yet measured:
+``python -m kinetic.bench cuda --sections inhomogeneous_speed``."""
+
+COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND = 1.0e9
+"""``cuda`` backend of simulate_cooling_modes, every realization in the same launches:
+particle-steps per second beyond the launches (half the homogeneous DSMC's measured
+1.8-2.1 × 10⁹ on an H100: the per-cell sort and the gather read scattered addresses). A
+model, not yet measured."""
+
 COOLING_DSMC_BYTES_PER_PARTICLE = 120.0
 """Positions, velocities, sort keys and scratch of one simulated particle."""
 
@@ -230,15 +242,25 @@ def cooling_modes(
     n_realizations: int,
     fictive_factor: int = 1,
     time_step: float | None = None,
+    backend: str = "cpu",
     **_: object,
 ) -> Estimate:
     """One job of costantini2010 (kinetic.dsmc or kinetic.edmd simulate_cooling_modes,
-    engine units): ``n_realizations`` runs of ``n_samples`` sample intervals."""
+    engine units): ``n_realizations`` runs of ``n_samples`` sample intervals; a DSMC job
+    on the ``cuda`` backend advances them all in the same launches."""
     duration = n_samples * sample_interval
     samples_bytes = 80.0 * n_samples * n_realizations
     if engine == "dsmc":
         simulated = fictive_factor * n_particles
         particle_steps = n_realizations * simulated * duration / time_step
+        if backend == "cuda":
+            seconds = (
+                duration / time_step * COOLING_DSMC_GPU_SECONDS_PER_STEP
+                + particle_steps / COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND
+            )
+            memory = _mb(COOLING_DSMC_BYTES_PER_PARTICLE * simulated * n_realizations)
+            work = f"{particle_steps:.2e} particle-steps on one GPU"
+            return Estimate(seconds, memory, work, gpus=1)
         seconds = COOLING_DSMC_SECONDS_PER_PARTICLE_STEP * particle_steps
         memory = _mb(COOLING_DSMC_BYTES_PER_PARTICLE * simulated + samples_bytes)
         return Estimate(seconds, memory, f"{particle_steps:.2e} particle-steps")

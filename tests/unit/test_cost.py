@@ -195,16 +195,21 @@ def test_cuda_cloning_estimate_switches_path_where_the_engine_does():
     assert resident.cpu_seconds < launched.cpu_seconds
 
 
-def test_the_paper_gpu_layer_runs_cloning_and_montanero2007_on_one_gpu():
-    """config/paper-gpu.yaml over paper.yaml: its own results root, every cloning point and
-    montanero2007 run one GPU job, hard-disk populations up to 10⁶."""
+def test_the_paper_gpu_layer_runs_cloning_and_the_dsmc_on_one_gpu():
+    """config/paper-gpu.yaml over paper.yaml: its own results root, every cloning point,
+    montanero2007 run and costantini2010 DSMC run one GPU job, hard-disk populations up to
+    10⁶."""
     from kinetic.config import load_configs
 
     config = load_configs([REPOSITORY / "config/paper.yaml", REPOSITORY / "config/paper-gpu.yaml"])
     assert config["results"] == "results/paper-gpu"
     jobs = plan.plan_jobs(config)
     on_gpu = {job.rule for job in jobs if job.estimate.gpus}
-    assert on_gpu == {"visco2008_simulate_cloning", "montanero2007_simulate_dsmc"}
+    assert on_gpu == {
+        "visco2008_simulate_cloning",
+        "montanero2007_simulate_dsmc",
+        "costantini2010_simulate_dsmc",
+    }
     sizes = {
         job.arguments["population"]
         for job in jobs

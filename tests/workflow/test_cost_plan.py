@@ -113,10 +113,10 @@ def test_plan_command_prints_the_table_and_refuses_what_the_workflow_refuses(tmp
 
 
 def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
-    """backend: cuda (parsed on a machine without a GPU): the cloning and montanero2007
-    DSMC jobs ask the scheduler for one GPU (resources gpu=1, the SLURM executor's
-    --gpus=1), hold every realization of their point or run, and carry backend='cuda';
-    every other simulation job asks for none."""
+    """backend: cuda (parsed on a machine without a GPU): the cloning, montanero2007 DSMC
+    and costantini2010 DSMC jobs ask the scheduler for one GPU (resources gpu=1, the SLURM
+    executor's --gpus=1), hold every realization of their point or run, and carry
+    backend='cuda'; every other simulation job asks for none."""
     extra = tmp_path / "cuda.yaml"
     cut = {"visco2008": {"cloning": {"realizations_per_job": 1}}}  # several CPU jobs a point
     extra.write_text(yaml.safe_dump({"backend": "cuda", **cut}))
@@ -139,6 +139,7 @@ def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
     assert {job.rule for job in on_gpu} == {
         "visco2008_simulate_cloning",
         "montanero2007_simulate_dsmc",
+        "costantini2010_simulate_dsmc",
     }
     for job in jobs:
         assert gpus[job.output].get("gpu", "0") == str(job.gpus), job.output

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from kinetic import batches, gas
-from kinetic.studies import Job, run_jobs
+from kinetic.studies import Job, backend_arguments, run_jobs
 from kinetic.theory import costantini2010 as theory
 
 __all__ = [
@@ -240,11 +240,14 @@ def batch_file(run: Run, job: batches.Job) -> str:
     return f"costantini2010/{run.engine}/{run.name}/{batches.batch_name(job.index)}.nc"
 
 
-def batch_plan(study: Mapping[str, Any]) -> list[batches.Job]:
-    """The cut of every run into jobs of realizations (the same for all runs)."""
-    return batches.plan(
-        realizations=study["realizations"], realizations_per_job=study["realizations_per_job"]
-    )
+def batch_plan(study: Mapping[str, Any], run: Run, backend: str = "cpu") -> list[batches.Job]:
+    """The cut of a run into jobs of realizations: ``realizations_per_job`` at a time, or,
+    for a DSMC run on the ``cuda`` backend, every realization in one job (one launch
+    advances them all)."""
+    per_job = study["realizations_per_job"]
+    if backend == "cuda" and run.engine == "dsmc":
+        per_job = study["realizations"]
+    return batches.plan(realizations=study["realizations"], realizations_per_job=per_job)
 
 
 FRONTS = {
@@ -264,8 +267,10 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
     if not study:
         return []
     found = []
+    backend = config.get("backend", "cpu")
     for run in runs(study).values():
         shared = run.engine_arguments(study)
+        gpu = backend_arguments(config) if run.engine == "dsmc" else {}
         front, engine = FRONTS[run.engine]
         seed = derive_seed(config["seed"], f"costantini2010/{run.engine}/{run.name}")
         found += run_jobs(
@@ -274,8 +279,8 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
             run=run_file(run).removesuffix(".nc"),
             front=front,
             engines=(engine,),
-            cut=batch_plan(study),
-            arguments=lambda job, batch, run=run, shared=shared, seed=seed: (
+            cut=batch_plan(study, run, backend),
+            arguments=lambda job, batch, run=run, shared=shared, seed=seed, gpu=gpu: (
                 shared
                 | {
                     "seed": seed,
@@ -283,9 +288,10 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
                     "n_realizations": job.n_realizations,
                     "label": f"costantini2010 {run.engine} {run.name} {batch}",
                 }
+                | gpu
             ),
-            estimate=lambda job, run=run, shared=shared: cost.cooling_modes(
-                engine=run.engine, n_realizations=job.n_realizations, **shared
+            estimate=lambda job, run=run, shared=shared, gpu=gpu: cost.cooling_modes(
+                engine=run.engine, n_realizations=job.n_realizations, **shared, **gpu
             ),
         )
     return found

@@ -31,7 +31,9 @@ def costantini2010_batch_files(wildcards):
     run = costantini2010_run(wildcards)
     return [
         results_file(costantini2010_study.batch_file(run, job))
-        for job in costantini2010_study.batch_plan(config["costantini2010"])
+        for job in costantini2010_study.batch_plan(
+            config["costantini2010"], run, config.get("backend", "cpu")
+        )
     ]
 
 

@@ -33,6 +33,7 @@ rule costantini2010_simulate_dsmc:
     resources:
         runtime=planned_runtime,
         mem_mb=planned_mem_mb,
+        gpu=planned_gpus,
     params:
         front=job_param("costantini2010_simulate_dsmc", "front"),
         job=job_param("costantini2010_simulate_dsmc", "arguments"),
