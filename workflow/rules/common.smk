@@ -136,7 +136,7 @@ def script_code(name):
 
 def caption_template(name):
     """The caption template workflow/report/<name>.rst, an input of the figure rule that
-    renders it with numbers from the data (kinetic.plotting.write_caption)."""
+    renders it with numbers from the data (kinetic.workflow_support.write_caption)."""
     return str(Path(workflow.basedir) / "workflow" / "report" / f"{name}.rst")
 
 
