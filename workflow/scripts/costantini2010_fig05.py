@@ -1,17 +1,15 @@
 """costantini2010 Fig. 5: nu_bar_star against 1/N per alpha, with the 1/N fits of Table 1
 extrapolated to 1/N -> 0 (rule costantini2010_fig05)."""
 
-from kinetic import io, plotting
-from kinetic.plotting.costantini2010 import inverse_n_figure
+from kinetic import io
+from kinetic.plotting import costantini2010 as figures
 from kinetic.workflow_support import start
 
 start(snakemake)
-fig = inverse_n_figure(
+figures.fig05(
     io.read_table(snakemake.input.table),
     io.read_table(snakemake.input.fits),
     io.read_table(snakemake.input.amplitudes),
     snakemake.params.study,
-    "nu_bar_star",
-    r"$\bar\nu^*$",
+    snakemake.output.pdf,
 )
-plotting.save(fig, snakemake.output.pdf)

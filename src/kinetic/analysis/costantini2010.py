@@ -47,6 +47,7 @@ __all__ = [
     "analyse_run",
     "block_correlations",
     "checks",
+    "convergence_table",
     "elastic_checks",
     "extrapolate_inverse_n",
     "extrapolated_rows",
@@ -655,3 +656,30 @@ def elastic_checks(
                 )
             )
     return rows
+
+
+def convergence_table(results: Sequence[xr.Dataset], density: float):
+    """DSMC's systematic errors at α = 1: one row per run of the convergence study (cell side
+    in mean free paths λ, time step in mean free times 1/ω_c, τ_c, ν*, T_s), duplicates of
+    a (cell side, time step) pair dropped."""
+    import pandas as pd
+
+    from kinetic.studies.costantini2010 import mean_free_path, mean_free_time
+
+    records = []
+    for result in results:
+        side = (float(result.attrs["n_particles"]) / density) ** 0.5
+        records.append(
+            {
+                "n_particles": int(result.attrs["n_particles"]),
+                "fictive_factor": int(result.attrs["fictive_factor"]),
+                "cell_side": side / int(result.attrs["cells_per_side"]) / mean_free_path(density),
+                "time_step": float(result.attrs["time_step"]) / mean_free_time(density),
+                "tau_c": float(result.tau_c),
+                "tau_c_err": float(result.tau_c_err),
+                "nu_star": float(result.nu_star),
+                "nu_star_err": float(result.nu_star_err),
+                "temperature_s": float(result.temperature_s),
+            }
+        )
+    return pd.DataFrame(records).drop_duplicates(["cell_side", "time_step"])

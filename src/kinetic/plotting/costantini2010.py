@@ -1,4 +1,6 @@
-"""costantini2010's visual language: one symbol and colour per method in every figure."""
+"""costantini2010's visual language: one symbol and colour per method in every figure; the
+figures drawn from Table 1 (``fig04`` ... ``fig07``) and the convergence study as whole
+functions (the data in, the PDF written), so that their scripts only read and call."""
 
 from __future__ import annotations
 
@@ -9,7 +11,12 @@ from kinetic import plotting
 __all__ = [
     "METHOD_LABELS",
     "METHOD_STYLE",
+    "convergence_figure",
     "correlation_panel",
+    "fig04",
+    "fig05",
+    "fig06",
+    "fig07",
     "inverse_n_figure",
     "ratio_figure",
     "run_label",
@@ -285,3 +292,72 @@ def ratio_figure(table, study):
     ax.set_ylabel(r"$\bar\nu^*/\nu^*$")
     plotting.legend_outside(ax)
     return fig
+
+
+def fig04(table, fits, amplitudes, study, pdf) -> None:
+    """Fig. 4: ν* against 1/N per α with the 1/N fits of Table 1 (``inverse_n_figure``),
+    saved at ``pdf``."""
+    plotting.save(inverse_n_figure(table, fits, amplitudes, study, "nu_star", r"$\nu^*$"), pdf)
+
+
+def fig05(table, fits, amplitudes, study, pdf) -> None:
+    """Fig. 5: ν̄* against 1/N per α with the 1/N fits of Table 1 (``inverse_n_figure``),
+    saved at ``pdf``."""
+    figure = inverse_n_figure(table, fits, amplitudes, study, "nu_bar_star", r"$\bar\nu^*$")
+    plotting.save(figure, pdf)
+
+
+def fig06(table, study, pdf) -> None:
+    """Fig. 6 (``transport_figure``), saved at ``pdf``."""
+    plotting.save(transport_figure(table, study), pdf)
+
+
+def fig07(table, study, pdf) -> None:
+    """Fig. 7 (``ratio_figure``), saved at ``pdf``."""
+    plotting.save(ratio_figure(table, study), pdf)
+
+
+def convergence_figure(table, study, pdf) -> None:
+    """DSMC's systematic errors at α = 1: ν* against the squared collision cell side (at the
+    production time step) and against the squared time step (at the production cells),
+    beside the first-Sonine and converged elastic values; ``table`` is
+    ``kinetic.analysis.costantini2010.convergence_table``'s. Saved at ``pdf``."""
+    from kinetic.theory import costantini2010 as theory
+
+    production_step = study["dsmc"]["time_step"]
+    production_cells = table.loc[
+        (table.cell_side - study["dsmc"]["cell_side"]).abs().idxmin(), "cell_side"
+    ]
+    fig, axes = plotting.figure(1, 2, figsize=(6.0, 2.6), sharey=True)
+    style = METHOD_STYLE["dsmc"]
+    for ax, column, fixed, fixed_value, label in (
+        (axes[0], "cell_side", "time_step", production_step, r"cell side / $\lambda$"),
+        (axes[1], "time_step", "cell_side", production_cells, r"$\Delta\tau\ \omega_c$"),
+    ):
+        rows = table[(table[fixed] - fixed_value).abs() < 1e-6 * fixed_value].sort_values(column)
+        plotting.errorbar(
+            ax,
+            rows[column] ** 2,
+            rows.nu_star,
+            rows.nu_star_err,
+            marker=style["marker"],
+            color=style["color"],
+            label=f"DSMC, N = {rows.n_particles.iloc[0]}",
+        )
+        ax.axhline(
+            theory.nu_star(1.0),
+            color=METHOD_STYLE["theory"]["color"],
+            lw=0.8,
+            label="first Sonine",
+        )
+        ax.axhline(
+            theory.nu_star_elastic(),
+            color=METHOD_STYLE["theory"]["color"],
+            lw=0.8,
+            ls="--",
+            label="converged Sonine",
+        )
+        ax.set_xlabel(f"({label})$^2$")
+    axes[0].set_ylabel(r"$\nu^*$ ($\alpha = 1$)")
+    plotting.figure_legend(fig)
+    plotting.save(fig, pdf)
