@@ -45,3 +45,6 @@ def test_foreign_or_overlapping_batches_are_refused():
         combine_free_flights([first, denser])
     with pytest.raises(ValueError, match="overlap"):
         combine_free_flights([first, first])
+    # the aggregate names the files it read
+    with pytest.raises(ValueError, match=r"b\.nc.*a\.nc|a\.nc.*b\.nc"):
+        combine_free_flights([first, first], names=["a.nc", "b.nc"])

@@ -353,17 +353,21 @@ def cumulant_dataset(dataset, windows=None, extrapolation_windows=None) -> xr.Da
     )
 
 
-def combine_free_flights(batches: Sequence[xr.Dataset]) -> xr.Dataset:
+def combine_free_flights(
+    batches: Sequence[xr.Dataset], *, names: Sequence[str] | None = None
+) -> xr.Dataset:
     """Free-flight densities over every realization of ``simulate_free_flights`` batches.
 
     The batches must share their parameters except the realization range, and hold
-    distinct realizations (two or more in all). Returns a dataset with the densities
+    distinct realizations (two or more in all); an error names the batches by ``names``
+    (e.g. their files, as ``kinetic.batches.combine``). Returns a dataset with the densities
     ``time_pdf``/``path_pdf`` (mean over realizations) and their standard errors
     ``time_pdf_sem``/``path_pdf_sem`` on the bin centres ``flight_time`` (1/ω) and
     ``free_path`` (l), the per-realization densities, the measured collision frequency
     (mean and sem), and totals of flights, unresolved paths and CPU seconds.
     """
-    run = combine(list(batches))  # one run's parameters and seed, distinct realizations
+    # one run's parameters and seed, distinct realizations
+    run = combine(list(batches), names=names)
     realizations = run.realization.values
     time_pdf = run.time_pdf.values
     path_pdf = run.path_pdf.values
