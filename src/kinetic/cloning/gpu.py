@@ -252,6 +252,22 @@ def _fold(shared, partials, r, column):
     return block_reduce_sum(shared, total)
 
 
+@cuda.jit(device=True, inline="always")
+def _selection_uniform(controls, r):
+    """The next selection uniform of realization r, from its control stream
+    ``controls[r, :4]`` (a multiple of 2⁻⁵³: exact as float64 and as 2⁵³ u in uint64)."""
+    s0 = controls[r, 0]
+    s1 = controls[r, 1]
+    s2 = controls[r, 2]
+    s3 = controls[r, 3]
+    u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
+    controls[r, 0] = s0
+    controls[r, 1] = s1
+    controls[r, 2] = s2
+    controls[r, 3] = s3
+    return float(np.uint64(u * 2.0**53)) * 2.0**-53
+
+
 @cuda.jit
 def _close_interval(block_sums, extremes, controls, partials, out, lam, intervals):
     """One thread block per realization: the block offsets of the integer scan, the
@@ -280,16 +296,7 @@ def _close_interval(block_sums, extremes, controls, partials, out, lam, interval
     extremes[r, 0] = _NO_MIN
     extremes[r, 1] = -1
     extremes[r, 3] = total_q
-    s0 = controls[r, 0]
-    s1 = controls[r, 1]
-    s2 = controls[r, 2]
-    s3 = controls[r, 3]
-    u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
-    controls[r, 0] = s0
-    controls[r, 1] = s1
-    controls[r, 2] = s2
-    controls[r, 3] = s3
-    controls[r, 4] = np.uint64(u * 2.0**53)  # the uniform, exactly, for the selection
+    controls[r, 4] = np.uint64(_selection_uniform(controls, r) * 2.0**53)  # exactly
 
 
 @cuda.jit(device=True, inline="always")
@@ -462,16 +469,7 @@ def _resident(first, second, states, counts, controls, out, observers, run):
             out[r, _NET] += n * (math.log(weight / n) - lam * shift)
             out[r, _COLLISIONS] += total_collisions
             out[r, _CANDIDATES] += total_candidates
-            s0 = controls[r, 0]
-            s1 = controls[r, 1]
-            s2 = controls[r, 2]
-            s3 = controls[r, 3]
-            u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
-            controls[r, 0] = s0
-            controls[r, 1] = s1
-            controls[r, 2] = s2
-            controls[r, 3] = s3
-            selection[0] = float(np.uint64(u * 2.0**53)) * 2.0**-53
+            selection[0] = _selection_uniform(controls, r)
         cuda.syncthreads()
         u = selection[0]
         total = float(total_q)
