@@ -202,6 +202,15 @@ def edmd_box(*, n_disks: int, duration: float, realizations: int, **_: object) -
     return Estimate(seconds, _mb(1e4 * n_disks), f"{events:.2e} events")
 
 
+GPU_JOB_STARTUP_SECONDS = 5.0
+"""Wall seconds of a ``cuda`` job before its first launch: Python and the package's
+imports, the CUDA context, the kernels loaded from numba-cuda's cache (``kinetic.gpu``;
+the first job after an edit compiles them instead: 15-26 s per GPU module on the
+development machine's CPU, not in this constant). The same job on the CPU starts in
+about 2 s there. A model until ``python -m kinetic.bench cuda --sections
+job_startup`` measures it."""
+
+
 # ------------------------------------------------------------------ costantini2010
 COOLING_DSMC_SECONDS_PER_PARTICLE_STEP = 1.5e-8
 """kinetic.dsmc.simulate_cooling_modes, whole steps (streaming, sort, collisions, the
@@ -260,7 +269,7 @@ def cooling_modes(
             )
             memory = _mb(COOLING_DSMC_BYTES_PER_PARTICLE * simulated * n_realizations)
             work = f"{particle_steps:.2e} particle-steps on one GPU"
-            return Estimate(seconds, memory, work, gpus=1)
+            return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, memory, work, gpus=1)
         seconds = COOLING_DSMC_SECONDS_PER_PARTICLE_STEP * particle_steps
         memory = _mb(COOLING_DSMC_BYTES_PER_PARTICLE * simulated + samples_bytes)
         return Estimate(seconds, memory, f"{particle_steps:.2e} particle-steps")
@@ -347,7 +356,8 @@ def dsmc_homogeneous(
         ) + DSMC_GPU_SECONDS_PER_SAMPLED_PARTICLE / max(1, sample_stride)
         seconds = steps * DSMC_GPU_SECONDS_PER_STEP + work * per_particle_step
         memory = _mb(DSMC_GPU_BYTES_PER_PARTICLE * n_particles * realizations)
-        return Estimate(seconds, memory, f"{work:.2e} particle-steps on one GPU", gpus=1)
+        work = f"{work:.2e} particle-steps on one GPU"
+        return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, memory, work, gpus=1)
     collisions = n_particles / 2.0 * DSMC_COLLISIONS_PER_PARTICLE_TAU * duration
     step_cost = DSMC_SECONDS_PER_PARTICLE_STEP
     if splitting == "strang":
@@ -476,7 +486,8 @@ def cloning_batch(
                 + events / CLONING_GPU_EVENTS_PER_SECOND
             )
         memory = _mb(CLONING_GPU_BYTES_PER_MEMBER * population * n_realizations)
-        return Estimate(seconds, memory, f"{events:.2e} collision events on one GPU", gpus=1)
+        work = f"{events:.2e} collision events on one GPU"
+        return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, memory, work, gpus=1)
     events = n_realizations * population * rate_factor * elapsed
     seconds = events / _interpolate(population, CLONING_EVENTS_PER_SECOND)
     memory = _mb(CLONING_BYTES_PER_MEMBER * population + 8.0 * histogram_bins * n_blocks * 4)

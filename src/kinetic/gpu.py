@@ -23,7 +23,9 @@ from __future__ import annotations
 
 import functools
 import math
+import time
 import types
+from pathlib import Path
 
 import numpy as np
 from numba import cuda
@@ -38,6 +40,93 @@ try:  # the engines launch small grids on purpose (one block per realization, sa
 except ImportError:  # another numba-cuda layout: the warning stays
     pass
 
+_THIS_FILE = Path(__file__).resolve()
+
+
+class _PackageStamp:
+    """Locator mixin: a package kernel's cache entry is fresh only while none of the files
+    it depends on changed (``kinetic.jit.source_stamp`` of its engine, and this module);
+    functions outside the package keep numba-cuda's own locators."""
+
+    def get_source_stamp(self):
+        from kinetic.jit import source_stamp
+
+        return source_stamp(self._py_file, (_THIS_FILE,))
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        from kinetic.sources import PACKAGE
+
+        if not Path(py_file).resolve().is_relative_to(PACKAGE):
+            return None
+        return super().from_function(py_func, py_file)
+
+
+@functools.cache
+def _install_cache_locators() -> bool:
+    """Key numba-cuda's on-disk cache of the package's kernels on every file they depend
+    on (:class:`_PackageStamp`), as ``kinetic.jit`` does for the CPU kernels: numba-cuda's
+    own locators look at the kernel's file only, and the device twins of
+    ``device_function`` and this module's helpers live in others. Returns whether the
+    locators are in place (False for a numba-cuda without this layout: its kernels are
+    then compiled in every process, without a cache)."""
+    try:
+        from numba.cuda.core import caching
+    except ImportError:
+        return False
+    bases = ("_UserProvidedCacheLocator", "_InTreeCacheLocator", "_UserWideCacheLocator")
+    if not all(hasattr(caching, name) for name in bases):
+        return False
+    locators = caching.CacheImpl._locator_classes
+    ours = [type(f"Package{name}", (_PackageStamp, getattr(caching, name)), {}) for name in bases]
+    locators[:] = [*ours, *(c for c in locators if not issubclass(c, _PackageStamp))]
+    return True
+
+
+CACHED = not simulated() and _install_cache_locators()
+"""Whether compiled kernels go to numba-cuda's on-disk cache (beside the package's sources,
+or in ``NUMBA_CACHE_DIR``), keyed on their sources and the GPU's compute capability."""
+
+kernel = cuda.jit(cache=CACHED)
+"""Decorator of every GPU kernel of the package: ``numba.cuda.jit``, cached on disk when
+:data:`CACHED` (a job then loads the machine code instead of compiling it: 10-30 s a
+process on the development machine's CPU for each engine)."""
+
+
+def warm(name: str, engine: str, compile_kernels) -> float:
+    """Have this process's kernels of a GPU module ready: ``compile_kernels()`` is a tiny
+    launch of each with its production types. The first process after an edit (or on a
+    new GPU model or numba-cuda version) runs it under a lock beside the cache
+    (``kinetic.jit.once``, marker ``kinetic-warm-<name>-<key>.done``), compiling into
+    the cache while concurrent processes wait; they then run it too, loading from the
+    cache, so that no two processes compile into the same cache files at once (numba
+    issue 4807). Without the cache, or under the simulator, it just calls
+    ``compile_kernels()``. Returns the seconds spent."""
+    begin = time.perf_counter()
+    if not CACHED:
+        compile_kernels()
+        return time.perf_counter() - begin
+    import hashlib
+    from importlib.metadata import version
+
+    from kinetic import jit
+    from kinetic.sources import PACKAGE
+
+    capability = cuda.get_current_device().compute_capability
+    stamp = jit.source_stamp(PACKAGE / engine / "__init__.py", (_THIS_FILE,))
+    key = hashlib.sha256(f"{stamp} {version('numba-cuda')} {capability}".encode())
+    compiled = []
+
+    def compile_into_the_cache():
+        compile_kernels()
+        compiled.append(True)
+
+    jit.once(jit.cache_directory(engine), name, key.hexdigest()[:16], compile_into_the_cache)
+    if not compiled:  # another process filled the cache: load from it, outside any timer
+        compile_kernels()
+    return time.perf_counter() - begin
+
+
 __all__ = [
     "BLOCK",
     "block_exclusive_scan",
@@ -49,9 +138,11 @@ __all__ = [
     "device_name",
     "fold_partials",
     "grid",
+    "kernel",
     "require",
     "synchronize",
     "to_device",
+    "warm",
 ]
 
 BLOCK = 16 if simulated() else 128
@@ -177,7 +268,7 @@ def block_reduce_extreme(shared, value, largest):
 block_reduce_extreme = cuda.jit(device=True, inline="always")(block_reduce_extreme)
 
 
-@cuda.jit
+@kernel
 def _fold(partials, out, field_of, scale):
     shared = cuda.shared.array(BLOCK, np.float64)
     r = cuda.blockIdx.x

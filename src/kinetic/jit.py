@@ -48,6 +48,7 @@ __all__ = [
     "cache_directory",
     "inline",
     "kernel",
+    "once",
     "prefetch_row",
     "refcount_free",
     "source_stamp",
@@ -65,10 +66,10 @@ def _digest(files: tuple[Path, ...]) -> str:
     return digest.hexdigest()
 
 
-def source_stamp(py_file: str | Path) -> str:
-    """SHA-256 over the relative paths and the bytes of ``kernel_sources(py_file)`` (read
-    once per process and set of files)."""
-    return _digest(tuple(kernel_sources(py_file)))
+def source_stamp(py_file: str | Path, extra: tuple[Path, ...] = ()) -> str:
+    """SHA-256 over the relative paths and the bytes of ``kernel_sources(py_file)`` and the
+    ``extra`` package files (read once per process and set of files)."""
+    return _digest(tuple(sorted({*kernel_sources(py_file), *extra})))
 
 
 class _PackageStamp:
@@ -144,16 +145,24 @@ def warm(engine: str) -> float:
     earlier sources. Parallel jobs of one build, and two builds of one checkout, thus
     compile each engine once, never concurrently into the same cache files.
     """
-    directory = cache_directory(engine)
-    marker = directory / f"kinetic-warm-{engine}-{_warm_key(engine)}.done"
+    warmup = importlib.import_module(f"kinetic.{engine}").warmup
+    return once(cache_directory(engine), engine, _warm_key(engine), warmup)
+
+
+def once(directory: Path, name: str, key: str, action) -> float:
+    """Run ``action()`` unless the marker ``kinetic-warm-<name>-<key>.done`` in
+    ``directory`` says it ran; under an exclusive lock ``kinetic-warm-<name>.lock`` there,
+    so that concurrent processes run it once, never at the same time. Removes the markers
+    of other keys of ``name``. Returns the seconds spent running or waiting."""
+    marker = directory / f"kinetic-warm-{name}-{key}.done"
     if marker.exists():
         return 0.0
     begin = time.perf_counter()
-    with open(directory / f"kinetic-warm-{engine}.lock", "w") as lock:
+    with open(directory / f"kinetic-warm-{name}.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if not marker.exists():
-            importlib.import_module(f"kinetic.{engine}").warmup()
-            for stale in directory.glob(f"kinetic-warm-{engine}-*.done"):
+            action()
+            for stale in directory.glob(f"kinetic-warm-{name}-*.done"):
                 stale.unlink(missing_ok=True)
             marker.touch()
     return time.perf_counter() - begin

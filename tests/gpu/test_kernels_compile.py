@@ -37,7 +37,12 @@ def _signatures():
         "_select": (f3, f3, i2, i2, i2, u2, f3, observers),
         "_fold_snapshot": (f3, a2, float64),
         "_resident": (
-            f3, f3, u3, i2, u2, a2,
+            f3,
+            f3,
+            u3,
+            i2,
+            u2,
+            a2,
             types.Tuple((f1, float64, i2, float64, boolean)),
             types.Tuple((int64, float64, int64, float64, float64)),
         ),

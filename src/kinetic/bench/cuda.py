@@ -16,6 +16,10 @@ physics: Maxwell μ(λ) = e^{-λ} - 1 at every λ of the paper config's Fig. 4, 
 μ(1) extrapolated in 1/N_c against the Eq. 28 reference, T and a2 at N_c = 10³ against the
 CPU engine, and the bias of μ(1) in the control interval Δ.
 
+Job startup (``job_startup``, first): a small job of each GPU module in a fresh process,
+three times over one empty numba cache directory (compiling, then loading the kernels),
+with the numbers compared.
+
 DSMC (montanero2007): collisions per second of the homogeneous engine at N = 2 × 10⁵
 with 50 realizations in one launch, against the CPU engine on one core, and the HCS
 cooling rate and a2 against the CPU engine (``dsmc_speed``); accepted collisions per
@@ -450,7 +454,84 @@ def dsmc_paper_job(quick: bool) -> dict[str, Any]:
     }
 
 
+_STARTUP_JOBS = {
+    "cloning": (
+        "from kinetic.cloning import simulate as front\n"
+        "ds = front(kernel='hard_spheres', lam=1.0, population=1000, duration=20.0,"
+        " transient=4.0, n_blocks=2, n_realizations=8, seed=3, backend='cuda')\n"
+        "values = [ds.mu_per_realization, ds.temperature_per_realization]\n"
+    ),
+    "dsmc": (
+        "from kinetic.dsmc import simulate_homogeneous as front\n"
+        "ds = front(n_particles=20000, n_realizations=4, restitution=0.9, time_step=0.1,"
+        " duration=2.0, sample_interval=1.0, seed=3, dimension=3, backend='cuda')\n"
+        "values = [ds.moments, ds.collisions]\n"
+    ),
+    "dsmc_inhomogeneous": (
+        "import math\n"
+        "from kinetic.dsmc import simulate_cooling_modes as front\n"
+        "tau = 1.0 / (2.0 * 0.005 * math.sqrt(math.pi))\n"
+        "ds = front(n_particles=3000, density=0.005, restitution=0.8, drag_rate=0.0,"
+        " equilibration=0.0, sample_interval=10 * 0.025 * tau, n_samples=3, seed=3,"
+        " fictive_factor=10, cells_per_side=11, time_step=0.025 * tau, n_realizations=4,"
+        " collision_rule='paper',"
+        " backend='cuda')\n"
+        "values = [ds.temperature, ds.collisions]\n"
+    ),
+}
+"""A small job of each GPU module, as a fresh Snakemake job runs it (a new process)."""
+
+_STARTUP_FOOTER = (
+    "import hashlib, json, time\n"
+    "digest = hashlib.sha256(b''.join(v.values.tobytes() for v in values)).hexdigest()\n"
+    "print(json.dumps({'seconds': time.perf_counter() - START, 'digest': digest}))\n"
+)
+
+
+def job_startup(quick: bool) -> dict[str, Any]:
+    """What a GPU job costs before its work: a small job of each GPU module in a fresh
+    process (imports, CUDA context, kernels), three times over one empty numba cache
+    directory: the first compiles and fills the cache, the next two load from it. The
+    numbers must not depend on where the kernels came from (``same_numbers``)."""
+    import json
+    import os
+    import subprocess
+    import sys
+    import tempfile
+
+    out: dict[str, Any] = {}
+    for name, body in _STARTUP_JOBS.items():
+        code = "import time\nSTART = time.perf_counter()\n" + body + _STARTUP_FOOTER
+        with tempfile.TemporaryDirectory() as cache:
+            environment = {**os.environ, "NUMBA_CACHE_DIR": cache}
+            runs = []
+            for _ in range(2 if quick else 3):
+                begin = time.perf_counter()
+                done = subprocess.run(
+                    [sys.executable, "-c", code],
+                    env=environment,
+                    capture_output=True,
+                    text=True,
+                    timeout=600,
+                )
+                wall = time.perf_counter() - begin
+                if done.returncode != 0:
+                    runs.append({"error": done.stderr[-2000:], "process_seconds": wall})
+                    break
+                result = json.loads(done.stdout.strip().splitlines()[-1])
+                runs.append({"process_seconds": wall, **result})
+        digests = {run.get("digest") for run in runs}
+        out[name] = {
+            "runs": runs,
+            "same_numbers": len(digests) == 1 and None not in digests,
+            "first_seconds": runs[0]["process_seconds"],
+            "cached_seconds": min(run["process_seconds"] for run in runs[1:]) if runs[1:] else None,
+        }
+    return out
+
+
 SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
+    "job_startup": job_startup,
     "cloning_speed": cloning_speed,
     "cloning_physics": cloning_physics,
     "dsmc_speed": dsmc_speed,

@@ -57,9 +57,12 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 
 import numpy as np
+from numba.core.errors import NumbaPerformanceWarning
 
+from kinetic.backends import simulated
 from kinetic.cloning import kernels
 from kinetic.cloning.simulate import MAX_CUDA_HISTOGRAM_BINS
 from kinetic.gpu import (
@@ -71,7 +74,9 @@ from kinetic.gpu import (
     cuda,
     device_function,
     grid,
+    kernel,
     to_device,
+    warm,
 )
 from kinetic.rng import (
     thread_state,
@@ -108,7 +113,7 @@ _MAX_SPEED = _FIELD["max_speed"]
 _P_COLLISIONS, _P_CANDIDATES, _P_WEIGHT, _P_V2, _P_V4, _P_RATE = range(6)
 
 
-@cuda.jit
+@kernel
 def _seed(states, velocity, rows):
     """Clone i of realization r: its stream from row r, its velocity from the bath."""
     i = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
@@ -191,7 +196,7 @@ def _advance_clone(velocity, states, r, i, code, interval, rate_a):
     return collisions, candidates
 
 
-@cuda.jit
+@kernel
 def _advance(velocity, states, counts, extremes, partials, code, interval, rate_a):
     """One control interval of the untilted process for every clone (thread (i, r))."""
     shared = cuda.shared.array(BLOCK, np.float64)
@@ -216,7 +221,7 @@ def _advance(velocity, states, counts, extremes, partials, code, interval, rate_
         cuda.atomic.max(extremes, (r, 1), high)
 
 
-@cuda.jit
+@kernel
 def _weigh(counts, extremes, lam, cumulative, block_sums, partials):
     """w_i = e^{-λ(K_i - K*)} <= 1: its sum per thread block (for μ), and the inclusive
     scan of q_i = round(2³² w_i) inside each thread block (exact int64), the block's
@@ -268,7 +273,7 @@ def _selection_uniform(controls, r):
     return float(np.uint64(u * 2.0**53)) * 2.0**-53
 
 
-@cuda.jit
+@kernel
 def _close_interval(block_sums, extremes, controls, partials, out, lam, intervals):
     """One thread block per realization: the block offsets of the integer scan, the
     interval's collision and candidate counts, ln<w> into ``net_compensations``, the
@@ -312,7 +317,7 @@ def _slots_below(cumulative, offsets, r, i, n, total, u):
     return min(n, max(0, g))
 
 
-@cuda.jit
+@kernel
 def _select(source, target, cumulative, offsets, extremes, controls, partials, observers):
     """Clone i copies itself into its slots [g(Q_{i-1}), g(Q_i)); then the snapshot sums
     (each clone counted once per copy) and the histogram of the new population."""
@@ -384,7 +389,7 @@ def _add_snapshot(shared, partials, out, r, interval):
         out[r, _SNAPSHOT[2]] += interval * rate
 
 
-@cuda.jit
+@kernel
 def _fold_snapshot(partials, out, interval):
     """One thread block per realization: the block's last selection's snapshot sums."""
     shared = cuda.shared.array(BLOCK, np.float64)
@@ -409,7 +414,7 @@ def _slot(position, n, total, u):
     return min(n, max(0, g))
 
 
-@cuda.jit
+@kernel
 def _resident(first, second, states, counts, controls, out, observers, run):
     """``steps`` control intervals of every clone of realization r = blockIdx.x, in one
     thread block: advance (clones t, t + BLOCK, ...), weigh and scan (thread t the
@@ -525,10 +530,40 @@ def run(p, durations, n_transient, rows, progress):
     field), velocity-component densities, distinct final velocities per realization and
     the wall time per realization (the run's wall time shared equally).
     """
+    if not simulated():
+        warm("cuda_cloning", "cloning", _compile_kernels)
+    started = time.perf_counter()
+    blocks, densities, final = _run(p, durations, n_transient, rows, progress)
+    count = rows.shape[0]
+    distinct = np.array([np.unique(final[r, 0]).size for r in range(count)], dtype=float)
+    seconds = np.full(count, (time.perf_counter() - started) / count)
+    return blocks, densities, distinct, seconds
+
+
+def _compile_kernels() -> None:
+    """Both paths on 4 clones of one realization: every kernel, the production types."""
+    tiny = {
+        "population": 4,
+        "dimension": 2,
+        "lam": 0.5,
+        "kernel": "hard_spheres",
+        "histogram_bins": 8,
+        "histogram_half_width": 6.0,
+        "control_interval": 1.0,
+    }
+    rows = np.array([[1, 2, 3, 4]], dtype=np.uint64)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NumbaPerformanceWarning)  # grids of one block
+        for resident in (True, False):
+            _run(tiny, np.array([1.0]), 0, rows, None, resident=resident)
+
+
+def _run(p, durations, n_transient, rows, progress, resident=None):
+    """``run`` without the compilation step: the blocks' sums, the velocity densities
+    and the final velocities; ``resident`` forces a path (default: by the population)."""
     from kinetic.cloning.rates import TABLE_STEP, rate_table
 
     count, n, d = rows.shape[0], p["population"], p["dimension"]
-    started = time.perf_counter()
     velocity = [cuda.device_array((count, d, n)), cuda.device_array((count, d, n))]
     states = cuda.device_array((count, n, 4), dtype=np.uint64)
     _seed[(grid(n), count), BLOCK](states, velocity[0], to_device(rows))
@@ -539,7 +574,9 @@ def run(p, durations, n_transient, rows, progress):
     table = to_device(rate_table(p["kernel"], d))
     code = kernels.HARD_SPHERES if p["kernel"] == "hard_spheres" else kernels.MAXWELL
     rate_a = kernels.channel_a_rate(d)
-    if n <= RESIDENT_MAX_POPULATION:
+    if resident is None:
+        resident = n <= RESIDENT_MAX_POPULATION
+    if resident:
         advance = _resident_intervals(velocity, states, counts, controls, p["lam"])
     else:
         advance = _launched_intervals(velocity, states, counts, controls, p["lam"])
@@ -551,16 +588,14 @@ def run(p, durations, n_transient, rows, progress):
         observers = (table, TABLE_STEP, histogram, p["histogram_half_width"], record)
         advance(blocks[:, b, :], observers, (code, duration / steps, steps, rate_a))
         cuda.synchronize()
-        progress.update(count * duration)
+        if progress is not None:
+            progress.update(count * duration)
     sums = blocks.copy_to_host()
     sums[:, :, _FIELD["collision_events"]] = sums[:, :, _COLLISIONS]
     sums[:, :, _FIELD["proposals"]] = sums[:, :, _CANDIDATES]
     bin_width = 2.0 * p["histogram_half_width"] / p["histogram_bins"]
     densities = histogram.copy_to_host() / (max(snapshots, 1) * d * n * bin_width)
-    final = velocity[0].copy_to_host()
-    distinct = np.array([np.unique(final[r, 0]).size for r in range(count)], dtype=float)
-    seconds = np.full(count, (time.perf_counter() - started) / count)
-    return sums, densities, distinct, seconds
+    return sums, densities, velocity[0].copy_to_host()
 
 
 def _resident_intervals(velocity, states, counts, controls, lam):

@@ -87,8 +87,10 @@ from kinetic.gpu import (
     device_function,
     device_zeros,
     grid,
+    kernel,
     synchronize,
     to_device,
+    warm,
 )
 
 __all__ = ["GROUP_SIZE", "WEIGHT_UNIT", "run_batch"]
@@ -229,7 +231,7 @@ def _permuted_index(p, n, half_bits, k0, k1, k2, k3):
 _permuted_index = cuda.jit(device=True, inline="always")(_permuted_index)
 
 
-@cuda.jit
+@kernel
 def _permute(source, target, keys, half_bits, thermo, rescale):
     """``target[r, :, p] = source[r, :, π_r(p)]``, π_r the bijection of realization r with
     the round keys ``keys[r, 4:]`` of the step; with ``rescale`` the pending thermostat is
@@ -265,7 +267,7 @@ _round_keys = cuda.jit(device=True, inline="always")(_round_keys)
 # ------------------------------------------------------------------------- collisions
 
 
-@cuda.jit
+@kernel
 def _seed_groups(group_keys, states, keys):
     """``states[r, g] = thread_state(group_keys[r], g)``: one stream per group; and the
     round keys of step 0."""
@@ -284,7 +286,7 @@ def _seed_groups(group_keys, states, keys):
     states[r, g, 3] = s3
 
 
-@cuda.jit
+@kernel
 def _collide(velocity, states, bounds, carry, tally, reals, flags):
     """One time step of collisions in group g of realization r: ``kernels.collide_range``
     on the particles ``g N // G .. (g + 1) N // G - 1`` of the regrouped velocities."""
@@ -323,7 +325,7 @@ def _collide(velocity, states, bounds, carry, tally, reals, flags):
 # --------------------------------------------------------------- force and thermostat
 
 
-@cuda.jit
+@kernel
 def _force(velocity, partials, status, field_step, exact, thermo, rescale):
     """Force step V -> f V of every particle (a = ``field_step``; after the pending
     thermostat if ``rescale``), and the per-block sums ``partials[r, b, :4]`` = ΣV_x,
@@ -372,7 +374,7 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale):
     _block_sums(shared, sums, partials[r, b])
 
 
-@cuda.jit
+@kernel
 def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step, keys):
     """One thread per realization: the thermostat's mean velocity and scale
     (``thermo[r, :4]`` = u, scale) from the block sums; ``thermo[r, 4]`` collects the
@@ -425,7 +427,7 @@ _thermostat = cuda.jit(device=True, inline="always")(_thermostat)
 # -------------------------------------------------------------------------- observers
 
 
-@cuda.jit
+@kernel
 def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, rescale):
     """One snapshot (after the pending thermostat if ``rescale``): per-block sums of the
     N_MOMENTS particle moments in ``partials`` and, if ``histogram``, the c_x and |c|
@@ -468,7 +470,7 @@ def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, re
     _block_sums(shared, sums, partials[r, b])
 
 
-@cuda.jit
+@kernel
 def _fold_moments(partials, n_blocks, moment_sums, inverse_n):
     """One thread per realization: ``moment_sums[r] += inverse_n Σ_b partials[r, b]``, the
     blocks summed in index order."""
@@ -728,12 +730,17 @@ def run_batch(
 
 def _compile_outside_the_timer(settings: HomogeneousSettings, samples: Samples) -> None:
     """One sampled step of a tiny batch with the same argument types, so that the timed
-    run does not include numba-cuda's compilation (skipped under the simulator)."""
+    run does not include numba-cuda's compilation, which goes to the cache once
+    (``kinetic.gpu.warm``; skipped under the simulator)."""
     if simulated():
         return
     tiny = HomogeneousSettings(**{**settings.parameters_init(), "n_particles": 4})
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", NumbaPerformanceWarning)  # a grid of one block
-        batch = _Batch(tiny, samples, np.array([[1, 2, 3, 4]], dtype=np.uint64))
-        batch.step(sample=True, histogram=True)
-        synchronize()
+
+    def compile_kernels():
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", NumbaPerformanceWarning)  # a grid of one block
+            batch = _Batch(tiny, samples, np.array([[1, 2, 3, 4]], dtype=np.uint64))
+            batch.step(sample=True, histogram=True)
+            synchronize()
+
+    warm("cuda_dsmc", "dsmc", compile_kernels)
