@@ -23,7 +23,7 @@ import numpy as np
 if TYPE_CHECKING:  # the workflow plans jobs from this module while parsing: no xarray then
     import xarray as xr
 
-__all__ = ["Job", "batch_name", "check_disjoint", "combine", "plan", "read_batches"]
+__all__ = ["Job", "batch_name", "check_disjoint", "combine", "plan"]
 
 REALIZATION = "realization"
 """Name of the dimension (and coordinate) that numbers the realizations of a run."""
@@ -85,17 +85,6 @@ def check_disjoint(datasets: Sequence[xr.Dataset], names: Sequence[str]) -> None
                     "overlap (files of two different job plans?); delete the stale one"
                 )
             seen[k] = name
-
-
-def read_batches(paths: Sequence[str]) -> list[xr.Dataset]:
-    """Read the batch files of one run (``kinetic.io.read_dataset``: an unreadable file is
-    named) and check that no realization appears in two of them (both files named)."""
-    from kinetic import io
-
-    paths = [str(path) for path in paths]
-    datasets = [io.read_dataset(path) for path in paths]
-    check_disjoint(datasets, paths)
-    return datasets
 
 
 def combine(datasets: Sequence[xr.Dataset], *, names: Sequence[str] | None = None) -> xr.Dataset:

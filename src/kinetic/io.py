@@ -39,6 +39,7 @@ __all__ = [
     "git_revision",
     "make_dataset",
     "read_dataset",
+    "read_run",
     "read_table",
     "remove_orphans",
     "stamp",
@@ -215,6 +216,16 @@ def read_dataset(path: str | os.PathLike) -> xr.Dataset:
             f"{path} cannot be read ({error}): it is truncated or corrupted; delete it and "
             "rerun, and Snakemake rebuilds it (and only what depends on it)"
         ) from error
+
+
+def read_run(paths) -> xr.Dataset:
+    """The batch files of one run (every realization once, the same parameters and seed),
+    read and joined along ``realization`` (``kinetic.batches.combine``, whose errors name
+    the files)."""
+    from kinetic import batches
+
+    paths = [str(path) for path in paths]
+    return batches.combine([read_dataset(path) for path in paths], names=paths)
 
 
 def parameters_of(dataset: xr.Dataset) -> dict[str, Any]:

@@ -59,11 +59,11 @@ def test_combine_refuses_batches_of_different_runs():
         batches.combine([batch(0, 2), batch(2, 2, seed=6)], names=["a.nc", "b.nc"])
 
 
-def test_read_batches_names_overlapping_files(tmp_path):
+def test_read_run_names_overlapping_files(tmp_path):
     first, second = tmp_path / "batch0000.nc", tmp_path / "batch0001.nc"
     io.write_dataset(batch(0, 2), first)
     io.write_dataset(batch(1, 2), second)
     with pytest.raises(ValueError, match=r"batch0000\.nc and .*batch0001\.nc"):
-        batches.read_batches([first, second])
+        io.read_run([first, second])
     io.write_dataset(batch(2, 2), second)
-    assert len(batches.read_batches([first, second])) == 2
+    assert io.read_run([second, first]).sizes["realization"] == 4

@@ -103,7 +103,7 @@ def test_batching_does_not_change_the_data(tmp_path):
         batch = study.simulate_batch(run, seed=11, first=first, count=count, label="part")
         batch = io.stamp(batch, parameters={**io.parameters_of(batch), "run": "x"}, seed=11)
         paths.append(io.write_dataset(batch, tmp_path / f"batch{index}.nc"))
-    combined = study.join_run(paths[::-1])
+    combined = io.read_run(paths[::-1])
     assert list(combined.realization.values) == [0, 1, 2]
     np.testing.assert_array_equal(combined["moments"].values, whole["moments"].values)
     np.testing.assert_array_equal(combined["cx_counts"].values, whole["cx_counts"].values)

@@ -1,13 +1,12 @@
 """One costantini2010 run's correlations (rule costantini2010_correlations): its jobs joined,
 then C(tau), the tail fit, nu*, nu_bar*, zeta* and T(tau)."""
 
-from kinetic import batches, io
+from kinetic import io
 from kinetic.analysis.costantini2010 import analyse_run
 from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
-paths = list(snakemake.input.batches)
-run = batches.combine([io.read_dataset(path) for path in paths], names=paths)
+run = io.read_run(snakemake.input.batches)
 result = analyse_run(run, **snakemake.params.analysis)
 result = result.assign_attrs(parameters_json=run.attrs["parameters_json"])
 write_output(snakemake, result, int(run.attrs["seed"]))

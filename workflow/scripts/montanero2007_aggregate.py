@@ -1,10 +1,10 @@
 """Join the batches of one montanero2007 run (rule montanero2007_aggregate_run)."""
 
-from kinetic.studies.montanero2007 import join_run
+from kinetic import io
 from kinetic.workflow_support import start, write_output
 
 log = start(snakemake)
-run = join_run(snakemake.input.batches)
+run = io.read_run(snakemake.input.batches)
 write_output(snakemake, run, int(run.attrs["seed"]))
 log.info(
     "%s: %d realizations from %d batches",

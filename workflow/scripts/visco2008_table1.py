@@ -9,11 +9,9 @@ from kinetic.workflow_support import start, write_caption
 
 log = start(snakemake)
 windows = snakemake.params.extrapolation_windows
-table = analysis.table1(
-    [io.read_dataset(path) for path in snakemake.input.md],
-    io.read_dataset(snakemake.input.closures),
-    windows,
-)
+runs = [io.read_dataset(path) for path in snakemake.input.md]
+cumulants = analysis.md_cumulants(runs, snakemake.params.table_windows, windows)
+table = analysis.table1(cumulants, io.read_dataset(snakemake.input.closures), windows)
 io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".5f")
 numbers = analysis.table1_caption_numbers(table, windows)
 caption = write_caption(snakemake.input.template, snakemake.output.caption, **numbers)

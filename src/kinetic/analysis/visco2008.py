@@ -32,7 +32,7 @@ import numpy as np
 from kinetic.analysis import checks as check
 from kinetic.analysis.checks import Check
 
-__all__ = ["TABLE1_COLUMNS", "checks", "table1", "table1_caption_numbers"]
+__all__ = ["TABLE1_COLUMNS", "checks", "md_cumulants", "table1", "table1_caption_numbers"]
 
 TABLE1_COLUMNS = ["source", "rho", "t", "k1", "k2", "k3", "k1_err", "k2_err", "k3_err"]
 """The first columns of table1.csv (the original contract: keep the names and order)."""
@@ -56,6 +56,18 @@ def _row(source, rho, t, values, errors, kind, paper, closures):
             )
     record["k1_exact"] = 1
     return record
+
+
+def md_cumulants(runs, table_windows, extrapolation_windows):
+    """Table I's input from joined MD runs: per run, ⟨N^p⟩_c/t and its standard error at
+    ``table_windows`` and the t -> ∞ values of the 1/t fit over ``extrapolation_windows``
+    (``kinetic.analysis.collision_statistics.cumulant_dataset``)."""
+    from kinetic.analysis.collision_statistics import cumulant_dataset
+
+    return [
+        cumulant_dataset(run, table_windows, extrapolation_windows=extrapolation_windows)
+        for run in runs
+    ]
 
 
 def table1(md_runs, closures, extrapolation_windows):

@@ -37,7 +37,6 @@ __all__ = [
     "alpha_key",
     "check",
     "jobs",
-    "join_run",
     "load_runs",
     "run_batches",
     "run_plan",
@@ -343,17 +342,9 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
     return found
 
 
-def join_run(paths: Sequence[Any]) -> Any:
-    """Read the batch files of one run and join them along ``realization``
-    (``kinetic.batches.combine``; the order of ``paths`` does not matter)."""
-    from kinetic import batches
-
-    paths = [str(path) for path in paths]
-    return batches.combine(batches.read_batches(paths), names=paths)
-
-
 def load_runs(paths: Sequence[Any]) -> dict[str, Any]:
-    """Read joined runs (one file a run, written from ``join_run``): ``{run name: dataset}``.
+    """Read joined runs (one file a run, joined by ``kinetic.io.read_run``): ``{run name:
+    dataset}``.
 
     The name of a run is the ``run`` parameter the workflow stamped into its batches; runs
     keep the order of ``paths``.

@@ -98,11 +98,6 @@ def visco2008_md_data(run):
     return results_file(f"visco2008/md/{run}.nc")
 
 
-def visco2008_md_cumulants(run):
-    """Scaled cumulants <N^p>_c/t with standard errors of one run (Table I input)."""
-    return results_file(f"visco2008/md/{run}_cumulants.nc")
-
-
 def visco2008_md_batch_files(wildcards):
     """Input function: every batch file of the run named by the wildcard."""
     return [
@@ -218,10 +213,5 @@ def visco2008_md_error_window(wildcards):
 
 
 def visco2008_table1_md(wildcards):
-    """MD cumulant files of Table I: one per MD run."""
-    return [visco2008_md_cumulants(run) for run in visco2008_md()["densities"]]
-
-
-def visco2008_table1_extrapolation_windows(wildcards):
-    """Windows t of the 1/t fit of Table I's extrapolated rows (for the caption)."""
-    return config["visco2008"]["md"]["extrapolation_windows"]
+    """Table I's MD runs, one joined file each."""
+    return [visco2008_md_data(run) for run in visco2008_md()["densities"]]

@@ -168,11 +168,11 @@ rule visco2008_simulate_cloning:
 # ======================================================================================
 # analyses named after what they compute, figures, tables and checks
 # ======================================================================================
-# visco2008 analyses, figures and tables: the MD runs' cumulants, the cloning scan's table
-# (its 1/N_c extrapolations) and the cloning error study's table from the joined runs of the
-# simulation rules; Figs 1-12 and Table I from those and the theory files of the theory
-# rules, plus the cloning and MD error-against-time studies. Figures only read files under
-# <results>/.
+# visco2008 analyses, figures and tables: the cloning scan's table (its 1/N_c
+# extrapolations) and the cloning error study's table from the joined runs of the
+# simulation rules; Figs 1-12 and Table I (with the MD runs' cumulants) from those and the
+# theory files of the theory rules, plus the cloning and MD error-against-time studies.
+# Figures only read files under <results>/.
 
 
 for _number in ("01", "02", "03", "04", "05", "06", "07", "08", "09", "10", "11", "12"):
@@ -204,23 +204,6 @@ provide(
     *figure_files("visco2008", "md_error_vs_time"),
     *table_files("visco2008", "md_error_vs_time"),
 )
-
-
-rule visco2008_cumulants_md:
-    input:
-        data=visco2008_md_data("{run}"),
-        code=script_code("visco2008_cumulants_md"),
-    output:
-        visco2008_md_cumulants("{run}"),
-    log:
-        log_file("visco2008/md/{run}_cumulants.log"),
-    wildcard_constraints:
-        run=visco2008_md_runs(),
-    params:
-        table_windows=visco2008_md_table_windows,
-        extrapolation_windows=visco2008_md_extrapolation_windows,
-    script:
-        "../../scripts/visco2008_cumulants_md.py"
 
 
 rule visco2008_cloning_table:
@@ -581,7 +564,8 @@ rule visco2008_table1:
     log:
         log_file("visco2008/table1.log"),
     params:
-        extrapolation_windows=visco2008_table1_extrapolation_windows,
+        table_windows=visco2008_md_table_windows,
+        extrapolation_windows=visco2008_md_extrapolation_windows,
     script:
         "../../scripts/visco2008_table1.py"
 
