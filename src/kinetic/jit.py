@@ -145,7 +145,10 @@ def warm(engine: str) -> float:
     earlier sources. Parallel jobs of one build, and two builds of one checkout, thus
     compile each engine once, never concurrently into the same cache files.
     """
-    warmup = importlib.import_module(f"kinetic.{engine}").warmup
+
+    def warmup():  # the engine is imported only if its cache needs warming
+        importlib.import_module(f"kinetic.{engine}").warmup()
+
     return once(cache_directory(engine), engine, _warm_key(engine), warmup)
 
 
