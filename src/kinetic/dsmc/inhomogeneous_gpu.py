@@ -196,16 +196,14 @@ def _collide(
     states,
     tally,
     lost,
-    rule,
-    half,
-    density_per_count,
-    pair_coefficient,
-    time_step,
+    step,
 ):
     """One thread per cell c of realization r: sort its slice of ``order`` by particle
     index, copy its particles from the ``source`` buffers (position, velocity, labels)
     into the ``target`` buffers in that order with the cell's moments, then
-    ``kernels._collide_cell`` with the cell's stream, carry, tallies and lost energy."""
+    ``kernels._collide_cell`` with the cell's stream, carry, tallies and lost energy;
+    ``step`` is (rule, (1 + α)/2, density per count, pair coefficient, time step)."""
+    rule, half, density_per_count, pair_coefficient, time_step = step
     position, velocity, labels = source
     position_to, velocity_to, labels_to = target
     c = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
@@ -429,7 +427,7 @@ class _Batch:
                 self.states,
                 self.tally,
                 self.lost,
-                *self.collide_arguments,
+                self.collide_arguments,
             )
             self.buffers = (target, source)
             self.steps += 1
