@@ -104,8 +104,9 @@ def test_resident_and_launched_intervals_make_the_same_selections(
         "kernel": kernel,
         "dimension": dimension,
         "lam": lam,
-        "population": 24,
+        "population": 16,
         "n_realizations": 2,
+        "duration": 4.0,
         "control_interval": 1.0,
     }
     assert arguments["population"] <= gpu.RESIDENT_MAX_POPULATION
