@@ -1,10 +1,12 @@
 """The CUDA target: the one module of the package that imports ``numba.cuda``.
 
-The GPU engines (``kinetic.cloning.gpu``, ``kinetic.dsmc.gpu``) take ``cuda`` from here,
-so that a move to another CUDA binding (numba-cuda is in maintenance mode) is a change of
-this file. What lives here:
+The GPU engines (``kinetic.cloning.gpu``, ``kinetic.dsmc.gpu``,
+``kinetic.dsmc.inhomogeneous_gpu``) take ``cuda`` from here, so that a move to another
+CUDA binding (numba-cuda is in maintenance mode) is a change of this file. What lives here:
 
 - :func:`require`: the machine's GPU, or ``BackendUnavailable`` before any work;
+- :data:`kernel`, the decorator of every GPU kernel, and :func:`warm`: compiled kernels
+  go to numba-cuda's disk cache, keyed on all their sources, filled once under a lock;
 - :func:`device_function`: the physics written once. A collision rule, a random draw, a
   rate is a plain function compiled by ``kinetic.jit.kernel``/``inline`` for the CPU
   engine (and covered by its tests); ``device_function`` compiles the *same source* as a
