@@ -237,6 +237,14 @@ def fig01(curves, md, dsmc, pdf):
         reference_label="Eq. (9)",
     )
     plotting.save(fig, pdf)
+    return _two_densities(runs, numbers)
+
+
+def _two_densities(runs, numbers):
+    """Caption numbers of a figure of MD at two densities against a reference curve: the
+    densities (``runs`` sorted by density), the χ² and degrees of freedom of each
+    (``numbers`` from ``comparison_figure``, in the same order) and the residual panel's
+    error bound in per cent."""
     values = list(numbers.values())
     return dict(
         rho_low=runs[0].attrs["density"],
@@ -289,17 +297,7 @@ def fig02(curves, md, pdf):
         reference_label="Eq. (14)",
     )
     plotting.save(fig, pdf)
-    values = list(numbers.values())
-    return dict(
-        rho_low=runs[0].attrs["density"],
-        rho_high=runs[-1].attrs["density"],
-        chi2_low=values[0]["chi2"],
-        dof_low=values[0]["dof"],
-        chi2_high=values[1]["chi2"],
-        dof_high=values[1]["dof"],
-        max_error=100 * RESIDUAL_MAX_RELATIVE_ERROR,
-        p0=float(curves["hard_spheres"].values[0]),
-    )
+    return _two_densities(runs, numbers) | {"p0": float(curves["hard_spheres"].values[0])}
 
 
 def fig10(curves, md, pdf):
@@ -368,19 +366,9 @@ def fig10(curves, md, pdf):
         reference_label="Eq. (9)",
     )
     plotting.save(fig, pdf)
-    values = list(numbers.values())
     t_ratio = 10.0
-    return dict(
-        rho_low=runs[0].attrs["density"],
-        rho_high=runs[-1].attrs["density"],
-        chi2_low=values[0]["chi2"],
-        dof_low=values[0]["dof"],
-        chi2_high=values[1]["chi2"],
-        dof_high=values[1]["dof"],
-        max_error=100 * RESIDUAL_MAX_RELATIVE_ERROR,
-        t_ratio=t_ratio,
-        ratio=float(np.interp(t_ratio, centres, ratio)) + 1.0,
-    )
+    ratio_at = float(np.interp(t_ratio, centres, ratio)) + 1.0
+    return _two_densities(runs, numbers) | {"t_ratio": t_ratio, "ratio": ratio_at}
 
 
 def fig12(dsmc, curves, pdf):
