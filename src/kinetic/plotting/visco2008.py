@@ -185,6 +185,25 @@ def comparison_figure(
 # ---------------------------------------------------------------- the figures
 
 
+def _md_histograms(runs, density_of):
+    """The MD histograms of a figure at two densities (``runs`` sorted by density):
+    ``density_of(run)`` -> (bin centres, density, standard error), the lower density in
+    small filled markers."""
+    histograms = []
+    for number, run in enumerate(runs):
+        centres, density, sem = density_of(run)
+        histograms.append(
+            Histogram(
+                rf"MD, $\rho\sigma^2 = {run.attrs['density']:g}$",
+                collision_statistics.bin_edges(centres),
+                density,
+                sem,
+                style={"markersize": 2.0, "mfc": "black"} if number == 0 else {"markersize": 3.2},
+            )
+        )
+    return histograms
+
+
 def fig01(curves, md, dsmc, pdf):
     """visco2008 Fig. 1: free-flight-time density P_FFT(t), MD at both densities (and DSMC)
     against Eq. 9 (bin averages for the residuals), Eq. 11 and e^{-t}.
@@ -194,19 +213,8 @@ def fig01(curves, md, dsmc, pdf):
     grid = curves["time"].values
     survival = curves["hard_spheres_survival"].values
 
-    histograms = []
     runs = sorted(md, key=lambda d: d.attrs["density"])
-    for number, run in enumerate(runs):
-        t_md, pdf_md, sem_md = collision_statistics.flight_time_pdf(run)
-        histograms.append(
-            Histogram(
-                rf"MD, $\rho\sigma^2 = {run.attrs['density']:g}$",
-                collision_statistics.bin_edges(t_md),
-                pdf_md,
-                sem_md,
-                style={"markersize": 2.0, "mfc": "black"} if number == 0 else {"markersize": 3.2},
-            )
-        )
+    histograms = _md_histograms(runs, collision_statistics.flight_time_pdf)
     for data in dsmc:
         histograms.append(
             Histogram(
@@ -267,18 +275,7 @@ def fig02(curves, md, pdf):
     grid = curves["path"].values
     survival = curves["hard_spheres_survival"].values
     runs = sorted(md, key=lambda d: d.attrs["density"])
-    histograms = []
-    for number, run in enumerate(runs):
-        x_md, pdf_md, sem_md = collision_statistics.free_path_pdf(run)
-        histograms.append(
-            Histogram(
-                rf"MD, $\rho\sigma^2 = {run.attrs['density']:g}$",
-                collision_statistics.bin_edges(x_md),
-                pdf_md,
-                sem_md,
-                style={"markersize": 2.0, "mfc": "black"} if number == 0 else {"markersize": 3.2},
-            )
-        )
+    histograms = _md_histograms(runs, collision_statistics.free_path_pdf)
     fig, numbers = comparison_figure(
         histograms,
         lambda edges: collision_statistics.bin_averaged_density(grid, survival, edges),
@@ -309,18 +306,7 @@ def fig10(curves, md, pdf):
     returns the numbers its caption quotes."""
     grid = curves["time"].values
     runs = sorted(md, key=lambda d: d.attrs["density"])
-    histograms = []
-    for number, run in enumerate(runs):
-        t_md, pdf_md, sem_md = collision_statistics.flight_time_pdf(run)
-        histograms.append(
-            Histogram(
-                rf"MD, $\rho\sigma^2 = {run.attrs['density']:g}$",
-                collision_statistics.bin_edges(t_md),
-                pdf_md,
-                sem_md,
-                style={"markersize": 2.0, "mfc": "black"} if number == 0 else {"markersize": 3.2},
-            )
-        )
+    histograms = _md_histograms(runs, collision_statistics.flight_time_pdf)
 
     def hard_spheres(edges):
         return collision_statistics.bin_averaged_density(
