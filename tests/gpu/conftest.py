@@ -50,3 +50,32 @@ def fast_thread_switching():
     sys.setswitchinterval(5e-5)
     yield
     sys.setswitchinterval(interval)
+
+
+@pytest.fixture
+def assert_cpu_layout():
+    """Check that a ``cuda`` dataset has its CPU twin's layout: the same variables and
+    coordinates with the same dims, shapes, dtypes and units, the same coordinate values,
+    the same attributes but for backend, device and revision, and the device recorded."""
+
+    def check(cuda, cpu):
+        import numpy as np
+
+        assert set(cuda.data_vars) == set(cpu.data_vars)
+        assert set(cuda.coords) == set(cpu.coords)
+        for name in list(cpu.data_vars) + list(cpu.coords):
+            assert cuda[name].dims == cpu[name].dims, name
+            assert cuda[name].shape == cpu[name].shape, name
+            assert cuda[name].dtype == cpu[name].dtype, name
+            assert cuda[name].attrs["units"] == cpu[name].attrs["units"], name
+        for name in cpu.coords:
+            np.testing.assert_array_equal(cuda[name].values, cpu[name].values)
+        assert "per realization" in cuda.cpu_seconds.attrs["long_name"]
+        assert cuda.attrs["backend"] == "cuda" and cpu.attrs["backend"] == "cpu"
+        assert cuda.attrs["device"] == backends.require("cuda")
+        assert cpu.attrs["device"] == "cpu"
+        for key, value in cpu.attrs.items():
+            if key not in ("backend", "device", "git_revision"):
+                assert cuda.attrs[key] == value, key
+
+    return check

@@ -101,24 +101,9 @@ def test_cuda_without_a_gpu_stops_before_any_work(monkeypatch):
         _run("cuda")
 
 
-def test_dataset_has_the_cpu_layout(forced_runs):
+def test_dataset_has_the_cpu_layout(forced_runs, assert_cpu_layout):
     cuda, _, cpu = forced_runs
-    assert set(cuda.data_vars) == set(cpu.data_vars)
-    assert set(cuda.coords) == set(cpu.coords)
-    for name in list(cpu.data_vars) + list(cpu.coords):
-        assert cuda[name].dims == cpu[name].dims, name
-        assert cuda[name].shape == cpu[name].shape, name
-        assert cuda[name].dtype == cpu[name].dtype, name
-        assert cuda[name].attrs["units"] == cpu[name].attrs["units"], name
-    for name in cpu.coords:
-        np.testing.assert_array_equal(cuda[name].values, cpu[name].values)
-    assert "per realization" in cuda.cpu_seconds.attrs["long_name"]
-    assert cuda.attrs["backend"] == "cuda" and cpu.attrs["backend"] == "cpu"
-    assert cuda.attrs["device"] == backends.require("cuda")
-    assert cpu.attrs["device"] == "cpu"
-    for key, value in cpu.attrs.items():
-        if key not in ("backend", "device", "git_revision"):
-            assert cuda.attrs[key] == value, key
+    assert_cpu_layout(cuda, cpu)
 
 
 def test_counts_are_consistent(forced_runs):
