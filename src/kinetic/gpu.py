@@ -217,6 +217,16 @@ def synchronize() -> None:
     cuda.synchronize()
 
 
+@kernel
+def stream_copy(source, target):
+    """``target[i] = source[i]`` for the flat float64 arrays (threads over the elements,
+    the grid's stride): the coalesced read and write that bound a pass over particles
+    (``python -m kinetic.bench cuda --sections memory_bound``)."""
+    start = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    for i in range(start, source.shape[0], cuda.gridDim.x * cuda.blockDim.x):
+        target[i] = source[i]
+
+
 def fold_partials(partials, out, field_of, scale=1.0):
     """Add ``scale`` times the per-block partial sums ``partials[r, b, f]`` (float64, one
     row per realization ``r`` and thread block ``b``) to ``out[r, field_of[f]]``, in a

@@ -1,5 +1,5 @@
-"""The CUDA kernels of kinetic.dsmc.gpu, kinetic.dsmc.inhomogeneous_gpu and kinetic.cloning.gpu
-compile for a Hopper GPU
+"""The CUDA kernels of kinetic.dsmc.gpu, kinetic.dsmc.inhomogeneous_gpu, kinetic.cloning.gpu
+and kinetic.gpu compile for a Hopper GPU
 (sm_90), checked without a GPU: ``numba.cuda.compile_ptx`` of every kernel with the
 argument types the engine launches it with. The simulator (``NUMBA_ENABLE_CUDASIM=1``)
 runs the kernels as Python and checks none of the typing, so this runs only outside it,
@@ -54,6 +54,7 @@ def _signatures():
             ("dsmc_inhomogeneous", name): signature
             for name, signature in _inhomogeneous_signatures().items()
         }
+        | {("gpu", "stream_copy"): (f1, f1)}
     )
 
 
@@ -61,6 +62,7 @@ MODULES = {
     "cloning": "kinetic.cloning.gpu",
     "dsmc": "kinetic.dsmc.gpu",
     "dsmc_inhomogeneous": "kinetic.dsmc.inhomogeneous_gpu",
+    "gpu": "kinetic.gpu",
 }
 
 

@@ -29,6 +29,12 @@ second at α = 1 and 0.5 for N = 2 × 10⁵ × 100, 2 × 10⁶ × 10, 2 × 10⁷
 for one realization over a tenth of the duration, both scaled to the whole job
 (``dsmc_paper_job``).
 
+Memory bound (``memory_bound``, second): the GPU's coalesced copy bandwidth, and each pass
+of the homogeneous DSMC's step (regrouping, collisions, force, thermostat) launched alone
+at montanero2007's paper settings, with its bytes per second; the step's time against the
+time its least DRAM traffic (``PASS_BYTES``, 120 bytes a particle) takes at that
+bandwidth.
+
 Inhomogeneous DSMC (costantini2010, ``inhomogeneous_speed``): particle-steps and
 collisions per second of ``simulate_cooling_modes(backend="cuda")`` at N = 3000 × Λ = 10
 with 100 realizations in one batch and at N = 3 × 10⁶ (Λ = 1, one realization), both
@@ -454,6 +460,124 @@ def dsmc_paper_job(quick: bool) -> dict[str, Any]:
     }
 
 
+PASS_BYTES = {"permute": 48, "collide": 24, "force": 48}
+"""Least DRAM bytes per particle of each pass of a Lie step of the homogeneous DSMC
+(kinetic.dsmc.gpu, float64 velocities, d = 3): the regrouping reads a particle's three
+components (from scattered addresses) and writes them in their new order; the collision
+stage reads its group once for the majorant (the collided pairs, about 1 % of the
+particles a step at montanero2007's δt = 0.003 τ, are left out); the force step reads and
+writes every particle. 120 bytes a particle-step in all; the thermostat's reduction and
+the clock (``_finish``) touch a few numbers per realization."""
+
+
+def _launch_seconds(launch, repeats: int) -> float:
+    """Median wall seconds of ``launch()`` to the GPU's completion, after one untimed call."""
+    from kinetic.gpu import synchronize
+
+    launch()
+    synchronize()
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        launch()
+        synchronize()
+        times.append(time.perf_counter() - start)
+    return float(np.median(times))
+
+
+def _copy_seconds(elements: int, repeats: int) -> float:
+    """Median seconds of ``kinetic.gpu.stream_copy`` over ``elements`` float64 numbers."""
+    from kinetic import gpu as device
+
+    source = device.device_zeros(elements)
+    target = device.device_zeros(elements)
+    blocks = min(device.grid(elements), 4096)
+    return _launch_seconds(
+        lambda: device.stream_copy[blocks, device.BLOCK](source, target), repeats
+    )
+
+
+def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
+    """The memory-bandwidth bound under the homogeneous DSMC at montanero2007's paper job
+    settings (α = 0.3, ε* = 0.025, δt = 0.003 τ, Euler force step, Lie splitting) for
+    ``realizations`` x ``n`` particles: the GPU's coalesced copy bandwidth over arrays of
+    the velocities' size, each pass of a step launched alone and the whole step, with the
+    passes' bytes (``PASS_BYTES``) over their time and the step's time against the time
+    its 120 bytes a particle would take at the copy bandwidth."""
+    from kinetic import gpu as device
+    from kinetic.dsmc import gpu as dsmc_gpu
+    from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
+
+    settings = HomogeneousSettings(
+        n_particles=n,
+        restitution=0.3,
+        time_step=0.003,
+        reduced_field=0.025,
+        force_step="euler",
+        splitting="lie",
+    )
+    samples = Samples(stride=50)
+    batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations))
+    particles = n * realizations
+    copy = _copy_seconds(3 * particles, repeats)
+    copy_bandwidth = 2 * 8 * 3 * particles / copy
+    field_step = settings.half_field_step
+    blocks_y = (batch.n_blocks, batch.count)
+    groups = min(device.BLOCK, batch.n_groups)
+    passes = {
+        "permute": lambda: dsmc_gpu._permute[blocks_y, dsmc_gpu.THREADS](
+            batch.velocity, batch.spare, batch.keys, batch.half_bits, batch.thermo, False
+        ),
+        "collide": lambda: dsmc_gpu._collide[
+            (device.grid(batch.n_groups, groups), batch.count), groups
+        ](
+            batch.velocity,
+            batch.states,
+            batch.bounds,
+            batch.carry,
+            batch.tally,
+            batch.reals,
+            batch.flags,
+        ),
+        "force": lambda: batch._force_and_thermostat(field_step),
+        "finish": lambda: batch._finish(end_of_step=True),
+    }
+    out: dict[str, Any] = {
+        "n_particles": n,
+        "realizations": realizations,
+        "copy_seconds": copy,
+        "copy_bytes_per_second": copy_bandwidth,
+        "passes": {},
+    }
+    for name, launch in passes.items():
+        seconds = _launch_seconds(launch, repeats)
+        moved = PASS_BYTES.get(name, 0) * particles
+        out["passes"][name] = {
+            "seconds": seconds,
+            "seconds_per_particle": seconds / particles,
+            "bytes_per_particle": PASS_BYTES.get(name, 0),
+            "bytes_per_second": moved / seconds,
+            "fraction_of_copy_bandwidth": moved / seconds / copy_bandwidth,
+        }
+    step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
+    bound = sum(PASS_BYTES.values()) * particles / copy_bandwidth
+    out["step"] = {
+        "seconds": step,
+        "particle_steps_per_second": particles / step,
+        "bound_seconds": bound,
+        "bound_particle_steps_per_second": particles / bound,
+        "fraction_of_bound": bound / step,
+    }
+    return out
+
+
+def memory_bound(quick: bool) -> dict[str, Any]:
+    """How far the homogeneous DSMC's step is from the GPU's memory bandwidth (the bound of
+    montanero2007's paper runs): ``_memory_bound`` at N = 2 × 10⁵ with 50 realizations
+    (10⁷ particles, 240 MB of velocities: far beyond the L2 cache)."""
+    return _memory_bound(200_000, 10 if quick else 50, 5 if quick else 20)
+
+
 _STARTUP_JOBS = {
     "cloning": (
         "from kinetic.cloning import simulate as front\n"
@@ -532,6 +656,7 @@ def job_startup(quick: bool) -> dict[str, Any]:
 
 SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
     "job_startup": job_startup,
+    "memory_bound": memory_bound,
     "cloning_speed": cloning_speed,
     "cloning_physics": cloning_physics,
     "dsmc_speed": dsmc_speed,
