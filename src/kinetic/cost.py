@@ -219,10 +219,24 @@ mode observer every other step): 2.6 × 10⁻⁸ s per particle-step measured at
 0.9 × 10⁻⁸ for the step alone."""
 
 COOLING_DSMC_GPU_SECONDS_PER_STEP = 6.0e-4
-"""``cuda`` backend of simulate_cooling_modes: the fixed cost of one step, five launches
-through numba's dispatcher (about 90 µs each on an H100, as the cloning and homogeneous
-DSMC kernels measured) plus the one-block scan over the cells. A model, not yet measured:
-``python -m kinetic.bench cuda --sections inhomogeneous_speed``."""
+"""``cuda`` backend of simulate_cooling_modes, five launches a step (the fallback where the
+GPU cannot launch cooperatively): the fixed cost of one step, five launches through
+numba's dispatcher (about 90 µs each on an H100, as the cloning and homogeneous DSMC
+kernels measured) plus the one-block scan over the cells. A model, not yet measured:
+``python -m kinetic.bench cuda --sections inhomogeneous_speed`` (``paths``)."""
+
+COOLING_DSMC_GPU_TOGETHER_SECONDS_PER_STEP = 1.5e-4
+"""``cuda`` backend of simulate_cooling_modes, the steps between two samples in one
+cooperative launch (``inhomogeneous_gpu._advance_together``): the fixed cost of one step,
+five grid-wide barriers (a few µs each) and the latency of the phases when the GPU has
+little to do, above all one thread per cell sorting, gathering and colliding its ~60
+particles one after another. A model, not yet measured (bench ``inhomogeneous_speed``,
+``paths``)."""
+
+COOLING_DSMC_GPU_SECONDS_PER_SAMPLE = 3.0e-4
+"""``cuda`` backend of simulate_cooling_modes on the cooperative path: the launches of a
+sample interval (the steps' launch, the observer and its fold: three of about 90 µs). A
+model."""
 
 COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND = 1.0e9
 """``cuda`` backend of simulate_cooling_modes, every realization in the same launches:
@@ -256,7 +270,8 @@ def cooling_modes(
 ) -> Estimate:
     """One job of costantini2010 (kinetic.dsmc or kinetic.edmd simulate_cooling_modes,
     engine units): ``n_realizations`` runs of ``n_samples`` sample intervals; a DSMC job
-    on the ``cuda`` backend advances them all in the same launches."""
+    on the ``cuda`` backend advances them all in the same launches, the steps between two
+    samples in one cooperative launch."""
     duration = n_samples * sample_interval
     samples_bytes = 80.0 * n_samples * n_realizations
     if engine == "dsmc":
@@ -264,7 +279,8 @@ def cooling_modes(
         particle_steps = n_realizations * simulated * duration / time_step
         if backend == "cuda":
             seconds = (
-                duration / time_step * COOLING_DSMC_GPU_SECONDS_PER_STEP
+                duration / time_step * COOLING_DSMC_GPU_TOGETHER_SECONDS_PER_STEP
+                + n_samples * COOLING_DSMC_GPU_SECONDS_PER_SAMPLE
                 + particle_steps / COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND
             )
             memory = _mb(COOLING_DSMC_BYTES_PER_PARTICLE * simulated * n_realizations)

@@ -72,8 +72,18 @@ def _run(backend, **overrides):
 
 @pytest.fixture(scope="module")
 def tiny_runs():
-    """The same run twice on the GPU (α = 0.8 with drag, paper rule), once on the CPU."""
-    return _run("cuda"), _run("cuda"), _run("cpu")
+    """The same run (α = 0.8 with drag, paper rule) twice on the GPU: the steps between
+    samples in one cooperative launch, then in five launches a step; and once on the
+    CPU."""
+    from kinetic.dsmc import inhomogeneous_gpu
+
+    together = _run("cuda")
+    inhomogeneous_gpu.TOGETHER = False
+    try:
+        launched = _run("cuda")
+    finally:
+        inhomogeneous_gpu.TOGETHER = True
+    return together, launched, _run("cpu")
 
 
 def test_unknown_backend_is_rejected_before_any_work(monkeypatch):
@@ -113,6 +123,9 @@ def test_dataset_has_the_cpu_layout(tiny_runs, assert_cpu_layout):
 
 
 def test_same_seed_gives_identical_datasets(tiny_runs):
+    """The same numbers from one launch per sample interval and from a launch per phase
+    (two runs of the same seed: an odd number of steps between samples, so the buffers
+    swap across launches), and from a realization run alone."""
     first, second, _ = tiny_runs
     for name in first.data_vars:
         if name != "cpu_seconds":

@@ -40,7 +40,9 @@ collisions per second of ``simulate_cooling_modes(backend="cuda")`` at N = 3000 
 with 100 realizations in one batch and at N = 3 × 10⁶ (Λ = 1, one realization), both
 collision rules, at the paper config's density (nσ² = 0.005), cells of 0.5 λ and a step of
 0.025 mean free times, α = 0.8 with the drag ω0 = ζ(T0)/2; the same cases, shorter, on one
-CPU core for the ratio.
+CPU core for the ratio; and the paper config's job shape (16 realizations, a sample every
+4 steps) on both GPU paths: the steps between samples in one cooperative launch, and five
+launches a step (``paths``).
 """
 
 from __future__ import annotations
@@ -363,12 +365,32 @@ def _inhomogeneous(
     }
 
 
+@contextlib.contextmanager
+def _inhomogeneous_path(together: bool):
+    """Force the cuda inhomogeneous DSMC's cooperative launch per sample interval or its
+    five launches a step."""
+    from kinetic.dsmc import inhomogeneous_gpu
+
+    saved = inhomogeneous_gpu.TOGETHER
+    inhomogeneous_gpu.TOGETHER = together
+    try:
+        yield
+    finally:
+        inhomogeneous_gpu.TOGETHER = saved
+
+
 def inhomogeneous_speed(quick: bool) -> dict[str, Any]:
     """Inhomogeneous DSMC: particle-steps and collisions per second at N = 3000 × Λ = 10
     × 100 realizations and N = 3 × 10⁶ × Λ = 1, both rules, on the GPU and on one CPU
-    core (shorter runs), and the ratio."""
+    core (shorter runs), and the ratio; then the paper config's job shape (16 realizations
+    of 3000 × Λ = 10, a sample every 4 steps) with the steps between samples in one
+    cooperative launch and with five launches a step (``paths``)."""
+    from kinetic.dsmc import inhomogeneous_gpu
+
     scale = 10 if quick else 1
-    _inhomogeneous(3000, 10, 2, 20, "cuda", "paper")  # compile (the front's own tiny batch)
+    for together in (True, False):  # compile both paths (the front's own tiny batch)
+        with _inhomogeneous_path(together):
+            _inhomogeneous(3000, 10, 2, 20, "cuda", "paper")
     _inhomogeneous(300, 1, 1, 4, "cpu", "paper")
     gpu, cpu = [], []
     for rule in ("paper", "majorant"):
@@ -386,7 +408,16 @@ def inhomogeneous_speed(quick: bool) -> dict[str, Any]:
         case["speedup_over_one_core"] = (
             case["particle_steps_per_second"] / same["particle_steps_per_second"]
         )
-    return {"gpu": gpu, "cpu_one_core": cpu}
+        case["path"] = "together" if inhomogeneous_gpu.TOGETHER else "launched"
+    paths = []
+    for together in (True, False):
+        with _inhomogeneous_path(together):
+            steps = 4000 // scale
+            case = _inhomogeneous(3000, 10, 16, steps, "cuda", "paper", samples=steps // 4)
+        case["path"] = "together" if together else "launched"
+        case["seconds_per_step"] = case["kernel_seconds"] / case["steps"]
+        paths.append(case)
+    return {"gpu": gpu, "cpu_one_core": cpu, "paths": paths}
 
 
 def dsmc_scaling(quick: bool) -> dict[str, Any]:

@@ -4,7 +4,12 @@
 All realizations of a call advance together on one GPU: realization r is row r of
 ``(R, 2, N_sim)`` arrays (each row the CPU engine's struct of arrays, double-buffered by
 swapping two device arrays) and of ``(R, M², ·)`` per-cell arrays; every kernel covers
-all realizations (the realization is the grid's y index). One step is five launches:
+all realizations. One step is five phases, each written once as a device function of one
+realization, particle or cell (``_centre_row``, ``_stream_particle``, ``_scan_row``,
+``_scatter_particle``, ``_collide_in_cell``), run either by one cooperative launch for all
+the steps between two samples (``_advance_together``: the phases in turn, each a loop of
+the whole grid, with a grid-wide barrier between them; the default where the GPU allows
+it, ``TOGETHER``) or by one launch per phase (the realization is the grid's y index):
 
 1. ``_centre`` (one block per realization): the centre-of-mass velocity u of the
    previous step, Σ_c of the cells' Σw (``moments[:, :, :2]``) by a fixed tree over the
@@ -42,9 +47,10 @@ the blocks summed in index order by one thread, ``kernels._observables`` for the
 the energy lost in collisions since the previous sample, summed over the cells by a fixed
 tree and reset).
 
-Determinism: the same call gives the same numbers twice (on one GPU model). Every float
-sum has a fixed order (above); the only atomics are integer counts and fill pointers, and
-the per-cell sort removes the order they land in. A realization's numbers do not depend
+Determinism: the same call gives the same numbers twice (on one GPU model), on either
+path. Every float sum has a fixed order (above: per realization, whatever the grid); the
+only atomics are integer counts and fill pointers, and the per-cell sort removes the order
+they land in. A realization's numbers do not depend
 on the other realizations of the batch (the number of blocks over particles depends on
 N_sim only). Not bit-identical with the CPU engine, which draws every cell's collisions
 from one stream per realization: the two agree statistically
@@ -78,6 +84,7 @@ from kinetic.gpu import (
     to_device,
     warm,
 )
+from kinetic.progress import logger
 
 __all__ = ["N_SUMS", "run_batch"]
 
@@ -115,12 +122,15 @@ def _seed(keys, states):
     states[r, c, 3] = s3
 
 
-@kernel
-def _centre(moments, u, cell_start, inverse_n):
-    """One block per realization: ``u[r]`` = Σ_c moments[r, c, :2] / N_sim (fixed tree),
-    and ``cell_start[r]`` zeroed (the counts of the coming sort)."""
-    shared = cuda.shared.array(BLOCK, np.float64)
-    r = cuda.blockIdx.x
+# ------------------------------------------------------------- the phases of a step
+# Each phase is written once, as an inline device function of one realization (block
+# phases: every thread of the block calls it) or of one particle or cell; the launched
+# kernels and the cooperative kernel (_advance_together) are loops over them.
+
+
+def _centre_row(moments, u, cell_start, inverse_n, shared, r):
+    """Block phase: ``u[r]`` = Σ_c moments[r, c, :2] / N_sim (fixed tree), and
+    ``cell_start[r]`` zeroed (the counts of the coming sort)."""
     t = cuda.threadIdx.x
     n_cells = moments.shape[1]
     sum0 = 0.0
@@ -137,35 +147,34 @@ def _centre(moments, u, cell_start, inverse_n):
         u[r, 1] = sum1 * inverse_n
 
 
-@kernel
-def _stream(position, velocity, cell_of, cell_start, u, shift, growth, box_side, inverse_cell, m):
-    """Free flight with drag of every particle (``kernels._streamed``, in place), its
-    velocity (w - u) e^{ω0 Δτ} (in place), its cell, and the cells' counts (integer
-    atomics on ``cell_start[r, c]``)."""
-    r = cuda.blockIdx.y
-    n = position.shape[2]
-    u0 = u[r, 0]
-    u1 = u[r, 1]
-    for i in range(cuda.blockIdx.x * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
-        w0 = velocity[r, 0, i] - u0
-        w1 = velocity[r, 1, i] - u1
-        x, y, c = _streamed(
-            position[r, 0, i], position[r, 1, i], w0, w1, shift, box_side, inverse_cell, m
-        )
-        position[r, 0, i] = x
-        position[r, 1, i] = y
-        velocity[r, 0, i] = w0 * growth
-        velocity[r, 1, i] = w1 * growth
-        cell_of[r, i] = c
-        cuda.atomic.add(cell_start, (r, c), 1)
+_centre_row = cuda.jit(device=True, inline="always")(_centre_row)
 
 
-@kernel
-def _scan(cell_start, fill):
-    """One block per realization: ``cell_start[r]`` = exclusive prefix sums of the counts
+def _stream_particle(position, velocity, cell_of, cell_start, u, arguments, r, i):
+    """Particle phase: the free flight with drag of particle i (``kernels._streamed``, in
+    place), its velocity (w - u) e^{ω0 Δτ} (in place), its cell, and one more in the
+    cell's count (an integer atomic on ``cell_start[r, c]``); ``arguments`` is (shift,
+    growth, box side, cells per unit length, cells per side)."""
+    shift, growth, box_side, inverse_cell, m = arguments
+    w0 = velocity[r, 0, i] - u[r, 0]
+    w1 = velocity[r, 1, i] - u[r, 1]
+    x, y, c = _streamed(
+        position[r, 0, i], position[r, 1, i], w0, w1, shift, box_side, inverse_cell, m
+    )
+    position[r, 0, i] = x
+    position[r, 1, i] = y
+    velocity[r, 0, i] = w0 * growth
+    velocity[r, 1, i] = w1 * growth
+    cell_of[r, i] = c
+    cuda.atomic.add(cell_start, (r, c), 1)
+
+
+_stream_particle = cuda.jit(device=True, inline="always")(_stream_particle)
+
+
+def _scan_row(cell_start, fill, shared, r):
+    """Block phase: ``cell_start[r]`` = exclusive prefix sums of the counts
     (``cell_start[r, M²]`` = N_sim), and the fill pointers ``fill[r] = cell_start[r, :M²]``."""
-    shared = cuda.shared.array(BLOCK, np.int64)
-    r = cuda.blockIdx.x
     n_cells = fill.shape[1]
     total = block_exclusive_scan(shared, cell_start[r], n_cells, np.int64(0))
     if cuda.threadIdx.x == 0:
@@ -174,42 +183,29 @@ def _scan(cell_start, fill):
         fill[r, c] = cell_start[r, c]
 
 
-@kernel
-def _scatter(cell_of, fill, order):
-    """Each particle takes a slot of its cell's range (integer atomic on the cell's fill
-    pointer) and writes its index there."""
-    r = cuda.blockIdx.y
-    n = cell_of.shape[1]
-    for i in range(cuda.blockIdx.x * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
-        p = cuda.atomic.add(fill, (r, cell_of[r, i]), 1)
-        order[r, p] = i
+_scan_row = cuda.jit(device=True, inline="always")(_scan_row)
 
 
-@kernel
-def _collide(
-    source,
-    target,
-    order,
-    cell_start,
-    moments,
-    carry,
-    states,
-    tally,
-    lost,
-    step,
-):
-    """One thread per cell c of realization r: sort its slice of ``order`` by particle
-    index, copy its particles from the ``source`` buffers (position, velocity, labels)
-    into the ``target`` buffers in that order with the cell's moments, then
-    ``kernels._collide_cell`` with the cell's stream, carry, tallies and lost energy;
-    ``step`` is (rule, (1 + α)/2, density per count, pair coefficient, time step)."""
+def _scatter_particle(cell_of, fill, order, r, i):
+    """Particle phase: particle i takes a slot of its cell's range (integer atomic on the
+    cell's fill pointer) and writes its index there."""
+    p = cuda.atomic.add(fill, (r, cell_of[r, i]), 1)
+    order[r, p] = i
+
+
+_scatter_particle = cuda.jit(device=True, inline="always")(_scatter_particle)
+
+
+def _collide_in_cell(source, target, order, cell_start, cells, step, r, c):
+    """Cell phase: sort cell c's slice of ``order`` by particle index, copy its particles
+    from the ``source`` buffers (position, velocity, labels) into the ``target`` buffers
+    in that order with the cell's moments, then ``kernels._collide_cell`` with the cell's
+    stream, carry, tallies and lost energy. ``cells`` is (moments, carry, states, tally,
+    lost); ``step`` is (rule, (1 + α)/2, density per count, pair coefficient, time step)."""
+    moments, carry, states, tally, lost = cells
     rule, half, density_per_count, pair_coefficient, time_step = step
     position, velocity, labels = source
     position_to, velocity_to, labels_to = target
-    c = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
-    r = cuda.blockIdx.y
-    if c >= carry.shape[1]:
-        return
     first = cell_start[r, c]
     last = cell_start[r, c + 1]
     for a in range(first + 1, last):  # insertion sort: the CPU's stable order
@@ -270,6 +266,97 @@ def _collide(
     state[1] = s1
     state[2] = s2
     state[3] = s3
+
+
+_collide_in_cell = cuda.jit(device=True, inline="always")(_collide_in_cell)
+
+
+# ------------------------------------------------------------ one launch per phase
+
+
+@kernel
+def _centre(moments, u, cell_start, inverse_n):
+    """One block per realization: ``_centre_row``."""
+    shared = cuda.shared.array(BLOCK, np.float64)
+    _centre_row(moments, u, cell_start, inverse_n, shared, cuda.blockIdx.x)
+
+
+@kernel
+def _stream(position, velocity, cell_of, cell_start, u, arguments):
+    """Threads over the particles of realization ``blockIdx.y``: ``_stream_particle``."""
+    r = cuda.blockIdx.y
+    n = position.shape[2]
+    for i in range(cuda.blockIdx.x * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
+        _stream_particle(position, velocity, cell_of, cell_start, u, arguments, r, i)
+
+
+@kernel
+def _scan(cell_start, fill):
+    """One block per realization: ``_scan_row``."""
+    shared = cuda.shared.array(BLOCK, np.int64)
+    _scan_row(cell_start, fill, shared, cuda.blockIdx.x)
+
+
+@kernel
+def _scatter(cell_of, fill, order):
+    """Threads over the particles of realization ``blockIdx.y``: ``_scatter_particle``."""
+    r = cuda.blockIdx.y
+    n = cell_of.shape[1]
+    for i in range(cuda.blockIdx.x * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
+        _scatter_particle(cell_of, fill, order, r, i)
+
+
+@kernel
+def _collide(source, target, order, cell_start, cells, step):
+    """One thread per cell c of realization ``blockIdx.y``: ``_collide_in_cell``."""
+    c = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    if c < cell_start.shape[1] - 1:
+        _collide_in_cell(source, target, order, cell_start, cells, step, cuda.blockIdx.y, c)
+
+
+# ----------------------------------------------------- every phase in one launch
+
+
+@kernel
+def _advance_together(first, second, work, cells, u, stream, step, inverse_n, n_steps):
+    """``n_steps`` whole steps of every realization in one cooperative launch: the five
+    phases of a step in order, each a loop of the grid over its realizations, particles or
+    cells, separated by grid-wide barriers (``cuda.cg.this_grid().sync()``: every block
+    resident at once). Step s reads the ``first`` buffers and writes the ``second`` when s
+    is even, the other way round when odd. ``work`` is (cell_of, order, cell_start,
+    fill). The phases are the launched kernels' own functions, so the numbers are theirs
+    bit for bit."""
+    cell_of, order, cell_start, fill = work
+    grid_group = cuda.cg.this_grid()
+    sums = cuda.shared.array(BLOCK, np.float64)
+    counts = cuda.shared.array(BLOCK, np.int64)
+    block = cuda.blockIdx.x
+    blocks = cuda.gridDim.x
+    thread = block * BLOCK + cuda.threadIdx.x
+    threads = blocks * BLOCK
+    count = u.shape[0]
+    n = cell_of.shape[1]
+    n_cells = fill.shape[1]
+    for s in range(n_steps):
+        source, target = (first, second) if s % 2 == 0 else (second, first)
+        for r in range(block, count, blocks):
+            _centre_row(cells[0], u, cell_start, inverse_n, sums, r)
+        grid_group.sync()
+        for k in range(thread, count * n, threads):
+            r = k // n
+            _stream_particle(source[0], source[1], cell_of, cell_start, u, stream, r, k - r * n)
+        grid_group.sync()
+        for r in range(block, count, blocks):
+            _scan_row(cell_start, fill, counts, r)
+        grid_group.sync()
+        for k in range(thread, count * n, threads):
+            r = k // n
+            _scatter_particle(cell_of, fill, order, r, k - r * n)
+        grid_group.sync()
+        for k in range(thread, count * n_cells, threads):
+            r = k // n_cells
+            _collide_in_cell(source, target, order, cell_start, cells, step, r, k - r * n_cells)
+        grid_group.sync()
 
 
 @kernel
@@ -339,6 +426,33 @@ def _finish(partials, n_blocks, lost, loss, n, observables, dissipated, sample):
 # ------------------------------------------------------------------------------ host
 
 
+TOGETHER = True
+"""Run the steps between two samples in one cooperative launch (``_advance_together``)
+where the GPU allows it; False: five launches a step (``python -m kinetic.bench cuda``
+times both). The numbers are the same either way."""
+
+
+def _cooperative_blocks(batch) -> int:
+    """Thread blocks of ``_advance_together``'s grid for ``batch``: as many as the GPU
+    keeps resident at once, and no more than its largest phase has work for; one under the
+    simulator (whose grid barrier is a block barrier). 0 where the kernel cannot be
+    compiled or launched cooperatively (a toolkit without libcudadevrt, say): the batch
+    then launches each phase (the same numbers)."""
+    if simulated():
+        return 1
+    needed = grid(batch.count * max(batch.n, batch.n_cells))
+    try:
+        _advance_together[1, BLOCK](*batch.together_arguments(0))  # compiles; does nothing
+        resident = min(
+            compiled.max_cooperative_grid_blocks(BLOCK)
+            for compiled in _advance_together.overloads.values()
+        )
+    except Exception as error:  # any failure leaves the launched path
+        logger.warning("one launch per phase: no cooperative launch on this GPU (%s)", error)
+        return 0
+    return max(1, min(resident, needed))
+
+
 class _Batch:
     """Device state of R realizations of one setting and the launches of one step."""
 
@@ -401,36 +515,59 @@ class _Batch:
             float(step.pair_coefficient),
             float(step.time_step),
         )
+        self.cells = (self.moments, self.carry, self.states, self.tally, self.lost)
         self.loss = 0.25 * (1.0 - s.restitution * s.restitution)
         self.steps = 0
+        self.together = _cooperative_blocks(self) if TOGETHER else 0
 
     def advance(self, n_steps: int) -> None:
-        """Launch ``n_steps`` steps of every realization (five launches each)."""
+        """Advance every realization by ``n_steps`` steps: one cooperative launch
+        (``_advance_together``) where the GPU runs it, else five launches a step."""
+        if n_steps <= 0:
+            return
+        if self.together:
+            _advance_together[self.together, BLOCK](*self.together_arguments(n_steps))
+            if n_steps % 2:
+                self.buffers = self.buffers[::-1]
+            self.steps += n_steps
+            return
         particles = (self.spread_blocks, self.count)
-        cells = (grid(self.n_cells), self.count)
+        cell_grid = (grid(self.n_cells), self.count)
         for _ in range(n_steps):
             source, target = self.buffers
             position, velocity, _labels = source
             _centre[self.count, BLOCK](self.moments, self.u, self.cell_start, 1.0 / self.n)
             _stream[particles, THREADS](
-                position, velocity, self.cell_of, self.cell_start, self.u, *self.stream_arguments
+                position, velocity, self.cell_of, self.cell_start, self.u, self.stream_arguments
             )
             _scan[self.count, BLOCK](self.cell_start, self.fill)
             _scatter[particles, THREADS](self.cell_of, self.fill, self.order)
-            _collide[cells, BLOCK](
+            _collide[cell_grid, BLOCK](
                 source,
                 target,
                 self.order,
                 self.cell_start,
-                self.moments,
-                self.carry,
-                self.states,
-                self.tally,
-                self.lost,
+                self.cells,
                 self.collide_arguments,
             )
             self.buffers = (target, source)
             self.steps += 1
+
+    def together_arguments(self, n_steps: int) -> tuple:
+        """The arguments of ``_advance_together`` for ``n_steps`` steps."""
+        first, second = self.buffers
+        work = (self.cell_of, self.order, self.cell_start, self.fill)
+        return (
+            first,
+            second,
+            work,
+            self.cells,
+            self.u,
+            self.stream_arguments,
+            self.collide_arguments,
+            1.0 / self.n,
+            n_steps,
+        )
 
     def observe(self, sample: int) -> None:
         """Row ``sample`` of the observables and of the energy lost since the last one."""
