@@ -247,3 +247,22 @@ def test_temperature_and_modes_match_the_cpu_engine(rule):
     assert cpu_values["last temperature"].mean() < 0.95  # the gas does cool
     for name in gpu_values:
         _agree(gpu_values[name], cpu_values[name], name)
+
+
+def test_a_gpu_without_cooperative_launch_gets_a_launch_per_phase(monkeypatch, caplog):
+    """Where the cooperative kernel cannot be compiled or launched (a toolkit without
+    libcudadevrt, say), the batch takes the launched path, with a line in the log."""
+    from types import SimpleNamespace
+
+    from kinetic.dsmc import inhomogeneous_gpu
+
+    class Unlaunchable:
+        def __getitem__(self, configuration):
+            raise RuntimeError("libcudadevrt not found")
+
+    monkeypatch.setattr(inhomogeneous_gpu, "simulated", lambda: False)
+    monkeypatch.setattr(inhomogeneous_gpu, "_advance_together", Unlaunchable())
+    batch = SimpleNamespace(count=2, n=80, n_cells=4, together_arguments=lambda n_steps: ())
+    with caplog.at_level("WARNING", logger="kinetic"):
+        assert inhomogeneous_gpu._cooperative_blocks(batch) == 0
+    assert "no cooperative launch" in caplog.text and "libcudadevrt" in caplog.text
