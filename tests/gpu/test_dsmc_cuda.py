@@ -226,3 +226,21 @@ def test_kappa_prime_matches_the_cpu_engine(forced_runs):
     (gpu, gpu_sem), (cpu, cpu_sem) = ratios["cuda"], ratios["cpu"]
     assert cpu_sem < 0.05 * abs(cpu)
     assert abs(gpu - cpu) < 4 * hypot(gpu_sem, cpu_sem)
+
+
+def test_bench_memory_bound_times_every_pass_of_the_step():
+    """``python -m kinetic.bench cuda --sections memory_bound`` runs (here at N = 256 under
+    the simulator, no meaningful times), so that a GPU session's few minutes are not spent
+    finding a broken section; its bound is the passes' bytes at the copy bandwidth."""
+    from kinetic.bench import cuda as bench
+
+    report = bench._memory_bound(256, 2, 1)
+    assert set(report["passes"]) == {"permute", "collide", "force", "finish"}
+    particles = 256 * 2
+    assert report["copy_bytes_per_second"] == pytest.approx(48 * particles / report["copy_seconds"])
+    for name, timed in report["passes"].items():
+        assert timed["seconds"] > 0
+        assert timed["bytes_per_particle"] == bench.PASS_BYTES.get(name, 0)
+    step = report["step"]
+    assert step["bound_seconds"] == pytest.approx(120 * particles / report["copy_bytes_per_second"])
+    assert step["fraction_of_bound"] == pytest.approx(step["bound_seconds"] / step["seconds"])

@@ -70,6 +70,19 @@ def _run(backend, **overrides):
     return simulate_cooling_modes(**{**TINY, **overrides}, backend=backend)
 
 
+@pytest.fixture(autouse=True, scope="module")
+def _a_launch_per_phase_under_the_simulator():
+    """Under the simulator these tests take the launched path (the cooperative grid is one
+    block there, about twice as slow); ``tiny_runs`` runs both paths and finds them
+    identical. On a GPU the engine's own choice stands."""
+    from kinetic.dsmc import inhomogeneous_gpu
+
+    saved = inhomogeneous_gpu.TOGETHER
+    inhomogeneous_gpu.TOGETHER = not backends.simulated()
+    yield
+    inhomogeneous_gpu.TOGETHER = saved
+
+
 @pytest.fixture(scope="module")
 def tiny_runs():
     """The same run (α = 0.8 with drag, paper rule) twice on the GPU: the steps between
@@ -77,12 +90,14 @@ def tiny_runs():
     CPU."""
     from kinetic.dsmc import inhomogeneous_gpu
 
-    together = _run("cuda")
-    inhomogeneous_gpu.TOGETHER = False
+    saved = inhomogeneous_gpu.TOGETHER
     try:
+        inhomogeneous_gpu.TOGETHER = True
+        together = _run("cuda")
+        inhomogeneous_gpu.TOGETHER = False
         launched = _run("cuda")
     finally:
-        inhomogeneous_gpu.TOGETHER = True
+        inhomogeneous_gpu.TOGETHER = saved
     return together, launched, _run("cpu")
 
 
