@@ -96,6 +96,57 @@ def test_hard_disks_stay_in_equilibrium_and_collide_at_the_bath_rate():
     assert abs(rates.mean() - 1.0) < Z * error
 
 
+def test_points_sharing_launches_give_what_they_give_alone(maxwell):
+    """``simulate_points``: two points of other tilts, control intervals, transients, run
+    lengths and seeds in the same launches (the shorter run idles through the last blocks
+    of the longer) give the datasets they give alone, every variable to the bit; the
+    fixture's point is the third, sharing them too."""
+    from kinetic.cloning import simulate_points
+
+    common = {"kernel": "maxwell", "dimension": 2, "population": 16, "backend": "cuda"}
+    points = [
+        common
+        | {
+            "lam": -0.5,
+            "duration": 3.0,
+            "transient": 1.0,
+            "n_blocks": 3,
+            "n_realizations": 2,
+            "seed": 3,
+        },
+        common
+        | {
+            "lam": 2.0,
+            "duration": 6.0,
+            "transient": 9.0,
+            "n_blocks": 2,
+            "n_realizations": 1,
+            "seed": 4,
+            "control_interval": 0.5,
+        },
+        {
+            **common,
+            "lam": 1.0,
+            "duration": 8.0,
+            "transient": 4.0,
+            "n_blocks": 2,
+            "n_realizations": 4,
+            "seed": 11,
+            "control_interval": 4.0,
+        },
+    ]
+    together = simulate_points(points)
+    alone = [simulate(**point) for point in points[:2]] + [maxwell]
+    for shared, single in zip(together, alone, strict=True):
+        assert set(shared.data_vars) == set(single.data_vars)
+        for name in shared.data_vars:
+            if name != "cpu_seconds":
+                np.testing.assert_array_equal(shared[name].values, single[name].values, name)
+        assert shared.attrs["lam"] == single.attrs["lam"]
+    with pytest.raises(ValueError, match="must share population"):
+        simulate_points([points[0], points[1] | {"population": 32}])
+
+
 @pytest.mark.parametrize(("kernel", "dimension", "lam"), [("hard_spheres", 3, -0.5)])
 def test_resident_and_launched_intervals_make_the_same_selections(
     monkeypatch, kernel, dimension, lam

@@ -43,8 +43,9 @@ def _signatures():
             i2,
             u2,
             a2,
-            types.Tuple((f1, float64, i2, float64, boolean)),
-            types.Tuple((int64, float64, int64, float64, float64)),
+            types.Tuple((f1, float64, i2, float64)),
+            types.Tuple((int64, float64)),
+            float64[:, ::1],
         ),
     }
     return (

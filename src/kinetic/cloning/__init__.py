@@ -1,6 +1,7 @@
 """Cloning Monte Carlo of visco2008 §IV.A: μ(λ), T(λ), a2(λ) of the number of collisions.
 
-Public front: ``simulate`` (returns an ``xarray.Dataset``); estimators and the 1/N_c
+Public fronts: ``simulate`` (returns an ``xarray.Dataset``), ``simulate_points`` (several
+points in the same GPU launches, a dataset each); estimators and the 1/N_c
 extrapolation in ``estimators``; ``warmup()`` compiles every kernel once (the workflow
 runs it in its own job before the parallel simulation jobs, numba issue 4807).
 """
@@ -13,6 +14,7 @@ from kinetic.cloning.simulate import (
     MIN_KEPT_COLLISIONS,
     kernel_label,
     simulate,
+    simulate_points,
 )
 
 __all__ = [
@@ -24,6 +26,7 @@ __all__ = [
     "extrapolate_population",
     "kernel_label",
     "simulate",
+    "simulate_points",
     "warmup",
 ]
 

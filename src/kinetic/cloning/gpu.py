@@ -85,7 +85,7 @@ from kinetic.rng import (
     xoshiro_uniform,
 )
 
-__all__ = ["run"]
+__all__ = ["run", "run_points"]
 
 _proposal_2d = device_function(kernels._hard_sphere_proposal_2d)
 _proposal_3d = device_function(kernels._hard_sphere_proposal_3d)
@@ -415,23 +415,29 @@ def _slot(position, n, total, u):
 
 
 @kernel
-def _resident(first, second, states, counts, controls, out, observers, run):
-    """``steps`` control intervals of every clone of realization r = blockIdx.x, in one
-    thread block: advance (clones t, t + BLOCK, ...), weigh and scan (thread t the
-    contiguous chunk t of the clones), select, the snapshot sums, with block barriers
-    between the phases instead of launches. The same random numbers, collision counts,
-    integer scan and selections as the four-launch path, so the same populations; μ and
-    the snapshot sums differ from it in the last bits only (other summation order).
-    ``first`` holds the population at the start; after an odd ``steps`` it is in
-    ``second``."""
+def _resident(first, second, states, counts, controls, out, observers, run, plan):
+    """The control intervals of a block of the run for every clone of realization
+    r = blockIdx.x, in one thread block: advance (clones t, t + BLOCK, ...), weigh and
+    scan (thread t the contiguous chunk t of the clones), select, the snapshot sums, with
+    block barriers between the phases instead of launches. ``plan[r]`` is the
+    realization's (interval Δ, number of intervals, λ, record the histogram: 0 or 1), so
+    that the realizations of several points (λ) share the launch. The same random
+    numbers, collision counts, integer scan and selections as the four-launch path, so the
+    same populations; μ and the snapshot sums differ from it in the last bits only (other
+    summation order). The population starts and ends in ``first`` (``second`` is
+    scratch)."""
     shared = cuda.shared.array(BLOCK, np.float64)
     shared_q = cuda.shared.array(BLOCK, np.int64)
     counts_shared = cuda.shared.array(MAX_CUDA_HISTOGRAM_BINS, np.int64)
     selection = cuda.shared.array(1, np.float64)
-    table, table_step, histogram, half_width, record = observers
-    code, interval, steps, lam, rate_a = run
+    table, table_step, histogram, half_width = observers
+    code, rate_a = run
     t = cuda.threadIdx.x
     r = cuda.blockIdx.x
+    interval = plan[r, 0]
+    steps = np.int64(plan[r, 1])
+    lam = plan[r, 2]
+    record = plan[r, 3] != 0.0
     n = states.shape[1]
     d = first.shape[1]
     bins = histogram.shape[1]
@@ -518,6 +524,10 @@ def _resident(first, second, states, counts, controls, out, observers, run):
     if record:
         for b in range(t, bins, BLOCK):
             histogram[r, b] += counts_shared[b]
+    if steps % 2:  # the population ended in ``second``: back to ``first``
+        for dim in range(d):
+            for i in range(t, n, BLOCK):
+                first[r, dim, i] = second[r, dim, i]
 
 
 def run(p, durations, n_transient, rows, progress):
@@ -530,14 +540,32 @@ def run(p, durations, n_transient, rows, progress):
     field), velocity-component densities, distinct final velocities per realization and
     the wall time per realization (the run's wall time shared equally).
     """
+    return run_points([(p, durations, n_transient, rows)], progress)[0]
+
+
+def run_points(points, progress):
+    """``run`` for several points at once: ``points`` is a list of ``(p, durations,
+    n_transient, rows)`` of one kernel, dimension, population and histogram (the λ, the
+    control interval, the transient and the rows may differ). Up to
+    ``RESIDENT_MAX_POPULATION`` clones every realization of every point shares the same
+    launches (one thread block each: a point's numbers are those it gets alone); above,
+    the points run one after the other. Returns ``run``'s tuple for each point; the wall
+    time is shared equally among all the realizations."""
     if not simulated():
         warm("cuda_cloning", "cloning", _compile_kernels)
     started = time.perf_counter()
-    blocks, densities, final = _run(p, durations, n_transient, rows, progress)
-    count = rows.shape[0]
-    distinct = np.array([np.unique(final[r, 0]).size for r in range(count)], dtype=float)
-    seconds = np.full(count, (time.perf_counter() - started) / count)
-    return blocks, densities, distinct, seconds
+    if points[0][0]["population"] <= RESIDENT_MAX_POPULATION:
+        results = _run_together(points, progress)
+    else:
+        results = [_run(*point, progress) for point in points]
+    realizations = sum(point[3].shape[0] for point in points)
+    seconds = (time.perf_counter() - started) / realizations
+    out = []
+    for (_, _, _, rows), (blocks, densities, final) in zip(points, results, strict=True):
+        count = rows.shape[0]
+        distinct = np.array([np.unique(final[r, 0]).size for r in range(count)], dtype=float)
+        out.append((blocks, densities, distinct, np.full(count, seconds)))
+    return out
 
 
 def _compile_kernels() -> None:
@@ -558,66 +586,120 @@ def _compile_kernels() -> None:
             _run(tiny, np.array([1.0]), 0, rows, None, resident=resident)
 
 
-def _run(p, durations, n_transient, rows, progress, resident=None):
-    """``run`` without the compilation step: the blocks' sums, the velocity densities
-    and the final velocities; ``resident`` forces a path (default: by the population)."""
-    from kinetic.cloning.rates import TABLE_STEP, rate_table
+class _Clones:
+    """Device state of the realizations ``rows`` of N_c clones: the population (two
+    buffers), the clones' streams, collision counts, the selection streams, the histogram
+    and the per-block sums of ``n_blocks`` blocks."""
 
-    count, n, d = rows.shape[0], p["population"], p["dimension"]
-    velocity = [cuda.device_array((count, d, n)), cuda.device_array((count, d, n))]
-    states = cuda.device_array((count, n, 4), dtype=np.uint64)
-    _seed[(grid(n), count), BLOCK](states, velocity[0], to_device(rows))
-    controls = to_device(np.concatenate([rows, np.zeros((count, 1), np.uint64)], axis=1))
-    counts = cuda.device_array((count, n), dtype=np.int64)
-    histogram = to_device(np.zeros((count, p["histogram_bins"]), dtype=np.int64))
-    blocks = to_device(np.zeros((count, len(durations), len(kernels.BLOCK_FIELDS))))
-    table = to_device(rate_table(p["kernel"], d))
-    code = kernels.HARD_SPHERES if p["kernel"] == "hard_spheres" else kernels.MAXWELL
-    rate_a = kernels.channel_a_rate(d)
+    def __init__(self, p, rows, n_blocks):
+        from kinetic.cloning.rates import TABLE_STEP, rate_table
+
+        count, n, d = rows.shape[0], p["population"], p["dimension"]
+        self.count, self.n, self.d = count, n, d
+        self.velocity = [cuda.device_array((count, d, n)), cuda.device_array((count, d, n))]
+        self.states = cuda.device_array((count, n, 4), dtype=np.uint64)
+        _seed[(grid(n), count), BLOCK](self.states, self.velocity[0], to_device(rows))
+        self.controls = to_device(np.concatenate([rows, np.zeros((count, 1), np.uint64)], axis=1))
+        self.counts = cuda.device_array((count, n), dtype=np.int64)
+        self.histogram = to_device(np.zeros((count, p["histogram_bins"]), dtype=np.int64))
+        self.blocks = to_device(np.zeros((count, n_blocks, len(kernels.BLOCK_FIELDS))))
+        self.table = to_device(rate_table(p["kernel"], d))
+        self.table_step = TABLE_STEP
+        self.code = kernels.HARD_SPHERES if p["kernel"] == "hard_spheres" else kernels.MAXWELL
+        self.rate_a = kernels.channel_a_rate(d)
+
+    def results(self, p, snapshots, rows=slice(None), n_blocks=None):
+        """The blocks' sums, the velocity densities over ``snapshots`` selections and the
+        final velocities of the realizations ``rows`` (their first ``n_blocks`` blocks)."""
+        sums = self.blocks.copy_to_host()[rows, :n_blocks]
+        sums[:, :, _FIELD["collision_events"]] = sums[:, :, _COLLISIONS]
+        sums[:, :, _FIELD["proposals"]] = sums[:, :, _CANDIDATES]
+        bin_width = 2.0 * p["histogram_half_width"] / p["histogram_bins"]
+        scale = max(snapshots, 1) * self.d * self.n * bin_width
+        densities = self.histogram.copy_to_host()[rows] / scale
+        return sums, densities, self.velocity[0].copy_to_host()[rows]
+
+
+def _intervals(p, duration):
+    """The whole control intervals of a block of the run: (their length, how many)."""
+    steps = max(1, math.ceil(duration / p["control_interval"] - 1e-9))
+    return duration / steps, steps
+
+
+def _run(p, durations, n_transient, rows, progress, resident=None):
+    """One point without the compilation step: the blocks' sums, the velocity densities
+    and the final velocities; ``resident`` forces a path (default: by the population)."""
     if resident is None:
-        resident = n <= RESIDENT_MAX_POPULATION
+        resident = p["population"] <= RESIDENT_MAX_POPULATION
     if resident:
-        advance = _resident_intervals(velocity, states, counts, controls, p["lam"])
-    else:
-        advance = _launched_intervals(velocity, states, counts, controls, p["lam"])
+        return _run_together([(p, durations, n_transient, rows)], progress)[0]
+    clones = _Clones(p, rows, len(durations))
+    advance = _launched_intervals(
+        clones.velocity, clones.states, clones.counts, clones.controls, p["lam"]
+    )
     snapshots = 0
     for b, duration in enumerate(durations):
-        steps = max(1, math.ceil(duration / p["control_interval"] - 1e-9))
+        interval, steps = _intervals(p, duration)
         record = b >= n_transient
         snapshots += steps if record else 0
-        observers = (table, TABLE_STEP, histogram, p["histogram_half_width"], record)
-        advance(blocks[:, b, :], observers, (code, duration / steps, steps, rate_a))
+        observers = (
+            clones.table,
+            clones.table_step,
+            clones.histogram,
+            p["histogram_half_width"],
+            record,
+        )
+        advance(clones.blocks[:, b, :], observers, (clones.code, interval, steps, clones.rate_a))
         cuda.synchronize()
         if progress is not None:
-            progress.update(count * duration)
-    sums = blocks.copy_to_host()
-    sums[:, :, _FIELD["collision_events"]] = sums[:, :, _COLLISIONS]
-    sums[:, :, _FIELD["proposals"]] = sums[:, :, _CANDIDATES]
-    bin_width = 2.0 * p["histogram_half_width"] / p["histogram_bins"]
-    densities = histogram.copy_to_host() / (max(snapshots, 1) * d * n * bin_width)
-    return sums, densities, velocity[0].copy_to_host()
+            progress.update(clones.count * duration)
+    return clones.results(p, snapshots)
 
 
-def _resident_intervals(velocity, states, counts, controls, lam):
-    """Control intervals by ``_resident``: one launch per block of the run."""
-    count = states.shape[0]
-
-    def advance(out, observers, run):
-        code, interval, steps, rate_a = run
-        _resident[count, BLOCK](
-            velocity[0],
-            velocity[1],
-            states,
-            counts,
-            controls,
-            out,
+def _run_together(points, progress):
+    """The points' realizations in the same ``_resident`` launches, one per block of the
+    run (a point whose run has fewer blocks idles through the last ones)."""
+    rows = np.concatenate([point[3] for point in points])
+    sizes = [point[3].shape[0] for point in points]
+    owner = np.repeat(np.arange(len(points)), sizes)
+    n_blocks = max(len(point[1]) for point in points)
+    clones = _Clones(points[0][0], rows, n_blocks)
+    snapshots = np.zeros(len(points), dtype=np.int64)
+    observers = (
+        clones.table,
+        clones.table_step,
+        clones.histogram,
+        points[0][0]["histogram_half_width"],
+    )
+    for b in range(n_blocks):
+        plan = np.zeros((clones.count, 4))
+        simulated_time = 0.0
+        for j, (p, durations, n_transient, _) in enumerate(points):
+            if b < len(durations):
+                interval, steps = _intervals(p, durations[b])
+                record = b >= n_transient
+                snapshots[j] += steps if record else 0
+                plan[owner == j] = (interval, steps, p["lam"], float(record))
+                simulated_time += sizes[j] * durations[b]
+        _resident[clones.count, BLOCK](
+            clones.velocity[0],
+            clones.velocity[1],
+            clones.states,
+            clones.counts,
+            clones.controls,
+            clones.blocks[:, b, :],
             observers,
-            (code, interval, steps, lam, rate_a),
+            (clones.code, clones.rate_a),
+            to_device(plan),
         )
-        if steps % 2:
-            velocity.reverse()
-
-    return advance
+        cuda.synchronize()
+        if progress is not None:
+            progress.update(simulated_time)
+    first = np.concatenate([[0], np.cumsum(sizes)])
+    return [
+        clones.results(p, snapshots[j], slice(first[j], first[j + 1]), len(durations))
+        for j, (p, durations, _, _) in enumerate(points)
+    ]
 
 
 def _launched_intervals(velocity, states, counts, controls, lam):

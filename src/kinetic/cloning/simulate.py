@@ -12,6 +12,7 @@ larger call.
 
 from __future__ import annotations
 
+import inspect
 import logging
 import math
 import numbers
@@ -37,6 +38,7 @@ __all__ = [
     "is_collapsed",
     "kernel_label",
     "simulate",
+    "simulate_points",
 ]
 
 logger = logging.getLogger("kinetic")
@@ -296,55 +298,108 @@ def simulate(
         control_interval=control_interval,
     )
     device = backends.require(p["backend"])  # before any work
-    n, d = p["population"], p["dimension"]
-    block_duration = p["duration"] / p["n_blocks"]
-    # the transient runs in at most MAX_TRANSIENT_BLOCKS blocks (never shorter than a
-    # measured block), so a long transient at large λ does not inflate the output
-    transient_block = max(block_duration, p["transient"] / MAX_TRANSIENT_BLOCKS)
-    n_transient = math.ceil(p["transient"] / transient_block - 1e-9) if p["transient"] else 0
-    total_blocks = n_transient + p["n_blocks"]
-    durations = np.where(np.arange(total_blocks) < n_transient, transient_block, block_duration)
-    first, count = p["first_realization"], p["n_realizations"]
-    states = stream_states(p["seed"], first + count)[first:]
-    label = label or f"cloning {kernel_label(kernel, d)} lam={p['lam']:g} N={n}"
-    progress = Progress(count * durations.sum(), label=label, unit="collision times")
+    run = _Plan(p, label)
+    progress = Progress(run.simulated_time, label=run.label, unit="collision times")
     if p["backend"] == "cuda":
-        from kinetic.cloning.gpu import run
+        from kinetic.cloning.gpu import run as engine
     else:
-        run = _run_cpu
-    blocks, histograms, distinct, cpu_seconds = run(p, durations, n_transient, states, progress)
+        engine = _run_cpu
+    results = engine(p, run.durations, run.n_transient, run.states, progress)
+    return run.dataset(results, device)
 
-    measured = np.arange(total_blocks) >= n_transient
-    per_realization = realization_observables(blocks, measured, n, d, p["lam"])
-    summary = summarize_realizations(blocks, measured, n, d, p["lam"])
-    collapsed = is_collapsed(min(distinct), n)
-    if collapsed:
-        logger.warning(
-            "[%s] diversity collapse: a realization ended with only %d distinct velocities among "
-            "%d members; T and a2 describe a few clones and are not estimates of the "
-            "eigenfunction, mu stays usable (biased low by r(v*) - r(0) of the surviving "
-            "clone, a few 1e-3 at lam = 8)",
-            label,
-            int(min(distinct)),
-            n,
+
+def simulate_points(points, *, label: str | None = None):
+    """Several points of the ``cuda`` backend (``simulate``'s keyword arguments each, with
+    ``backend='cuda'``; one kernel, dimension, population and histogram, any λ, duration,
+    transient, seeds) in the same GPU launches: up to
+    ``kinetic.cloning.gpu.RESIDENT_MAX_POPULATION`` clones each realization of each point
+    is one thread block of the same launch, so that small populations fill the GPU. Every
+    point is validated before any work; returns a list of the datasets ``simulate`` would
+    return for the points one at a time (the same numbers)."""
+    defaults = {
+        name: parameter.default
+        for name, parameter in inspect.signature(simulate).parameters.items()
+        if parameter.default is not inspect.Parameter.empty and name != "label"
+    }
+    checked = [validate_parameters(**(defaults | dict(point))) for point in points]
+    if not checked:
+        raise ValueError("simulate_points needs at least one point")
+    shared = ("kernel", "dimension", "population", "histogram_bins", "histogram_half_width")
+    for key in ("backend", *shared):
+        values = {p[key] for p in checked}
+        if len(values) > 1:
+            raise ValueError(f"the points of one launch must share {key}, got {sorted(values)}")
+    if checked[0]["backend"] != "cuda":
+        raise ValueError("simulate_points runs the cuda backend only; use simulate on the cpu")
+    device = backends.require("cuda")  # before any work
+    runs = [_Plan(p, None) for p in checked]
+    text = label or f"cloning {len(runs)} points N={checked[0]['population']}"
+    progress = Progress(sum(run.simulated_time for run in runs), label=text, unit="collision times")
+    from kinetic.cloning.gpu import run_points
+
+    results = run_points(
+        [(run.p, run.durations, run.n_transient, run.states) for run in runs], progress
+    )
+    return [run.dataset(result, device) for run, result in zip(runs, results, strict=True)]
+
+
+class _Plan:
+    """The blocks of a validated point's run (the transient in at most
+    ``MAX_TRANSIENT_BLOCKS`` blocks, never shorter than a measured block, so that a long
+    transient at large λ does not inflate the output), its realizations' stream states,
+    and the dataset of its results."""
+
+    def __init__(self, p, label):
+        self.p = p
+        n, d = p["population"], p["dimension"]
+        block_duration = p["duration"] / p["n_blocks"]
+        transient_block = max(block_duration, p["transient"] / MAX_TRANSIENT_BLOCKS)
+        n_transient = math.ceil(p["transient"] / transient_block - 1e-9) if p["transient"] else 0
+        total_blocks = n_transient + p["n_blocks"]
+        self.n_transient = n_transient
+        self.durations = np.where(
+            np.arange(total_blocks) < n_transient, transient_block, block_duration
         )
-    dataset = _to_dataset(
-        p,
-        blocks,
-        measured,
-        durations,
-        n_transient,
-        histograms,
-        distinct,
-        cpu_seconds,
-        per_realization,
-        summary,
-    )
-    dataset.attrs["diversity_collapse"] = int(collapsed)
-    dataset.attrs["device"] = device
-    return io.stamp(
-        dataset, parameters={**p, "kernel_label": kernel_label(kernel, d)}, seed=p["seed"]
-    )
+        first, count = p["first_realization"], p["n_realizations"]
+        self.states = stream_states(p["seed"], first + count)[first:]
+        self.simulated_time = count * self.durations.sum()
+        self.label = label or f"cloning {kernel_label(p['kernel'], d)} lam={p['lam']:g} N={n}"
+
+    def dataset(self, results, device):
+        """The point's dataset from the engine's ``(blocks, histograms, distinct,
+        cpu_seconds)``."""
+        p, n, d = self.p, self.p["population"], self.p["dimension"]
+        blocks, histograms, distinct, cpu_seconds = results
+        measured = np.arange(self.durations.size) >= self.n_transient
+        per_realization = realization_observables(blocks, measured, n, d, p["lam"])
+        summary = summarize_realizations(blocks, measured, n, d, p["lam"])
+        collapsed = is_collapsed(min(distinct), n)
+        if collapsed:
+            logger.warning(
+                "[%s] diversity collapse: a realization ended with only %d distinct velocities "
+                "among %d members; T and a2 describe a few clones and are not estimates of the "
+                "eigenfunction, mu stays usable (biased low by r(v*) - r(0) of the surviving "
+                "clone, a few 1e-3 at lam = 8)",
+                self.label,
+                int(min(distinct)),
+                n,
+            )
+        dataset = _to_dataset(
+            p,
+            blocks,
+            measured,
+            self.durations,
+            self.n_transient,
+            histograms,
+            distinct,
+            cpu_seconds,
+            per_realization,
+            summary,
+        )
+        dataset.attrs["diversity_collapse"] = int(collapsed)
+        dataset.attrs["device"] = device
+        label = kernel_label(p["kernel"], d)
+        return io.stamp(dataset, parameters={**p, "kernel_label": label}, seed=p["seed"])
 
 
 def _run_cpu(p, durations, n_transient, states, progress):
