@@ -459,6 +459,66 @@ def cloning_control_interval(lam: float) -> float:
     return min(1.0, math.log1p(0.5) / spread)
 
 
+CLONING_GPU_RESIDENT_BLOCKS = 132 * 8
+"""Resident-kernel thread blocks (one per realization of a point) an H100 runs at once:
+132 SMs x 8 blocks of 128 threads (a model: the kernel's registers and shared memory
+decide). More blocks than this run in waves."""
+
+
+def _cloning_elapsed(duration: float, transient: float, n_blocks: int) -> float:
+    """Simulated time of a cloning realization: the measured ``duration`` and the
+    transient rounded up to whole blocks."""
+    block = duration / n_blocks
+    transient_blocks = math.ceil(transient / block - 1e-9) if block > 0 else 0
+    return duration + transient_blocks * block
+
+
+def _cloning_gpu(lam, population, elapsed, n_realizations, control_interval=None):
+    """``cuda`` cloning of one point: (the latency of a realization, the collision
+    events). Up to ``CLONING_GPU_RESIDENT_MAX_POPULATION`` clones the latency is that of one
+    thread block running every interval (its barriers plus one thread's share of the
+    events); above, the intervals' four launches."""
+    interval = control_interval or cloning_control_interval(lam)
+    events = n_realizations * population * elapsed
+    intervals = elapsed / interval
+    if population <= CLONING_GPU_RESIDENT_MAX_POPULATION:
+        per_thread = math.ceil(population / CLONING_GPU_THREADS_PER_BLOCK) * interval
+        latency = intervals * (
+            per_thread * CLONING_GPU_RESIDENT_SECONDS_PER_EVENT
+            + CLONING_GPU_RESIDENT_SECONDS_PER_INTERVAL
+        )
+    else:
+        latency = intervals * CLONING_GPU_SECONDS_PER_INTERVAL
+    return latency, events
+
+
+def cloning_points(points) -> Estimate:
+    """One ``cuda`` job of several cloning points in the same launches
+    (``kinetic.cloning.simulate_points``, ``points`` its keyword arguments): every
+    realization of every point is a thread block of the same launches, so the job lasts
+    as long as its slowest realization (times the waves when there are more blocks than
+    the GPU holds) or the events at the GPU's rate, whichever is longer, plus one job's
+    startup."""
+    latency, events, blocks, memory = 0.0, 0.0, 0, 0.0
+    for point in points:
+        elapsed = _cloning_elapsed(point["duration"], point["transient"], point["n_blocks"])
+        one, count = _cloning_gpu(
+            point["lam"],
+            point["population"],
+            elapsed,
+            point["n_realizations"],
+            point.get("control_interval"),
+        )
+        latency = max(latency, one)
+        events += count
+        blocks += point["n_realizations"]
+        memory += CLONING_GPU_BYTES_PER_MEMBER * point["population"] * point["n_realizations"]
+    waves = math.ceil(blocks / CLONING_GPU_RESIDENT_BLOCKS)
+    seconds = max(waves * latency, events / CLONING_GPU_EVENTS_PER_SECOND)
+    work = f"{events:.2e} collision events of {len(points)} points on one GPU"
+    return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, _mb(memory), work, gpus=1)
+
+
 def cloning_batch(
     *,
     lam: float,
@@ -482,25 +542,14 @@ def cloning_batch(
     the events of one thread's share of the clones, one after the other; larger
     populations cost the intervals' launches plus the events at the GPU's rate."""
     rate_factor = 1.0 if lam >= 0 else 2.0 * math.exp(-lam) - 1.0
-    block = duration / n_blocks
-    transient_blocks = math.ceil(transient / block - 1e-9) if block > 0 else 0
-    elapsed = duration + transient_blocks * block
+    elapsed = _cloning_elapsed(duration, transient, n_blocks)
     if backend == "cuda":
-        interval = control_interval or cloning_control_interval(lam)
-        events = n_realizations * population * elapsed
-        intervals = elapsed / interval
+        latency, events = _cloning_gpu(lam, population, elapsed, n_realizations, control_interval)
         if population <= CLONING_GPU_RESIDENT_MAX_POPULATION:
-            per_thread = math.ceil(population / CLONING_GPU_THREADS_PER_BLOCK) * interval
-            latency = intervals * (
-                per_thread * CLONING_GPU_RESIDENT_SECONDS_PER_EVENT
-                + CLONING_GPU_RESIDENT_SECONDS_PER_INTERVAL
-            )
-            seconds = max(latency, events / CLONING_GPU_EVENTS_PER_SECOND)
+            waves = math.ceil(n_realizations / CLONING_GPU_RESIDENT_BLOCKS)
+            seconds = max(waves * latency, events / CLONING_GPU_EVENTS_PER_SECOND)
         else:
-            seconds = (
-                intervals * CLONING_GPU_SECONDS_PER_INTERVAL
-                + events / CLONING_GPU_EVENTS_PER_SECOND
-            )
+            seconds = latency + events / CLONING_GPU_EVENTS_PER_SECOND
         memory = _mb(CLONING_GPU_BYTES_PER_MEMBER * population * n_realizations)
         work = f"{events:.2e} collision events on one GPU"
         return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, memory, work, gpus=1)

@@ -67,6 +67,7 @@ def plan_jobs(config: Mapping[str, Any]) -> list[Job]:
         replace(
             job,
             output=f"{root}/{job.output}",
+            outputs=tuple(f"{root}/{path}" for path in job.outputs),
             benchmark=f"{root}/logs/{job.benchmark}" if job.benchmark else None,
         )
         for job in studies.jobs(config)
@@ -74,8 +75,8 @@ def plan_jobs(config: Mapping[str, Any]) -> list[Job]:
 
 
 def jobs_by_output(config: Mapping[str, Any]) -> dict[str, Job]:
-    """:func:`plan_jobs` keyed by each job's output path."""
-    return {job.output: job for job in plan_jobs(config)}
+    """:func:`plan_jobs` keyed by each file a job writes."""
+    return {path: job for job in plan_jobs(config) for path in job.files}
 
 
 # ------------------------------------------------------------------ limits

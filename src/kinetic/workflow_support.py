@@ -79,7 +79,7 @@ def write_output(
     dataset: Any,
     seed: int | None,
     *,
-    output: str | None = None,
+    output: str | int | None = None,
     parameters: dict | None = None,
 ) -> None:
     """Stamp ``dataset`` with provenance and write it atomically: the one path by which a
@@ -90,7 +90,7 @@ def write_output(
     run's for an aggregate of one run, -1 for data without random numbers or combined from
     several runs), ``root_seed`` (the config's seed, from which every job seed derives),
     the workflow ``config``, the package version and the git revision. ``output`` names
-    the rule output to write (default: the first).
+    the rule output to write, or gives its index (default: the first).
     """
     from kinetic import io
 
@@ -101,7 +101,10 @@ def write_output(
         config=snakemake.config,
     )
     dataset = dataset.assign_attrs(root_seed=int(snakemake.config.get("seed", -1)))
-    path = snakemake.output[0] if output is None else getattr(snakemake.output, output)
+    if output is None or isinstance(output, int):
+        path = snakemake.output[output or 0]
+    else:
+        path = getattr(snakemake.output, output)
     io.write_dataset(dataset, path)
 
 
@@ -117,16 +120,21 @@ def run_job(snakemake: Any) -> tuple[logging.Logger, Any]:
     front = studies.front(snakemake.params.front)
     warm_engines(log)
     job = dict(snakemake.params.job)
-    dataset = front(**job)
+    result = front(**job)
+    # a job of several points (``points``): a dataset each, written in the rule's order
+    datasets = result if isinstance(result, list) else [result]
+    seeds = [point["seed"] for point in job["points"]] if "points" in job else [job["seed"]]
     extra = dict(snakemake.params.parameters)
-    parameters = {**io.parameters_of(dataset), **extra} if extra else None
-    write_output(snakemake, dataset, job["seed"], parameters=parameters)
-    if "cpu_seconds" in dataset:
-        cpu = float(dataset["cpu_seconds"].sum())
-        log.info("wrote %s (%s, %.1f CPU s)", snakemake.output[0], snakemake.params.front, cpu)
-    else:
-        log.info("wrote %s (%s)", snakemake.output[0], snakemake.params.front)
-    return log, dataset
+    for index, (dataset, seed) in enumerate(zip(datasets, seeds, strict=True)):
+        parameters = {**io.parameters_of(dataset), **extra} if extra else None
+        write_output(snakemake, dataset, seed, output=index, parameters=parameters)
+        path = snakemake.output[index]
+        if "cpu_seconds" in dataset:
+            cpu = float(dataset["cpu_seconds"].sum())
+            log.info("wrote %s (%s, %.1f CPU s)", path, snakemake.params.front, cpu)
+        else:
+            log.info("wrote %s (%s)", path, snakemake.params.front)
+    return log, result
 
 
 def write_caption(template: str | os.PathLike, path: str | os.PathLike, **values) -> str:

@@ -116,7 +116,11 @@ def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
     """backend: cuda (parsed on a machine without a GPU): the cloning, montanero2007 DSMC
     and costantini2010 DSMC jobs ask the scheduler for one GPU (resources gpu=1, the SLURM
     executor's --gpus=1), hold every realization of their point or run, and carry
-    backend='cuda'; every other simulation job asks for none."""
+    backend='cuda'; every other simulation job asks for none. The cloning points of a study,
+    kernel and population of the resident kernel (all of the ci config's) share one job of
+    their group's rule, which writes each point's file."""
+    from kinetic.studies import visco2008_cloning as cloning_plan
+
     extra = tmp_path / "cuda.yaml"
     cut = {"visco2008": {"cloning": {"realizations_per_job": 1}}}  # several CPU jobs a point
     extra.write_text(yaml.safe_dump({"backend": "cuda", **cut}))
@@ -129,23 +133,35 @@ def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
     config["backend"] = "cuda"
     validate_config(config)
     jobs = plan.plan_jobs(config)
-    gpus = {}
+    gpus, written = {}, {}
     for block in re.split(r"\n(?=rule \w+:\n)", output):
-        files = re.search(r"^    output: ([^,\n]+)", block, flags=re.MULTILINE)
+        files = re.search(r"^    output: (.+)$", block, flags=re.MULTILINE)
         resources = re.search(r"^    resources: (.*)$", block, flags=re.MULTILINE)
         if files and resources:
-            gpus[files.group(1)] = dict(re.findall(r"(\w+)=([^,]*)", resources.group(1)))
+            paths = files.group(1).split(", ")
+            gpus[paths[0]] = dict(re.findall(r"(\w+)=([^,]*)", resources.group(1)))
+            written[paths[0]] = paths
     on_gpu = [job for job in jobs if job.gpus]
+    groups = [("scan", "hard_disks"), ("scan", "maxwell"), ("error_vs_time", "hard_disks")]
     assert {job.rule for job in on_gpu} == {
-        "visco2008_simulate_cloning",
+        *(cloning_plan.group_rule(study, kernel) for study, kernel in groups),
         "montanero2007_simulate_dsmc",
         "costantini2010_simulate_dsmc",
     }
     for job in jobs:
         assert gpus[job.output].get("gpu", "0") == str(job.gpus), job.output
-        assert (job.arguments.get("backend") == "cuda") == bool(job.gpus)
+        assert written[job.output] == list(job.files), job.output
+        points = job.arguments.get("points", [job.arguments])
+        assert all((point.get("backend") == "cuda") == bool(job.gpus) for point in points)
     validate_config(cpu_config)
-    cpu_jobs = [job for job in plan.plan_jobs(cpu_config) if job.rule in {j.rule for j in on_gpu}]
-    runs = {job.output.rsplit("/", 1)[0] for job in cpu_jobs}
-    assert len(on_gpu) == len(runs) < len(cpu_jobs)  # one job a point or run
-    assert all(job.output.endswith("/batch0000.nc") for job in on_gpu)
+    cpu_jobs = [job for job in plan.plan_jobs(cpu_config) if job.estimate.gpus == 0]
+    runs = {
+        job.output.rsplit("/", 1)[0]
+        for job in cpu_jobs
+        if job.rule in {"visco2008_simulate_cloning", *(j.rule for j in on_gpu)}
+    }
+    files = [path for job in on_gpu for path in job.files]
+    assert sorted(files) == sorted(f"{run}/batch0000.nc" for run in runs)  # each once
+    cloning = [job for job in on_gpu if job.rule.startswith("visco2008_simulate_cloning")]
+    sizes = {(job.rule, job.arguments["points"][0]["population"]) for job in cloning}
+    assert len(cloning) == len(sizes) < len(files)  # one job a study, kernel and N_c

@@ -56,16 +56,28 @@ class Job:
     engines: tuple[str, ...]
     parameters: Mapping[str, Any] = field(default_factory=dict)
     benchmark: str | None = None
+    outputs: tuple[str, ...] = ()
+    """Every file the job writes, ``output`` first, where it writes several (the front
+    then returns a dataset for each, in this order); empty for a job of one output."""
+
+    @property
+    def files(self) -> tuple[str, ...]:
+        """The files the job writes: ``outputs``, or ``output`` alone."""
+        return self.outputs or (self.output,)
 
     @property
     def seed(self) -> int:
-        """The seed of the job's random streams."""
+        """The seed of the job's random streams (of its first point, for a job of several
+        points)."""
+        if "points" in self.arguments:
+            return int(self.arguments["points"][0]["seed"])
         return int(self.arguments["seed"])
 
     @property
     def gpus(self) -> int:
         """GPUs the job asks the scheduler for: 1 for a ``backend='cuda'`` job, else 0."""
-        return 1 if self.arguments.get("backend") == "cuda" else 0
+        points = self.arguments.get("points", [self.arguments])
+        return 1 if any(point.get("backend") == "cuda" for point in points) else 0
 
 
 def backend_arguments(config: Mapping[str, Any]) -> dict[str, str]:

@@ -172,7 +172,9 @@ def dsmc_jobs(config: Mapping[str, Any]) -> list[Job]:
 
 
 def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
-    """The cloning jobs of the scan and of the error study (every point cut into batches)."""
+    """The cloning jobs of the scan and of the error study: every point cut into batches;
+    with the ``cuda`` backend the points of a study, kernel and population small enough for
+    the GPU's resident kernel share one job (``cloning_groups``)."""
     from kinetic import cost
     from kinetic.seeds import derive_seed
 
@@ -181,6 +183,7 @@ def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
         return []
     backend = config.get("backend", "cpu")
     found = []
+    grouped = {}
     for study in ("scan", "error_vs_time"):
         for kernel, lam, population in cloning_plan.study_points(section, study):
             point = cloning_plan.lambda_token(lam)
@@ -198,18 +201,46 @@ def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
                 label = {"label": f"cloning {kernel} {point} {size} {batch}"}
                 return parameters | backend_arguments(config) | label
 
+            cut = cloning_plan.jobs(section, study, backend)
+            if cloning_plan.grouped(backend, population):
+                job = cut[0]  # the cuda plan: the point is one job
+                grouped.setdefault((study, kernel, size), []).append(arguments(job, "batch0000"))
+                continue
             found += run_jobs(
                 document="visco2008",
                 rule="visco2008_simulate_cloning",
                 run=f"visco2008/cloning/{study}/{kernel}/{point}/{size}",
                 front="kinetic.cloning:simulate",
                 engines=("cloning",),
-                cut=cloning_plan.jobs(section, study, backend),
+                cut=cut,
                 arguments=arguments,
                 estimate=lambda job, arguments=arguments: cost.cloning_batch(
                     **{k: v for k, v in arguments(job, "").items() if k != "label"}
                 ),
             )
+    for (study, kernel, size), points in grouped.items():
+        outputs = tuple(
+            f"visco2008/cloning/{study}/{kernel}/"
+            f"{cloning_plan.lambda_token(point['lam'])}/{size}/batch0000.nc"
+            for point in points
+        )
+        stripped = [{k: v for k, v in point.items() if k != "label"} for point in points]
+        found.append(
+            Job(
+                document="visco2008",
+                rule=cloning_plan.group_rule(study, kernel),
+                output=outputs[0],
+                outputs=outputs,
+                front="kinetic.cloning:simulate_points",
+                arguments={
+                    "points": stripped,
+                    "label": f"cloning {study} {kernel} {size} ({len(points)} points)",
+                },
+                estimate=cost.cloning_points(stripped),
+                engines=("cloning",),
+                benchmark=f"benchmarks/visco2008/cloning/{study}/{kernel}/{size}.tsv",
+            )
+        )
     return found
 
 

@@ -25,14 +25,19 @@ import numpy as np
 from kinetic import batches
 
 __all__ = [
+    "GROUPED_MAX_POPULATION",
     "KERNEL_SETTINGS",
     "batch_keys",
+    "group_rule",
+    "grouped",
+    "groups",
     "job_parameters",
     "jobs",
     "lambda_token",
     "point_seed_key",
     "population_token",
     "reference_lambdas",
+    "single_sizes",
     "study_points",
 ]
 
@@ -89,6 +94,53 @@ def jobs(section: Mapping[str, Any], study: str, backend: str = "cpu") -> list[b
     realizations = int(settings["realizations"])
     per_job = realizations if backend == "cuda" else int(settings["realizations_per_job"])
     return batches.plan(realizations=realizations, realizations_per_job=per_job)
+
+
+GROUPED_MAX_POPULATION = 10_000
+"""With the ``cuda`` backend, the points of a (study, kernel, N_c) with N_c up to this share
+one job and the GPU's launches (``kinetic.cloning.simulate_points``): the resident kernel's
+limit, ``kinetic.cloning.gpu.RESIDENT_MAX_POPULATION`` (a unit test keeps the two equal).
+This module imports no engine, so the number is written here too."""
+
+
+def grouped(backend: str, population: int) -> bool:
+    """Whether a point of ``population`` clones runs in its (study, kernel, N_c) group's
+    job: the ``cuda`` backend and a population of the resident kernel."""
+    return backend == "cuda" and int(population) <= GROUPED_MAX_POPULATION
+
+
+def group_rule(study: str, kernel: str) -> str:
+    """The Snakemake rule of the grouped jobs of ``study`` and ``kernel``
+    (``visco2008_simulate_cloning_<study>_<kernel>``, one job per N_c)."""
+    return f"visco2008_simulate_cloning_{study}_{kernel}"
+
+
+def groups(section: Mapping[str, Any], backend: str) -> list[tuple[str, str, list[str], list[str]]]:
+    """(study, kernel, λ tokens, N tokens) of every group rule the config needs: the
+    grouped populations of each study and kernel, and their tilts."""
+    found = {}
+    for study in ("scan", "error_vs_time"):
+        for kernel, lam, population in study_points(section, study):
+            if grouped(backend, population):
+                tokens = found.setdefault((study, kernel), ([], []))
+                for token, values in (
+                    (lambda_token(lam), tokens[0]),
+                    (population_token(population), tokens[1]),
+                ):
+                    if token not in values:
+                        values.append(token)
+    return [(study, kernel, lams, sizes) for (study, kernel), (lams, sizes) in found.items()]
+
+
+def single_sizes(section: Mapping[str, Any], backend: str) -> list[str]:
+    """N tokens of the points that run one job per batch (every point on the ``cpu``)."""
+    sizes = []
+    for study in ("scan", "error_vs_time"):
+        for _, _, population in study_points(section, study):
+            token = population_token(population)
+            if not grouped(backend, population) and token not in sizes:
+                sizes.append(token)
+    return sizes
 
 
 def batch_keys(

@@ -175,6 +175,19 @@ def visco2008_cloning_batch_files(study):
     ]
 
 
+def visco2008_cloning_single_sizes():
+    """Wildcard constraint of the per-point cloning rule: the populations whose points run
+    one job per batch (every one on the cpu; on cuda those above the resident kernel's).
+    """
+    sizes = cloning_plan.single_sizes(visco2008_cloning(), config["backend"])
+    return "|".join(sizes) if sizes else "(?!)"
+
+
+def visco2008_cloning_groups():
+    """(study, kernel, λ tokens, N tokens) of every grouped-points rule (cuda only)."""
+    return cloning_plan.groups(visco2008_cloning(), config["backend"])
+
+
 def visco2008_cloning_scan_batches(wildcards):
     return visco2008_cloning_batch_files("scan")
 

@@ -150,7 +150,7 @@ rule visco2008_simulate_cloning:
         study="scan|error_vs_time",
         kernel="|".join(cloning_plan.KERNEL_SETTINGS),
         point=r"lam[+-][0-9]+\.[0-9]{3}",
-        size=r"N[0-9]+",
+        size=visco2008_cloning_single_sizes(),
         batch=BATCH,
     threads: 1
     resources:
@@ -163,6 +163,43 @@ rule visco2008_simulate_cloning:
         parameters=job_param("visco2008_simulate_cloning", "parameters"),
     script:
         "../../scripts/simulate.py"
+
+
+# With backend: cuda, the points of a study, kernel and population of the GPU's resident
+# kernel (kinetic.studies.visco2008_cloning.grouped) share one job and the same launches
+# (kinetic.cloning.simulate_points): one rule per study and kernel, one job per N_c, the
+# same files as the per-point rule writes.
+for study, kernel, points, sizes in visco2008_cloning_groups():
+
+    rule:
+        name:
+            cloning_plan.group_rule(study, kernel)
+        input:
+            code=job_code(cloning_plan.group_rule(study, kernel)),
+        output:
+            [
+                results_file(
+                    f"visco2008/cloning/{study}/{kernel}/{point}/{{size}}/batch0000.nc"
+                )
+                for point in points
+            ],
+        log:
+            log_file(f"visco2008/cloning/{study}/{kernel}/{{size}}.log"),
+        benchmark:
+            log_file(f"benchmarks/visco2008/cloning/{study}/{kernel}/{{size}}.tsv")
+        wildcard_constraints:
+            size="|".join(sizes),
+        threads: 1
+        resources:
+            runtime=planned_runtime,
+            mem_mb=planned_mem_mb,
+            gpu=planned_gpus,
+        params:
+            front=job_param(cloning_plan.group_rule(study, kernel), "front"),
+            job=job_param(cloning_plan.group_rule(study, kernel), "arguments"),
+            parameters=job_param(cloning_plan.group_rule(study, kernel), "parameters"),
+        script:
+            "../../scripts/simulate.py"
 
 
 # ======================================================================================
