@@ -28,6 +28,11 @@ clones, ``_resident`` runs all the intervals of a block of the run in one thread
 realization (the phases separated by block barriers); above, four launches per interval
 (``_advance``, ``_weigh``, ``_close_interval``, ``_select``) over N_c/BLOCK thread blocks
 per realization. Both draw the same random numbers and make the same integer selections.
+The resident kernel reads each realization's interval, count of intervals, λ and
+histogram flag from a plan array, so that several points (λ) of one population share its
+launches (``run_points``, behind ``kinetic.cloning.simulate_points``): a point's numbers
+are those it gets alone, while the GPU holds many more thread blocks than one point has
+realizations.
 
 For any Δ the product of the mean weights is an unbiased estimate of the tilted
 partition function; its logarithm is biased by about -Var(w)/(2 N_c <w>²) per interval,
