@@ -16,7 +16,7 @@ physics: Maxwell μ(λ) = e^{-λ} - 1 at every λ of the paper config's Fig. 4, 
 μ(1) extrapolated in 1/N_c against the Eq. 28 reference, T and a2 at N_c = 10³ against the
 CPU engine, and the bias of μ(1) in the control interval Δ.
 
-Job startup (``job_startup``, first): a small job of each GPU module in a fresh process,
+Job startup (``job_startup``): a small job of each GPU module in a fresh process,
 three times over one empty numba cache directory (compiling, then loading the kernels),
 with the numbers compared.
 
@@ -29,7 +29,7 @@ second at α = 1 and 0.5 for N = 2 × 10⁵ × 100, 2 × 10⁶ × 10, 2 × 10⁷
 for one realization over a tenth of the duration, both scaled to the whole job
 (``dsmc_paper_job``).
 
-Memory bound (``memory_bound``, second): the GPU's coalesced copy bandwidth, and each pass
+Memory bound (``memory_bound``, first): the GPU's coalesced copy bandwidth, and each pass
 of the homogeneous DSMC's step (regrouping, collisions, force, thermostat) launched alone
 at montanero2007's paper settings, with its bytes per second; the step's time against the
 time its least DRAM traffic (``PASS_BYTES``, 120 bytes a particle) takes at that
@@ -686,15 +686,19 @@ def job_startup(quick: bool) -> dict[str, Any]:
 
 
 SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
-    "job_startup": job_startup,
     "memory_bound": memory_bound,
+    "inhomogeneous_speed": inhomogeneous_speed,
     "cloning_speed": cloning_speed,
+    "dsmc_paper_job": dsmc_paper_job,
+    "job_startup": job_startup,
+    "dsmc_scaling": dsmc_scaling,
     "cloning_physics": cloning_physics,
     "dsmc_speed": dsmc_speed,
-    "dsmc_scaling": dsmc_scaling,
-    "dsmc_paper_job": dsmc_paper_job,
-    "inhomogeneous_speed": inhomogeneous_speed,
 }
+"""In the order a short device lease should spend its minutes: what no GPU has timed yet
+(the bound, the cooperative inhomogeneous DSMC, the resident cloning kernel, the paper
+job, the startup) before what an H100 has measured once (the speeds and physics of the
+first cloning and homogeneous DSMC kernels)."""
 
 
 def run(quick: bool = False, checkpoint=None, sections=None) -> dict[str, Any]:
