@@ -613,16 +613,24 @@ class _Clones:
         self.code = kernels.HARD_SPHERES if p["kernel"] == "hard_spheres" else kernels.MAXWELL
         self.rate_a = kernels.channel_a_rate(d)
 
-    def results(self, p, snapshots, rows=slice(None), n_blocks=None):
-        """The blocks' sums, the velocity densities over ``snapshots`` selections and the
-        final velocities of the realizations ``rows`` (their first ``n_blocks`` blocks)."""
-        sums = self.blocks.copy_to_host()[rows, :n_blocks]
+    def results(self, points, snapshots, sizes):
+        """For each point (``points``: its parameters and block durations, in the order of
+        the rows, ``sizes`` realizations each): the blocks' sums, the velocity densities
+        over its ``snapshots`` selections and the final velocities (one copy from the GPU
+        for all the points)."""
+        sums = self.blocks.copy_to_host()
         sums[:, :, _FIELD["collision_events"]] = sums[:, :, _COLLISIONS]
         sums[:, :, _FIELD["proposals"]] = sums[:, :, _CANDIDATES]
-        bin_width = 2.0 * p["histogram_half_width"] / p["histogram_bins"]
-        scale = max(snapshots, 1) * self.d * self.n * bin_width
-        densities = self.histogram.copy_to_host()[rows] / scale
-        return sums, densities, self.velocity[0].copy_to_host()[rows]
+        histogram = self.histogram.copy_to_host()
+        final = self.velocity[0].copy_to_host()
+        first = np.concatenate([[0], np.cumsum(sizes)])
+        out = []
+        for j, (p, durations) in enumerate(points):
+            rows = slice(first[j], first[j + 1])
+            bin_width = 2.0 * p["histogram_half_width"] / p["histogram_bins"]
+            scale = max(snapshots[j], 1) * self.d * self.n * bin_width
+            out.append((sums[rows, : len(durations)], histogram[rows] / scale, final[rows]))
+        return out
 
 
 def _intervals(p, duration):
@@ -658,7 +666,7 @@ def _run(p, durations, n_transient, rows, progress, resident=None):
         cuda.synchronize()
         if progress is not None:
             progress.update(clones.count * duration)
-    return clones.results(p, snapshots)
+    return clones.results([(p, durations)], [snapshots], [clones.count])[0]
 
 
 def _run_together(points, progress):
@@ -700,11 +708,7 @@ def _run_together(points, progress):
         cuda.synchronize()
         if progress is not None:
             progress.update(simulated_time)
-    first = np.concatenate([[0], np.cumsum(sizes)])
-    return [
-        clones.results(p, snapshots[j], slice(first[j], first[j + 1]), len(durations))
-        for j, (p, durations, _, _) in enumerate(points)
-    ]
+    return clones.results([(p, durations) for p, durations, _, _ in points], snapshots, sizes)
 
 
 def _launched_intervals(velocity, states, counts, controls, lam):
