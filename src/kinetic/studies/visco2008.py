@@ -176,6 +176,7 @@ def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
     with the ``cuda`` backend the points of a study, kernel and population small enough for
     the GPU's resident kernel share one job (``cloning_groups``)."""
     from kinetic import cost
+    from kinetic.batches import batch_name
     from kinetic.seeds import derive_seed
 
     section = config.get("visco2008", {}).get("cloning")
@@ -204,7 +205,8 @@ def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
             cut = cloning_plan.jobs(section, study, backend)
             if cloning_plan.grouped(backend, population):
                 job = cut[0]  # the cuda plan: the point is one job
-                grouped.setdefault((study, kernel, size), []).append(arguments(job, "batch0000"))
+                batch = batch_name(job.index)
+                grouped.setdefault((study, kernel, size), []).append(arguments(job, batch))
                 continue
             found += run_jobs(
                 document="visco2008",
@@ -221,7 +223,7 @@ def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
     for (study, kernel, size), points in grouped.items():
         outputs = tuple(
             f"visco2008/cloning/{study}/{kernel}/"
-            f"{cloning_plan.lambda_token(point['lam'])}/{size}/batch0000.nc"
+            f"{cloning_plan.lambda_token(point['lam'])}/{size}/{batch_name(0)}.nc"
             for point in points
         )
         stripped = [{k: v for k, v in point.items() if k != "label"} for point in points]
