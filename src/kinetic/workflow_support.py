@@ -123,7 +123,7 @@ def run_job(snakemake: Any) -> tuple[logging.Logger, Any]:
     result = front(**job)
     # a job of several points (``points``): a dataset each, written in the rule's order
     datasets = result if isinstance(result, list) else [result]
-    seeds = [point["seed"] for point in job["points"]] if "points" in job else [job["seed"]]
+    seeds = [point["seed"] for point in job.get("points", [job])]
     extra = dict(snakemake.params.parameters)
     for index, (dataset, seed) in enumerate(zip(datasets, seeds, strict=True)):
         parameters = {**io.parameters_of(dataset), **extra} if extra else None

@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from kinetic import batches
+from kinetic import batches, cost
 
 __all__ = [
     "GROUPED_MAX_POPULATION",
@@ -96,11 +96,11 @@ def jobs(section: Mapping[str, Any], study: str, backend: str = "cpu") -> list[b
     return batches.plan(realizations=realizations, realizations_per_job=per_job)
 
 
-GROUPED_MAX_POPULATION = 10_000
+GROUPED_MAX_POPULATION = cost.CLONING_GPU_RESIDENT_MAX_POPULATION
 """With the ``cuda`` backend, the points of a (study, kernel, N_c) with N_c up to this share
 one job and the GPU's launches (``kinetic.cloning.simulate_points``): the resident kernel's
-limit, ``kinetic.cloning.gpu.RESIDENT_MAX_POPULATION`` (a unit test keeps the two equal).
-This module imports no engine, so the number is written here too."""
+limit, ``kinetic.cloning.gpu.RESIDENT_MAX_POPULATION``, as ``kinetic.cost`` (which imports
+no engine either) holds it; a unit test keeps it equal to the engine's."""
 
 
 def grouped(backend: str, population: int) -> bool:
@@ -118,18 +118,13 @@ def group_rule(study: str, kernel: str) -> str:
 def groups(section: Mapping[str, Any], backend: str) -> list[tuple[str, str, list[str], list[str]]]:
     """(study, kernel, λ tokens, N tokens) of every group rule the config needs: the
     grouped populations of each study and kernel, and their tilts."""
-    found = {}
+    found = {}  # (study, kernel) -> ({λ token: None}, {N token: None}): ordered sets
     for study in ("scan", "error_vs_time"):
         for kernel, lam, population in study_points(section, study):
             if grouped(backend, population):
-                tokens = found.setdefault((study, kernel), ([], []))
-                for token, values in (
-                    (lambda_token(lam), tokens[0]),
-                    (population_token(population), tokens[1]),
-                ):
-                    if token not in values:
-                        values.append(token)
-    return [(study, kernel, lams, sizes) for (study, kernel), (lams, sizes) in found.items()]
+                lams, sizes = found.setdefault((study, kernel), ({}, {}))
+                lams[lambda_token(lam)] = sizes[population_token(population)] = None
+    return [(study, kernel, [*lams], [*sizes]) for (study, kernel), (lams, sizes) in found.items()]
 
 
 def single_sizes(section: Mapping[str, Any], backend: str) -> list[str]:
