@@ -121,7 +121,7 @@ def test_cuda_without_a_gpu_stops_before_any_work(monkeypatch):
     monkeypatch.setattr(gpu.cuda, "is_available", lambda: False)
     monkeypatch.setattr(front, "new_cooling_gas", no_work)
     monkeypatch.setattr(front, "_compile_outside_the_timers", no_work)
-    monkeypatch.setattr(inhomogeneous_gpu, "run_batch", no_work)
+    monkeypatch.setattr(inhomogeneous_gpu, "run_points", no_work)
     with pytest.raises(backends.BackendUnavailable, match="no usable NVIDIA GPU"):
         _run("cuda")
 
@@ -137,7 +137,16 @@ def test_dataset_has_the_cpu_layout(tiny_runs, assert_cpu_layout):
     assert np.all(cuda.dissipated_energy.values > 0)
 
 
-def test_same_seed_gives_identical_datasets(tiny_runs):
+SHORT_ELASTIC = {"seed": 6, "n_realizations": 1, "n_samples": 2, "restitution": 1.0, "drag_rate": 0}
+
+
+@pytest.fixture(scope="module")
+def short_elastic_run():
+    """Another seed, α = 1 without drag and two samples instead of four."""
+    return _run("cuda", **SHORT_ELASTIC)
+
+
+def test_same_seed_gives_identical_datasets(tiny_runs, short_elastic_run):
     """The same numbers from one launch per sample interval and from a launch per phase
     (two runs of the same seed: an odd number of steps between samples, so the buffers
     swap across launches), and from a realization run alone."""
@@ -152,8 +161,42 @@ def test_same_seed_gives_identical_datasets(tiny_runs):
             np.testing.assert_array_equal(
                 alone[name].values[0], first[name].values[1], err_msg=name
             )
-    other = _run("cuda", seed=6, n_realizations=1, n_samples=1)
+    other = short_elastic_run
     assert not np.array_equal(other.mode_real.values[0, 0], first.mode_real.values[0, 0])
+
+
+def test_runs_sharing_launches_give_what_they_give_alone(tiny_runs, short_elastic_run):
+    """``simulate_cooling_modes_points``: a run of α = 1 and two samples and one of α =
+    0.8 with drag and four samples (three realizations in one batch, the shorter run
+    idling through the last two samples) give the datasets each gives alone, bit for bit:
+    each realization its own restitution and drag, each run its own samples and tallies."""
+    from kinetic.dsmc import simulate_cooling_modes_points
+
+    points = [{**TINY, **SHORT_ELASTIC, "backend": "cuda"}, {**TINY, "backend": "cuda"}]
+    together = simulate_cooling_modes_points(points)
+    for got, alone in zip(together, (short_elastic_run, tiny_runs[1]), strict=True):
+        assert got.attrs == alone.attrs
+        for name in alone.data_vars:
+            if name != "cpu_seconds":
+                np.testing.assert_array_equal(got[name].values, alone[name].values, name)
+
+
+def test_runs_of_one_launch_must_share_their_cells_before_any_work(monkeypatch):
+    from kinetic.dsmc import inhomogeneous_gpu, simulate_cooling_modes_points
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("work started")
+
+    monkeypatch.setattr(inhomogeneous_gpu, "run_points", no_work)
+    cuda = {**TINY, "backend": "cuda"}
+    with pytest.raises(ValueError, match="must share n_particles"):
+        simulate_cooling_modes_points([cuda, {**cuda, "n_particles": 60}])
+    with pytest.raises(ValueError, match="must share sample_interval"):
+        simulate_cooling_modes_points([cuda, {**cuda, "sample_interval": 1.0}])
+    with pytest.raises(ValueError, match="cuda backend only"):
+        simulate_cooling_modes_points([{**TINY, "seed": seed} for seed in (1, 2)])
+    with pytest.raises(ValueError, match="restitution"):
+        simulate_cooling_modes_points([cuda, {**cuda, "restitution": 1.5}])
 
 
 def test_momentum_stays_zero_with_drag(tiny_runs):
@@ -180,8 +223,8 @@ def test_first_step_sorts_like_the_cpu(rule):
         collision_rule=rule,
     )
     streams = realization_streams(9, 0, 2)
-    batch = inhomogeneous_gpu._Batch(settings, streams, 1)
-    batch.advance(1)
+    batch = inhomogeneous_gpu._Batch([(settings, streams)], 1)
+    batch.advance(1, 2)
     position, _velocity, labels = (array.copy_to_host() for array in batch.buffers[0])
     moments = batch.moments.copy_to_host()
     for r in range(2):

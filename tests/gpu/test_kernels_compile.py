@@ -93,19 +93,20 @@ def _inhomogeneous_signatures():
     u3, u2 = uint64[:, :, ::1], uint64[:, ::1]
     buffers = types.Tuple((f3, f3, i3))
     cells = types.Tuple((f3, f2, u3, i3, f2))
-    stream = types.Tuple((float64, float64, float64, float64, int64))
-    step = types.Tuple((int64, float64, float64, float64, float64))
+    stream = types.Tuple((float64, float64, int64))
+    step = types.Tuple((int64, float64, float64, float64))
+    plan = types.UniTuple(int64, 2)
     work = types.Tuple((i2, i2, i2, i2))
     return {
         "_seed": (u2, u3),
         "_centre": (f3, f2, i2, float64),
-        "_stream": (f3, f3, i2, i2, f2, stream),
+        "_stream": (f3, f3, i2, i2, f2, f2, stream),
         "_scan": (i2, i2),
         "_scatter": (i2, i2, i2),
-        "_collide": (buffers, buffers, i2, i2, cells, step),
-        "_advance_together": (buffers, buffers, work, cells, f2, stream, step, float64, int64),
+        "_collide": (buffers, buffers, i2, i2, cells, f2, step),
+        "_advance_together": (buffers, buffers, work, cells, f2, f2, stream, step, float64, plan),
         "_observe": (f3, f3, f3, float64),
-        "_finish": (f3, int64, f2, float64, int64, f3, f2, int64),
+        "_finish": (f3, int64, f2, f2, int64, f3, f2, int64),
     }
 
 

@@ -6,7 +6,8 @@ state and stepping they share: ``state``; numba kernels: ``kernels`` (shared wit
 inhomogeneous engine). CUDA backend of ``simulate_homogeneous`` (``backend="cuda"``):
 ``gpu``, imported only by such a run (it imports ``numba.cuda`` through ``kinetic.gpu``).
 
-Inhomogeneous engine (costantini2010, d = 2): ``simulate_cooling_modes`` in
+Inhomogeneous engine (costantini2010, d = 2): ``simulate_cooling_modes`` (and, on the GPU,
+``simulate_cooling_modes_points``: the runs of several α in the same launches) in
 ``inhomogeneous`` (front) and ``inhomogeneous_kernels`` (numba kernels): fictive
 particles in M x M collision cells, in the stationary representation of the
 homogeneous cooling state, with the transverse-mode observers."""
@@ -20,6 +21,7 @@ from kinetic.dsmc.inhomogeneous import (
     CoolingModesSettings,
     new_cooling_gas,
     simulate_cooling_modes,
+    simulate_cooling_modes_points,
 )
 from kinetic.dsmc.state import (
     MOMENT_NAMES,
@@ -43,6 +45,7 @@ __all__ = [
     "new_gas",
     "realization_streams",
     "simulate_cooling_modes",
+    "simulate_cooling_modes_points",
     "simulate_free_flights",
     "simulate_homogeneous",
     "warmup",

@@ -28,6 +28,7 @@ Lower level (tests, studies that read the particles): ``CoolingModesSettings``
 
 from __future__ import annotations
 
+import inspect
 import math
 import time
 from dataclasses import dataclass
@@ -49,6 +50,7 @@ __all__ = [
     "CoolingModesSettings",
     "new_cooling_gas",
     "simulate_cooling_modes",
+    "simulate_cooling_modes_points",
 ]
 
 COLLISION_RULES = ("paper", "majorant")
@@ -441,222 +443,290 @@ def simulate_cooling_modes(
     ``particle_steps``, ``repeated_collisions``, ``cpu_seconds`` (cuda: the batch's wall
     time divided by the realizations). Attributes ``backend`` and ``device``.
     """
-    backends.check(backend)
-    settings = CoolingModesSettings(
-        n_particles=n_particles,
-        density=density,
-        restitution=restitution,
-        drag_rate=drag_rate,
-        fictive_factor=fictive_factor,
-        cells_per_side=cells_per_side,
-        time_step=time_step,
-        collision_rule=collision_rule,
-    )
-    equilibration = real("equilibration", equilibration, 0.0, math.inf, high_open=True)
-    sample_interval = real(
-        "sample_interval", sample_interval, 0.0, math.inf, low_open=True, high_open=True
-    )
-    n_samples = integer("n_samples", n_samples, 1)
-    steps_before = _whole_steps("equilibration", equilibration, settings.time_step, 0)
-    stride = _whole_steps("sample_interval", sample_interval, settings.time_step, 1)
-    streams = realization_streams(seed, first_realization, n_realizations)
-    if label is not None and not isinstance(label, str):
-        raise TypeError(f"label must be a string or None, got {label!r}")
+    run = _Run(dict(locals()))
     device = backends.require(backend)  # before any work: no GPU, no run
-
-    if settings.fictive_factor == 1 and settings.real_particles_per_cell < 1.0:
-        logger.warning(
-            "inhomogeneous DSMC with fictive_factor = 1 and %.3g real particles per cell "
-            "(N/M² = %d/%d²): fewer than one collision partner per cell, expect strong "
-            "recollisions (molecular chaos fails)",
-            settings.real_particles_per_cell,
-            settings.n_particles,
-            settings.cells_per_side,
-        )
-    # steps before the first sample's dissipation interval, and within it
-    if steps_before >= stride:
-        warm, first_steps = steps_before - stride, stride
-    else:
-        warm, first_steps = steps_before, 0
-    total_steps = steps_before + (n_samples - 1) * stride
-    n_sim = settings.n_simulated
-    chunk_steps = max(1, CHUNK_PARTICLE_STEPS // n_sim)
-    samples_per_chunk = max(1, chunk_steps // stride)
-
-    shape = (n_realizations, n_samples)
-    observables = np.zeros((*shape, kernels.N_OBSERVABLES))
-    dissipated = np.zeros(shape)
-    totals = {
-        key: np.zeros(n_realizations, dtype=np.int64)
-        for key in ("collisions", "candidates", "particle_steps", "repeated_collisions")
-    }
-    cpu_seconds = np.zeros(n_realizations)
-
-    label = label or (
-        f"dsmc cooling modes {settings.collision_rule} N={settings.n_particles} "
-        f"alpha={settings.restitution:g} Lambda={settings.fictive_factor} "
-        f"M={settings.cells_per_side}"
-    )
-    progress = Progress(max(1, n_realizations * total_steps), label=label, unit="steps")
+    run.warn()
+    progress = Progress(max(1, run.particle_steps), label=run.label, unit="steps")
     if backend == "cuda":
         from kinetic.dsmc import inhomogeneous_gpu
 
-        out = {"observables": observables, "dissipated": dissipated, "cpu_seconds": cpu_seconds}
-        inhomogeneous_gpu.run_batch(
-            settings, streams, warm, first_steps, stride, n_samples, out | totals, progress
-        )
-        if first_steps == 0:
-            dissipated[:, 0] = np.nan
+        inhomogeneous_gpu.run_points([run.gpu_point()], *run.schedule, progress)
     else:
-        _compile_outside_the_timers(settings)
-        _run_cpu(
-            settings,
-            streams,
-            warm,
-            first_steps,
-            stride,
-            n_samples,
-            chunk_steps,
-            samples_per_chunk,
-            observables,
-            dissipated,
-            totals,
-            cpu_seconds,
-            progress,
-        )
-    if total_steps == 0:
+        _compile_outside_the_timers(run.settings)
+        _run_cpu(run, progress)
+    if run.particle_steps == 0:
         progress.update(1)
-
-    times = equilibration + sample_interval * np.arange(n_samples)
-    mode_real = np.stack([observables[..., 1], observables[..., 3]], axis=-1)
-    mode_imag = np.stack([observables[..., 2], observables[..., 4]], axis=-1)
-    mode_norm = observables[..., 5:7]
-    dataset = io.make_dataset(
-        {
-            "temperature": (
-                ("realization", "time"),
-                observables[..., 0],
-                "T0",
-                "granular temperature sum |w - u|^2 / (2 N_sim) of the rescaled velocities",
-            ),
-            "mode_real": (
-                ("realization", "time", "mode"),
-                mode_real,
-                "sqrt(T0/m)",
-                "real part of the transverse mode at k = 2 pi/L, summed over all "
-                "simulated particles",
-            ),
-            "mode_imag": (
-                ("realization", "time", "mode"),
-                mode_imag,
-                "sqrt(T0/m)",
-                "imaginary part of the transverse mode at k = 2 pi/L, summed over all "
-                "simulated particles",
-            ),
-            "mode_norm": (
-                ("realization", "time", "mode"),
-                mode_norm,
-                "T0/m",
-                "normaliser of the mode: sum of w_y^2 (wy_kx) or w_x^2 (wx_ky)",
-            ),
-            "dissipated_energy": (
-                ("realization", "time"),
-                dissipated,
-                "T0",
-                "energy lost in collisions per simulated particle during the sample "
-                "interval ending at this time (NaN if that interval starts before 0)",
-            ),
-            "momentum": (
-                ("realization", "time", "axis"),
-                observables[..., 7:9],
-                "1",
-                "total momentum sum w / (N_sim sqrt(T))",
-            ),
-            "collisions": ("realization", totals["collisions"], "1", "collisions executed"),
-            "candidates": (
-                "realization",
-                totals["candidates"],
-                "1",
-                "candidate pairs tested (collisions / candidates = acceptance)",
-            ),
-            "particle_steps": (
-                "realization",
-                totals["particle_steps"],
-                "1",
-                "simulated particles times time steps",
-            ),
-            "repeated_collisions": (
-                "realization",
-                totals["repeated_collisions"],
-                "1",
-                "collisions whose two partners' previous collisions were with each other",
-            ),
-            "cpu_seconds": (
-                "realization",
-                cpu_seconds,
-                "s",
-                _CPU_SECONDS[backend],
-            ),
-        },
-        coords={
-            "realization": (
-                "realization",
-                np.arange(first_realization, first_realization + n_realizations),
-                "1",
-                "realization number (stream row)",
-            ),
-            "time": ("time", times, _TIME_UNIT, "rescaled time tau of the sample"),
-            "mode": (
-                "mode",
-                np.array(MODES),
-                "1",
-                "transverse mode: velocity component_wavevector",
-            ),
-            "axis": ("axis", np.array(["x", "y"]), "1", "Cartesian axis"),
-        },
-        attrs={
-            "units": "m = sigma = T0 = 1; time in sigma sqrt(m/T0); w the rescaled velocities",
-            "backend": backend,
-            "device": device,
-        },
-    )
-    parameters = {
-        **settings.parameters(),
-        "equilibration": equilibration,
-        "sample_interval": sample_interval,
-        "n_samples": n_samples,
-        "seed": seed,
-        "n_realizations": n_realizations,
-        "first_realization": first_realization,
-        "engine": "dsmc",
-        "box_side": settings.box_side,
-        "wavenumber": settings.wavenumber,
-        "simulated_particles": n_sim,
-        "cell_side": settings.cell_side,
-        "real_particles_per_cell": settings.real_particles_per_cell,
-        "collisions_per_particle_per_step_at_T0": settings.collision_frequency * settings.time_step,
-    }
-    return io.stamp(dataset, parameters=parameters, seed=seed)
+    return run.dataset(device)
 
 
-def _run_cpu(
-    settings,
-    streams,
-    warm,
-    first_steps,
-    stride,
-    n_samples,
-    chunk_steps,
-    samples_per_chunk,
-    observables,
-    dissipated,
-    totals,
-    cpu_seconds,
-    progress,
-):
-    """The CPU backend: the realizations one after the other, into the arrays given."""
-    for r in range(streams.shape[0]):
-        gas = new_cooling_gas(settings, streams[r])
+_ARGUMENTS = inspect.signature(simulate_cooling_modes).parameters
+"""The keyword arguments of ``simulate_cooling_modes`` (a ``_Run`` reads these)."""
+
+
+def simulate_cooling_modes_points(points, *, label: str | None = None):
+    """Several runs of the ``cuda`` backend in the same GPU launches (``points``: the
+    keyword arguments of ``simulate_cooling_modes`` each, with ``backend='cuda'``). The
+    runs share N, density, Λ, cells, time step, collision rule, equilibration and sample
+    interval (``kinetic.dsmc.inhomogeneous_gpu.SHARED``: the batch's arrays, cells and
+    schedule); restitution, drag rate, number of samples, seed and realizations may
+    differ, so that the runs of several α fill one GPU together. Every point is validated
+    before any work; returns the list of datasets ``simulate_cooling_modes`` would return
+    for the points one at a time: the same numbers, bit for bit (a realization does not
+    depend on the others of its batch), ``cpu_seconds`` aside (the wall time of the whole
+    batch per realization)."""
+    runs = [_Run({**point, "label": None}) for point in points]
+    if not runs:
+        raise ValueError("simulate_cooling_modes_points needs at least one point")
+    from kinetic.dsmc.inhomogeneous_gpu import SHARED
+
+    for key in ("backend", "equilibration", "sample_interval"):
+        values = {run.p[key] for run in runs}
+        if len(values) > 1:
+            raise ValueError(f"the points of one launch must share {key}, got {sorted(values)}")
+    for key in SHARED:
+        values = {getattr(run.settings, key) for run in runs}
+        if len(values) > 1:
+            raise ValueError(f"the points of one launch must share {key}, got {sorted(values)}")
+    if runs[0].p["backend"] != "cuda":
+        raise ValueError(
+            "simulate_cooling_modes_points runs the cuda backend only; use "
+            "simulate_cooling_modes on the cpu"
+        )
+    device = backends.require("cuda")  # before any work
+    for run in runs:
+        run.warn()
+    text = label or f"dsmc cooling modes {len(runs)} runs N={runs[0].settings.n_particles}"
+    total = sum(run.particle_steps for run in runs)
+    progress = Progress(max(1, total), label=text, unit="steps")
+    from kinetic.dsmc import inhomogeneous_gpu
+
+    inhomogeneous_gpu.run_points([run.gpu_point() for run in runs], *runs[0].schedule, progress)
+    if total == 0:
+        progress.update(1)
+    return [run.dataset(device) for run in runs]
+
+
+class _Run:
+    """One validated call of ``simulate_cooling_modes`` (``p``: its keyword arguments):
+    the settings, the schedule of steps, the realizations' streams, the arrays the engine
+    fills, and the dataset made of them."""
+
+    def __init__(self, p):
+        unknown = sorted(set(p) - set(_ARGUMENTS))
+        missing = sorted(
+            name
+            for name, argument in _ARGUMENTS.items()
+            if argument.default is inspect.Parameter.empty and name not in p
+        )
+        if unknown or missing:
+            raise TypeError(
+                f"simulate_cooling_modes arguments: unknown {unknown}, missing {missing}"
+            )
+        defaults = {
+            name: argument.default
+            for name, argument in _ARGUMENTS.items()
+            if argument.default is not inspect.Parameter.empty
+        }
+        p = defaults | dict(p)
+        backend = p["backend"]
+        backends.check(backend)
+        settings = CoolingModesSettings(
+            **{key: p[key] for key in CoolingModesSettings.__dataclass_fields__}
+        )
+        equilibration = real("equilibration", p["equilibration"], 0.0, math.inf, high_open=True)
+        sample_interval = real(
+            "sample_interval", p["sample_interval"], 0.0, math.inf, low_open=True, high_open=True
+        )
+        n_samples = integer("n_samples", p["n_samples"], 1)
+        steps_before = _whole_steps("equilibration", equilibration, settings.time_step, 0)
+        stride = _whole_steps("sample_interval", sample_interval, settings.time_step, 1)
+        n_realizations = p["n_realizations"]
+        self.streams = realization_streams(p["seed"], p["first_realization"], n_realizations)
+        label = p["label"]
+        if label is not None and not isinstance(label, str):
+            raise TypeError(f"label must be a string or None, got {label!r}")
+        p |= {
+            "equilibration": equilibration,
+            "sample_interval": sample_interval,
+            "n_samples": n_samples,
+        }
+        self.p = p
+        self.settings = settings
+        # steps before the first sample's dissipation interval, and within it
+        if steps_before >= stride:
+            warm, first_steps = steps_before - stride, stride
+        else:
+            warm, first_steps = steps_before, 0
+        self.schedule = (warm, first_steps, stride)
+        self.particle_steps = n_realizations * (steps_before + (n_samples - 1) * stride)
+        """Realizations x steps: the progress lines' unit of work."""
+        shape = (n_realizations, n_samples)
+        self.observables = np.zeros((*shape, kernels.N_OBSERVABLES))
+        self.dissipated = np.zeros(shape)
+        self.totals = {
+            key: np.zeros(n_realizations, dtype=np.int64)
+            for key in ("collisions", "candidates", "particle_steps", "repeated_collisions")
+        }
+        self.cpu_seconds = np.zeros(n_realizations)
+        self.label = label or (
+            f"dsmc cooling modes {settings.collision_rule} N={settings.n_particles} "
+            f"alpha={settings.restitution:g} Lambda={settings.fictive_factor} "
+            f"M={settings.cells_per_side}"
+        )
+
+    def warn(self) -> None:
+        """The warning of a run whose cells hold less than one real particle."""
+        settings = self.settings
+        if settings.fictive_factor == 1 and settings.real_particles_per_cell < 1.0:
+            logger.warning(
+                "inhomogeneous DSMC with fictive_factor = 1 and %.3g real particles per cell "
+                "(N/M² = %d/%d²): fewer than one collision partner per cell, expect strong "
+                "recollisions (molecular chaos fails)",
+                settings.real_particles_per_cell,
+                settings.n_particles,
+                settings.cells_per_side,
+            )
+
+    def gpu_point(self) -> tuple:
+        """(settings, streams, n_samples, out) of ``inhomogeneous_gpu.run_points``."""
+        out = {
+            "observables": self.observables,
+            "dissipated": self.dissipated,
+            "cpu_seconds": self.cpu_seconds,
+        }
+        return self.settings, self.streams, self.p["n_samples"], out | self.totals
+
+    def dataset(self, device: str):
+        """The run's dataset (the "cooling modes" contract) from its filled arrays."""
+        p, settings = self.p, self.settings
+        if self.schedule[1] == 0:
+            self.dissipated[:, 0] = np.nan  # the first interval is not inside the run
+        observables, dissipated, totals = self.observables, self.dissipated, self.totals
+        n_samples, equilibration = p["n_samples"], p["equilibration"]
+        sample_interval = p["sample_interval"]
+        first_realization, n_realizations = p["first_realization"], p["n_realizations"]
+        times = equilibration + sample_interval * np.arange(n_samples)
+        mode_real = np.stack([observables[..., 1], observables[..., 3]], axis=-1)
+        mode_imag = np.stack([observables[..., 2], observables[..., 4]], axis=-1)
+        mode_norm = observables[..., 5:7]
+        dataset = io.make_dataset(
+            {
+                "temperature": (
+                    ("realization", "time"),
+                    observables[..., 0],
+                    "T0",
+                    "granular temperature sum |w - u|^2 / (2 N_sim) of the rescaled velocities",
+                ),
+                "mode_real": (
+                    ("realization", "time", "mode"),
+                    mode_real,
+                    "sqrt(T0/m)",
+                    "real part of the transverse mode at k = 2 pi/L, summed over all "
+                    "simulated particles",
+                ),
+                "mode_imag": (
+                    ("realization", "time", "mode"),
+                    mode_imag,
+                    "sqrt(T0/m)",
+                    "imaginary part of the transverse mode at k = 2 pi/L, summed over all "
+                    "simulated particles",
+                ),
+                "mode_norm": (
+                    ("realization", "time", "mode"),
+                    mode_norm,
+                    "T0/m",
+                    "normaliser of the mode: sum of w_y^2 (wy_kx) or w_x^2 (wx_ky)",
+                ),
+                "dissipated_energy": (
+                    ("realization", "time"),
+                    dissipated,
+                    "T0",
+                    "energy lost in collisions per simulated particle during the sample "
+                    "interval ending at this time (NaN if that interval starts before 0)",
+                ),
+                "momentum": (
+                    ("realization", "time", "axis"),
+                    observables[..., 7:9],
+                    "1",
+                    "total momentum sum w / (N_sim sqrt(T))",
+                ),
+                "collisions": ("realization", totals["collisions"], "1", "collisions executed"),
+                "candidates": (
+                    "realization",
+                    totals["candidates"],
+                    "1",
+                    "candidate pairs tested (collisions / candidates = acceptance)",
+                ),
+                "particle_steps": (
+                    "realization",
+                    totals["particle_steps"],
+                    "1",
+                    "simulated particles times time steps",
+                ),
+                "repeated_collisions": (
+                    "realization",
+                    totals["repeated_collisions"],
+                    "1",
+                    "collisions whose two partners' previous collisions were with each other",
+                ),
+                "cpu_seconds": (
+                    "realization",
+                    self.cpu_seconds,
+                    "s",
+                    _CPU_SECONDS[p["backend"]],
+                ),
+            },
+            coords={
+                "realization": (
+                    "realization",
+                    np.arange(first_realization, first_realization + n_realizations),
+                    "1",
+                    "realization number (stream row)",
+                ),
+                "time": ("time", times, _TIME_UNIT, "rescaled time tau of the sample"),
+                "mode": (
+                    "mode",
+                    np.array(MODES),
+                    "1",
+                    "transverse mode: velocity component_wavevector",
+                ),
+                "axis": ("axis", np.array(["x", "y"]), "1", "Cartesian axis"),
+            },
+            attrs={
+                "units": "m = sigma = T0 = 1; time in sigma sqrt(m/T0); w the rescaled velocities",
+                "backend": p["backend"],
+                "device": device,
+            },
+        )
+        parameters = {
+            **settings.parameters(),
+            "equilibration": equilibration,
+            "sample_interval": sample_interval,
+            "n_samples": n_samples,
+            "seed": p["seed"],
+            "n_realizations": n_realizations,
+            "first_realization": first_realization,
+            "engine": "dsmc",
+            "box_side": settings.box_side,
+            "wavenumber": settings.wavenumber,
+            "simulated_particles": settings.n_simulated,
+            "cell_side": settings.cell_side,
+            "real_particles_per_cell": settings.real_particles_per_cell,
+            "collisions_per_particle_per_step_at_T0": settings.collision_frequency
+            * settings.time_step,
+        }
+        return io.stamp(dataset, parameters=parameters, seed=p["seed"])
+
+
+def _run_cpu(run: _Run, progress: Progress) -> None:
+    """The CPU backend: the realizations one after the other, into the run's arrays."""
+    settings, (warm, first_steps, stride) = run.settings, run.schedule
+    n_samples = run.p["n_samples"]
+    chunk_steps = max(1, CHUNK_PARTICLE_STEPS // settings.n_simulated)
+    samples_per_chunk = max(1, chunk_steps // stride)
+    observables, dissipated, totals = run.observables, run.dissipated, run.totals
+    for r in range(run.streams.shape[0]):
+        gas = new_cooling_gas(settings, run.streams[r])
         done = 0
         while done < warm:
             steps = min(chunk_steps, warm - done)
@@ -673,10 +743,8 @@ def _run_cpu(
             )
             progress.update(steps_first + (stop - sample - 1) * stride)
             sample = stop
-        if first_steps == 0:
-            dissipated[r, 0] = np.nan
         totals["collisions"][r] = gas.collisions
         totals["candidates"][r] = gas.tally[kernels.TALLY_CANDIDATES]
         totals["particle_steps"][r] = gas.tally[kernels.TALLY_PARTICLE_STEPS]
         totals["repeated_collisions"][r] = gas.tally[kernels.TALLY_REPEATED]
-        cpu_seconds[r] = gas.cpu_seconds
+        run.cpu_seconds[r] = gas.cpu_seconds

@@ -4,7 +4,12 @@
 All realizations of a call advance together on one GPU: realization r is row r of
 ``(R, 2, N_sim)`` arrays (each row the CPU engine's struct of arrays, double-buffered by
 swapping two device arrays) and of ``(R, M², ·)`` per-cell arrays; every kernel covers
-all realizations. One step is five phases, each written once as a device function of one
+all realizations. The realizations may belong to several runs that share N, density, Λ,
+cells, time step and rule (``SHARED``; ``run_points``, behind
+``simulate_cooling_modes_points``: the runs of several α): what depends on α (the drag's
+free flight and growth, (1 + α)/2, the energy lost) is a row parameter (``rows``), and the
+runs, longest first, keep step together; a run that is done sits in the last rows, which
+every kernel then leaves out (the first ``count`` rows are advanced and observed). One step is five phases, each written once as a device function of one
 realization, particle or cell (``_centre_row``, ``_stream_particle``, ``_scan_row``,
 ``_scatter_particle``, ``_collide_in_cell``), run either by one cooperative launch for all
 the steps between two samples (``_advance_together``: the phases in turn, each a loop of
@@ -86,7 +91,7 @@ from kinetic.gpu import (
 )
 from kinetic.progress import logger
 
-__all__ = ["N_SUMS", "run_batch"]
+__all__ = ["N_SUMS", "SHARED", "run_points"]
 
 N_SUMS = 8
 """Particle sums of an observation: Σw_x, Σw_y, the four mode terms, Σw_x², Σw_y²."""
@@ -94,6 +99,13 @@ N_SUMS = 8
 # per-cell tallies
 _CANDIDATES, _COLLISIONS, _REPEATED, _EXCEEDED = 0, 1, 2, 3
 _N_TALLIES = 4
+
+# per-row parameters (``rows[r]``): the ones that depend on α, so that the runs of several
+# α share a batch
+_SHIFT, _GROWTH, _HALF, _LOSS = 0, 1, 2, 3
+"""Columns of ``rows``: the free flight's (e^{ω0 Δτ} - 1)/ω0, the drag's growth e^{ω0
+Δτ}, the collision's (1 + α)/2, and the energy lost per unit of ``lost``, (1 - α²)/4."""
+_N_ROW_PARAMETERS = 4
 
 _SPREAD_BLOCKS = 1 if simulated() else 2048
 """Most thread blocks per realization of the streaming and the scatter, which reduce no
@@ -150,12 +162,15 @@ def _centre_row(moments, u, cell_start, inverse_n, shared, r):
 _centre_row = cuda.jit(device=True, inline="always")(_centre_row)
 
 
-def _stream_particle(position, velocity, cell_of, cell_start, u, arguments, r, i):
+def _stream_particle(position, velocity, cell_of, cell_start, u, rows, arguments, r, i):
     """Particle phase: the free flight with drag of particle i (``kernels._streamed``, in
     place), its velocity (w - u) e^{ω0 Δτ} (in place), its cell, and one more in the
-    cell's count (an integer atomic on ``cell_start[r, c]``); ``arguments`` is (shift,
-    growth, box side, cells per unit length, cells per side)."""
-    shift, growth, box_side, inverse_cell, m = arguments
+    cell's count (an integer atomic on ``cell_start[r, c]``); ``arguments`` is (box side,
+    cells per unit length, cells per side), ``rows[r]`` the row's drag (``_SHIFT``,
+    ``_GROWTH``)."""
+    box_side, inverse_cell, m = arguments
+    shift = rows[r, _SHIFT]
+    growth = rows[r, _GROWTH]
     w0 = velocity[r, 0, i] - u[r, 0]
     w1 = velocity[r, 1, i] - u[r, 1]
     x, y, c = _streamed(
@@ -196,14 +211,16 @@ def _scatter_particle(cell_of, fill, order, r, i):
 _scatter_particle = cuda.jit(device=True, inline="always")(_scatter_particle)
 
 
-def _collide_in_cell(source, target, order, cell_start, cells, step, r, c):
+def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c):
     """Cell phase: sort cell c's slice of ``order`` by particle index, copy its particles
     from the ``source`` buffers (position, velocity, labels) into the ``target`` buffers
     in that order with the cell's moments, then ``kernels._collide_cell`` with the cell's
     stream, carry, tallies and lost energy. ``cells`` is (moments, carry, states, tally,
-    lost); ``step`` is (rule, (1 + α)/2, density per count, pair coefficient, time step)."""
+    lost); ``step`` is (rule, density per count, pair coefficient, time step), ``rows[r,
+    _HALF]`` the row's (1 + α)/2."""
     moments, carry, states, tally, lost = cells
-    rule, half, density_per_count, pair_coefficient, time_step = step
+    rule, density_per_count, pair_coefficient, time_step = step
+    half = rows[r, _HALF]
     position, velocity, labels = source
     position_to, velocity_to, labels_to = target
     first = cell_start[r, c]
@@ -282,12 +299,12 @@ def _centre(moments, u, cell_start, inverse_n):
 
 
 @kernel
-def _stream(position, velocity, cell_of, cell_start, u, arguments):
+def _stream(position, velocity, cell_of, cell_start, u, rows, arguments):
     """Threads over the particles of realization ``blockIdx.y``: ``_stream_particle``."""
     r = cuda.blockIdx.y
     n = position.shape[2]
     for i in range(cuda.blockIdx.x * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
-        _stream_particle(position, velocity, cell_of, cell_start, u, arguments, r, i)
+        _stream_particle(position, velocity, cell_of, cell_start, u, rows, arguments, r, i)
 
 
 @kernel
@@ -307,25 +324,26 @@ def _scatter(cell_of, fill, order):
 
 
 @kernel
-def _collide(source, target, order, cell_start, cells, step):
+def _collide(source, target, order, cell_start, cells, rows, step):
     """One thread per cell c of realization ``blockIdx.y``: ``_collide_in_cell``."""
     c = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
     if c < cell_start.shape[1] - 1:
-        _collide_in_cell(source, target, order, cell_start, cells, step, cuda.blockIdx.y, c)
+        r = cuda.blockIdx.y
+        _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
 
 
 # ----------------------------------------------------- every phase in one launch
 
 
 @kernel
-def _advance_together(first, second, work, cells, u, stream, step, inverse_n, n_steps):
-    """``n_steps`` whole steps of every realization in one cooperative launch: the five
-    phases of a step in order, each a loop of the grid over its realizations, particles or
-    cells, separated by grid-wide barriers (``cuda.cg.this_grid().sync()``: every block
-    resident at once). Step s reads the ``first`` buffers and writes the ``second`` when s
-    is even, the other way round when odd. ``work`` is (cell_of, order, cell_start,
-    fill). The phases are the launched kernels' own functions, so the numbers are theirs
-    bit for bit."""
+def _advance_together(first, second, work, cells, u, rows, stream, step, inverse_n, plan):
+    """``plan`` = (steps, rows) whole steps of the first ``rows`` realizations in one
+    cooperative launch: the five phases of a step in order, each a loop of the grid over
+    its realizations, particles or cells, separated by grid-wide barriers
+    (``cuda.cg.this_grid().sync()``: every block resident at once). Step s reads the
+    ``first`` buffers and writes the ``second`` when s is even, the other way round when
+    odd. ``work`` is (cell_of, order, cell_start, fill). The phases are the launched
+    kernels' own functions, so the numbers are theirs bit for bit."""
     cell_of, order, cell_start, fill = work
     grid_group = cuda.cg.this_grid()
     sums = cuda.shared.array(BLOCK, np.float64)
@@ -334,7 +352,7 @@ def _advance_together(first, second, work, cells, u, stream, step, inverse_n, n_
     blocks = cuda.gridDim.x
     thread = block * BLOCK + cuda.threadIdx.x
     threads = blocks * BLOCK
-    count = u.shape[0]
+    n_steps, count = plan
     n = cell_of.shape[1]
     n_cells = fill.shape[1]
     for s in range(n_steps):
@@ -344,7 +362,8 @@ def _advance_together(first, second, work, cells, u, stream, step, inverse_n, n_
         grid_group.sync()
         for k in range(thread, count * n, threads):
             r = k // n
-            _stream_particle(source[0], source[1], cell_of, cell_start, u, stream, r, k - r * n)
+            i = k - r * n
+            _stream_particle(source[0], source[1], cell_of, cell_start, u, rows, stream, r, i)
         grid_group.sync()
         for r in range(block, count, blocks):
             _scan_row(cell_start, fill, counts, r)
@@ -355,7 +374,8 @@ def _advance_together(first, second, work, cells, u, stream, step, inverse_n, n_
         grid_group.sync()
         for k in range(thread, count * n_cells, threads):
             r = k // n_cells
-            _collide_in_cell(source, target, order, cell_start, cells, step, r, k - r * n_cells)
+            c = k - r * n_cells
+            _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
         grid_group.sync()
 
 
@@ -388,10 +408,10 @@ def _observe(position, velocity, partials, wavenumber):
 
 
 @kernel
-def _finish(partials, n_blocks, lost, loss, n, observables, dissipated, sample):
+def _finish(partials, n_blocks, lost, rows, n, observables, dissipated, sample):
     """One block per realization: ``observables[r, sample]`` (``kernels._observables`` of
-    the block sums, folded in index order) and ``dissipated[r, sample]`` = loss Σ_c
-    lost[r, c] / N_sim (a fixed tree over the cells), the cells' ``lost`` reset."""
+    the block sums, folded in index order) and ``dissipated[r, sample]`` = rows[r, _LOSS]
+    Σ_c lost[r, c] / N_sim (a fixed tree over the cells), the cells' ``lost`` reset."""
     shared = cuda.shared.array(BLOCK, np.float64)
     r = cuda.blockIdx.x
     t = cuda.threadIdx.x
@@ -402,7 +422,7 @@ def _finish(partials, n_blocks, lost, loss, n, observables, dissipated, sample):
     total = block_reduce_sum(shared, total)
     if t != 0:
         return
-    dissipated[r, sample] = loss * total / n
+    dissipated[r, sample] = rows[r, _LOSS] * total / n
     px = 0.0
     py = 0.0
     re_y = 0.0
@@ -431,6 +451,17 @@ TOGETHER = True
 where the GPU allows it; False: five launches a step (``python -m kinetic.bench cuda``
 times both). The numbers are the same either way."""
 
+SHARED = (
+    "n_particles",
+    "density",
+    "fictive_factor",
+    "cells_per_side",
+    "time_step",
+    "collision_rule",
+)
+"""Settings the runs of one batch share (its arrays' shapes, its cells and its step);
+restitution and drag rate may differ from run to run."""
+
 
 def _cooperative_blocks(batch) -> int:
     """Thread blocks of ``_advance_together``'s grid for ``batch``: as many as the GPU
@@ -442,7 +473,7 @@ def _cooperative_blocks(batch) -> int:
         return 1
     needed = grid(batch.count * max(batch.n, batch.n_cells))
     try:
-        _advance_together[1, BLOCK](*batch.together_arguments(0))  # compiles; does nothing
+        _advance_together[1, BLOCK](*batch.together_arguments(0, 0))  # compiles; does nothing
         resident = min(
             compiled.max_cooperative_grid_blocks(BLOCK)
             for compiled in _advance_together.overloads.values()
@@ -453,23 +484,49 @@ def _cooperative_blocks(batch) -> int:
     return max(1, min(resident, needed))
 
 
-class _Batch:
-    """Device state of R realizations of one setting and the launches of one step."""
+def _row_parameters(settings) -> list[float]:
+    """``rows[r]`` of a realization of ``settings`` (``_SHIFT``, ``_GROWTH``, ``_HALF``,
+    ``_LOSS``)."""
+    s = settings
+    row = [0.0] * _N_ROW_PARAMETERS
+    rate = s.drag_rate
+    row[_SHIFT] = float(np.expm1(rate * s.time_step) / rate) if rate != 0.0 else s.time_step
+    row[_GROWTH] = float(np.exp(rate * s.time_step))
+    row[_HALF] = 0.5 * (1.0 + s.step().restitution)
+    row[_LOSS] = 0.25 * (1.0 - s.restitution * s.restitution)
+    return row
 
-    def __init__(self, settings, streams: np.ndarray, n_samples: int):
+
+class _Batch:
+    """Device state of the realizations of one or several runs that share ``SHARED``
+    (``points``: (settings, streams) pairs, row after row), and the launches of a step.
+    ``advance`` and ``observe`` act on the first ``count`` rows: a run that ends before
+    the others sits in the last rows and idles once it is done."""
+
+    def __init__(self, points, n_samples: int):
+        settings = points[0][0]
+        for other, _ in points:
+            for key in SHARED:
+                if getattr(other, key) != getattr(settings, key):
+                    raise ValueError(f"the runs of one batch must share {key}")
         n = settings.n_simulated
         n_cells = settings.cells_per_side**2
-        count = streams.shape[0]
+        count = sum(streams.shape[0] for _, streams in points)
         position = np.empty((count, 2, n))
         velocity = np.empty((count, 2, n))
         labels = np.empty((count, 2, n), dtype=np.int64)
         keys = np.empty((count, 4), dtype=np.uint64)
-        for r in range(count):
-            gas = new_cooling_gas(settings, streams[r])  # the CPU engine's initial state
-            position[r] = gas.position[0]
-            velocity[r] = gas.velocity[0]
-            labels[r] = gas.labels[0]
-            keys[r] = gas.rng
+        rows = np.empty((count, _N_ROW_PARAMETERS))
+        r = 0
+        for own, streams in points:
+            for stream in streams:
+                gas = new_cooling_gas(own, stream)  # the CPU engine's initial state
+                position[r] = gas.position[0]
+                velocity[r] = gas.velocity[0]
+                labels[r] = gas.labels[0]
+                keys[r] = gas.rng
+                rows[r] = _row_parameters(own)
+                r += 1
         self.settings = settings
         self.count = count
         self.n = n
@@ -482,6 +539,7 @@ class _Batch:
             device_zeros((count, 2, n), np.int64),
         )
         self.buffers = ((to_device(position), to_device(velocity), to_device(labels)), spare)
+        self.rows = to_device(rows)
         self.cell_of = device_zeros((count, n), np.int64)
         self.order = device_zeros((count, n), np.int64)
         self.cell_start = device_zeros((count, n_cells + 1), np.int64)
@@ -498,49 +556,43 @@ class _Batch:
         self.dissipated = device_zeros((count, n_samples))
         s = settings
         m = s.cells_per_side
-        self.stream_arguments = (
-            float(np.expm1(s.drag_rate * s.time_step) / s.drag_rate)
-            if s.drag_rate != 0.0
-            else s.time_step,
-            float(np.exp(s.drag_rate * s.time_step)),
-            float(s.box_side),
-            float(m / s.box_side),
-            int(m),
-        )
+        self.stream_arguments = (float(s.box_side), float(m / s.box_side), int(m))
         step = s.step()
         self.collide_arguments = (
             int(step.rule),
-            0.5 * (1.0 + step.restitution),
             float(step.density_per_count),
             float(step.pair_coefficient),
             float(step.time_step),
         )
         self.cells = (self.moments, self.carry, self.states, self.tally, self.lost)
-        self.loss = 0.25 * (1.0 - s.restitution * s.restitution)
-        self.steps = 0
         self.together = _cooperative_blocks(self) if TOGETHER else 0
 
-    def advance(self, n_steps: int) -> None:
-        """Advance every realization by ``n_steps`` steps: one cooperative launch
-        (``_advance_together``) where the GPU runs it, else five launches a step."""
-        if n_steps <= 0:
+    def advance(self, n_steps: int, count: int) -> None:
+        """Advance the first ``count`` realizations by ``n_steps`` steps: one cooperative
+        launch (``_advance_together``) where the GPU runs it, else five launches a step."""
+        if n_steps <= 0 or count <= 0:
             return
         if self.together:
-            _advance_together[self.together, BLOCK](*self.together_arguments(n_steps))
+            _advance_together[self.together, BLOCK](*self.together_arguments(n_steps, count))
             if n_steps % 2:
                 self.buffers = self.buffers[::-1]
-            self.steps += n_steps
             return
-        particles = (self.spread_blocks, self.count)
-        cell_grid = (grid(self.n_cells), self.count)
+        particles = (self.spread_blocks, count)
+        cell_grid = (grid(self.n_cells), count)
         for _ in range(n_steps):
             source, target = self.buffers
             position, velocity, _labels = source
-            _centre[self.count, BLOCK](self.moments, self.u, self.cell_start, 1.0 / self.n)
+            _centre[count, BLOCK](self.moments, self.u, self.cell_start, 1.0 / self.n)
             _stream[particles, THREADS](
-                position, velocity, self.cell_of, self.cell_start, self.u, self.stream_arguments
+                position,
+                velocity,
+                self.cell_of,
+                self.cell_start,
+                self.u,
+                self.rows,
+                self.stream_arguments,
             )
-            _scan[self.count, BLOCK](self.cell_start, self.fill)
+            _scan[count, BLOCK](self.cell_start, self.fill)
             _scatter[particles, THREADS](self.cell_of, self.fill, self.order)
             _collide[cell_grid, BLOCK](
                 source,
@@ -548,13 +600,14 @@ class _Batch:
                 self.order,
                 self.cell_start,
                 self.cells,
+                self.rows,
                 self.collide_arguments,
             )
             self.buffers = (target, source)
-            self.steps += 1
 
-    def together_arguments(self, n_steps: int) -> tuple:
-        """The arguments of ``_advance_together`` for ``n_steps`` steps."""
+    def together_arguments(self, n_steps: int, count: int) -> tuple:
+        """The arguments of ``_advance_together`` for ``n_steps`` steps of the first
+        ``count`` realizations."""
         first, second = self.buffers
         work = (self.cell_of, self.order, self.cell_start, self.fill)
         return (
@@ -563,23 +616,27 @@ class _Batch:
             work,
             self.cells,
             self.u,
+            self.rows,
             self.stream_arguments,
             self.collide_arguments,
             1.0 / self.n,
-            n_steps,
+            (int(n_steps), int(count)),
         )
 
-    def observe(self, sample: int) -> None:
-        """Row ``sample`` of the observables and of the energy lost since the last one."""
+    def observe(self, sample: int, count: int) -> None:
+        """Row ``sample`` of the first ``count`` realizations' observables and of the
+        energy they lost since the last one."""
+        if count <= 0:
+            return
         position, velocity, _labels = self.buffers[0]
-        _observe[(self.n_blocks, self.count), THREADS](
+        _observe[(self.n_blocks, count), THREADS](
             position, velocity, self.partials, float(self.settings.wavenumber)
         )
-        _finish[self.count, BLOCK](
+        _finish[count, BLOCK](
             self.partials,
             self.n_blocks,
             self.lost,
-            self.loss,
+            self.rows,
             self.n,
             self.observables,
             self.dissipated,
@@ -590,34 +647,50 @@ class _Batch:
         self.lost.copy_to_device(np.zeros((self.count, self.n_cells)))
 
 
-def run_batch(settings, streams, warm, first_steps, stride, n_samples, out, progress=None):
-    """Run the realizations of ``streams`` (one row each) together on the GPU.
+def run_points(points, warm, first_steps, stride, progress=None):
+    """Run the realizations of several runs together on the GPU.
 
-    ``warm`` steps, then ``first_steps`` before the first sample and ``stride`` before
-    each later one (the CPU front's schedule). Fills ``out`` (numpy arrays):
-    ``observables`` (R, n_samples, N_OBSERVABLES), ``dissipated`` (R, n_samples),
-    ``collisions``, ``candidates``, ``particle_steps``, ``repeated_collisions`` and
-    ``cpu_seconds`` (R,), the last the wall time of the run (launches and the GPU,
-    compilation excluded) divided by the number of realizations. ``progress`` (a
-    ``Progress`` over realizations x steps) is updated after every sample.
+    ``points`` are (settings, streams, n_samples, out) of runs that share ``SHARED`` (one
+    row of ``streams`` a realization); restitution, drag, streams and ``n_samples`` may
+    differ. Every run follows the CPU front's schedule: ``warm`` steps, then
+    ``first_steps`` before the first sample and ``stride`` before each later one, so the
+    runs keep step together until the shorter ones are done (they sit in the last rows of
+    the batch and idle from then on). Fills each ``out`` (numpy arrays): ``observables``
+    (R, n_samples, N_OBSERVABLES), ``dissipated`` (R, n_samples), ``collisions``,
+    ``candidates``, ``particle_steps``, ``repeated_collisions`` and ``cpu_seconds`` (R,),
+    the last the wall time of the whole batch (launches and the GPU, compilation
+    excluded) divided by its number of realizations. A run's numbers are those it gives
+    alone. ``progress`` (a ``Progress`` over realizations x steps) is updated after every
+    sample.
     """
-    count = streams.shape[0]
+    by_length = sorted(points, key=lambda point: -point[2])  # stable: the longest first
+    settings = by_length[0][0]
+    longest = by_length[0][2]
     _compile_outside_the_timer(settings)
-    batch = _Batch(settings, streams, n_samples)
+    batch = _Batch([(s, streams) for s, streams, _, _ in by_length], longest)
+    ends = np.cumsum([streams.shape[0] for _, streams, _, _ in by_length])
+    lengths = np.array([n_samples for _, _, n_samples, _ in by_length])
+
+    def active(sample: int) -> int:
+        """Rows of the runs that take ``sample``: a prefix, the runs sorted by length."""
+        taking = lengths > sample
+        return int(ends[taking][-1]) if taking.any() else 0
+
     synchronize()
     start = time.perf_counter()
-    batch.advance(warm)
+    batch.advance(warm, batch.count)
     if progress is not None and warm:
-        progress.update(count * warm)
+        progress.update(batch.count * warm)
     batch.reset_lost()
-    for sample in range(n_samples):
+    for sample in range(longest):
+        count = active(sample)
         steps = first_steps if sample == 0 else stride
-        batch.advance(steps)
-        batch.observe(sample)
+        batch.advance(steps, count)
+        batch.observe(sample, count)
         if progress is not None and steps:
             progress.update(count * steps)
-    out["observables"][:] = batch.observables.copy_to_host()
-    out["dissipated"][:] = batch.dissipated.copy_to_host()
+    observables = batch.observables.copy_to_host()
+    dissipated = batch.dissipated.copy_to_host()
     tally = batch.tally.copy_to_host().sum(axis=1)
     synchronize()
     elapsed = time.perf_counter() - start
@@ -626,11 +699,17 @@ def run_batch(settings, streams, warm, first_steps, stride, n_samples, out, prog
             "internal error: the relative-speed bound of a cell was exceeded "
             f"{tally[:, _EXCEEDED].sum()} times although it is kept rigorous"
         )
-    out["collisions"][:] = tally[:, _COLLISIONS]
-    out["candidates"][:] = tally[:, _CANDIDATES]
-    out["repeated_collisions"][:] = tally[:, _REPEATED]
-    out["particle_steps"][:] = batch.steps * batch.n
-    out["cpu_seconds"][:] = elapsed / count
+    first = 0
+    for (_, _, n_samples, out), last in zip(by_length, ends, strict=True):
+        rows = slice(first, last)
+        out["observables"][:] = observables[rows, :n_samples]
+        out["dissipated"][:] = dissipated[rows, :n_samples]
+        out["collisions"][:] = tally[rows, _COLLISIONS]
+        out["candidates"][:] = tally[rows, _CANDIDATES]
+        out["repeated_collisions"][:] = tally[rows, _REPEATED]
+        out["particle_steps"][:] = (warm + first_steps + (n_samples - 1) * stride) * batch.n
+        out["cpu_seconds"][:] = elapsed / batch.count
+        first = last
 
 
 def _compile_outside_the_timer(settings) -> None:
@@ -646,9 +725,9 @@ def _compile_outside_the_timer(settings) -> None:
     def compile_kernels():
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NumbaPerformanceWarning)  # grids of one block
-            batch = _Batch(tiny, np.array([[1, 2, 3, 4]], dtype=np.uint64), 1)
-            batch.advance(2)
-            batch.observe(0)
+            batch = _Batch([(tiny, np.array([[1, 2, 3, 4]], dtype=np.uint64))], 1)
+            batch.advance(2, 1)
+            batch.observe(0, 1)
             synchronize()
 
     warm("cuda_dsmc_inhomogeneous", "dsmc", compile_kernels)
