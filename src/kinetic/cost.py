@@ -255,6 +255,37 @@ COOLING_MD_SECONDS_PER_PARTICLE_SEGMENT = 2.5e-7
 scaling and the observers (profiled at N = 10³: about 230 µs per segment)."""
 
 
+def _cooling_dsmc_gpu(steps, n_samples, particle_steps, particles, runs=1) -> Estimate:
+    """A ``cuda`` job of inhomogeneous DSMC: ``steps`` steps and ``n_samples`` samples of
+    its longest run (the fixed cost of a step and of a sample, paid once for the runs
+    sharing the launches), ``particle_steps`` of all its runs, ``particles`` simulated
+    particles on the GPU at once."""
+    seconds = (
+        steps * COOLING_DSMC_GPU_TOGETHER_SECONDS_PER_STEP
+        + n_samples * COOLING_DSMC_GPU_SECONDS_PER_SAMPLE
+        + particle_steps / COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND
+    )
+    memory = _mb(COOLING_DSMC_BYTES_PER_PARTICLE * particles)
+    runs_text = f" of {runs} runs" if runs > 1 else ""
+    work = f"{particle_steps:.2e} particle-steps{runs_text} on one GPU"
+    return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, memory, work, gpus=1)
+
+
+def cooling_modes_points(points) -> Estimate:
+    """One ``cuda`` job of several inhomogeneous DSMC runs in the same launches
+    (``kinetic.dsmc.simulate_cooling_modes_points``, ``points`` its keyword arguments):
+    the steps and samples of the longest run, the particle-steps of all."""
+    steps, n_samples, particle_steps, particles = 0.0, 0, 0.0, 0
+    for point in points:
+        simulated = point["fictive_factor"] * point["n_particles"]
+        run_steps = point["n_samples"] * point["sample_interval"] / point["time_step"]
+        steps = max(steps, run_steps)
+        n_samples = max(n_samples, point["n_samples"])
+        particle_steps += point["n_realizations"] * simulated * run_steps
+        particles += simulated * point["n_realizations"]
+    return _cooling_dsmc_gpu(steps, n_samples, particle_steps, particles, len(points))
+
+
 def cooling_modes(
     *,
     engine: str,
@@ -278,14 +309,9 @@ def cooling_modes(
         simulated = fictive_factor * n_particles
         particle_steps = n_realizations * simulated * duration / time_step
         if backend == "cuda":
-            seconds = (
-                duration / time_step * COOLING_DSMC_GPU_TOGETHER_SECONDS_PER_STEP
-                + n_samples * COOLING_DSMC_GPU_SECONDS_PER_SAMPLE
-                + particle_steps / COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND
+            return _cooling_dsmc_gpu(
+                duration / time_step, n_samples, particle_steps, simulated * n_realizations
             )
-            memory = _mb(COOLING_DSMC_BYTES_PER_PARTICLE * simulated * n_realizations)
-            work = f"{particle_steps:.2e} particle-steps on one GPU"
-            return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, memory, work, gpus=1)
         seconds = COOLING_DSMC_SECONDS_PER_PARTICLE_STEP * particle_steps
         memory = _mb(COOLING_DSMC_BYTES_PER_PARTICLE * simulated + samples_bytes)
         return Estimate(seconds, memory, f"{particle_steps:.2e} particle-steps")

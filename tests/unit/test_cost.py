@@ -221,6 +221,35 @@ def test_cuda_cloning_points_sharing_launches_cost_their_slowest_point():
     assert together.cpu_seconds < sum(estimate.cpu_seconds for estimate in alone) - 15.0
 
 
+def test_inhomogeneous_dsmc_runs_sharing_launches_pay_the_longest_runs_steps_once():
+    """``cooling_modes_points`` (several α in one cuda job): the fixed cost of a step and
+    of a sample for the longest run only, the particle-steps of every run, one startup."""
+    points = [
+        {
+            "n_particles": 3000,
+            "density": 0.005,
+            "fictive_factor": 10,
+            "time_step": 0.1,
+            "sample_interval": 0.4,
+            "n_samples": n_samples,
+            "n_realizations": 16,
+        }
+        for n_samples in (1000, 3000, 2000)
+    ]
+    alone = [cost.cooling_modes(engine="dsmc", backend="cuda", **point) for point in points]
+    together = cost.cooling_modes_points(points)
+    fixed = (
+        3000 * 4 * cost.COOLING_DSMC_GPU_TOGETHER_SECONDS_PER_STEP
+        + 3000 * cost.COOLING_DSMC_GPU_SECONDS_PER_SAMPLE
+    )
+    particle_steps = 16 * 30_000 * 6000 * 4
+    rate = particle_steps / cost.COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND
+    assert together.gpus == 1
+    assert together.cpu_seconds == pytest.approx(fixed + rate + cost.GPU_JOB_STARTUP_SECONDS)
+    assert together.cpu_seconds < sum(estimate.cpu_seconds for estimate in alone)
+    assert together.memory_mb == pytest.approx(sum(estimate.memory_mb for estimate in alone))
+
+
 def test_the_paper_gpu_layer_runs_cloning_and_the_dsmc_on_one_gpu():
     """config/paper-gpu.yaml over paper.yaml: its own results root, every cloning point,
     montanero2007 run and costantini2010 DSMC run one GPU job, hard-disk populations up to
@@ -232,7 +261,12 @@ def test_the_paper_gpu_layer_runs_cloning_and_the_dsmc_on_one_gpu():
     jobs = plan.plan_jobs(config)
     on_gpu = {job.rule for job in jobs if job.estimate.gpus}
     cloning = {rule for rule in on_gpu if rule.startswith("visco2008_simulate_cloning")}
-    assert on_gpu - cloning == {"montanero2007_simulate_dsmc", "costantini2010_simulate_dsmc"}
+    grid = {rule for rule in on_gpu if rule.startswith("costantini2010_simulate_dsmc_grid_")}
+    assert grid == {
+        f"costantini2010_simulate_dsmc_grid_n{n}" for n in config["costantini2010"]["particles"]
+    }
+    rest = on_gpu - cloning - grid
+    assert rest == {"montanero2007_simulate_dsmc", "costantini2010_simulate_dsmc"}
     assert "visco2008_simulate_cloning" in cloning  # N_c above the resident kernel's
     sizes = {
         job.arguments["population"]

@@ -118,7 +118,9 @@ def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
     executor's --gpus=1), hold every realization of their point or run, and carry
     backend='cuda'; every other simulation job asks for none. The cloning points of a study,
     kernel and population of the resident kernel (all of the ci config's) share one job of
-    their group's rule, which writes each point's file."""
+    their group's rule, which writes each point's file; so do costantini2010's grid DSMC
+    runs of one N (every α)."""
+    from kinetic.studies import costantini2010 as costantini2010_study
     from kinetic.studies import visco2008_cloning as cloning_plan
 
     extra = tmp_path / "cuda.yaml"
@@ -143,11 +145,18 @@ def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
             written[paths[0]] = paths
     on_gpu = [job for job in jobs if job.gpus]
     groups = [("scan", "hard_disks"), ("scan", "maxwell"), ("error_vs_time", "hard_disks")]
+    section = config["costantini2010"]
+    sizes = [f"n{n}" for n in section["particles"]]
     assert {job.rule for job in on_gpu} == {
         *(cloning_plan.group_rule(study, kernel) for study, kernel in groups),
+        *(costantini2010_study.group_rule(size) for size in sizes),
         "montanero2007_simulate_dsmc",
         "costantini2010_simulate_dsmc",
     }
+    for size in sizes:  # one job of every alpha
+        (job,) = [job for job in on_gpu if job.rule == costantini2010_study.group_rule(size)]
+        restitutions = [point["restitution"] for point in job.arguments["points"]]
+        assert restitutions == [float(alpha) for alpha in section["restitutions"]]
     for job in jobs:
         assert gpus[job.output].get("gpu", "0") == str(job.gpus), job.output
         assert written[job.output] == list(job.files), job.output

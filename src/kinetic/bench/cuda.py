@@ -304,13 +304,17 @@ def dsmc_speed(quick: bool) -> dict[str, Any]:
 
 
 def _inhomogeneous(
-    n, fictive, realizations, steps, backend, rule, seed=17, samples=10
+    n, fictive, realizations, steps, backend, rule, seed=17, samples=10, alphas=(0.8,)
 ) -> dict[str, Any]:
     """One costantini2010-like run of the inhomogeneous DSMC: ``steps`` steps (a sample
-    every steps/samples). The rates divide by the kernels' time (``cpu_seconds``: on the
-    GPU the batch's wall time, launches and device included, compilation and the initial
-    states excluded; on the CPU the process time)."""
-    from kinetic.dsmc import simulate_cooling_modes
+    every steps/samples); with several ``alphas``, a run of ``realizations`` for each, all
+    in the same launches (``simulate_cooling_modes_points``). The rates divide by the
+    kernels' time (``cpu_seconds``: on the GPU the batch's wall time, launches and device
+    included, compilation and the initial states excluded; on the CPU the process
+    time)."""
+    import xarray as xr
+
+    from kinetic.dsmc import simulate_cooling_modes, simulate_cooling_modes_points
     from kinetic.theory.costantini2010 import zeta_star
 
     density, alpha = 0.005, 0.8
@@ -335,8 +339,20 @@ def _inhomogeneous(
         "n_realizations": realizations,
         "backend": backend,
     }
+    points = [
+        arguments
+        | {
+            "restitution": restitution,
+            "drag_rate": 0.5 * float(zeta_star(restitution)) * density * math.sqrt(2.0),
+            "seed": seed + k,
+        }
+        for k, restitution in enumerate(alphas)
+    ]
     start = time.perf_counter()
-    ds = simulate_cooling_modes(**arguments)
+    if len(points) > 1:
+        ds = xr.concat(simulate_cooling_modes_points(points), "realization")
+    else:
+        ds = simulate_cooling_modes(**points[0])
     wall = time.perf_counter() - start
     kernel_seconds = float(ds.cpu_seconds.sum())
     particle_steps = float(ds.particle_steps.sum())
@@ -347,7 +363,8 @@ def _inhomogeneous(
         "fictive_factor": fictive,
         "simulated_particles": n * fictive,
         "cells_per_side": cells,
-        "realizations": realizations,
+        "realizations": realizations * len(alphas),
+        "restitutions": list(alphas),
         "collision_rule": rule,
         "backend": backend,
         "steps": int(ds.particle_steps.values[0]) // (n * fictive),
@@ -384,7 +401,8 @@ def inhomogeneous_speed(quick: bool) -> dict[str, Any]:
     × 100 realizations and N = 3 × 10⁶ × Λ = 1, both rules, on the GPU and on one CPU
     core (shorter runs), and the ratio; then the paper config's job shape (16 realizations
     of 3000 × Λ = 10, a sample every 4 steps) with the steps between samples in one
-    cooperative launch and with five launches a step (``paths``)."""
+    cooperative launch and with five launches a step (``paths``), and the six α of a
+    paper config's grouped job in one batch (``grouped``: 96 realizations)."""
     from kinetic.dsmc import inhomogeneous_gpu
 
     scale = 10 if quick else 1
@@ -417,7 +435,17 @@ def inhomogeneous_speed(quick: bool) -> dict[str, Any]:
         case["path"] = "together" if together else "launched"
         case["seconds_per_step"] = case["kernel_seconds"] / case["steps"]
         paths.append(case)
-    return {"gpu": gpu, "cpu_one_core": cpu, "paths": paths}
+    steps = 4000 // scale  # the six α of N = 3000 in one batch, as a grouped paper job
+    grouped = _inhomogeneous(
+        3000, 10, 16, steps, "cuda", "paper", samples=steps // 4, alphas=_GROUPED_ALPHAS
+    )
+    grouped["path"] = "together" if inhomogeneous_gpu.TOGETHER else "launched"
+    grouped["seconds_per_step"] = grouped["kernel_seconds"] / grouped["steps"]
+    return {"gpu": gpu, "cpu_one_core": cpu, "paths": paths, "grouped": grouped}
+
+
+_GROUPED_ALPHAS = (1.0, 0.9, 0.8, 0.7, 0.6, 0.5)
+"""paper.yaml's restitutions: the runs of a ``costantini2010_simulate_dsmc_grid_n<N>`` job."""
 
 
 def dsmc_scaling(quick: bool) -> dict[str, Any]:

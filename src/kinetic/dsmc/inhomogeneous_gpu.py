@@ -9,7 +9,9 @@ cells, time step and rule (``SHARED``; ``run_points``, behind
 ``simulate_cooling_modes_points``: the runs of several α): what depends on α (the drag's
 free flight and growth, (1 + α)/2, the energy lost) is a row parameter (``rows``), and the
 runs, longest first, keep step together; a run that is done sits in the last rows, which
-every kernel then leaves out (the first ``count`` rows are advanced and observed). One step is five phases, each written once as a device function of one
+every kernel then leaves out (the first ``count`` rows are advanced and observed).
+
+One step is five phases, each written once as a device function of one
 realization, particle or cell (``_centre_row``, ``_stream_particle``, ``_scan_row``,
 ``_scatter_particle``, ``_collide_in_cell``), run either by one cooperative launch for all
 the steps between two samples (``_advance_together``: the phases in turn, each a loop of

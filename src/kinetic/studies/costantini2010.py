@@ -45,13 +45,17 @@ __all__ = [
     "check",
     "convergence_runs",
     "correlation_runs",
+    "dsmc_groups",
     "figure_runs",
     "grid_runs",
+    "group_files",
+    "group_rule",
     "jobs",
     "mean_free_path",
     "mean_free_time",
     "run_file",
     "runs",
+    "single_dsmc_runs",
     "table_runs",
 ]
 
@@ -257,9 +261,43 @@ FRONTS = {
 """Per engine key of a run: the front that runs it and its engine package."""
 
 
+def dsmc_groups(study: Mapping[str, Any], backend: str) -> dict[str, list[Run]]:
+    """With the ``cuda`` backend, the grid's DSMC runs of one N (every α of the config:
+    the same particles, cells and step) share one job and the GPU's launches
+    (``kinetic.dsmc.simulate_cooling_modes_points``): {group name (``n1000``): its runs in
+    the config's α order}. None on the cpu, where every run is cut into its own jobs."""
+    if backend != "cuda":
+        return {}
+    groups: dict[str, list[Run]] = {}
+    for run in grid_runs(study):
+        if run.engine == "dsmc":
+            groups.setdefault(f"n{run.n_particles}", []).append(run)
+    return groups
+
+
+def group_rule(group: str) -> str:
+    """The Snakemake rule of a group of :func:`dsmc_groups`
+    (``costantini2010_simulate_dsmc_grid_n1000``: one job, a file per run)."""
+    return f"costantini2010_simulate_dsmc_grid_{group}"
+
+
+def group_files(study: Mapping[str, Any], group: list[Run]) -> list[str]:
+    """The files a group's job writes (under the results root): each run's one batch."""
+    return [batch_file(run, batch_plan(study, run, "cuda")[0]) for run in group]
+
+
+def single_dsmc_runs(study: Mapping[str, Any], backend: str) -> list[str]:
+    """Names of the DSMC runs cut into jobs of their own (every one on the cpu)."""
+    grouped = {run.name for group in dsmc_groups(study, backend).values() for run in group}
+    return [
+        name for name, run in runs(study).items() if run.engine == "dsmc" and name not in grouped
+    ]
+
+
 def jobs(config: Mapping[str, Any]) -> list[Job]:
     """The simulation jobs of the config's costantini2010 section (``kinetic.studies``):
-    every run of :func:`runs`, cut by :func:`batch_plan` into batches of realizations."""
+    every run of :func:`runs`, cut by :func:`batch_plan` into batches of realizations, but
+    with the ``cuda`` backend one job for each group of :func:`dsmc_groups`."""
     from kinetic import cost
     from kinetic.seeds import derive_seed
 
@@ -268,11 +306,26 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
         return []
     found = []
     backend = config.get("backend", "cpu")
+    groups = dsmc_groups(study, backend)
+    grouped = {run.name for group in groups.values() for run in group}
+    points: dict[str, dict[str, Any]] = {}  # run name -> its group job's point
     for run in runs(study).values():
         shared = run.engine_arguments(study)
         gpu = backend_arguments(config) if run.engine == "dsmc" else {}
         front, engine = FRONTS[run.engine]
         seed = derive_seed(config["seed"], f"costantini2010/{run.engine}/{run.name}")
+        if run.name in grouped:
+            (job,) = batch_plan(study, run, backend)
+            points[run.name] = (
+                shared
+                | {
+                    "seed": seed,
+                    "first_realization": job.first_realization,
+                    "n_realizations": job.n_realizations,
+                }
+                | gpu
+            )
+            continue
         found += run_jobs(
             document="costantini2010",
             rule=f"costantini2010_simulate_{run.engine}",
@@ -293,6 +346,25 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
             estimate=lambda job, run=run, shared=shared, gpu=gpu: cost.cooling_modes(
                 engine=run.engine, n_realizations=job.n_realizations, **shared, **gpu
             ),
+        )
+    for name, group in groups.items():
+        outputs = tuple(group_files(study, group))
+        group_points = [points[run.name] for run in group]
+        found.append(
+            Job(
+                document="costantini2010",
+                rule=group_rule(name),
+                output=outputs[0],
+                outputs=outputs,
+                front="kinetic.dsmc:simulate_cooling_modes_points",
+                arguments={
+                    "points": group_points,
+                    "label": f"costantini2010 dsmc grid {name} ({len(group)} runs)",
+                },
+                estimate=cost.cooling_modes_points(group_points),
+                engines=("dsmc",),
+                benchmark=f"benchmarks/costantini2010/dsmc/grid/{name}.tsv",
+            )
         )
     return found
 

@@ -1,6 +1,8 @@
 # costantini2010: the helpers of its rules (paths, input functions, params), included before
 # its rule files, which hold only rules and the targets they register.
 
+import re
+
 from kinetic.studies import costantini2010 as costantini2010_study
 
 # ---------------------------------------------------------------- for the simulation rules
@@ -24,6 +26,20 @@ def costantini2010_run(wildcards):
             f"the config asks for no costantini2010 {wildcards.engine} run {wildcards.run!r}"
         )
     return run
+
+
+def costantini2010_dsmc_single_runs():
+    """Wildcard constraint of costantini2010_simulate_dsmc: the DSMC runs cut into jobs of
+    their own (every one on the cpu; on cuda those outside the grid's groups)."""
+    names = costantini2010_study.single_dsmc_runs(
+        config["costantini2010"], config["backend"]
+    )
+    return "|".join(re.escape(name) for name in names) if names else "(?!)"
+
+
+def costantini2010_dsmc_groups():
+    """{group name: its runs} of every grouped-runs rule (cuda only)."""
+    return costantini2010_study.dsmc_groups(config["costantini2010"], config["backend"])
 
 
 def costantini2010_batch_files(wildcards):

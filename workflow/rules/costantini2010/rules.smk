@@ -27,7 +27,7 @@ rule costantini2010_simulate_dsmc:
         log_file("benchmarks/costantini2010/{engine}/{run}/batch{batch}.tsv")
     wildcard_constraints:
         engine="dsmc",
-        run="[^/]+",
+        run=costantini2010_dsmc_single_runs(),
         batch="[0-9]{4}",
     threads: 1
     resources:
@@ -40,6 +40,40 @@ rule costantini2010_simulate_dsmc:
         parameters=job_param("costantini2010_simulate_dsmc", "parameters"),
     script:
         "../../scripts/simulate.py"
+
+
+# With backend: cuda, the grid's DSMC runs of one N (every alpha: the same particles, cells
+# and step) share one job and the same launches (kinetic.dsmc.simulate_cooling_modes_points):
+# one rule per N, the same files as the per-run rule writes.
+for group, group_runs in costantini2010_dsmc_groups().items():
+
+    rule:
+        name:
+            costantini2010_study.group_rule(group)
+        input:
+            code=job_code(costantini2010_study.group_rule(group)),
+        output:
+            [
+                results_file(path)
+                for path in costantini2010_study.group_files(
+                    config["costantini2010"], group_runs
+                )
+            ],
+        log:
+            log_file(f"costantini2010/dsmc/grid/{group}.log"),
+        benchmark:
+            log_file(f"benchmarks/costantini2010/dsmc/grid/{group}.tsv")
+        threads: 1
+        resources:
+            runtime=planned_runtime,
+            mem_mb=planned_mem_mb,
+            gpu=planned_gpus,
+        params:
+            front=job_param(costantini2010_study.group_rule(group), "front"),
+            job=job_param(costantini2010_study.group_rule(group), "arguments"),
+            parameters=job_param(costantini2010_study.group_rule(group), "parameters"),
+        script:
+            "../../scripts/simulate.py"
 
 
 rule costantini2010_simulate_md:
