@@ -30,6 +30,7 @@ __all__ = [
     "check",
     "front",
     "jobs",
+    "points_job",
     "run_jobs",
 ]
 
@@ -129,6 +130,37 @@ def run_jobs(
             )
         )
     return found
+
+
+def points_job(
+    *,
+    document: str,
+    rule: str,
+    group: str,
+    outputs,
+    front: str,
+    points,
+    label: str,
+    estimate: Estimate,
+    engines: tuple[str, ...],
+) -> Job:
+    """One job of several points in the same launches (a ``cuda`` front's ``*_points``):
+    ``outputs`` are the points' files in order, the front gets ``points`` (each a front's
+    keyword arguments, its seed included) and ``label``; ``group`` names the job under the
+    results root's logs/ (``costantini2010/dsmc/grid/n1000``: its Snakemake benchmark file
+    is ``benchmarks/<group>.tsv``)."""
+    outputs = tuple(outputs)
+    return Job(
+        document=document,
+        rule=rule,
+        output=outputs[0],
+        outputs=outputs,
+        front=front,
+        arguments={"points": list(points), "label": label},
+        estimate=estimate,
+        engines=engines,
+        benchmark=f"benchmarks/{group}.tsv",
+    )
 
 
 def front(name: str):

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from kinetic import batches, gas
-from kinetic.studies import Job, backend_arguments, run_jobs
+from kinetic.studies import Job, backend_arguments, points_job, run_jobs
 from kinetic.theory import costantini2010 as theory
 
 __all__ = [
@@ -348,22 +348,18 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
             ),
         )
     for name, group in groups.items():
-        outputs = tuple(group_files(study, group))
         group_points = [points[run.name] for run in group]
         found.append(
-            Job(
+            points_job(
                 document="costantini2010",
                 rule=group_rule(name),
-                output=outputs[0],
-                outputs=outputs,
+                group=f"costantini2010/dsmc/grid/{name}",
+                outputs=group_files(study, group),
                 front="kinetic.dsmc:simulate_cooling_modes_points",
-                arguments={
-                    "points": group_points,
-                    "label": f"costantini2010 dsmc grid {name} ({len(group)} runs)",
-                },
+                points=group_points,
+                label=f"costantini2010 dsmc grid {name} ({len(group)} runs)",
                 estimate=cost.cooling_modes_points(group_points),
                 engines=("dsmc",),
-                benchmark=f"benchmarks/costantini2010/dsmc/grid/{name}.tsv",
             )
         )
     return found

@@ -16,7 +16,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from kinetic.studies import Job, backend_arguments, run_jobs
+from kinetic.studies import Job, backend_arguments, points_job, run_jobs
 from kinetic.studies import visco2008_cloning as cloning_plan
 
 __all__ = [
@@ -221,26 +221,23 @@ def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
                 ),
             )
     for (study, kernel, size), points in grouped.items():
-        outputs = tuple(
+        outputs = [
             f"visco2008/cloning/{study}/{kernel}/"
             f"{cloning_plan.lambda_token(point['lam'])}/{size}/{batch_name(0)}.nc"
             for point in points
-        )
+        ]
         stripped = [{k: v for k, v in point.items() if k != "label"} for point in points]
         found.append(
-            Job(
+            points_job(
                 document="visco2008",
                 rule=cloning_plan.group_rule(study, kernel),
-                output=outputs[0],
+                group=f"visco2008/cloning/{study}/{kernel}/{size}",
                 outputs=outputs,
                 front="kinetic.cloning:simulate_points",
-                arguments={
-                    "points": stripped,
-                    "label": f"cloning {study} {kernel} {size} ({len(points)} points)",
-                },
+                points=stripped,
+                label=f"cloning {study} {kernel} {size} ({len(points)} points)",
                 estimate=cost.cloning_points(stripped),
                 engines=("cloning",),
-                benchmark=f"benchmarks/visco2008/cloning/{study}/{kernel}/{size}.tsv",
             )
         )
     return found
