@@ -324,3 +324,22 @@ def test_a_gpu_without_cooperative_launch_gets_a_launch_per_phase(monkeypatch, c
     with caplog.at_level("WARNING", logger="kinetic"):
         assert inhomogeneous_gpu._cooperative_blocks(batch) == 0
     assert "no cooperative launch" in caplog.text and "libcudadevrt" in caplog.text
+
+
+def test_bench_inhomogeneous_bound_times_every_phase_of_the_step():
+    """``python -m kinetic.bench cuda --sections inhomogeneous_bound`` runs (here two tiny
+    runs of different α under the simulator: no meaningful times), so that a GPU session's
+    minutes are not spent finding a broken section; its bound is the phases' bytes at the
+    copy bandwidth."""
+    from kinetic.bench import cuda as bench
+
+    points = bench._cooling_points(30, 2, 1, 2, "cuda", "paper", alphas=(1.0, 0.7))
+    report = bench._inhomogeneous_phases(points, 1)
+    assert set(report["phases"]) == set(bench.PHASE_BYTES) and report["realizations"] == 2
+    particles = 2 * 60
+    for name, timed in report["phases"].items():
+        assert timed["seconds"] > 0
+        assert timed["bytes_per_particle"] == bench.PHASE_BYTES[name]
+    step = report["step"]
+    assert step["bound_seconds"] == pytest.approx(192 * particles / report["copy_bytes_per_second"])
+    assert step["fraction_of_bound"] == pytest.approx(step["bound_seconds"] / step["seconds"])

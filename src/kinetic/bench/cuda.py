@@ -42,7 +42,11 @@ collision rules, at the paper config's density (nσ² = 0.005), cells of 0.5 λ 
 0.025 mean free times, α = 0.8 with the drag ω0 = ζ(T0)/2; the same cases, shorter, on one
 CPU core for the ratio; and the paper config's job shape (16 realizations, a sample every
 4 steps) on both GPU paths: the steps between samples in one cooperative launch, and five
-launches a step (``paths``).
+launches a step (``paths``); the six α of a grouped paper job in one batch (``grouped``).
+Its bound (``inhomogeneous_bound``): each of the five phases of a step timed alone at the
+grouped job's shape, with its bytes per second (``PHASE_BYTES``, 192 bytes a
+particle-step), the cost of an empty launch, and the step on both paths against the
+bandwidth bound.
 """
 
 from __future__ import annotations
@@ -303,51 +307,56 @@ def dsmc_speed(quick: bool) -> dict[str, Any]:
     return {"gpu": gpu, "cpu_one_core": cpu, "physics": physics}
 
 
-def _inhomogeneous(
+def _cooling_points(
     n, fictive, realizations, steps, backend, rule, seed=17, samples=10, alphas=(0.8,)
-) -> dict[str, Any]:
-    """One costantini2010-like run of the inhomogeneous DSMC: ``steps`` steps (a sample
-    every steps/samples); with several ``alphas``, a run of ``realizations`` for each, all
-    in the same launches (``simulate_cooling_modes_points``). The rates divide by the
-    kernels' time (``cpu_seconds``: on the GPU the batch's wall time, launches and device
-    included, compilation and the initial states excluded; on the CPU the process
-    time)."""
-    import xarray as xr
-
-    from kinetic.dsmc import simulate_cooling_modes, simulate_cooling_modes_points
+) -> list[dict[str, Any]]:
+    """The keyword arguments of a costantini2010-like run for each of ``alphas`` (paper
+    density nσ² = 0.005, cells of 0.5 λ, a step of 0.025 mean free times, the drag ω0 =
+    ζ(T0)/2): ``steps`` steps, a sample every steps/samples, seeds ``seed``, ``seed`` + 1,
+    ..."""
     from kinetic.theory.costantini2010 import zeta_star
 
-    density, alpha = 0.005, 0.8
+    density = 0.005
     mean_free_time = 1.0 / (2.0 * density * math.sqrt(math.pi))
     mean_free_path = 1.0 / (2.0 * math.sqrt(2.0) * density)
     time_step = 0.025 * mean_free_time
     cells = max(1, round(math.sqrt(n / density) / (0.5 * mean_free_path)))
     stride = max(1, steps // samples)
-    arguments = {
-        "n_particles": n,
-        "density": density,
-        "restitution": alpha,
-        "drag_rate": 0.5 * float(zeta_star(alpha)) * density * math.sqrt(2.0),
-        "equilibration": 0.0,
-        "sample_interval": stride * time_step,
-        "n_samples": steps // stride + 1,
-        "seed": seed,
-        "fictive_factor": fictive,
-        "cells_per_side": cells,
-        "time_step": time_step,
-        "collision_rule": rule,
-        "n_realizations": realizations,
-        "backend": backend,
-    }
-    points = [
-        arguments
-        | {
+    return [
+        {
+            "n_particles": n,
+            "density": density,
             "restitution": restitution,
             "drag_rate": 0.5 * float(zeta_star(restitution)) * density * math.sqrt(2.0),
+            "equilibration": 0.0,
+            "sample_interval": stride * time_step,
+            "n_samples": steps // stride + 1,
             "seed": seed + k,
+            "fictive_factor": fictive,
+            "cells_per_side": cells,
+            "time_step": time_step,
+            "collision_rule": rule,
+            "n_realizations": realizations,
+            "backend": backend,
         }
         for k, restitution in enumerate(alphas)
     ]
+
+
+def _inhomogeneous(
+    n, fictive, realizations, steps, backend, rule, seed=17, samples=10, alphas=(0.8,)
+) -> dict[str, Any]:
+    """One costantini2010-like run of the inhomogeneous DSMC (``_cooling_points``): with
+    several ``alphas``, a run of ``realizations`` for each, all in the same launches
+    (``simulate_cooling_modes_points``). The rates divide by the kernels' time
+    (``cpu_seconds``: on the GPU the batch's wall time, launches and device included,
+    compilation and the initial states excluded; on the CPU the process time)."""
+    import xarray as xr
+
+    from kinetic.dsmc import simulate_cooling_modes, simulate_cooling_modes_points
+
+    points = _cooling_points(n, fictive, realizations, steps, backend, rule, seed, samples, alphas)
+    cells = points[0]["cells_per_side"]
     start = time.perf_counter()
     if len(points) > 1:
         ds = xr.concat(simulate_cooling_modes_points(points), "realization")
@@ -637,6 +646,105 @@ def memory_bound(quick: bool) -> dict[str, Any]:
     return _memory_bound(200_000, 10 if quick else 50, 5 if quick else 20)
 
 
+PHASE_BYTES = {"centre": 0, "stream": 72, "scan": 0, "scatter": 16, "collide": 104}
+"""Least DRAM bytes per simulated particle of each phase of an inhomogeneous DSMC step
+(kinetic.dsmc.inhomogeneous_gpu, d = 2, float64 positions and velocities, int64 labels
+and indices): the streaming reads and writes a particle's position and velocity (64) and
+writes its cell (8); the scatter reads the cell and writes the particle's index into its
+slot (16); the collision phase reads the index (8), gathers the position, velocity and
+labels from scattered addresses (48) and writes them in cell order (48); the collided
+pairs (about 4 % of the particles a step at costantini2010's δt) are left out. The centre
+of mass and the scan touch a few numbers per cell. 192 bytes a particle-step in all (the
+counts' integer atomics aside, which go to the L2 cache)."""
+
+
+def _inhomogeneous_phases(points, repeats: int) -> dict[str, Any]:
+    """Each phase of an inhomogeneous DSMC step (the launched path: five launches) timed
+    alone within whole steps of the batch of ``points`` (``_cooling_points``: one run a
+    restitution, as a grouped paper job), against its bytes (``PHASE_BYTES``) at the GPU's
+    copy bandwidth; an empty launch (what a launch costs through numba's dispatcher,
+    included in every phase's time), a whole launched step and a step of the cooperative
+    path."""
+    from kinetic import gpu as device
+    from kinetic.dsmc import inhomogeneous_gpu as engine
+    from kinetic.dsmc.inhomogeneous import CoolingModesSettings, realization_streams
+
+    fields = CoolingModesSettings.__dataclass_fields__
+    rows = [
+        (
+            CoolingModesSettings(**{key: point[key] for key in fields}),
+            realization_streams(point["seed"], 0, point["n_realizations"]),
+        )
+        for point in points
+    ]
+    batch = engine._Batch(rows, 1)
+    count = batch.count
+    particles = count * batch.n
+    copy = _copy_seconds(4 * particles, repeats)  # positions and velocities
+    copy_bandwidth = 2 * 8 * 4 * particles / copy
+    one = (device.device_zeros(1), device.device_zeros(1))
+    empty = _launch_seconds(lambda: device.stream_copy[1, device.BLOCK](*one), repeats)
+    times: dict[str, list[float]] = {name: [] for name in PHASE_BYTES}
+
+    def timed(name, launch):
+        device.synchronize()
+        start = time.perf_counter()
+        launch()
+        device.synchronize()
+        times[name].append(time.perf_counter() - start)
+
+    batch.launched_step(count)  # an untimed step first
+    for _ in range(repeats):
+        batch.launched_step(count, timed)
+    out: dict[str, Any] = {
+        "simulated_particles": batch.n,
+        "cells_per_side": batch.settings.cells_per_side,
+        "realizations": count,
+        "restitutions": [point["restitution"] for point in points],
+        "copy_bytes_per_second": copy_bandwidth,
+        "empty_launch_seconds": empty,
+        "phases": {},
+    }
+    for name, seconds in times.items():
+        median = float(np.median(seconds))
+        moved = PHASE_BYTES[name] * particles
+        out["phases"][name] = {
+            "seconds": median,
+            "seconds_per_particle": median / particles,
+            "bytes_per_particle": PHASE_BYTES[name],
+            "bytes_per_second": moved / median,
+            "fraction_of_copy_bandwidth": moved / median / copy_bandwidth,
+        }
+    launched = _launch_seconds(lambda: batch.launched_step(count), repeats)
+    bound = sum(PHASE_BYTES.values()) * particles / copy_bandwidth
+    out["step"] = {
+        "seconds": launched,
+        "particle_steps_per_second": particles / launched,
+        "bound_seconds": bound,
+        "bound_particle_steps_per_second": particles / bound,
+        "fraction_of_bound": bound / launched,
+    }
+    if batch.together:
+        steps = 4
+        together = _launch_seconds(lambda: batch.advance(steps, count), repeats) / steps
+        out["step_together"] = {
+            "steps_per_launch": steps,
+            "seconds": together,
+            "particle_steps_per_second": particles / together,
+            "fraction_of_bound": bound / together,
+        }
+    return out
+
+
+def inhomogeneous_bound(quick: bool) -> dict[str, Any]:
+    """Where the inhomogeneous DSMC's step spends its time at the shape of paper.yaml's
+    grouped costantini2010 job (the six α of N = 3000 × Λ = 10, 16 realizations each: 2.9
+    × 10⁶ simulated particles), phase by phase against the memory bandwidth
+    (``_inhomogeneous_phases``)."""
+    points = _cooling_points(3000, 10, 16, 4, "cuda", "paper", alphas=_GROUPED_ALPHAS)
+    return _inhomogeneous_phases(points, 3 if quick else 10)
+
+
 _STARTUP_JOBS = {
     "cloning": (
         "from kinetic.cloning import simulate as front\n"
@@ -715,6 +823,7 @@ def job_startup(quick: bool) -> dict[str, Any]:
 
 SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
     "memory_bound": memory_bound,
+    "inhomogeneous_bound": inhomogeneous_bound,
     "inhomogeneous_speed": inhomogeneous_speed,
     "cloning_speed": cloning_speed,
     "dsmc_paper_job": dsmc_paper_job,
@@ -724,7 +833,7 @@ SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
     "dsmc_speed": dsmc_speed,
 }
 """In the order a short device lease should spend its minutes: what no GPU has timed yet
-(the bound, the cooperative inhomogeneous DSMC, the resident cloning kernel, the paper
+(the bounds, the cooperative and grouped inhomogeneous DSMC, the resident cloning kernel, the paper
 job, the startup) before what an H100 has measured once (the speeds and physics of the
 first cloning and homogeneous DSMC kernels)."""
 

@@ -579,33 +579,56 @@ class _Batch:
             if n_steps % 2:
                 self.buffers = self.buffers[::-1]
             return
+        for _ in range(n_steps):
+            self.launched_step(count)
+
+    def launched_step(self, count: int, run=None) -> None:
+        """One step of the first ``count`` realizations as five launches (``_centre``,
+        ``_stream``, ``_scan``, ``_scatter``, ``_collide``), then the buffers swapped.
+        ``run(name, launch)`` makes each launch (``launch()``; the bench times them one by
+        one); by default they are launched in turn."""
+        source, target = self.buffers
+        position, velocity, _labels = source
         particles = (self.spread_blocks, count)
         cell_grid = (grid(self.n_cells), count)
-        for _ in range(n_steps):
-            source, target = self.buffers
-            position, velocity, _labels = source
-            _centre[count, BLOCK](self.moments, self.u, self.cell_start, 1.0 / self.n)
-            _stream[particles, THREADS](
-                position,
-                velocity,
-                self.cell_of,
-                self.cell_start,
-                self.u,
-                self.rows,
-                self.stream_arguments,
-            )
-            _scan[count, BLOCK](self.cell_start, self.fill)
-            _scatter[particles, THREADS](self.cell_of, self.fill, self.order)
-            _collide[cell_grid, BLOCK](
-                source,
-                target,
-                self.order,
-                self.cell_start,
-                self.cells,
-                self.rows,
-                self.collide_arguments,
-            )
-            self.buffers = (target, source)
+        phases = (
+            (
+                "centre",
+                lambda: _centre[count, BLOCK](self.moments, self.u, self.cell_start, 1.0 / self.n),
+            ),
+            (
+                "stream",
+                lambda: _stream[particles, THREADS](
+                    position,
+                    velocity,
+                    self.cell_of,
+                    self.cell_start,
+                    self.u,
+                    self.rows,
+                    self.stream_arguments,
+                ),
+            ),
+            ("scan", lambda: _scan[count, BLOCK](self.cell_start, self.fill)),
+            ("scatter", lambda: _scatter[particles, THREADS](self.cell_of, self.fill, self.order)),
+            (
+                "collide",
+                lambda: _collide[cell_grid, BLOCK](
+                    source,
+                    target,
+                    self.order,
+                    self.cell_start,
+                    self.cells,
+                    self.rows,
+                    self.collide_arguments,
+                ),
+            ),
+        )
+        for name, launch in phases:
+            if run is None:
+                launch()
+            else:
+                run(name, launch)
+        self.buffers = (target, source)
 
     def together_arguments(self, n_steps: int, count: int) -> tuple:
         """The arguments of ``_advance_together`` for ``n_steps`` steps of the first
