@@ -169,8 +169,10 @@ JOB_TABLE_COLUMNS = (
     "measured_s",
     "measured_cpu_s",
     "measured_max_rss_mb",
+    "outputs",
 )
-"""Columns of :func:`job_table`."""
+"""Columns of :func:`job_table`: ``output`` is the job's first file, ``outputs`` every file
+it writes (several for a job of several points in the same GPU launches), space-separated."""
 
 
 def job_table(directory: str | Path, jobs: Iterable[Job]) -> list[dict[str, Any]]:
@@ -192,6 +194,7 @@ def job_table(directory: str | Path, jobs: Iterable[Job]) -> list[dict[str, Any]
             "measured_s": "",
             "measured_cpu_s": "",
             "measured_max_rss_mb": "",
+            "outputs": " ".join(job.files),
         }
         path = Path(directory) / job.benchmark if job.benchmark else None
         if path is not None and path.is_file():

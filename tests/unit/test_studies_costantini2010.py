@@ -75,3 +75,39 @@ def test_keys_that_contradict_each_other_are_refused():
     settings = section() | {"fit_start": 10, "max_lag": 3}
     with pytest.raises(ValueError, match="fit_start = 10 l/v_s starts the tail fit"):
         study.check({"costantini2010": settings})
+
+
+def test_cuda_groups_the_grid_runs_of_each_n_with_their_own_arguments_and_seeds():
+    """With ``backend: cuda`` every DSMC run is in exactly one place: a grid group of its N
+    (every α of the config, in order) or a job of its own; a grouped run gets the
+    arguments and seed its own job would have (so its file is the same), and the job
+    table lists every file of the group's job."""
+    from kinetic import plan
+    from kinetic.config import load_configs
+
+    config = load_configs([CONFIG / "paper.yaml"])
+    paper = config["costantini2010"]
+    groups = study.dsmc_groups(paper, "cuda")
+    assert study.dsmc_groups(paper, "cpu") == {}
+    assert list(groups) == [f"n{n}" for n in paper["particles"]]
+    for name, runs in groups.items():
+        assert [run.restitution for run in runs] == paper["restitutions"]
+        assert {run.n_particles for run in runs} == {int(name[1:])}
+    grouped = [run.name for runs in groups.values() for run in runs]
+    dsmc = [name for name, run in study.runs(paper).items() if run.engine == "dsmc"]
+    assert sorted(grouped + study.single_dsmc_runs(paper, "cuda")) == sorted(dsmc)
+    assert study.single_dsmc_runs(paper, "cpu") == dsmc
+
+    cpu_jobs = study.jobs(config | {"backend": "cpu"})
+    cuda_jobs = study.jobs(config | {"backend": "cuda"})
+    own = {job.output: job.arguments for job in cpu_jobs if job.output.endswith("batch0000.nc")}
+    table = {row["output"]: row for row in plan.job_table(".", cuda_jobs)}
+    for name in groups:
+        (job,) = [job for job in cuda_jobs if job.rule == study.group_rule(name)]
+        assert table[job.output]["outputs"].split() == list(job.files)
+        for path, point in zip(job.files, job.arguments["points"], strict=True):
+            alone = own[path]  # the cpu job of the run's first realizations
+            assert point["seed"] == alone["seed"] and point["backend"] == "cuda"
+            for key in set(alone) - {"label", "n_realizations", "backend"}:
+                assert point[key] == alone[key], (path, key)
+            assert point["n_realizations"] == paper["realizations"]
