@@ -49,6 +49,7 @@ __all__ = [
     "figure_runs",
     "grid_runs",
     "group_files",
+    "group_name",
     "group_rule",
     "jobs",
     "mean_free_path",
@@ -281,6 +282,12 @@ def group_rule(group: str) -> str:
     return f"costantini2010_simulate_dsmc_grid_{group}"
 
 
+def group_name(group: str) -> str:
+    """The path of a group's job under the results root's logs/, without its suffix: its
+    log (``.log``) and, under ``benchmarks/``, its Snakemake benchmark file (``.tsv``)."""
+    return f"costantini2010/dsmc/grid/{group}"
+
+
 def group_files(study: Mapping[str, Any], group: list[Run]) -> list[str]:
     """The files a group's job writes (under the results root): each run's one batch."""
     return [batch_file(run, batch_plan(study, run, "cuda")[0]) for run in group]
@@ -353,7 +360,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
             points_job(
                 document="costantini2010",
                 rule=group_rule(name),
-                group=f"costantini2010/dsmc/grid/{name}",
+                group=group_name(name),
                 outputs=group_files(study, group),
                 front="kinetic.dsmc:simulate_cooling_modes_points",
                 points=group_points,

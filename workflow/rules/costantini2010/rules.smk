@@ -60,9 +60,9 @@ for group, group_runs in costantini2010_dsmc_groups().items():
                 )
             ],
         log:
-            log_file(f"costantini2010/dsmc/grid/{group}.log"),
+            log_file(f"{costantini2010_study.group_name(group)}.log"),
         benchmark:
-            log_file(f"benchmarks/costantini2010/dsmc/grid/{group}.tsv")
+            log_file(f"benchmarks/{costantini2010_study.group_name(group)}.tsv")
         threads: 1
         resources:
             runtime=planned_runtime,
