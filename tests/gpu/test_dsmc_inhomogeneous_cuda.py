@@ -29,6 +29,7 @@ from kinetic.dsmc import (
     new_cooling_gas,
     realization_streams,
     simulate_cooling_modes,
+    simulate_cooling_modes_points,
 )
 from kinetic.dsmc import inhomogeneous as front
 
@@ -124,6 +125,8 @@ def test_cuda_without_a_gpu_stops_before_any_work(monkeypatch):
     monkeypatch.setattr(inhomogeneous_gpu, "run_points", no_work)
     with pytest.raises(backends.BackendUnavailable, match="no usable NVIDIA GPU"):
         _run("cuda")
+    with pytest.raises(backends.BackendUnavailable, match="no usable NVIDIA GPU"):
+        simulate_cooling_modes_points([{**TINY, "backend": "cuda"}] * 2)
 
 
 def test_dataset_has_the_cpu_layout(tiny_runs, assert_cpu_layout):
@@ -170,8 +173,6 @@ def test_runs_sharing_launches_give_what_they_give_alone(tiny_runs, short_elasti
     0.8 with drag and four samples (three realizations in one batch, the shorter run
     idling through the last two samples) give the datasets each gives alone, bit for bit:
     each realization its own restitution and drag, each run its own samples and tallies."""
-    from kinetic.dsmc import simulate_cooling_modes_points
-
     points = [{**TINY, **SHORT_ELASTIC, "backend": "cuda"}, {**TINY, "backend": "cuda"}]
     together = simulate_cooling_modes_points(points)
     for got, alone in zip(together, (short_elastic_run, tiny_runs[1]), strict=True):
@@ -182,7 +183,7 @@ def test_runs_sharing_launches_give_what_they_give_alone(tiny_runs, short_elasti
 
 
 def test_runs_of_one_launch_must_share_their_cells_before_any_work(monkeypatch):
-    from kinetic.dsmc import inhomogeneous_gpu, simulate_cooling_modes_points
+    from kinetic.dsmc import inhomogeneous_gpu
 
     def no_work(*args, **kwargs):
         raise AssertionError("work started")

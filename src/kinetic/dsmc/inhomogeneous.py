@@ -46,6 +46,7 @@ __all__ = [
     "COLLISION_RULES",
     "MAX_COLLISIONS_PER_STEP",
     "MAX_DRAG_PER_STEP",
+    "SHARED_SETTINGS",
     "CoolingModesGas",
     "CoolingModesSettings",
     "new_cooling_gas",
@@ -61,6 +62,17 @@ MAX_COLLISIONS_PER_STEP = 0.1
 
 MAX_DRAG_PER_STEP = 0.1
 """Largest ω0 Δτ: the drag's relative velocity change over one step."""
+
+SHARED_SETTINGS = (
+    "n_particles",
+    "density",
+    "fictive_factor",
+    "cells_per_side",
+    "time_step",
+    "collision_rule",
+)
+"""Settings that runs sharing GPU launches (``simulate_cooling_modes_points``) must share:
+the batch's array shapes, its cells and its step; restitution and drag rate may differ."""
 
 _ROUNDING = 1.0 + 1e-12
 """A step given in mean free times lands on a limit up to rounding: the limit is allowed."""
@@ -467,23 +479,21 @@ def simulate_cooling_modes_points(points, *, label: str | None = None):
     """Several runs of the ``cuda`` backend in the same GPU launches (``points``: the
     keyword arguments of ``simulate_cooling_modes`` each, with ``backend='cuda'``). The
     runs share N, density, Λ, cells, time step, collision rule, equilibration and sample
-    interval (``kinetic.dsmc.inhomogeneous_gpu.SHARED``: the batch's arrays, cells and
-    schedule); restitution, drag rate, number of samples, seed and realizations may
-    differ, so that the runs of several α fill one GPU together. Every point is validated
-    before any work; returns the list of datasets ``simulate_cooling_modes`` would return
-    for the points one at a time: the same numbers, bit for bit (a realization does not
-    depend on the others of its batch), ``cpu_seconds`` aside (the wall time of the whole
-    batch per realization)."""
+    interval (``SHARED_SETTINGS``: the batch's arrays, cells and schedule); restitution,
+    drag rate, number of samples, seed and realizations may differ, so that the runs of
+    several α fill one GPU together (a point's ``label`` is not used: ``label`` names the
+    batch's progress lines). Every point is validated before any work; returns the list
+    of datasets ``simulate_cooling_modes`` would return for the points one at a time: the
+    same numbers, bit for bit (a realization does not depend on the others of its batch),
+    ``cpu_seconds`` aside (the wall time of the whole batch per realization)."""
     runs = [_Run({**point, "label": None}) for point in points]
     if not runs:
         raise ValueError("simulate_cooling_modes_points needs at least one point")
-    from kinetic.dsmc.inhomogeneous_gpu import SHARED
-
     for key in ("backend", "equilibration", "sample_interval"):
         values = {run.p[key] for run in runs}
         if len(values) > 1:
             raise ValueError(f"the points of one launch must share {key}, got {sorted(values)}")
-    for key in SHARED:
+    for key in SHARED_SETTINGS:
         values = {getattr(run.settings, key) for run in runs}
         if len(values) > 1:
             raise ValueError(f"the points of one launch must share {key}, got {sorted(values)}")

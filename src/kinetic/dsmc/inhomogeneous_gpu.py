@@ -5,7 +5,7 @@ All realizations of a call advance together on one GPU: realization r is row r o
 ``(R, 2, N_sim)`` arrays (each row the CPU engine's struct of arrays, double-buffered by
 swapping two device arrays) and of ``(R, M², ·)`` per-cell arrays; every kernel covers
 all realizations. The realizations may belong to several runs that share N, density, Λ,
-cells, time step and rule (``SHARED``; ``run_points``, behind
+cells, time step and rule (``inhomogeneous.SHARED_SETTINGS``; ``run_points``, behind
 ``simulate_cooling_modes_points``: the runs of several α): what depends on α (the drag's
 free flight and growth, (1 + α)/2, the energy lost) is a row parameter (``rows``), and the
 runs, longest first, keep step together; a run that is done sits in the last rows, which
@@ -77,7 +77,7 @@ from kinetic import rng
 from kinetic.backends import simulated
 from kinetic.dsmc import inhomogeneous_kernels as kernels
 from kinetic.dsmc.gpu import MAX_BLOCKS, THREADS, _block_sums
-from kinetic.dsmc.inhomogeneous import CoolingModesSettings, new_cooling_gas
+from kinetic.dsmc.inhomogeneous import SHARED_SETTINGS, CoolingModesSettings, new_cooling_gas
 from kinetic.gpu import (
     BLOCK,
     block_exclusive_scan,
@@ -93,7 +93,7 @@ from kinetic.gpu import (
 )
 from kinetic.progress import logger
 
-__all__ = ["N_SUMS", "SHARED", "run_points"]
+__all__ = ["N_SUMS", "run_points"]
 
 N_SUMS = 8
 """Particle sums of an observation: Σw_x, Σw_y, the four mode terms, Σw_x², Σw_y²."""
@@ -453,17 +453,6 @@ TOGETHER = True
 where the GPU allows it; False: five launches a step (``python -m kinetic.bench cuda``
 times both). The numbers are the same either way."""
 
-SHARED = (
-    "n_particles",
-    "density",
-    "fictive_factor",
-    "cells_per_side",
-    "time_step",
-    "collision_rule",
-)
-"""Settings the runs of one batch share (its arrays' shapes, its cells and its step);
-restitution and drag rate may differ from run to run."""
-
 
 def _cooperative_blocks(batch) -> int:
     """Thread blocks of ``_advance_together``'s grid for ``batch``: as many as the GPU
@@ -500,7 +489,8 @@ def _row_parameters(settings) -> list[float]:
 
 
 class _Batch:
-    """Device state of the realizations of one or several runs that share ``SHARED``
+    """Device state of the realizations of one or several runs that share
+    ``SHARED_SETTINGS``
     (``points``: (settings, streams) pairs, row after row), and the launches of a step.
     ``advance`` and ``observe`` act on the first ``count`` rows: a run that ends before
     the others sits in the last rows and idles once it is done."""
@@ -508,7 +498,7 @@ class _Batch:
     def __init__(self, points, n_samples: int):
         settings = points[0][0]
         for other, _ in points:
-            for key in SHARED:
+            for key in SHARED_SETTINGS:
                 if getattr(other, key) != getattr(settings, key):
                     raise ValueError(f"the runs of one batch must share {key}")
         n = settings.n_simulated
@@ -675,7 +665,8 @@ class _Batch:
 def run_points(points, warm, first_steps, stride, progress=None):
     """Run the realizations of several runs together on the GPU.
 
-    ``points`` are (settings, streams, n_samples, out) of runs that share ``SHARED`` (one
+    ``points`` are (settings, streams, n_samples, out) of runs that share
+    ``inhomogeneous.SHARED_SETTINGS`` (one
     row of ``streams`` a realization); restitution, drag, streams and ``n_samples`` may
     differ. Every run follows the CPU front's schedule: ``warm`` steps, then
     ``first_steps`` before the first sample and ``stride`` before each later one, so the
