@@ -9,11 +9,8 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 CORES ?= all
-# pytest-xdist workers of make test / test-fast (each with its own numba cache). A test
-# file's tests run on one worker, so that its module fixtures are computed once; the files
-# go out in the order tests/conftest.py sorts their tests (the ci build's file first)
+# pytest-xdist workers of make test / test-fast (each with its own numba cache)
 TEST_WORKERS ?= 2
-XDIST = -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder
 CONFIG ?= config/config.yaml
 # extra snakemake options, e.g. SNAKEMAKE_ARGS=-n for a dry run
 SNAKEMAKE_ARGS ?=
@@ -42,10 +39,10 @@ lint: install
 	$(BIN)/snakefmt --check Snakefile workflow
 
 test: lint
-	$(TIMED) results/timings/test.json -- $(BIN)/python -m pytest $(XDIST)
+	$(TIMED) results/timings/test.json -- $(BIN)/python -m pytest -n $(TEST_WORKERS) --maxschedchunk 1
 
 test-fast: lint
-	$(BIN)/python -m pytest $(XDIST) -m "not slow and not cluster"
+	$(BIN)/python -m pytest -n $(TEST_WORKERS) --maxschedchunk 1 -m "not slow and not cluster"
 
 docs: install
 	$(BIN)/python -m kinetic.docs collect
