@@ -194,14 +194,24 @@ def cloning_speed(quick: bool) -> dict[str, Any]:
     }
 
 
-def _paper_lambdas(kernel: str) -> list[float]:
-    """The counting fields of the paper config's cloning figures for ``kernel``."""
+def _paper_config() -> dict[str, Any]:
+    """config/paper.yaml of the repository, validated with the schema's defaults."""
     from pathlib import Path
 
     from kinetic.config import load_configs
 
-    paper = Path(__file__).resolve().parents[3] / "config" / "paper.yaml"
-    return list(load_configs([paper])["visco2008"]["cloning"]["kernels"][kernel]["lambdas"])
+    return load_configs([Path(__file__).resolve().parents[3] / "config" / "paper.yaml"])
+
+
+def _paper_lambdas(kernel: str) -> list[float]:
+    """The counting fields of the paper config's cloning figures for ``kernel``."""
+    return list(_paper_config()["visco2008"]["cloning"]["kernels"][kernel]["lambdas"])
+
+
+def _paper_restitutions() -> tuple[float, ...]:
+    """paper.yaml's costantini2010 restitutions: the runs of one
+    ``costantini2010_simulate_dsmc_grid_n<N>`` job."""
+    return tuple(float(alpha) for alpha in _paper_config()["costantini2010"]["restitutions"])
 
 
 def cloning_physics(quick: bool) -> dict[str, Any]:
@@ -446,15 +456,11 @@ def inhomogeneous_speed(quick: bool) -> dict[str, Any]:
         paths.append(case)
     steps = 4000 // scale  # the six α of N = 3000 in one batch, as a grouped paper job
     grouped = _inhomogeneous(
-        3000, 10, 16, steps, "cuda", "paper", samples=steps // 4, alphas=_GROUPED_ALPHAS
+        3000, 10, 16, steps, "cuda", "paper", samples=steps // 4, alphas=_paper_restitutions()
     )
     grouped["path"] = "together" if inhomogeneous_gpu.TOGETHER else "launched"
     grouped["seconds_per_step"] = grouped["kernel_seconds"] / grouped["steps"]
     return {"gpu": gpu, "cpu_one_core": cpu, "paths": paths, "grouped": grouped}
-
-
-_GROUPED_ALPHAS = (1.0, 0.9, 0.8, 0.7, 0.6, 0.5)
-"""paper.yaml's restitutions: the runs of a ``costantini2010_simulate_dsmc_grid_n<N>`` job."""
 
 
 def dsmc_scaling(quick: bool) -> dict[str, Any]:
@@ -474,13 +480,9 @@ def dsmc_scaling(quick: bool) -> dict[str, Any]:
 def _paper_job(backend: str) -> tuple[Any, Any]:
     """The first montanero2007 job of the paper config with ``backend`` (α = 0.3,
     N = 2 × 10⁵, the paper's δt and duration, a batch of realizations) and its front."""
-    from pathlib import Path
-
     from kinetic import studies
-    from kinetic.config import load_configs
 
-    paper = Path(__file__).resolve().parents[3] / "config" / "paper.yaml"
-    config = load_configs([paper]) | {"backend": backend}
+    config = _paper_config() | {"backend": backend}
     job = next(j for j in studies.jobs(config) if j.rule == "montanero2007_simulate_dsmc")
     return job, studies.front(job.front)
 
@@ -619,24 +621,36 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     }
     for name, launch in passes.items():
         seconds = _launch_seconds(launch, repeats)
-        moved = PASS_BYTES.get(name, 0) * particles
-        out["passes"][name] = {
-            "seconds": seconds,
-            "seconds_per_particle": seconds / particles,
-            "bytes_per_particle": PASS_BYTES.get(name, 0),
-            "bytes_per_second": moved / seconds,
-            "fraction_of_copy_bandwidth": moved / seconds / copy_bandwidth,
-        }
+        out["passes"][name] = _traffic(seconds, PASS_BYTES.get(name, 0), particles, copy_bandwidth)
     step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
-    bound = sum(PASS_BYTES.values()) * particles / copy_bandwidth
-    out["step"] = {
-        "seconds": step,
-        "particle_steps_per_second": particles / step,
+    out["step"] = _against_bound(step, sum(PASS_BYTES.values()), particles, copy_bandwidth)
+    return out
+
+
+def _traffic(seconds, bytes_per_particle, particles, copy_bandwidth) -> dict[str, float]:
+    """A pass (phase) of ``seconds`` over ``particles`` that moves at least
+    ``bytes_per_particle`` each: its bytes per second, against the copy bandwidth."""
+    moved = bytes_per_particle * particles
+    return {
+        "seconds": seconds,
+        "seconds_per_particle": seconds / particles,
+        "bytes_per_particle": bytes_per_particle,
+        "bytes_per_second": moved / seconds,
+        "fraction_of_copy_bandwidth": moved / seconds / copy_bandwidth,
+    }
+
+
+def _against_bound(seconds, bytes_per_particle, particles, copy_bandwidth) -> dict[str, float]:
+    """A whole step of ``seconds`` against the time its least traffic
+    (``bytes_per_particle`` each) takes at the copy bandwidth."""
+    bound = bytes_per_particle * particles / copy_bandwidth
+    return {
+        "seconds": seconds,
+        "particle_steps_per_second": particles / seconds,
         "bound_seconds": bound,
         "bound_particle_steps_per_second": particles / bound,
-        "fraction_of_bound": bound / step,
+        "fraction_of_bound": bound / seconds,
     }
-    return out
 
 
 def memory_bound(quick: bool) -> dict[str, Any]:
@@ -707,31 +721,16 @@ def _inhomogeneous_phases(points, repeats: int) -> dict[str, Any]:
     }
     for name, seconds in times.items():
         median = float(np.median(seconds))
-        moved = PHASE_BYTES[name] * particles
-        out["phases"][name] = {
-            "seconds": median,
-            "seconds_per_particle": median / particles,
-            "bytes_per_particle": PHASE_BYTES[name],
-            "bytes_per_second": moved / median,
-            "fraction_of_copy_bandwidth": moved / median / copy_bandwidth,
-        }
+        out["phases"][name] = _traffic(median, PHASE_BYTES[name], particles, copy_bandwidth)
+    step_bytes = sum(PHASE_BYTES.values())
     launched = _launch_seconds(lambda: batch.launched_step(count), repeats)
-    bound = sum(PHASE_BYTES.values()) * particles / copy_bandwidth
-    out["step"] = {
-        "seconds": launched,
-        "particle_steps_per_second": particles / launched,
-        "bound_seconds": bound,
-        "bound_particle_steps_per_second": particles / bound,
-        "fraction_of_bound": bound / launched,
-    }
+    out["step"] = _against_bound(launched, step_bytes, particles, copy_bandwidth)
     if batch.together:
         steps = 4
         together = _launch_seconds(lambda: batch.advance(steps, count), repeats) / steps
         out["step_together"] = {
             "steps_per_launch": steps,
-            "seconds": together,
-            "particle_steps_per_second": particles / together,
-            "fraction_of_bound": bound / together,
+            **_against_bound(together, step_bytes, particles, copy_bandwidth),
         }
     return out
 
@@ -741,7 +740,7 @@ def inhomogeneous_bound(quick: bool) -> dict[str, Any]:
     grouped costantini2010 job (the six α of N = 3000 × Λ = 10, 16 realizations each: 2.9
     × 10⁶ simulated particles), phase by phase against the memory bandwidth
     (``_inhomogeneous_phases``)."""
-    points = _cooling_points(3000, 10, 16, 4, "cuda", "paper", alphas=_GROUPED_ALPHAS)
+    points = _cooling_points(3000, 10, 16, 4, "cuda", "paper", alphas=_paper_restitutions())
     return _inhomogeneous_phases(points, 3 if quick else 10)
 
 

@@ -489,12 +489,8 @@ def simulate_cooling_modes_points(points, *, label: str | None = None):
     runs = [_Run({**point, "label": None}) for point in points]
     if not runs:
         raise ValueError("simulate_cooling_modes_points needs at least one point")
-    for key in ("backend", "equilibration", "sample_interval"):
+    for key in ("backend", "equilibration", "sample_interval", *SHARED_SETTINGS):
         values = {run.p[key] for run in runs}
-        if len(values) > 1:
-            raise ValueError(f"the points of one launch must share {key}, got {sorted(values)}")
-    for key in SHARED_SETTINGS:
-        values = {getattr(run.settings, key) for run in runs}
         if len(values) > 1:
             raise ValueError(f"the points of one launch must share {key}, got {sorted(values)}")
     if runs[0].p["backend"] != "cuda":

@@ -77,7 +77,7 @@ from kinetic import rng
 from kinetic.backends import simulated
 from kinetic.dsmc import inhomogeneous_kernels as kernels
 from kinetic.dsmc.gpu import MAX_BLOCKS, THREADS, _block_sums
-from kinetic.dsmc.inhomogeneous import SHARED_SETTINGS, CoolingModesSettings, new_cooling_gas
+from kinetic.dsmc.inhomogeneous import CoolingModesSettings, new_cooling_gas
 from kinetic.gpu import (
     BLOCK,
     block_exclusive_scan,
@@ -496,11 +496,7 @@ class _Batch:
     the others sits in the last rows and idles once it is done."""
 
     def __init__(self, points, n_samples: int):
-        settings = points[0][0]
-        for other, _ in points:
-            for key in SHARED_SETTINGS:
-                if getattr(other, key) != getattr(settings, key):
-                    raise ValueError(f"the runs of one batch must share {key}")
+        settings = points[0][0]  # the front checked that the runs share SHARED_SETTINGS
         n = settings.n_simulated
         n_cells = settings.cells_per_side**2
         count = sum(streams.shape[0] for _, streams in points)
