@@ -23,7 +23,8 @@ cached kernels, which recompile on their next use.
 
 Several processes compiling into one cache at once can corrupt it (numba issue 4807).
 Every simulation job therefore starts with :func:`warm` for each engine it runs: the first
-job after an edit compiles the engine's kernels while holding a lock beside the cache, the
+job after an edit compiles the kernels its front runs (where the engine lists them by
+front, else all the engine's) while holding the engine's lock beside the cache, the
 others wait for it and then load; once a marker records that the cache holds the kernels
 of these sources, for this CPU and numba version, jobs skip the lock.
 """
@@ -133,36 +134,55 @@ def _warm_key(engine: str) -> str:
     return digest.hexdigest()[:16]
 
 
-def warm(engine: str) -> float:
-    """Make sure numba's cache holds every kernel of ``engine`` (``kinetic.<engine>``'s
-    ``warmup()``) for the current sources; returns the seconds spent compiling or waiting.
+def warm(engine: str, front: str | None = None) -> float:
+    """Make sure numba's cache holds the kernels of ``engine`` for the current sources;
+    returns the seconds spent compiling or waiting.
 
-    A marker file beside the cache, named by :func:`_warm_key`, records a finished warm-up:
-    with it, nothing is done (the job loads the kernels it calls). Without it, the process
-    takes an exclusive lock on ``kinetic-warm-<engine>.lock`` there, checks the marker
-    again (another job may have compiled meanwhile), runs ``warmup()`` (compiling into
-    the cache, or loading what is there), writes the marker and removes the markers of
-    earlier sources. Parallel jobs of one build, and two builds of one checkout, thus
-    compile each engine once, never concurrently into the same cache files.
+    ``front`` names a function of the engine package (``"simulate_homogeneous"``): where
+    the package's ``WARMUPS`` has an entry for it, only the kernels that front runs are
+    compiled (a montanero2007 job does not compile costantini2010's cooling-modes
+    kernels); otherwise, or without ``front``, every kernel (``kinetic.<engine>``'s
+    ``warmup()``).
+
+    A marker file beside the cache, named by :func:`_warm_key`, records a finished warm-up
+    (of the whole engine, or for one front, whether or not the engine lists it): with the
+    engine's marker or the front's, nothing is done (the job loads the kernels it calls).
+    Without it, the process takes an exclusive lock on ``kinetic-warm-<engine>.lock``
+    there (one lock per engine, whatever the front), checks the marker again (another job
+    may have compiled meanwhile), runs the warm-up (compiling into the cache, or loading
+    what is there), writes the marker and removes the markers of earlier sources.
+    Parallel jobs of one build, and two builds of one checkout, thus compile each kernel
+    once, never two at the same time into the same cache files.
     """
+    directory = cache_directory(engine)
+    key = _warm_key(engine)
+    if _marker(directory, engine, key).exists():
+        return 0.0
 
     def warmup():  # the engine is imported only if its cache needs warming
-        importlib.import_module(f"kinetic.{engine}").warmup()
+        module = importlib.import_module(f"kinetic.{engine}")
+        getattr(module, "WARMUPS", {}).get(front, module.warmup)()
 
-    return once(cache_directory(engine), engine, _warm_key(engine), warmup)
+    name = engine if front is None else f"{engine}.{front}"
+    return once(directory, name, key, warmup, lock=engine)
 
 
-def once(directory: Path, name: str, key: str, action) -> float:
+def _marker(directory: Path, name: str, key: str) -> Path:
+    return directory / f"kinetic-warm-{name}-{key}.done"
+
+
+def once(directory: Path, name: str, key: str, action, lock: str | None = None) -> float:
     """Run ``action()`` unless the marker ``kinetic-warm-<name>-<key>.done`` in
-    ``directory`` says it ran; under an exclusive lock ``kinetic-warm-<name>.lock`` there,
-    so that concurrent processes run it once, never at the same time. Removes the markers
-    of other keys of ``name``. Returns the seconds spent running or waiting."""
-    marker = directory / f"kinetic-warm-{name}-{key}.done"
+    ``directory`` says it ran; under an exclusive lock ``kinetic-warm-<lock>.lock`` there
+    (``lock`` defaults to ``name``), so that concurrent processes run it once, never at
+    the same time. Removes the markers of other keys of ``name``. Returns the seconds
+    spent running or waiting."""
+    marker = _marker(directory, name, key)
     if marker.exists():
         return 0.0
     begin = time.perf_counter()
-    with open(directory / f"kinetic-warm-{name}.lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
+    with open(directory / f"kinetic-warm-{lock or name}.lock", "w") as lock_file:
+        fcntl.flock(lock_file, fcntl.LOCK_EX)
         if not marker.exists():
             action()
             for stale in directory.glob(f"kinetic-warm-{name}-*.done"):

@@ -14,9 +14,9 @@ or, for a simulation job (``workflow/scripts/simulate.py``, whose rule passes a
 
 which sends the ``kinetic`` logger (progress lines with ETA) and uncaught exceptions to
 ``snakemake.log[0]`` as well as to standard error, and limits numba to the job's threads.
-A simulation job also makes sure numba's cache holds the compiled kernels of the engines it runs
-before it runs them (``kinetic.jit.warm``): the first job after an edit compiles them
-under a lock, parallel jobs wait and load.
+A simulation job also makes sure numba's cache holds the compiled kernels it runs before
+it runs them (``kinetic.jit.warm``, :func:`warm_engines`): the first job after an edit
+compiles them under a lock, parallel jobs wait and load.
 """
 
 from __future__ import annotations
@@ -61,15 +61,24 @@ def start(snakemake: Any) -> logging.Logger:
     return logger
 
 
-def warm_engines(log: logging.Logger) -> None:
-    """Fill numba's cache with the kernels of every engine package the script has imported
-    (``kinetic.jit.warm``), before the job calls any of them."""
+def warm_engines(log: logging.Logger, front: Any = None) -> None:
+    """Fill numba's cache (``kinetic.jit.warm``), before the job calls any kernel, with the
+    kernels of the engine whose function the job's ``front`` is or runs (a study's front
+    that imports its engine only when called names that function in its
+    ``engine_front``, ``module:function``): those of that function alone where the engine
+    lists them (its ``WARMUPS``). Every other engine package the script has imported is
+    warmed whole."""
     from kinetic import jit
     from kinetic.sources import ENGINES
 
+    own, name = None, None
+    if front is not None:
+        target = getattr(front, "engine_front", f"{front.__module__}:{front.__name__}")
+        module, _, name = target.partition(":")
+        own = module.split(".")[1] if module.count(".") else None
     for engine in ENGINES:
-        if f"kinetic.{engine}" in sys.modules:
-            seconds = jit.warm(engine)
+        if engine == own or f"kinetic.{engine}" in sys.modules:
+            seconds = jit.warm(engine, name if engine == own else None)
             if seconds > 0.0:
                 log.info("kinetic.%s kernels in numba's cache after %.1f s", engine, seconds)
 
@@ -118,7 +127,7 @@ def run_job(snakemake: Any) -> tuple[logging.Logger, Any]:
 
     log = start(snakemake)
     front = studies.front(snakemake.params.front)
-    warm_engines(log)
+    warm_engines(log, front)
     job = dict(snakemake.params.job)
     result = front(**job)
     # a job of several points (``points``): a dataset each, written in the rule's order

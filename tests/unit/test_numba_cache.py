@@ -113,18 +113,22 @@ def test_kernel_sources_cover_the_engine_and_the_shared_modules():
 WARM = """
 import sys
 from kinetic import jit
-seconds = jit.warm("samplers")
+seconds = jit.warm("samplers", *sys.argv[1:])
 print("warm", seconds, "imported" if "kinetic.samplers" in sys.modules else "skipped")
 """
 
 
-def _warm_processes(package_root, cache, count):
-    """``count`` processes warming the samplers' cache at once: their numba cache lines."""
+def _warm_processes(package_root, cache, count, *front):
+    """``count`` processes warming the samplers' cache at once (of ``front`` alone, if
+    given): their numba cache lines."""
     environment = {**os.environ, "PYTHONPATH": str(package_root), "NUMBA_CACHE_DIR": str(cache)}
     environment["NUMBA_DEBUG_CACHE"] = "1"
     processes = [
         subprocess.Popen(
-            [sys.executable, "-c", WARM], env=environment, stdout=subprocess.PIPE, text=True
+            [sys.executable, "-c", WARM, *front],
+            env=environment,
+            stdout=subprocess.PIPE,
+            text=True,
         )
         for _ in range(count)
     ]
@@ -134,25 +138,31 @@ def _warm_processes(package_root, cache, count):
 
 
 @pytest.mark.slow
-def test_parallel_jobs_compile_an_engine_once_and_an_edit_warms_again(repository, tmp_path):
-    """kinetic.jit.warm: of jobs starting together, one compiles into the cache while the
-    others wait for it; with the cache filled for these sources, jobs do nothing;
-    after an edit of a file the kernels depend on, the next job compiles again."""
+def test_parallel_jobs_compile_a_front_once_and_an_edit_warms_again(repository, tmp_path):
+    """kinetic.jit.warm: of jobs of one front starting together, one compiles that front's
+    kernels (and no other's) into the cache while the others wait for it; a job of
+    another front compiles the rest; with the cache filled for these sources, jobs do
+    nothing; after an edit of a file the kernels depend on, the next job compiles again."""
     shutil.copytree(
         repository / "src" / "kinetic",
         tmp_path / "kinetic",
         ignore=shutil.ignore_patterns("__pycache__"),
     )
     cache = tmp_path / "cache"
-    first = _warm_processes(tmp_path, cache, 3)
+    first = _warm_processes(tmp_path, cache, 3, "sample_ring")
     saving = [output for output in first if "data saved" in output]
     assert len(saving) == 1, "exactly one job compiles into the cache"
+    assert "ring_markov" in saving[0] and "disks" not in saving[0], saving[0]
     # the others waited for the lock, then found the marker of the finished warm-up
     assert all("skipped" in output for output in first if output not in saving)
-    assert len(list(cache.rglob("kinetic-warm-samplers-*.done"))) == 1
 
-    (again,) = _warm_processes(tmp_path, cache, 1)
-    assert "warm 0.0 skipped" in again and "data" not in again  # the marker: nothing to do
+    (whole,) = _warm_processes(tmp_path, cache, 1)  # every kernel: the ring's are loaded
+    saved = "".join(line for line in whole.splitlines() if "data saved" in line)
+    assert "direct_disks" in saved and "ring_markov" not in saved, saved
+    assert len(list(cache.rglob("kinetic-warm-samplers-*.done"))) == 1
+    for front in ((), ("sample_ring",), ("sample_disks",)):
+        (again,) = _warm_processes(tmp_path, cache, 1, *front)
+        assert "warm 0.0 skipped" in again and "data" not in again  # the marker: nothing to do
 
     with open(tmp_path / "kinetic" / "rng.py", "a") as source:
         source.write("\n# an edit of a helper every engine inlines\n")

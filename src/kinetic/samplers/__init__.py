@@ -397,12 +397,14 @@ def sample_disks(
     )
 
 
-def warmup() -> None:
-    """Compile every kernel with the argument types production uses (numba cache=True)."""
-    sample_line(
-        "direct", n_pins=2, length=4.0, sigma=0.5, samples=2, realizations=2, bins=4, seed=0
-    )
-    sample_line("naive", n_pins=2, length=4.0, sigma=0.5, samples=2, realizations=2, bins=4, seed=0)
+def _warm_line() -> None:
+    for method in ("direct", "naive"):
+        sample_line(
+            method, n_pins=2, length=4.0, sigma=0.5, samples=2, realizations=2, bins=4, seed=0
+        )
+
+
+def _warm_ring() -> None:
     sample_ring(
         n_pins=2,
         length=4.0,
@@ -414,6 +416,28 @@ def warmup() -> None:
         bins=4,
         seed=0,
     )
+
+
+def _warm_snapshots() -> None:
     pin_snapshots(n_pins=2, length=4.0, sigma=0.5, count=1, seed=0)
+
+
+def _warm_disks() -> None:
     for method in ("direct", "markov"):
         sample_disks(method, n_disks=2, sigma=0.1, samples=2, realizations=2, bins=4, seed=0)
+
+
+WARMUPS = {
+    "sample_line": _warm_line,
+    "sample_ring": _warm_ring,
+    "pin_snapshots": _warm_snapshots,
+    "sample_disks": _warm_disks,
+}
+"""The kernels each front runs, compiled by ``kinetic.jit.warm('samplers', front)`` before a
+job of that front."""
+
+
+def warmup() -> None:
+    """Compile every kernel with the argument types production uses (numba cache=True)."""
+    for compile_kernels in WARMUPS.values():
+        compile_kernels()

@@ -290,6 +290,11 @@ def simulate_batch(
     return dataset.assign_attrs(steady_from_tau=float(histogram_start))
 
 
+simulate_batch.engine_front = "kinetic.dsmc:simulate_homogeneous"
+"""The engine function a job of this front runs: its jobs compile only that function's
+kernels (``kinetic.workflow_support.warm_engines``)."""
+
+
 def check(config: Mapping[str, Any]) -> None:
     """Stop before any job on a plan the schema cannot judge (:func:`run_plan` raises)."""
     if config.get("montanero2007"):
