@@ -78,6 +78,7 @@ def _dsmc_signatures():
         "_permute": (f3, f3, u2, uint64, f2, boolean),
         "_seed_groups": (u2, u3, u2),
         "_collide": (f3, u3, f3, f3, i3, f1, i1),
+        "_collide_columns": (f3, u3, f3, f3, i3, f1, i1, u2, i1, f2, boolean),
         "_force": (f3, f3, i1, float64, int64, f2, boolean),
         "_finish": (f3, int64, f2, f2, i1, f1, i1, boolean, u2),
         "_observe": (f3, f3, UniTuple(i2, 3), f1, i1, boolean, f2, boolean),

@@ -241,3 +241,31 @@ def test_speed_classes_conserve_the_particles_through_new_layouts(d):
         # the class bounds stay valid: the largest speeds reported bound every speed
         speeds = np.linalg.norm(velocity - bounds[:d, None], axis=0)
         assert bounds[d] >= speeds.max() * (1 - 1e-12)
+
+
+@pytest.mark.parametrize("n_particles", [20, 131, 2000, 2047])
+def test_column_groups_hold_every_particle_once_whatever_the_shifts(n_particles):
+    """``kernels.column_particle`` (the CUDA backend's ``columns`` regrouping): for random
+    shifts, the G groups of the column layout partition the N particles, each group
+    holding m or m - 1 of them, and a group changes its members from one draw to the next."""
+    n_rows = max(1, n_particles // 128)
+    n_columns = -(-n_particles // n_rows)
+    full_rows = n_particles - (n_columns - 1) * n_rows
+    generator = np.random.default_rng(n_particles)
+    groups = []
+    for _ in range(3):
+        shifts = generator.integers(0, n_rows, n_columns)
+        members = [
+            [
+                p
+                for j in range(n_columns)
+                if (p := kernels.column_particle(j, g, shifts[j], n_rows, n_columns, full_rows))
+                >= 0
+            ]
+            for g in range(n_rows)
+        ]
+        assert sorted(p for group in members for p in group) == list(range(n_particles))
+        assert {len(group) for group in members} <= {n_columns, n_columns - 1}
+        groups.append(members)
+    if n_rows > 1:
+        assert groups[0] != groups[1]

@@ -302,7 +302,8 @@ def _dsmc(n, realizations, duration, backend, seed=13, **extra) -> dict[str, Any
 def dsmc_speed(quick: bool) -> dict[str, Any]:
     """Homogeneous DSMC: collisions per second at N = 2 × 10⁵ × 50 realizations (and one
     realization, and 2 × 10⁶ × 5), the CPU engine on one core, and the HCS cooling rate and
-    a2 (α = 0.9) and the heat flux at ε* = 0.025 on the GPU."""
+    a2 (α = 0.9) and the heat flux at ε* = 0.025 on the GPU; the first case and the HCS
+    once more with the ``columns`` regrouping (``hcs_columns``)."""
     _dsmc(2000, 2, 1.0, "cuda")  # compile
     gpu = [_dsmc(200_000, 50, 20.0, "cuda", seed=s) for s in range(2)]
     gpu += [_dsmc(200_000, 1, 20.0, "cuda"), _dsmc(2_000_000, 5, 20.0, "cuda")]
@@ -312,6 +313,9 @@ def dsmc_speed(quick: bool) -> dict[str, Any]:
         "hcs": _dsmc(20_000, 16, 60.0, "cuda", seed=21),
         "forced": _dsmc(20_000, 48, 60.0, "cuda", seed=22, reduced_field=0.025),
     }
+    with _regrouping("columns"):  # the same HCS and the fullest launch, regrouped by columns
+        physics["hcs_columns"] = _dsmc(20_000, 16, 60.0, "cuda", seed=21)
+        gpu.append(_dsmc(200_000, 50, 20.0, "cuda") | {"regrouping": "columns"})
     for case in gpu:
         case["speedup_over_one_core"] = case["collisions_per_second"] / cpu["collisions_per_second"]
     return {"gpu": gpu, "cpu_one_core": cpu, "physics": physics}
@@ -539,6 +543,11 @@ particles a step at montanero2007's δt = 0.003 τ, are left out); the force ste
 writes every particle. 120 bytes a particle-step in all; the thermostat's reduction and
 the clock (``_finish``) touch a few numbers per realization."""
 
+COLUMNS_PASS_BYTES = {"collide_columns": 48, "force": 48}
+"""The same for the ``columns`` regrouping (``dsmc.gpu.REGROUPING``): a thread block reads
+its groups' particles from consecutive rows of each column and writes them back (48),
+then the force step as above: 96 bytes a particle-step."""
+
 
 def _launch_seconds(launch, repeats: int) -> float:
     """Median wall seconds of ``launch()`` to the GPU's completion, after one untimed call."""
@@ -573,7 +582,8 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     ``realizations`` x ``n`` particles: the GPU's coalesced copy bandwidth over arrays of
     the velocities' size, each pass of a step launched alone and the whole step, with the
     passes' bytes (``PASS_BYTES``) over their time and the step's time against the time
-    its 120 bytes a particle would take at the copy bandwidth."""
+    its 120 bytes a particle would take at the copy bandwidth; then the same step with the
+    ``columns`` regrouping (``columns``: its collision pass and whole step, 96 bytes)."""
     from kinetic import gpu as device
     from kinetic.dsmc import gpu as dsmc_gpu
     from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
@@ -624,7 +634,33 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
         out["passes"][name] = _traffic(seconds, PASS_BYTES.get(name, 0), particles, copy_bandwidth)
     step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
     out["step"] = _against_bound(step, sum(PASS_BYTES.values()), particles, copy_bandwidth)
+    del batch
+    with _regrouping("columns"):
+        batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations))
+    collide = _launch_seconds(batch._regroup_and_collide, repeats)
+    step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
+    out["columns"] = {
+        "passes": {
+            "collide_columns": _traffic(
+                collide, COLUMNS_PASS_BYTES["collide_columns"], particles, copy_bandwidth
+            )
+        },
+        "step": _against_bound(step, sum(COLUMNS_PASS_BYTES.values()), particles, copy_bandwidth),
+    }
     return out
+
+
+@contextlib.contextmanager
+def _regrouping(name: str):
+    """Make the homogeneous DSMC batches regroup by ``name`` (``dsmc.gpu.REGROUPING``)."""
+    from kinetic.dsmc import gpu as dsmc_gpu
+
+    saved = dsmc_gpu.REGROUPING
+    dsmc_gpu.REGROUPING = name
+    try:
+        yield
+    finally:
+        dsmc_gpu.REGROUPING = saved
 
 
 def _traffic(seconds, bytes_per_particle, particles, copy_bandwidth) -> dict[str, float]:

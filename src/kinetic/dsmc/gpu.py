@@ -33,6 +33,10 @@ launches with the Lie splitting, 6 with the Strang splitting, 2 more on a sample
      rounded up or down at random, without bias.
    Each group has its own xoshiro256+ stream (``thread_state`` of the realization's
    row after its Maxwellian start and the group index), kept on the device.
+   With ``REGROUPING = "columns"`` steps 1 and 2 are one launch (``_collide_columns``):
+   no copy; group g takes from each column j of the velocities the particle of row
+   (g + s_j) mod G (``kernels.column_particle``), gathered in shared memory by its
+   thread block and written back after its collisions.
 3. **Force and thermostat** (``_force``, ``_finish``): the force step of every particle
    (``kernels._force_factor``: Euler or exact) with the sums ΣV_k, Σ|V|² per realization,
    then ``kernels._thermostat_scale`` and the step's clock (``kernels._advance_clock``)
@@ -122,6 +126,30 @@ over the particles with the grid's stride (the number of blocks depends on N onl
 WEIGHT_UNIT = 2.0**-20
 """Resolution of the fixed-point ``cx_weights`` sums (per observation)."""
 
+REGROUPINGS = ("feistel", "columns")
+REGROUPING = "feistel"
+"""How the particles are re-dealt into collision groups every step (read when a batch is
+made): ``feistel``, a random bijection of the indices and a copy of the particles in
+that order (``_permute``), then one thread per group of consecutive particles
+(``_collide``); ``columns``, no copy: group g takes, from each column j of the
+velocities, the particle of row (g + s_j) mod G, with shifts s_j drawn afresh each step,
+and a thread block gathers its groups in shared memory (``_collide_columns``). The
+``columns`` path is checked under the simulator only: not yet timed or validated against
+the CPU engine on a GPU, hence not the default."""
+
+_TILE = 1920
+"""Particles a thread block of ``_collide_columns`` holds in shared memory (45 KB of
+three float64 components, under the 48 KB a block may declare statically): 15 groups of
+128, 7 of 255."""
+
+_MAX_COLUMNS = 256
+"""Most columns (particles of a group) of the ``columns`` layout: groups hold fewer than
+2 GROUP_SIZE particles."""
+
+_TILE_THREADS = 8 if simulated() else 128
+"""Threads per block of ``_collide_columns`` (each gathers and scatters its share of the
+tile; the first ``_TILE // columns`` then collide a group each)."""
+
 N_MOMENTS = kernels.N_MOMENTS
 _N_FORCE_SUMS = 4
 
@@ -132,6 +160,7 @@ _KERNEL, _POISSON, _EXACT, _N_CX, _N_SPEED, _N = 0, 1, 2, 3, 4, 5
 
 _collide_range = device_function(kernels.collide_range)
 _speed_bounds = device_function(kernels.speed_bounds)
+_column_particle = device_function(kernels.column_particle)
 _force_factor = device_function(kernels._force_factor)
 _thermostat_scale = device_function(kernels._thermostat_scale)
 _advance_clock = device_function(kernels._advance_clock)
@@ -288,19 +317,10 @@ def _seed_groups(group_keys, states, keys):
     states[r, g, 3] = s3
 
 
-@kernel
-def _collide(velocity, states, bounds, carry, tally, reals, flags):
-    """One time step of collisions in group g of realization r: ``kernels.collide_range``
-    on the particles ``g N // G .. (g + 1) N // G - 1`` of the regrouped velocities."""
-    g = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
-    r = cuda.blockIdx.y
-    n_groups = states.shape[1]
-    if g >= n_groups:
-        return
-    n = velocity.shape[2]
-    first = g * n // n_groups
-    last = (g + 1) * n // n_groups
-    v = velocity[r]
+def _collide_group(v, first, last, states, bounds, carry, tally, reals, flags, r, g):
+    """One time step of collisions in group g of realization r, the particles
+    ``first..last-1`` of ``v`` (d, n): ``kernels.collide_range`` with the group's own
+    majorant, stream, carry and tally."""
     state = states[r, g]
     _speed_bounds(v, first, last, bounds[r, g])
     u, s0, s1, s2, s3 = _uniform(state[0], state[1], state[2], state[3])
@@ -322,6 +342,101 @@ def _collide(velocity, states, bounds, carry, tally, reals, flags):
         tally[r, g],
     )
     _collide_range(v, first, last, state, collisions)
+
+
+_collide_group = cuda.jit(device=True, inline="always")(_collide_group)
+
+
+@kernel
+def _collide(velocity, states, bounds, carry, tally, reals, flags):
+    """One time step of collisions in group g of realization r: ``kernels.collide_range``
+    on the particles ``g N // G .. (g + 1) N // G - 1`` of the regrouped velocities."""
+    g = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    r = cuda.blockIdx.y
+    n_groups = states.shape[1]
+    if g >= n_groups:
+        return
+    n = velocity.shape[2]
+    first = g * n // n_groups
+    last = (g + 1) * n // n_groups
+    _collide_group(velocity[r], first, last, states, bounds, carry, tally, reals, flags, r, g)
+
+
+def _column_shift(j, key, n_rows):
+    """The row shift of column j in a step: the Feistel round function of j with the
+    step's key, scaled to 0..n_rows-1."""
+    return np.int64((_round(np.uint64(j), key) * np.uint64(n_rows)) >> _SHIFT_32)
+
+
+_column_shift = cuda.jit(device=True, inline="always")(_column_shift)
+
+
+def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, store, thermo, rescale):
+    """Copy the particles of groups ``first_group ..`` (``per_block`` of them) of
+    realization r between ``velocity`` and the block's ``tile`` (group l's particle of
+    column j at ``l * columns + j``): into the tile (after the pending thermostat if
+    ``rescale``), or back if ``store``. Consecutive threads take consecutive rows of one
+    column: coalesced reads and writes."""
+    n_rows = layout[0]
+    n_columns = layout[1]
+    for slot in range(cuda.threadIdx.x, per_block * n_columns, cuda.blockDim.x):
+        j = slot // per_block
+        l = slot - j * per_block
+        g = first_group + l
+        if g < n_rows:
+            p = _column_particle(j, g, shifts[j], n_rows, n_columns, layout[2])
+            if p >= 0:
+                i = l * n_columns + j
+                for k in range(d):
+                    if store:
+                        velocity[r, k, p] = tile[k, i]
+                    elif rescale:
+                        tile[k, i] = _thermostat(velocity[r, k, p], thermo, r, k)
+                    else:
+                        tile[k, i] = velocity[r, k, p]
+
+
+_gather = cuda.jit(device=True, inline="always")(_gather)
+
+
+@kernel
+def _collide_columns(
+    velocity, states, bounds, carry, tally, reals, flags, keys, layout, thermo, rescale
+):
+    """One time step of collisions of every group, regrouped without a copy (``columns``).
+
+    The N particles of a realization are ``layout`` = (G, m, rows of the last column)
+    columns of G rows, particle j G + row in column j (the last column holds
+    N - (m - 1) G). In a step, group g takes the particle of row (g + s_j) mod G of each
+    column j (``_column_shift`` of the step's key ``keys[r, 4]``): m particles, or m - 1
+    where the last column has no such row. Block b gathers groups b T/m .. (T = ``_TILE``)
+    into shared memory (after the pending thermostat if ``rescale``), its threads collide
+    a group each (``_collide_group``), and the block writes the tile back."""
+    tile = cuda.shared.array((3, _TILE), np.float64)
+    shifts = cuda.shared.array(_MAX_COLUMNS, np.int64)
+    r = cuda.blockIdx.y
+    d = velocity.shape[1]
+    n_rows = layout[0]
+    n_columns = layout[1]
+    per_block = _TILE // n_columns
+    first_group = cuda.blockIdx.x * per_block
+    for j in range(cuda.threadIdx.x, n_columns, cuda.blockDim.x):
+        shifts[j] = _column_shift(j, keys[r, 4], n_rows)
+    cuda.syncthreads()
+    _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, False, thermo, rescale)
+    cuda.syncthreads()
+    for l in range(cuda.threadIdx.x, per_block, cuda.blockDim.x):
+        g = first_group + l
+        if g < n_rows:
+            last = _column_particle(
+                n_columns - 1, g, shifts[n_columns - 1], n_rows, n_columns, layout[2]
+            )
+            size = n_columns if last >= 0 else n_columns - 1
+            first = l * n_columns
+            v = tile[:d]
+            _collide_group(v, first, first + size, states, bounds, carry, tally, reals, flags, r, g)
+    cuda.syncthreads()
+    _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, True, thermo, rescale)
 
 
 # --------------------------------------------------------------- force and thermostat
@@ -514,8 +629,17 @@ class _Batch:
         self.n_groups = max(1, n // GROUP_SIZE)
         self.n_blocks = min(grid(n, THREADS), MAX_BLOCKS)
         self.half_bits = np.uint64(max(1, math.ceil(math.log2(n) / 2)))
+        if REGROUPING not in REGROUPINGS:
+            raise ValueError(f"REGROUPING must be one of {REGROUPINGS}, not {REGROUPING!r}")
+        self.columns = REGROUPING == "columns"
         self.velocity = to_device(velocity)
-        self.spare = device_zeros(velocity.shape)
+        if self.columns:  # G rows of m columns, the last one holding the rest
+            n_columns = -(-n // self.n_groups)
+            layout = [self.n_groups, n_columns, n - (n_columns - 1) * self.n_groups]
+            self.layout = to_device(np.array(layout, dtype=np.int64))
+            self.column_blocks = grid(self.n_groups, _TILE // n_columns)
+        else:
+            self.spare = device_zeros(velocity.shape)
         keys = np.zeros((count, 8), dtype=np.uint64)
         keys[:, :4] = streams
         self.keys = to_device(keys)
@@ -540,34 +664,16 @@ class _Batch:
         self.pending = False
 
     def step(self, sample: bool, histogram: bool) -> None:
-        """Launch one time step for every realization: 4 launches
-        (Lie splitting) or 6 (Strang), and 2 more on a sampled step."""
+        """Launch one time step for every realization: 4 launches (Lie splitting) or 6
+        (Strang), one fewer with the ``columns`` regrouping, and 2 more on a sampled
+        step."""
         s = self.settings
         strang = s.splitting == "strang"
         field_step = 0.5 * s.half_field_step if strang else s.half_field_step
         if strang:
             self._force_and_thermostat(field_step)
             self._finish(end_of_step=False)
-        _permute[(self.n_blocks, self.count), THREADS](
-            self.velocity,
-            self.spare,
-            self.keys,
-            self.half_bits,
-            self.thermo,
-            self.pending,
-        )
-        self.pending = False
-        self.velocity, self.spare = self.spare, self.velocity
-        groups = min(BLOCK, self.n_groups)
-        _collide[(grid(self.n_groups, groups), self.count), groups](
-            self.velocity,
-            self.states,
-            self.bounds,
-            self.carry,
-            self.tally,
-            self.reals,
-            self.flags,
-        )
+        self._regroup_and_collide()
         self._force_and_thermostat(field_step)
         self._finish(end_of_step=True)
         if sample:
@@ -585,6 +691,23 @@ class _Batch:
             _fold_moments[grid(self.count, _SMALL), _SMALL](
                 self.partials, self.n_blocks, self.moment_sums, 1.0 / s.n_particles
             )
+
+    def _regroup_and_collide(self) -> None:
+        """The collision stage of every group, after the pending thermostat (``REGROUPING``):
+        one launch (``columns``) or two (``feistel``)."""
+        groups = (self.states, self.bounds, self.carry, self.tally, self.reals, self.flags)
+        if self.columns:
+            _collide_columns[(self.column_blocks, self.count), _TILE_THREADS](
+                self.velocity, *groups, self.keys, self.layout, self.thermo, self.pending
+            )
+        else:
+            _permute[(self.n_blocks, self.count), THREADS](
+                self.velocity, self.spare, self.keys, self.half_bits, self.thermo, self.pending
+            )
+            self.velocity, self.spare = self.spare, self.velocity
+            threads = min(BLOCK, self.n_groups)
+            _collide[(grid(self.n_groups, threads), self.count), threads](self.velocity, *groups)
+        self.pending = False
 
     def _force_and_thermostat(self, field_step: float) -> None:
         """The force step and the sums of the thermostat (the pending thermostat first)."""

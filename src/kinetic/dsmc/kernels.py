@@ -352,6 +352,21 @@ def _speed_sq(velocity, i, d, c0, c1, c2):
     return s
 
 
+@inline
+def column_particle(j, g, shift, n_rows, n_columns, full_rows):
+    """The particle that group g takes from column j in the column layout of N particles
+    (``n_columns`` columns of ``n_rows`` rows, particle j n_rows + row in column j; the
+    last column holds ``full_rows`` = N - (n_columns - 1) n_rows): the one of row
+    (g + shift) mod n_rows, the column's ``shift`` drawn for the step; -1 where the last
+    column has no such row. For every shift, each particle belongs to exactly one of the
+    n_rows groups, which hold n_columns or n_columns - 1 particles (the CUDA backend's
+    ``columns`` regrouping)."""
+    row = (g + shift) % n_rows
+    if j < n_columns - 1 or row < full_rows:
+        return j * n_rows + row
+    return -1
+
+
 @kernel
 def speed_bounds(velocity, first, last, bounds):
     """Fill ``bounds`` (length d + 2) for particles ``first..last-1``.
