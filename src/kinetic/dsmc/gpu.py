@@ -139,8 +139,8 @@ the CPU engine on a GPU, hence not the default."""
 
 _TILE = 1920
 """Particles a thread block of ``_collide_columns`` holds in shared memory (45 KB of
-three float64 components, under the 48 KB a block may declare statically): 15 groups of
-128, 7 of 255."""
+three float64 components, under the 48 KB a block may declare statically): 14 groups of
+128 (at a stride of 129), 7 of 255."""
 
 _MAX_COLUMNS = 256
 """Most columns (particles of a group) of the ``columns`` layout: groups hold fewer than
@@ -148,7 +148,7 @@ _MAX_COLUMNS = 256
 
 _TILE_THREADS = 8 if simulated() else 128
 """Threads per block of ``_collide_columns`` (each gathers and scatters its share of the
-tile; the first ``_TILE // columns`` then collide a group each)."""
+tile; then each collides groups of it, one at a time)."""
 
 N_MOMENTS = kernels.N_MOMENTS
 _N_FORCE_SUMS = 4
@@ -373,10 +373,11 @@ _column_shift = cuda.jit(device=True, inline="always")(_column_shift)
 
 def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, store, thermo, rescale):
     """Copy the particles of groups ``first_group ..`` (``per_block`` of them) of
-    realization r between ``velocity`` and the block's ``tile`` (group l's particle of
-    column j at ``l * columns + j``): into the tile (after the pending thermostat if
-    ``rescale``), or back if ``store``. Consecutive threads take consecutive rows of one
-    column: coalesced reads and writes."""
+    realization r between ``velocity`` and the block's ``tile``: into the tile (after the
+    pending thermostat if ``rescale``), or back if ``store``. Group l's particle of column
+    j sits at ``l * (columns | 1) + j``: an odd stride between groups, so that threads
+    walking their groups side by side read different shared-memory banks. Consecutive
+    threads take consecutive rows of one column: coalesced reads and writes."""
     n_rows = layout[0]
     n_columns = layout[1]
     for slot in range(cuda.threadIdx.x, per_block * n_columns, cuda.blockDim.x):
@@ -386,7 +387,7 @@ def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, store,
         if g < n_rows:
             p = _column_particle(j, g, shifts[j], n_rows, n_columns, layout[2])
             if p >= 0:
-                i = l * n_columns + j
+                i = l * (n_columns | 1) + j
                 for k in range(d):
                     if store:
                         velocity[r, k, p] = tile[k, i]
@@ -418,7 +419,7 @@ def _collide_columns(
     d = velocity.shape[1]
     n_rows = layout[0]
     n_columns = layout[1]
-    per_block = _TILE // n_columns
+    per_block = _TILE // (n_columns | 1)
     first_group = cuda.blockIdx.x * per_block
     for j in range(cuda.threadIdx.x, n_columns, cuda.blockDim.x):
         shifts[j] = _column_shift(j, keys[r, 4], n_rows)
@@ -432,7 +433,7 @@ def _collide_columns(
                 n_columns - 1, g, shifts[n_columns - 1], n_rows, n_columns, layout[2]
             )
             size = n_columns if last >= 0 else n_columns - 1
-            first = l * n_columns
+            first = l * (n_columns | 1)
             v = tile[:d]
             _collide_group(v, first, first + size, states, bounds, carry, tally, reals, flags, r, g)
     cuda.syncthreads()
@@ -637,7 +638,7 @@ class _Batch:
             n_columns = -(-n // self.n_groups)
             layout = [self.n_groups, n_columns, n - (n_columns - 1) * self.n_groups]
             self.layout = to_device(np.array(layout, dtype=np.int64))
-            self.column_blocks = grid(self.n_groups, _TILE // n_columns)
+            self.column_blocks = grid(self.n_groups, _TILE // (n_columns | 1))
         else:
             self.spare = device_zeros(velocity.shape)
         keys = np.zeros((count, 8), dtype=np.uint64)
