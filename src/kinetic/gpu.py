@@ -45,6 +45,51 @@ except ImportError:  # another numba-cuda layout: the warning stays
 _THIS_FILE = Path(__file__).resolve()
 
 
+@functools.cache
+def _lock_simulated_shared_arrays() -> bool:
+    """Under the simulator, make ``cuda.shared.array`` give every thread of a block the same
+    array. numba's ``FakeCUDAShared.array`` looks its array up by the calling line and,
+    when absent, creates it, without a lock: two threads of a block arriving together can
+    each create their own (uninitialised) array and never see each other's writes (seen
+    as a cloning batch that did not repeat its realizations, and as about one run in ten
+    of a script running ``dsmc.gpu._collide_columns``, whose threads start with their
+    shared arrays). The replacement keys on the caller's file and line as numba does,
+    under a lock; the GPU has no such race. Returns whether it is installed (False for a
+    numba-cuda without this layout)."""
+    import sys
+    import threading
+
+    from numba.core import types as numba_types
+    from numba.np import numpy_support
+
+    try:
+        from numba.cuda.simulator.kernelapi import FakeCUDAShared
+    except ImportError:
+        return False
+    original = FakeCUDAShared.array
+    lock = threading.Lock()
+
+    def array(self, shape, dtype, alignment=None):
+        if shape == 0 or alignment is not None:  # dynamic shared memory: one buffer
+            return original(self, shape, dtype, alignment)
+        frame = sys._getframe(1)
+        caller = (frame.f_code.co_filename, frame.f_lineno)
+        with lock:
+            allocated = self._allocations.get(caller)
+            if allocated is None:
+                if isinstance(dtype, numba_types.Type):
+                    dtype = numpy_support.as_dtype(dtype)
+                allocated = self._allocations[caller] = np.empty(shape, dtype)
+        return allocated
+
+    FakeCUDAShared.array = array
+    return True
+
+
+if simulated():
+    _lock_simulated_shared_arrays()
+
+
 class _PackageStamp:
     """Locator mixin: a package kernel's cache entry is fresh only while none of the files
     it depends on changed (``kinetic.jit.source_stamp`` of its engine, and this module);
