@@ -635,8 +635,7 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
     out["step"] = _against_bound(step, sum(PASS_BYTES.values()), particles, copy_bandwidth)
     del batch
-    with _regrouping("columns"):
-        batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations))
+    batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations), "columns")
     collide = _launch_seconds(batch._regroup_and_collide, repeats)
     step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
     out["columns"] = {

@@ -616,8 +616,15 @@ _fixed_point = cuda.jit(device=True, inline="always")(_fixed_point)
 class _Batch:
     """Device state of R realizations and the launches of one step."""
 
-    def __init__(self, settings: HomogeneousSettings, samples: Samples, streams: np.ndarray):
+    def __init__(
+        self,
+        settings: HomogeneousSettings,
+        samples: Samples,
+        streams: np.ndarray,
+        regrouping: str | None = None,
+    ):
         d, n = settings.dimension, settings.n_particles
+        regrouping = REGROUPING if regrouping is None else regrouping
         count = streams.shape[0]
         velocity = np.empty((count, d, n))
         group_keys = np.empty((count, 4), dtype=np.uint64)
@@ -630,9 +637,9 @@ class _Batch:
         self.n_groups = max(1, n // GROUP_SIZE)
         self.n_blocks = min(grid(n, THREADS), MAX_BLOCKS)
         self.half_bits = np.uint64(max(1, math.ceil(math.log2(n) / 2)))
-        if REGROUPING not in REGROUPINGS:
-            raise ValueError(f"REGROUPING must be one of {REGROUPINGS}, not {REGROUPING!r}")
-        self.columns = REGROUPING == "columns"
+        if regrouping not in REGROUPINGS:
+            raise ValueError(f"regrouping must be one of {REGROUPINGS}, not {regrouping!r}")
+        self.columns = regrouping == "columns"
         self.velocity = to_device(velocity)
         if self.columns:  # G rows of m columns, the last one holding the rest
             n_columns = -(-n // self.n_groups)
@@ -855,18 +862,20 @@ def run_batch(
 
 
 def _compile_outside_the_timer(settings: HomogeneousSettings, samples: Samples) -> None:
-    """One sampled step of a tiny batch with the same argument types, so that the timed
-    run does not include numba-cuda's compilation, which goes to the cache once
-    (``kinetic.gpu.warm``; skipped under the simulator)."""
+    """One sampled step of a tiny batch with the same argument types, for each regrouping,
+    so that the timed run does not include numba-cuda's compilation, which goes to the
+    cache once (``kinetic.gpu.warm``; skipped under the simulator)."""
     if simulated():
         return
     tiny = HomogeneousSettings(**{**settings.parameters_init(), "n_particles": 4})
 
-    def compile_kernels():
+    def compile_kernels():  # both regroupings: the cache then holds every kernel
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NumbaPerformanceWarning)  # a grid of one block
-            batch = _Batch(tiny, samples, np.array([[1, 2, 3, 4]], dtype=np.uint64))
-            batch.step(sample=True, histogram=True)
+            for regrouping in REGROUPINGS:
+                streams = np.array([[1, 2, 3, 4]], dtype=np.uint64)
+                batch = _Batch(tiny, samples, streams, regrouping)
+                batch.step(sample=True, histogram=True)
             synchronize()
 
     warm("cuda_dsmc", "dsmc", compile_kernels)
