@@ -57,6 +57,7 @@ import time
 import traceback
 from collections.abc import Callable
 from typing import Any
+from unittest import mock
 
 import numpy as np
 
@@ -405,18 +406,12 @@ def _inhomogeneous(
     }
 
 
-@contextlib.contextmanager
 def _inhomogeneous_path(together: bool):
     """Force the cuda inhomogeneous DSMC's cooperative launch per sample interval or its
-    five launches a step."""
+    five launches a step (a context manager)."""
     from kinetic.dsmc import inhomogeneous_gpu
 
-    saved = inhomogeneous_gpu.TOGETHER
-    inhomogeneous_gpu.TOGETHER = together
-    try:
-        yield
-    finally:
-        inhomogeneous_gpu.TOGETHER = saved
+    return mock.patch.object(inhomogeneous_gpu, "TOGETHER", together)
 
 
 def inhomogeneous_speed(quick: bool) -> dict[str, Any]:
@@ -649,17 +644,12 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     return out
 
 
-@contextlib.contextmanager
 def _regrouping(name: str):
-    """Make the homogeneous DSMC batches regroup by ``name`` (``dsmc.gpu.REGROUPING``)."""
+    """Make the homogeneous DSMC batches regroup by ``name`` (``dsmc.gpu.REGROUPING``; a
+    context manager)."""
     from kinetic.dsmc import gpu as dsmc_gpu
 
-    saved = dsmc_gpu.REGROUPING
-    dsmc_gpu.REGROUPING = name
-    try:
-        yield
-    finally:
-        dsmc_gpu.REGROUPING = saved
+    return mock.patch.object(dsmc_gpu, "REGROUPING", name)
 
 
 def _traffic(seconds, bytes_per_particle, particles, copy_bandwidth) -> dict[str, float]:
