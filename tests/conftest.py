@@ -28,14 +28,15 @@ _WORKER = os.environ.get("PYTEST_XDIST_WORKER")
 if _WORKER:
     os.environ["NUMBA_CACHE_DIR"] = str(_CACHES / _WORKER)
 
-SEEDS = (("edmd", "event_disks"), ("dsmc", "cloning", "samplers", "experimental"))
-"""Engines compiled by the controller before the workers start, in two processes (about
-equal compile times) and two caches of their own, which every worker's cache then starts
-from: each engine compiles once per test run instead of once per worker and once more in
-the first Snakemake build of each worker. ``kinetic.jit.warm``'s markers come with the
-copies, so the builds' jobs load the kernels instead of compiling them. The experimental
-variants, which the tests compare with the engines, are compiled along (numba's own
-stamps keep them fresh; no marker)."""
+SEEDS = (("edmd", "event_disks", "samplers"), ("dsmc", "cloning", "experimental"))
+"""Engines compiled by the controller before the workers start, in two processes of about equal
+compile times (66 and 82 s side by side on 2 cores; the experimental variants call the DSMC
+kernels, which their process then compiles once) and two caches of their own, which every
+worker's cache then starts from: each engine compiles once per test run instead of once per
+worker and once more in the first Snakemake build of each worker. ``kinetic.jit.warm``'s
+markers come with the copies, so the builds' jobs load the kernels instead of compiling
+them. The experimental variants, which the tests compare with the engines, are compiled
+along (numba's own stamps keep them fresh; no marker)."""
 
 
 def _seed_caches() -> None:

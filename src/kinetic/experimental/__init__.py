@@ -33,3 +33,7 @@ def warmup() -> None:
             kernels.HARD_SPHERES, 0.9, 1.0 / 63, 0.1, False, bounds, np.zeros(1), tally
         )
         collide_speed_classes(velocity, state, collisions, SpeedClasses(64).arrays())
+    # the GPU's collision groups on the CPU (14 s of compilation, one kernel for all groupings)
+    from kinetic.experimental.column_groups import cooling_state
+
+    cooling_state("whole", n_particles=256, n_steps=400)
