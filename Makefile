@@ -22,12 +22,12 @@ FIGURES_TIMING = results/timings/figures-$(basename $(notdir $(CONFIG))).json
 
 install: $(VENV)/.installed
 
-# uv (pinned in environment-pip.txt) installs the pins: 8 s against pip's 72 s here, on a
-# fresh cache; pip only installs uv itself.
+# uv (pinned in environment-pip.txt) installs the pins and compiles their bytecode (41 s
+# in all, against 87 s with pip, on 2 cores); pip only installs uv itself.
 $(VENV)/.installed: environment-pip.txt pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check $$(grep '^uv==' environment-pip.txt)
-	$(BIN)/uv pip install --quiet --python $(BIN)/python -r environment-pip.txt
+	$(BIN)/uv pip install --quiet --compile-bytecode --python $(BIN)/python -r environment-pip.txt
 	$(BIN)/uv pip install --quiet --python $(BIN)/python --no-deps -e .
 	touch $@
 
