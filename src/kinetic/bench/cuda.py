@@ -538,10 +538,11 @@ particles a step at montanero2007's δt = 0.003 τ, are left out); the force ste
 writes every particle. 120 bytes a particle-step in all; the thermostat's reduction and
 the clock (``_finish``) touch a few numbers per realization."""
 
-COLUMNS_PASS_BYTES = {"collide_columns": 48, "force": 48}
+COLUMNS_PASS_BYTES = {"collide_columns": 48}
 """The same for the ``columns`` regrouping (``dsmc.gpu.REGROUPING``): a thread block reads
-its groups' particles from consecutive rows of each column and writes them back (48),
-then the force step as above: 96 bytes a particle-step."""
+its groups' particles from consecutive rows of each column, collides them, and writes
+them back after the force step (with the thermostat's sums): 48 bytes a particle-step,
+the least a step that moves every particle can touch."""
 
 
 def _launch_seconds(launch, repeats: int) -> float:
@@ -578,7 +579,8 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     the velocities' size, each pass of a step launched alone and the whole step, with the
     passes' bytes (``PASS_BYTES``) over their time and the step's time against the time
     its 120 bytes a particle would take at the copy bandwidth; then the same step with the
-    ``columns`` regrouping (``columns``: its collision pass and whole step, 96 bytes)."""
+    ``columns`` regrouping (``columns``: its collide-and-force pass and whole step, 48
+    bytes)."""
     from kinetic import gpu as device
     from kinetic.dsmc import gpu as dsmc_gpu
     from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
@@ -631,7 +633,7 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     out["step"] = _against_bound(step, sum(PASS_BYTES.values()), particles, copy_bandwidth)
     del batch
     batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations), "columns")
-    collide = _launch_seconds(batch._regroup_and_collide, repeats)
+    collide = _launch_seconds(lambda: batch._collide_columns(field_step), repeats)
     step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
     out["columns"] = {
         "passes": {

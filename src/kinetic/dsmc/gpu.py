@@ -5,7 +5,8 @@ are row r of a ``(R, d, N)`` float64 array (each row the CPU engine's struct of 
 One time step is a short sequence of launches, each covering every realization (the
 realization is the grid's y index; the kernels over particles run THREADS x blocks
 threads per realization, each looping over the particles with the grid's stride): 4
-launches with the Lie splitting, 6 with the Strang splitting, 2 more on a sampled step.
+launches with the Lie splitting, 6 with the Strang splitting (2 fewer with the
+``columns`` regrouping), 2 more on a sampled step.
 
 1. **Regrouping** (``_permute``): the particles are copied in a new random order,
    ``target[p] = source[π(p)]``. π is a bijection of ``0..N-1``: a 4-round Feistel
@@ -33,10 +34,12 @@ launches with the Lie splitting, 6 with the Strang splitting, 2 more on a sample
      rounded up or down at random, without bias.
    Each group has its own xoshiro256+ stream (``thread_state`` of the realization's
    row after its Maxwellian start and the group index), kept on the device.
-   With ``REGROUPING = "columns"`` steps 1 and 2 are one launch (``_collide_columns``):
-   no copy; group g takes from each column j of the velocities the particle of row
-   (g + s_j) mod G (``kernels.column_particle``), gathered in shared memory by its
-   thread block and written back after its collisions.
+   With ``REGROUPING = "columns"`` steps 1, 2 and the force step after the collisions
+   are one launch (``_collide_columns``): no copy; group g takes from each column j of
+   the velocities the particle of row (g + s_j) mod G (``kernels.column_particle``),
+   gathered in shared memory by its thread block and written back after its collisions
+   and the force step, with the block's thermostat sums (one read and one write of each
+   particle a Lie step: 48 bytes).
 3. **Force and thermostat** (``_force``, ``_finish``): the force step of every particle
    (``kernels._force_factor``: Euler or exact) with the sums ΣV_k, Σ|V|² per realization,
    then ``kernels._thermostat_scale`` and the step's clock (``kernels._advance_clock``)
@@ -133,14 +136,16 @@ made): ``feistel``, a random bijection of the indices and a copy of the particle
 that order (``_permute``), then one thread per group of consecutive particles
 (``_collide``); ``columns``, no copy: group g takes, from each column j of the
 velocities, the particle of row (g + s_j) mod G, with shifts s_j drawn afresh each step,
-and a thread block gathers its groups in shared memory (``_collide_columns``). The
-``columns`` path is checked under the simulator only: not yet timed or validated against
-the CPU engine on a GPU, hence not the default."""
+and a thread block gathers its groups in shared memory, collides them and writes them
+back after the force step (``_collide_columns``). The ``columns`` path is checked under
+the simulator only: not yet timed or validated against the CPU engine on a GPU, hence
+not the default."""
 
-_TILE = 1920
-"""Particles a thread block of ``_collide_columns`` holds in shared memory (45 KB of
-three float64 components, under the 48 KB a block may declare statically): 14 groups of
-128 (at a stride of 129), 7 of 255."""
+_TILE = 1806
+"""Particles a thread block of ``_collide_columns`` holds in shared memory: 14 groups of
+128 at a stride of 129, 7 of 255. With its column shifts (int32) and the force step's
+block sums, the block declares 48 464 bytes, under the 49 152 a block may declare
+statically."""
 
 _MAX_COLUMNS = 256
 """Most columns (particles of a group) of the ``columns`` layout: groups hold fewer than
@@ -181,16 +186,16 @@ _MIX_2 = np.uint64(0x846CA68B)
 
 
 def _block_sums(shared, values, out):
-    """``out[f]`` = Σ over the THREADS threads of a block of ``values[f]`` (a local array,
+    """``out[f]`` = Σ over the T threads of a block of ``values[f]`` (a local array,
     f < shared.shape[1]), by the fixed tree of ``kinetic.gpu.block_reduce_sum`` run on all
-    fields at once in ``shared[THREADS, fields]``; every thread must call it, thread 0
-    writes ``out``."""
+    fields at once in ``shared[T, fields]`` (T = shared.shape[0], the block's threads, a
+    power of two); every thread must call it, thread 0 writes ``out``."""
     t = cuda.threadIdx.x
     fields = shared.shape[1]
     for f in range(fields):
         shared[t, f] = values[f]
     cuda.syncthreads()
-    stride = THREADS // 2
+    stride = shared.shape[0] // 2
     while stride > 0:
         if t < stride:
             for f in range(fields):
@@ -371,13 +376,13 @@ def _column_shift(j, key, n_rows):
 _column_shift = cuda.jit(device=True, inline="always")(_column_shift)
 
 
-def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, store, thermo, rescale):
+def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale):
     """Copy the particles of groups ``first_group ..`` (``per_block`` of them) of
-    realization r between ``velocity`` and the block's ``tile``: into the tile (after the
-    pending thermostat if ``rescale``), or back if ``store``. Group l's particle of column
-    j sits at ``l * (columns | 1) + j``: an odd stride between groups, so that threads
-    walking their groups side by side read different shared-memory banks. Consecutive
-    threads take consecutive rows of one column: coalesced reads and writes."""
+    realization r from ``velocity`` into the block's ``tile``, after the pending thermostat
+    if ``rescale``. Group l's particle of column j sits at ``l * (columns | 1) + j``: an
+    odd stride between groups, so that threads walking their groups side by side read
+    different shared-memory banks. Consecutive threads take consecutive rows of one
+    column: coalesced reads."""
     n_rows = layout[0]
     n_columns = layout[1]
     for slot in range(cuda.threadIdx.x, per_block * n_columns, cuda.blockDim.x):
@@ -389,9 +394,7 @@ def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, store,
             if p >= 0:
                 i = l * (n_columns | 1) + j
                 for k in range(d):
-                    if store:
-                        velocity[r, k, p] = tile[k, i]
-                    elif rescale:
+                    if rescale:
                         tile[k, i] = _thermostat(velocity[r, k, p], thermo, r, k)
                     else:
                         tile[k, i] = velocity[r, k, p]
@@ -400,11 +403,70 @@ def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, store,
 _gather = cuda.jit(device=True, inline="always")(_gather)
 
 
+def _scatter(velocity, tile, shifts, layout, r, first_group, per_block, d, field_step, exact):
+    """The reverse of ``_gather``, with the force step: each particle of the tile goes
+    back to ``velocity`` as f V (``kernels._force_factor`` of a = ``field_step``, as in
+    ``_force``; none when a = 0). Returns this thread's sums ΣV_x, ΣV_y, ΣV_z, Σ|V|² after
+    the force and its failure code (0: none)."""
+    n_rows = layout[0]
+    n_columns = layout[1]
+    sum0 = 0.0
+    sum1 = 0.0
+    sum2 = 0.0
+    total_sq = 0.0
+    failed = 0
+    for slot in range(cuda.threadIdx.x, per_block * n_columns, cuda.blockDim.x):
+        j = slot // per_block
+        l = slot - j * per_block
+        g = first_group + l
+        if g < n_rows:
+            p = _column_particle(j, g, shifts[j], n_rows, n_columns, layout[2])
+            if p >= 0:
+                i = l * (n_columns | 1) + j
+                v0 = tile[0, i]
+                v1 = tile[1, i]
+                v2 = tile[2, i] if d == 3 else 0.0
+                if field_step != 0.0:
+                    code, f = _force_factor(field_step * v0, exact)
+                    if code != 0:
+                        failed = code
+                    v0 *= f
+                    v1 *= f
+                    v2 *= f
+                velocity[r, 0, p] = v0
+                velocity[r, 1, p] = v1
+                if d == 3:
+                    velocity[r, 2, p] = v2
+                sum0 += v0
+                sum1 += v1
+                sum2 += v2
+                total_sq += v0 * v0 + v1 * v1 + v2 * v2
+    return sum0, sum1, sum2, total_sq, failed
+
+
+_scatter = cuda.jit(device=True, inline="always")(_scatter)
+
+
 @kernel
 def _collide_columns(
-    velocity, states, bounds, carry, tally, reals, flags, keys, layout, thermo, rescale
+    velocity,
+    states,
+    bounds,
+    carry,
+    tally,
+    reals,
+    flags,
+    keys,
+    layout,
+    thermo,
+    rescale,
+    partials,
+    status,
+    field_step,
+    exact,
 ):
-    """One time step of collisions of every group, regrouped without a copy (``columns``).
+    """One time step of collisions of every group, regrouped without a copy (``columns``),
+    and the force step after them.
 
     The N particles of a realization are ``layout`` = (G, m, rows of the last column)
     columns of G rows, particle j G + row in column j (the last column holds
@@ -412,9 +474,14 @@ def _collide_columns(
     column j (``_column_shift`` of the step's key ``keys[r, 4]``): m particles, or m - 1
     where the last column has no such row. Block b gathers groups b T/m .. (T = ``_TILE``)
     into shared memory (after the pending thermostat if ``rescale``), its threads collide
-    a group each (``_collide_group``), and the block writes the tile back."""
+    a group each (``_collide_group``), and the block writes the tile back after the force
+    step of a = ``field_step`` (``_scatter``), with the thermostat's sums ΣV_x, ΣV_y, ΣV_z,
+    Σ|V|² of its particles in ``partials[r, b, :4]`` (a fixed tree over the block's
+    threads, so fixed numbers for fixed N); a failed force step raises ``status[r]``. One
+    pass over the particles for the whole collide-and-force half of a step."""
     tile = cuda.shared.array((3, _TILE), np.float64)
-    shifts = cuda.shared.array(_MAX_COLUMNS, np.int64)
+    shifts = cuda.shared.array(_MAX_COLUMNS, np.int32)
+    shared = cuda.shared.array((_TILE_THREADS, _N_FORCE_SUMS), np.float64)
     r = cuda.blockIdx.y
     d = velocity.shape[1]
     n_rows = layout[0]
@@ -424,7 +491,7 @@ def _collide_columns(
     for j in range(cuda.threadIdx.x, n_columns, cuda.blockDim.x):
         shifts[j] = _column_shift(j, keys[r, 4], n_rows)
     cuda.syncthreads()
-    _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, False, thermo, rescale)
+    _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale)
     cuda.syncthreads()
     for l in range(cuda.threadIdx.x, per_block, cuda.blockDim.x):
         g = first_group + l
@@ -437,7 +504,17 @@ def _collide_columns(
             v = tile[:d]
             _collide_group(v, first, first + size, states, bounds, carry, tally, reals, flags, r, g)
     cuda.syncthreads()
-    _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, True, thermo, rescale)
+    sum0, sum1, sum2, total_sq, failed = _scatter(
+        velocity, tile, shifts, layout, r, first_group, per_block, d, field_step, exact
+    )
+    if failed != 0:
+        cuda.atomic.max(status, r, failed)
+    sums = cuda.local.array(_N_FORCE_SUMS, np.float64)
+    sums[0] = sum0
+    sums[1] = sum1
+    sums[2] = sum2
+    sums[3] = total_sq
+    _block_sums(shared, sums, partials[r, cuda.blockIdx.x])
 
 
 # --------------------------------------------------------------- force and thermostat
@@ -646,6 +723,7 @@ class _Batch:
             layout = [self.n_groups, n_columns, n - (n_columns - 1) * self.n_groups]
             self.layout = to_device(np.array(layout, dtype=np.int64))
             self.column_blocks = grid(self.n_groups, _TILE // (n_columns | 1))
+            self.column_partials = device_zeros((count, self.column_blocks, _N_FORCE_SUMS))
         else:
             self.spare = device_zeros(velocity.shape)
         keys = np.zeros((count, 8), dtype=np.uint64)
@@ -673,7 +751,7 @@ class _Batch:
 
     def step(self, sample: bool, histogram: bool) -> None:
         """Launch one time step for every realization: 4 launches (Lie splitting) or 6
-        (Strang), one fewer with the ``columns`` regrouping, and 2 more on a sampled
+        (Strang), 2 fewer with the ``columns`` regrouping, and 2 more on a sampled
         step."""
         s = self.settings
         strang = s.splitting == "strang"
@@ -681,9 +759,13 @@ class _Batch:
         if strang:
             self._force_and_thermostat(field_step)
             self._finish(end_of_step=False)
-        self._regroup_and_collide()
-        self._force_and_thermostat(field_step)
-        self._finish(end_of_step=True)
+        if self.columns:
+            self._collide_columns(field_step)
+            self._finish(end_of_step=True, folded=True)
+        else:
+            self._permute_and_collide()
+            self._force_and_thermostat(field_step)
+            self._finish(end_of_step=True)
         if sample:
             _observe[(self.n_blocks, self.count), THREADS](
                 self.velocity,
@@ -700,21 +782,38 @@ class _Batch:
                 self.partials, self.n_blocks, self.moment_sums, 1.0 / s.n_particles
             )
 
-    def _regroup_and_collide(self) -> None:
-        """The collision stage of every group, after the pending thermostat (``REGROUPING``):
-        one launch (``columns``) or two (``feistel``)."""
-        groups = (self.states, self.bounds, self.carry, self.tally, self.reals, self.flags)
-        if self.columns:
-            _collide_columns[(self.column_blocks, self.count), _TILE_THREADS](
-                self.velocity, *groups, self.keys, self.layout, self.thermo, self.pending
-            )
-        else:
-            _permute[(self.n_blocks, self.count), THREADS](
-                self.velocity, self.spare, self.keys, self.half_bits, self.thermo, self.pending
-            )
-            self.velocity, self.spare = self.spare, self.velocity
-            threads = min(BLOCK, self.n_groups)
-            _collide[(grid(self.n_groups, threads), self.count), threads](self.velocity, *groups)
+    def _groups(self) -> tuple:
+        """The per-group device arrays and the settings the collision kernels take."""
+        return self.states, self.bounds, self.carry, self.tally, self.reals, self.flags
+
+    def _permute_and_collide(self) -> None:
+        """``feistel``: the collision stage of every group after the regrouping copy (and
+        the pending thermostat): two launches."""
+        _permute[(self.n_blocks, self.count), THREADS](
+            self.velocity, self.spare, self.keys, self.half_bits, self.thermo, self.pending
+        )
+        self.velocity, self.spare = self.spare, self.velocity
+        threads = min(BLOCK, self.n_groups)
+        _collide[(grid(self.n_groups, threads), self.count), threads](
+            self.velocity, *self._groups()
+        )
+        self.pending = False
+
+    def _collide_columns(self, field_step: float) -> None:
+        """``columns``: the pending thermostat, the collision stage of every group and the
+        force step with the thermostat's sums (``column_partials``), in one launch."""
+        _collide_columns[(self.column_blocks, self.count), _TILE_THREADS](
+            self.velocity,
+            *self._groups(),
+            self.keys,
+            self.layout,
+            self.thermo,
+            self.pending,
+            self.column_partials,
+            self.status,
+            field_step,
+            1 if self.settings.force_step == "exact" else 0,
+        )
         self.pending = False
 
     def _force_and_thermostat(self, field_step: float) -> None:
@@ -731,11 +830,15 @@ class _Batch:
         )
         self.pending = False
 
-    def _finish(self, end_of_step: bool) -> None:
-        """The thermostat's u and scale (applied later: ``pending``) and the clock."""
+    def _finish(self, end_of_step: bool, folded: bool = False) -> None:
+        """The thermostat's u and scale (applied later: ``pending``) and the clock, from the
+        sums of ``_force`` or, ``folded``, of ``_collide_columns``."""
+        partials, n_blocks = (
+            (self.column_partials, self.column_blocks) if folded else (self.partials, self.n_blocks)
+        )
         _finish[grid(self.count, _SMALL), _SMALL](
-            self.partials,
-            self.n_blocks,
+            partials,
+            n_blocks,
             self.thermo,
             self.clock,
             self.status,

@@ -127,7 +127,9 @@ def simulate_homogeneous(
     and ``cx_outside_weights`` (below, above), ``speed_counts``, ``speed_overflow`` and
     ``histogram_observations`` (particles x snapshots); per realization ``collisions``,
     ``candidates``, ``bound_raises``, ``steps``, ``cpu_seconds`` (cuda: the batch's wall
-    time divided by the realizations). Attributes ``backend`` and ``device``.
+    time divided by the realizations). Attributes ``backend``, ``device`` and
+    ``collision_groups``: ``whole box`` on the CPU (every pair of the gas a candidate),
+    the regrouping of the GPU's random groups on ``cuda`` (``gpu.REGROUPING``).
     """
     backends.check(backend)
     settings = HomogeneousSettings(
@@ -182,8 +184,10 @@ def simulate_homogeneous(
     if backend == "cuda":
         from kinetic.dsmc import gpu
 
+        collision_groups = gpu.REGROUPING
         gpu.run_batch(*run, out, progress)
     else:
+        collision_groups = "whole box"
         _compile_outside_the_timers(settings, samples)
         _run_cpu(*run, out, progress)
     moments = out["moments"]
@@ -324,6 +328,7 @@ def simulate_homogeneous(
             "histogram_start_tau": histogram_start,
             "backend": backend,
             "device": device,
+            "collision_groups": collision_groups,
         },
     )
     parameters = {
