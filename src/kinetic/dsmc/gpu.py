@@ -376,28 +376,40 @@ def _column_shift(j, key, n_rows):
 _column_shift = cuda.jit(device=True, inline="always")(_column_shift)
 
 
-def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale):
-    """Copy the particles of groups ``first_group ..`` (``per_block`` of them) of
-    realization r from ``velocity`` into the block's ``tile``, after the pending thermostat
-    if ``rescale``. Group l's particle of column j sits at ``l * (columns | 1) + j``: an
-    odd stride between groups, so that threads walking their groups side by side read
-    different shared-memory banks. Consecutive threads take consecutive rows of one
-    column: coalesced reads."""
+def _tile_slot(slot, first_group, per_block, shifts, layout):
+    """Slot ``slot`` of a block's tile of groups ``first_group ..`` (``per_block`` of
+    them): ``(p, i)``, the particle's index in its realization and its place in the tile,
+    or p = -1 where the slot holds none. Slots run over the rows of one column, then the
+    next column: consecutive threads take consecutive rows (coalesced reads and writes).
+    Group l's particle of column j sits at ``l * (columns | 1) + j``: an odd stride
+    between groups, so that threads walking their groups side by side use different
+    shared-memory banks."""
     n_rows = layout[0]
     n_columns = layout[1]
-    for slot in range(cuda.threadIdx.x, per_block * n_columns, cuda.blockDim.x):
-        j = slot // per_block
-        l = slot - j * per_block
-        g = first_group + l
-        if g < n_rows:
-            p = _column_particle(j, g, shifts[j], n_rows, n_columns, layout[2])
-            if p >= 0:
-                i = l * (n_columns | 1) + j
-                for k in range(d):
-                    if rescale:
-                        tile[k, i] = _thermostat(velocity[r, k, p], thermo, r, k)
-                    else:
-                        tile[k, i] = velocity[r, k, p]
+    j = slot // per_block
+    l = slot - j * per_block
+    g = first_group + l
+    if g >= n_rows:
+        return -1, 0
+    p = _column_particle(j, g, shifts[j], n_rows, n_columns, layout[2])
+    return p, l * (n_columns | 1) + j
+
+
+_tile_slot = cuda.jit(device=True, inline="always")(_tile_slot)
+
+
+def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale):
+    """Copy the particles of groups ``first_group ..`` (``per_block`` of them) of
+    realization r from ``velocity`` into the block's ``tile`` (``_tile_slot``), after the
+    pending thermostat if ``rescale``."""
+    for slot in range(cuda.threadIdx.x, per_block * layout[1], cuda.blockDim.x):
+        p, i = _tile_slot(slot, first_group, per_block, shifts, layout)
+        if p >= 0:
+            for k in range(d):
+                if rescale:
+                    tile[k, i] = _thermostat(velocity[r, k, p], thermo, r, k)
+                else:
+                    tile[k, i] = velocity[r, k, p]
 
 
 _gather = cuda.jit(device=True, inline="always")(_gather)
@@ -408,39 +420,29 @@ def _scatter(velocity, tile, shifts, layout, r, first_group, per_block, d, field
     back to ``velocity`` as f V (``kernels._force_factor`` of a = ``field_step``, as in
     ``_force``; none when a = 0). Returns this thread's sums ΣV_x, ΣV_y, ΣV_z, Σ|V|² after
     the force and its failure code (0: none)."""
-    n_rows = layout[0]
-    n_columns = layout[1]
     sum0 = 0.0
     sum1 = 0.0
     sum2 = 0.0
     total_sq = 0.0
     failed = 0
-    for slot in range(cuda.threadIdx.x, per_block * n_columns, cuda.blockDim.x):
-        j = slot // per_block
-        l = slot - j * per_block
-        g = first_group + l
-        if g < n_rows:
-            p = _column_particle(j, g, shifts[j], n_rows, n_columns, layout[2])
-            if p >= 0:
-                i = l * (n_columns | 1) + j
-                v0 = tile[0, i]
-                v1 = tile[1, i]
-                v2 = tile[2, i] if d == 3 else 0.0
-                if field_step != 0.0:
-                    code, f = _force_factor(field_step * v0, exact)
-                    if code != 0:
-                        failed = code
-                    v0 *= f
-                    v1 *= f
-                    v2 *= f
-                velocity[r, 0, p] = v0
-                velocity[r, 1, p] = v1
-                if d == 3:
-                    velocity[r, 2, p] = v2
-                sum0 += v0
-                sum1 += v1
-                sum2 += v2
-                total_sq += v0 * v0 + v1 * v1 + v2 * v2
+    for slot in range(cuda.threadIdx.x, per_block * layout[1], cuda.blockDim.x):
+        p, i = _tile_slot(slot, first_group, per_block, shifts, layout)
+        if p >= 0:
+            v0 = tile[0, i]
+            v1 = tile[1, i]
+            v2 = tile[2, i] if d == 3 else 0.0
+            if field_step != 0.0:
+                code, v0, v1, v2 = _forced(v0, v1, v2, field_step, exact)
+                if code != 0:
+                    failed = code
+            velocity[r, 0, p] = v0
+            velocity[r, 1, p] = v1
+            if d == 3:
+                velocity[r, 2, p] = v2
+            sum0 += v0
+            sum1 += v1
+            sum2 += v2
+            total_sq += v0 * v0 + v1 * v1 + v2 * v2
     return sum0, sum1, sum2, total_sq, failed
 
 
@@ -520,6 +522,16 @@ def _collide_columns(
 # --------------------------------------------------------------- force and thermostat
 
 
+def _forced(v0, v1, v2, field_step, exact):
+    """One particle's force step V -> f V (``kernels._force_factor`` of a V_x, a =
+    ``field_step``): ``(status, V_x, V_y, V_z)``."""
+    code, f = _force_factor(field_step * v0, exact)
+    return code, v0 * f, v1 * f, v2 * f
+
+
+_forced = cuda.jit(device=True, inline="always")(_forced)
+
+
 @kernel
 def _force(velocity, partials, status, field_step, exact, thermo, rescale):
     """Force step V -> f V of every particle (a = ``field_step``; after the pending
@@ -544,12 +556,9 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale):
             v1 = _thermostat(v1, thermo, r, 1)
             v2 = _thermostat(v2, thermo, r, 2) if d == 3 else 0.0
         if field_step != 0.0:
-            code, f = _force_factor(field_step * v0, exact)
+            code, v0, v1, v2 = _forced(v0, v1, v2, field_step, exact)
             if code != 0:
                 failed = code
-            v0 *= f
-            v1 *= f
-            v2 *= f
         if rescale or field_step != 0.0:
             velocity[r, 0, i] = v0
             velocity[r, 1, i] = v1
