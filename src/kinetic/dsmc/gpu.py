@@ -147,9 +147,9 @@ _TILE = 1806
 block sums, the block declares 48 464 bytes, under the 49 152 a block may declare
 statically."""
 
-_MAX_COLUMNS = 256
+_MAX_COLUMNS = 2 * GROUP_SIZE
 """Most columns (particles of a group) of the ``columns`` layout: groups hold fewer than
-2 GROUP_SIZE particles."""
+2 GROUP_SIZE particles (256: the size of the kernel's shift array, fixed at import)."""
 
 _TILE_THREADS = 8 if simulated() else 128
 """Threads per block of ``_collide_columns`` (each gathers and scatters its share of the
@@ -719,6 +719,7 @@ class _Batch:
             velocity[r] = gas.velocity
             group_keys[r] = gas.rng
         self.settings = settings
+        self.exact = 1 if settings.force_step == "exact" else 0
         self.count = count
         self.n_groups = max(1, n // GROUP_SIZE)
         self.n_blocks = min(grid(n, THREADS), MAX_BLOCKS)
@@ -821,19 +822,18 @@ class _Batch:
             self.column_partials,
             self.status,
             field_step,
-            1 if self.settings.force_step == "exact" else 0,
+            self.exact,
         )
         self.pending = False
 
     def _force_and_thermostat(self, field_step: float) -> None:
         """The force step and the sums of the thermostat (the pending thermostat first)."""
-        exact = 1 if self.settings.force_step == "exact" else 0
         _force[(self.n_blocks, self.count), THREADS](
             self.velocity,
             self.partials,
             self.status,
             field_step,
-            exact,
+            self.exact,
             self.thermo,
             self.pending,
         )

@@ -7,9 +7,9 @@ import).
   against the engine's uniform pairs (``kinetic.bench.dsmc``,
   ``tests/physics/test_dsmc_pair_selections_agree.py``).
 - ``column_groups``: the CUDA homogeneous DSMC's collision groups on the CPU, against the
-  whole box (``tests/physics/test_dsmc_gpu_groupings_match_the_whole_box.py``; not in
-  :func:`warmup`: its one kernel compiles in 14 s where that test runs, instead of
-  lengthening the test run's cache seeding, whose longer half it would join).
+  whole box (``tests/physics/test_dsmc_gpu_groupings_match_the_whole_box.py``; its one
+  kernel, 14 s of compilation, is in :func:`warmup`, so the test suite's seed caches hold
+  it).
 """
 
 

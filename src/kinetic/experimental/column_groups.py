@@ -35,6 +35,8 @@ __all__ = ["GROUPINGS", "cooling_state", "main"]
 GROUPINGS = {"whole": 0, "permuted": 1, "columns": 2}
 
 _GROUP_SIZE = 128
+"""Fewest particles of a group: ``kinetic.dsmc.gpu.GROUP_SIZE`` (not imported here, as
+that module loads numba-cuda)."""
 
 
 @kernel
