@@ -23,6 +23,7 @@ except the bookkeeping modules that name, write and log results.
 from __future__ import annotations
 
 import ast
+import re
 from functools import cache
 from pathlib import Path
 
@@ -104,13 +105,42 @@ def _import_statements(tree: ast.Module):
                     blocks.append(children)
 
 
+_PACKAGE_IMPORT = re.compile(
+    r"^[ \t]*(from[ \t]+kinetic\b[\w.]*[ \t]+import[ \t]+(?:\([^)]*\)|[^\n]*)"
+    r"|import[ \t]+kinetic\b[^\n]*)",
+    re.MULTILINE,
+)
+"""A statement that imports from the package, at any indentation: ``from kinetic...
+import`` (a parenthesised list may span lines) or ``import kinetic...``."""
+
+
+def _package_imports(path: Path) -> list[ast.Import | ast.ImportFrom]:
+    """The import statements of ``path`` that name the package, parsed one by one from
+    the lines that start them: parsing a whole module costs 10-50 times more, and the
+    workflow reads about 130 modules each time Snakemake starts. A line that only looks
+    like one (a module docstring's usage example) is parsed too: it can add a dependency,
+    never lose one (tests/unit/test_script_sources.py checks that every script's and
+    front's files are those of the whole-module reading). Where a statement does not
+    parse alone (a parenthesis in a comment), the whole module is."""
+    text = path.read_text()
+    try:
+        return [
+            node
+            for statement in _PACKAGE_IMPORT.findall(text)
+            for node in ast.parse(statement).body
+            if isinstance(node, ast.Import | ast.ImportFrom)
+        ]
+    except SyntaxError:
+        return list(_import_statements(ast.parse(text, filename=str(path))))
+
+
 @cache
 def _imported_files(path: Path) -> tuple[Path, ...]:
     """Package files imported by the import statements of ``path`` (anywhere in it,
     function bodies included); ``from kinetic.x import name`` counts the submodule
     ``kinetic.x.name`` when there is one."""
     found = []
-    for node in _import_statements(ast.parse(path.read_text(), filename=str(path))):
+    for node in _package_imports(path):
         if isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] == "kinetic":
             found += _module_files(node.module)
             for alias in node.names:

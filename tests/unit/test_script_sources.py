@@ -2,13 +2,14 @@
 statements, agree with what Python imports when the script runs; simulation rules list
 every module whose edit changes their jobs' numbers."""
 
+import ast
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
-from kinetic import studies
+from kinetic import sources, studies
 from kinetic.config import load_configs
 from kinetic.sources import BOOKKEEPING, PACKAGE, front_sources, script_sources
 from kinetic.trace import package_modules
@@ -106,3 +107,35 @@ def test_each_md_engine_reruns_only_its_own_jobs():
     engines = [names for _, names in FRONTS]
     assert ("event_disks", "samplers") in engines
     assert sum("edmd" in names for names in engines) >= 2
+
+
+def test_reading_import_lines_finds_what_parsing_whole_modules_finds(monkeypatch):
+    """kinetic.sources parses only the lines that start a package import; every script's
+    and every front's files are those that parsing each whole module gives."""
+
+    def read(front_or_script):
+        sources._imported_files.cache_clear()
+        if isinstance(front_or_script, Path):
+            return script_sources(front_or_script)
+        return front_sources(*front_or_script)
+
+    cases = [*READING_SCRIPTS, *FRONTS]
+    fast = [read(case) for case in cases]
+    monkeypatch.setattr(
+        sources,
+        "_package_imports",
+        lambda path: list(sources._import_statements(ast.parse(path.read_text()))),
+    )
+    for case, files in zip(cases, fast, strict=True):
+        assert read(case) == files, case
+    sources._imported_files.cache_clear()
+
+
+def test_an_import_split_by_a_commented_parenthesis_is_still_read(tmp_path):
+    script = tmp_path / "script.py"
+    script.write_text(
+        "from kinetic.analysis import (  # the analysis (and its figures)\n    montanero2007,\n)\n"
+    )
+    files = {path.relative_to(PACKAGE).as_posix() for path in script_sources(script)}
+    assert "analysis/montanero2007.py" in files
+

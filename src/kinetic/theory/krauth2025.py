@@ -29,7 +29,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.special import gammaln
 
 __all__ = [
     "MAX_NAIVE_STARTS",
@@ -126,7 +125,7 @@ def pin_density(x, n_pins: int, length: float, sigma: float) -> np.ndarray:
     log_total = n_pins * np.log(length - 2.0 * n_pins * sigma)
     terms = []
     for k in range(n_pins):
-        log_binomial = gammaln(n_pins) - gammaln(k + 1) - gammaln(n_pins - k)
+        log_binomial = math.lgamma(n_pins) - math.lgamma(k + 1) - math.lgamma(n_pins - k)
         left = _log_partition(k, x - sigma, sigma)
         right = _log_partition(n_pins - 1 - k, length - x - sigma, sigma)
         terms.append(log_binomial + left + right - log_total)
@@ -166,7 +165,7 @@ def bin_average(density, edges, points_per_bin: int = 64) -> np.ndarray:
 # ---------------------------------------------------------------- hard disks, §4.4.3
 def _gamma_ratio(n_disks: int) -> float:
     """Γ(N + 1/2)/Γ(N) (→ √N)."""
-    return float(np.exp(gammaln(n_disks + 0.5) - gammaln(n_disks)))
+    return math.exp(math.lgamma(n_disks + 0.5) - math.lgamma(n_disks))
 
 
 def wall_speed_averages(n_disks: int, radius: float) -> dict[str, float]:
@@ -200,7 +199,7 @@ def sphere_velocity_marginal(u, n_disks: int):
     """Density of u = v_a/R, one velocity component over R, when the 2N components are
     uniform on the sphere Σ v² = R² (§4.2.1): Γ(N)/(√π Γ(N − 1/2)) (1 − u²)^(N − 3/2)."""
     u = np.asarray(u, dtype=float)
-    norm = math.exp(gammaln(n_disks) - gammaln(n_disks - 0.5)) / math.sqrt(math.pi)
+    norm = math.exp(math.lgamma(n_disks) - math.lgamma(n_disks - 0.5)) / math.sqrt(math.pi)
     return norm * np.clip(1.0 - u * u, 0.0, None) ** (n_disks - 1.5)
 
 
