@@ -138,4 +138,3 @@ def test_an_import_split_by_a_commented_parenthesis_is_still_read(tmp_path):
     )
     files = {path.relative_to(PACKAGE).as_posix() for path in script_sources(script)}
     assert "analysis/montanero2007.py" in files
-
