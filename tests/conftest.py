@@ -1,8 +1,10 @@
 """Shared fixtures: the repository root and a headless matplotlib; under pytest-xdist,
-one numba cache per worker, seeded with every engine compiled once, and the longest tests
-first."""
+one numba cache per worker, seeded with every engine compiled once, the longest tests
+first, and costly module fixtures computed by one worker for both (``once``)."""
 
+import fcntl
 import os
+import pickle
 import shutil
 import subprocess
 import sys
@@ -91,3 +93,32 @@ def pytest_collection_modifyitems(config, items):
 @pytest.fixture(scope="session")
 def repository() -> Path:
     return REPOSITORY
+
+
+@pytest.fixture(scope="session")
+def once(tmp_path_factory):
+    """``once(key, compute)`` is ``compute()``, computed by one pytest-xdist worker and read
+    by the others. The workers share a module's tests, so a costly module fixture would
+    otherwise run once per worker (the simulations behind several tests, 5-20 s each).
+    The value is pickled under ``key`` in the run's shared temporary directory, under a
+    lock: a worker that needs it while the other computes it waits, as long as it would
+    have taken to compute it itself. A failed computation stores nothing. Without xdist
+    it is ``compute()``."""
+    if not _WORKER:
+        return lambda key, compute: compute()
+    shared = tmp_path_factory.getbasetemp().parent / "computed-once"
+    shared.mkdir(exist_ok=True)
+
+    def get(key: str, compute):
+        path = shared / f"{key}.pickle"
+        with open(shared / f"{key}.lock", "a") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            if path.is_file():
+                return pickle.loads(path.read_bytes())
+            value = compute()
+            partial = path.with_suffix(".partial")
+            partial.write_bytes(pickle.dumps(value))
+            partial.replace(path)
+            return value
+
+    return get

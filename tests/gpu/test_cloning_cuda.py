@@ -53,9 +53,13 @@ def run(**overrides):
     return simulate(**(arguments | overrides))
 
 
-@pytest.fixture(scope="module")
-def maxwell():
+def _maxwell():
     return run()
+
+
+@pytest.fixture(scope="module")
+def maxwell(once):
+    return once("cloning_cuda.maxwell", _maxwell)
 
 
 def test_maxwell_molecules_have_the_exact_large_deviation_function(maxwell):

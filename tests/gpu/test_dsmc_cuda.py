@@ -91,8 +91,7 @@ the simulator allows: 8 steps; at ε* = 0.2 one realization's heat flux over the
 three windows is about 2.9 of its standard deviations from zero (CPU, 200 realizations)."""
 
 
-@pytest.fixture(scope="module")
-def forced_runs():
+def _forced_runs():
     """The forced run on the GPU, its last two realizations alone on the GPU (a
     realization's numbers depend on its stream row only), the same run on the CPU, and
     200 realizations of it on the CPU."""
@@ -103,6 +102,11 @@ def forced_runs():
     cpu = simulate_homogeneous(**FORCED, backend="cpu")
     many = simulate_homogeneous(**{**FORCED, "n_realizations": 200}, backend="cpu")
     return cuda, last_two, cpu, many
+
+
+@pytest.fixture(scope="module")
+def forced_runs(once):
+    return once("dsmc_cuda.forced_runs", _forced_runs)
 
 
 def test_unknown_backend_is_rejected_before_any_work(monkeypatch):

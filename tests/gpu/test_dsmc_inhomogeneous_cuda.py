@@ -84,8 +84,7 @@ def _a_launch_per_phase_under_the_simulator():
     inhomogeneous_gpu.TOGETHER = saved
 
 
-@pytest.fixture(scope="module")
-def tiny_runs():
+def _tiny_runs():
     """The same run (α = 0.8 with drag, paper rule) twice on the GPU: the steps between
     samples in one cooperative launch, then in five launches a step; and once on the
     CPU."""
@@ -100,6 +99,11 @@ def tiny_runs():
     finally:
         inhomogeneous_gpu.TOGETHER = saved
     return together, launched, _run("cpu")
+
+
+@pytest.fixture(scope="module")
+def tiny_runs(once):
+    return once("dsmc_inhomogeneous_cuda.tiny_runs", _tiny_runs)
 
 
 def test_unknown_backend_is_rejected_before_any_work(monkeypatch):
@@ -143,10 +147,14 @@ def test_dataset_has_the_cpu_layout(tiny_runs, assert_cpu_layout):
 SHORT_ELASTIC = {"seed": 6, "n_realizations": 1, "n_samples": 2, "restitution": 1.0, "drag_rate": 0}
 
 
-@pytest.fixture(scope="module")
-def short_elastic_run():
+def _short_elastic_run():
     """Another seed, α = 1 without drag and two samples instead of four."""
     return _run("cuda", **SHORT_ELASTIC)
+
+
+@pytest.fixture(scope="module")
+def short_elastic_run(once):
+    return once("dsmc_inhomogeneous_cuda.short_elastic_run", _short_elastic_run)
 
 
 def test_same_seed_gives_identical_datasets(tiny_runs, short_elastic_run):
@@ -236,8 +244,7 @@ def test_first_step_sorts_like_the_cpu(rule):
         np.testing.assert_array_equal(moments[r], gas.cell_moments)
 
 
-@pytest.fixture(scope="module")
-def elastic_run():
+def _elastic_run():
     """α = 1 without drag (the elastic gas at equilibrium from its first sample)."""
     return simulate_cooling_modes(
         **DILUTE,
@@ -248,6 +255,11 @@ def elastic_run():
         n_realizations=2,
         backend="cuda",
     )
+
+
+@pytest.fixture(scope="module")
+def elastic_run(once):
+    return once("dsmc_inhomogeneous_cuda.elastic_run", _elastic_run)
 
 
 def test_elastic_collisions_conserve_energy_and_momentum(elastic_run):

@@ -35,8 +35,7 @@ def fit_cumulants(lams, mu, err, order=ORDER):
     return coefficients, np.sqrt(np.diag(covariance))
 
 
-@pytest.fixture(scope="module")
-def scan():
+def _scan():
     runs = [
         simulate(
             kernel="hard_spheres",
@@ -55,6 +54,11 @@ def scan():
         name: np.array([float(ds[name]) for ds in runs])
         for name in ("mu", "mu_err", "mu_rate", "mu_rate_err")
     }
+
+
+@pytest.fixture(scope="module")
+def scan(once):
+    return once("cloning_hard_disk_cumulants.scan", _scan)
 
 
 def test_sonine_cumulants_eq50():

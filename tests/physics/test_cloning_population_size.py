@@ -24,8 +24,7 @@ from kinetic.theory.visco2008_exact import reference_solution
 SIZES = [25, 50, 100]
 
 
-@pytest.fixture(scope="module")
-def strong_duplication():
+def _strong_duplication():
     return [
         simulate(
             kernel="hard_spheres",
@@ -43,10 +42,19 @@ def strong_duplication():
 
 
 @pytest.fixture(scope="module")
-def exact_mu():
+def strong_duplication(once):
+    return once("cloning_population_size.strong_duplication", _strong_duplication)
+
+
+def _exact_mu():
     fine = reference_solution([-1.5], 2, n_nodes=300)[0][0]
     coarse = reference_solution([-1.5], 2, n_nodes=200)[0][0]
     return fine, 2 * abs(fine - coarse)
+
+
+@pytest.fixture(scope="module")
+def exact_mu(once):
+    return once("cloning_population_size.exact_mu", _exact_mu)
 
 
 @pytest.mark.slow

@@ -35,8 +35,7 @@ def gaussian_closure(lam):
     return {"mu": mu, "temperature": temperature, "a2": 0.0}
 
 
-@pytest.fixture(scope="module")
-def measured():
+def _measured():
     return {
         lam: simulate(
             kernel="hard_spheres",
@@ -54,7 +53,11 @@ def measured():
 
 
 @pytest.fixture(scope="module")
-def exact():
+def measured(once):
+    return once("cloning_sonine_reference_points.measured", _measured)
+
+
+def _exact():
     lams = list(SONINE)
     fine = reference_solution(lams, 2, n_nodes=300)
     coarse = reference_solution(lams, 2, n_nodes=200)
@@ -65,6 +68,11 @@ def exact():
         }
         for i, lam in enumerate(lams)
     }
+
+
+@pytest.fixture(scope="module")
+def exact(once):
+    return once("cloning_sonine_reference_points.exact", _exact)
 
 
 @pytest.mark.parametrize("lam", list(SONINE))
