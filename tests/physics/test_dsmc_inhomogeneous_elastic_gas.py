@@ -36,9 +36,8 @@ def paper_rate_factor(n_sim: int, cells: int) -> float:
     return cells**4 * float(np.sum(weights * k**2 * jensen)) / n_sim**2
 
 
-@pytest.fixture(scope="module", params=["majorant", "paper"])
-def run(request):
-    return request.param, simulate_cooling_modes(
+def _run(rule):
+    return rule, simulate_cooling_modes(
         n_particles=N,
         density=DENSITY,
         restitution=1.0,
@@ -50,9 +49,14 @@ def run(request):
         fictive_factor=LAMBDA,
         cells_per_side=CELLS,
         time_step=STEP,
-        collision_rule=request.param,
+        collision_rule=rule,
         n_realizations=12,
     )
+
+
+@pytest.fixture(scope="module", params=["majorant", "paper"])
+def run(request, once):
+    return once(f"dsmc_inhomogeneous_elastic_gas.run.{request.param}", lambda: _run(request.param))
 
 
 def test_energy_is_conserved_to_round_off(run):
