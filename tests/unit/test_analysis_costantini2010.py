@@ -103,6 +103,27 @@ def test_measured_cooling_rate_in_reduced_units():
     assert float(result.zeta_star_balance) == pytest.approx(zeta / TO_REDUCED, rel=1e-12)
 
 
+def test_reduced_numbers_carry_the_uncertainty_of_the_steady_temperature():
+    """Under the drag the dissipation per unit energy is pinned (here to ζ at every
+    sample), so ζ* = ζ/(n√(2T_s)) is uncertain through T_s alone: its error is
+    ζ*·δT_s/(2T_s), not the near-zero scatter of the dissipation per unit energy; τ_c in
+    ℓ/v_s carries the same conversion."""
+    zeta = 0.01
+    dataset = synthetic_run(5, zeta=zeta)
+    temperatures = 1.0 + 0.02 * np.random.default_rng(6).normal(size=(4, 1))
+    shape = dataset.temperature.shape
+    dataset["temperature"].values[:] = np.broadcast_to(temperatures, shape)
+    dataset["dissipated_energy"].values[:] *= np.broadcast_to(temperatures, shape)
+    result = analyse(dataset)
+    relative = float(result.temperature_s_err) / (2 * float(result.temperature_s))
+    assert relative > 0.002  # the realizations' T_s differ by 2 %
+    assert float(result.zeta_star_err) == pytest.approx(
+        float(result.zeta_star) * relative, rel=0.05
+    )
+    fixed = analyse(synthetic_run(5, zeta=zeta))  # the same modes at T_s = 1 exactly
+    assert float(result.tau_c_err) > float(fixed.tau_c_err)
+
+
 def test_jackknife_errors_are_honest_over_independent_data_sets():
     z_scores = []
     for seed in range(12):

@@ -247,10 +247,14 @@ def analyse_run(
 
     def statistic(mean: np.ndarray) -> np.ndarray:
         correlation, temperature, rate = mean[:n_lags], mean[n_lags], mean[n_lags + 1]
+        # the reduced units are those of this sample's own T_s, so that T_s's uncertainty is
+        # in every reduced number's error: in the steady state the drag pins rate/T to 2ω0,
+        # and ζ* = 2ω0/(n√(2T_s)) is uncertain through T_s alone
+        scale = density * math.sqrt(2.0 * temperature) / to_reduced
         tau_c, amplitude, chi2 = fit_tail(
-            lags[window], correlation[window], correlation_sem[window]
+            lags[window] * scale, correlation[window], correlation_sem[window]
         )
-        zeta_star = rate / temperature / to_reduced
+        zeta_star = rate / temperature / (to_reduced * scale)
         nu_star = theory.nu_star_from_fit(tau_c, zeta_star, k_star)
         nu_bar_star = theory.nu_bar_star_from_fit(amplitude, tau_c, k_star)
         nu_bar_c0 = theory.nu_bar_star_from_fit(correlation[0], tau_c, k_star)
