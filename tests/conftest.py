@@ -99,7 +99,7 @@ def repository() -> Path:
 def once(tmp_path_factory):
     """``once(key, compute)`` is ``compute()``, computed by one pytest-xdist worker and read
     by the others. The workers share a module's tests, so a costly module fixture would
-    otherwise run once per worker (the simulations behind several tests, 5-20 s each).
+    otherwise run once per worker (the simulations behind several tests, 3-11 s each).
     The value is pickled under ``key`` in the run's shared temporary directory, under a
     lock: a worker that needs it while the other computes it waits, as long as it would
     have taken to compute it itself. A failed computation stores nothing. Without xdist

