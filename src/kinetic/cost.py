@@ -330,11 +330,13 @@ DSMC_COLLISIONS_PER_SECOND = {1e4: 1.39e7, 2e5: 9.8e6}
 """README: accepted NTC collisions per CPU-second of kinetic.dsmc (d = 3, α = 1;
 8.7 × 10⁶ at α = 0.5, N = 2 × 10⁵, which the safety factor covers)."""
 
-DSMC_SECONDS_PER_PARTICLE_STEP = 5e-9
+DSMC_SECONDS_PER_PARTICLE_STEP = 3e-9
 """Force, thermostat and moments per particle and time step (montanero2007's protocol):
-front 2.4 ns at N = 2 × 10⁴ and 2 × 10⁵ (Euler step), 2.8 ns (exact step), halved speed.
-Cross-check: the paper config's comment, ~3000 CPU-s per run of 200 realizations of
-60 τ at N = 2 × 10⁵, δt = 0.003 τ; this model gives 4100 s."""
+bench dsmc's paper step 1.55 ns at N = 2 × 10⁵ (exact force, collisions included; 3.4 ns
+before the thermostat was deferred into the next force update, 2026-11-27), the front
+2.0-2.6 ns with its snapshot every 50 steps; about twice the bench, like the other
+constants. Cross-check: the paper config's comment, ~3000 CPU-s per run of 200
+realizations of 60 τ at N = 2 × 10⁵, δt = 0.003 τ; this model gives 2700 s."""
 
 DSMC_SECONDS_PER_STEP = 4e-6
 """Fixed cost of a time step (front: 4.7 ns per particle-step at N = 2000, 2.4 at 2 × 10⁴),

@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 from kinetic import rng
+from kinetic.analysis.montanero2007 import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import (
     HomogeneousSettings,
@@ -127,7 +128,7 @@ def test_large_field_works_and_shows_the_departure_from_linear_response(force_st
         time_step=0.05,
         sample_interval=4.0,
         seed=84,
-        n_realizations=4,
+        n_realizations=8,
         sample_stride=2,
         force_step=force_step,
     )
@@ -138,16 +139,23 @@ def test_large_field_works_and_shows_the_departure_from_linear_response(force_st
         moments = run.moments.mean("time")
         anisotropy[field] = (moments.sel(moment="cx2") - moments.sel(moment="c2") / 3).values
         far_tail[field] = (run.cx_outside.sel(side="below") / run.histogram_observations).values
-    # linear response fails at 0.2: q/ε* changes by far more than its error bars
-    low, low_sem = mean_and_sem(response[0.05])
-    high, high_sem = mean_and_sem(response[0.2])
-    assert abs(high - low) > 5 * np.hypot(low_sem, high_sem)
-    assert high < low < 0  # the heat flux per unit field grows in magnitude
-    # second-order effects: Π_xx ~ ε*² is visible at 0.2 and about 16 times that at 0.05
+    # linear response fails at 0.2: the heat flux per unit field grows in magnitude, every
+    # realization's q/ε* at 0.2 lies beyond 5 standard deviations of one realization's at
+    # 0.05 (9-14 over eight seeds). At 0.2 q has no variance (the tail above), so its
+    # mean's standard error means nothing: one realization in eight may sit far out
+    low = np.mean(response[0.05])
+    spread = np.std(response[0.05], ddof=1)
+    assert np.max(response[0.2]) < low - 5 * spread
+    assert low < 0
+    # second-order effects: Π_xx ~ ε*² is resolved at 0.2 (20-40 errors) and consistent
+    # with 16 times less at 0.05, where 8 realizations hardly resolve it: the 4-sigma band
+    # of an error from 8 realizations is Student's, 8.5 errors (with the normal 4, the
+    # check failed for one seed in six, the errors' own scatter)
     aniso, aniso_sem = mean_and_sem(anisotropy[0.2])
     small, small_sem = mean_and_sem(anisotropy[0.05])
     assert aniso > 5 * aniso_sem
-    assert abs(aniso / 16 - small) < 4 * np.hypot(aniso_sem / 16, small_sem)
+    band = tolerance_factor(4.0, len(anisotropy[0.05]) - 1) * np.hypot(aniso_sem / 16, small_sem)
+    assert abs(aniso / 16 - small) < band
     # the power-law tail: c_x < -6 (a Gaussian gives 1e-17) in every realization at 0.2,
     # never in ~ 10^6 observations per realization at 0.05
     assert np.all(far_tail[0.2] > 1e-5)

@@ -130,6 +130,85 @@ def test_force_steps_are_the_euler_and_exact_maps_then_the_thermostat():
         np.testing.assert_allclose(v, expected, rtol=1e-12, atol=1e-13)
 
 
+@pytest.mark.parametrize("strang", [False, True])
+@pytest.mark.parametrize("d", [2, 3])
+def test_deferred_thermostat_gives_the_steps_of_the_explicit_one(d, strang):
+    """``advance`` applies each step's thermostat in the next step's force update and
+    collides the stored velocities W at the rate of the thermostatted ones s (W - u).
+    Maxwell molecules collide at a rate that does not depend on the velocities and are
+    always accepted, so both ways draw the same random numbers for the same pairs: 40
+    steps of ``advance`` (field, inelastic, a snapshot every 7 steps) must equal
+    ``collide_range`` then ``force_and_thermostat`` (Strang: around the collisions),
+    step by step, to round-off."""
+    n, a, alpha, dt = 400, 0.02, 0.6, 0.05
+    velocity, state, bounds = _gas(d, n)
+    coefficient = 4.0 / n
+    reference, reference_state, reference_bounds = velocity.copy(), state.copy(), bounds.copy()
+    reference_moments = np.zeros(kernels.N_MOMENTS + 1)
+    reference_steps = kernels.Collisions(
+        kernels.MAXWELL, alpha, coefficient, dt, False, reference_bounds, np.zeros(1),
+        np.zeros(4, dtype=np.int64),
+    )  # fmt: skip
+    half_step = 0.5 * a if strang else a
+    for step in range(1, 41):
+        if strang:
+            kernels.force_and_thermostat(reference, half_step, True, 1.5, reference_bounds)
+        kernels.collide_range(reference, 0, n, reference_state, reference_steps)
+        kernels.force_and_thermostat(reference, half_step, True, 1.5, reference_bounds)
+        if step % 7 == 0:
+            reference_moments[0] += 1.0
+            kernels.accumulate_moments(reference, 1.0, reference_moments[1:])
+    tally = np.zeros(4, dtype=np.int64)
+    collisions = kernels.Collisions(
+        kernels.MAXWELL, alpha, coefficient, dt, False, bounds, np.zeros(1), tally
+    )
+    forcing = kernels.Forcing(a, True, strang, 1.5, 0.0)
+    moments = np.zeros(kernels.N_MOMENTS + 1)
+    sampling = kernels.Sampling(
+        7, 1.0, moments, False, -5.0, 0.1, np.zeros(100), np.zeros(100), 0.1, np.zeros(60)
+    )
+    status = kernels.advance(velocity, state, collisions, forcing, sampling, np.zeros(5), 40)
+    assert status == kernels.STATUS_OK
+    assert tally[kernels.TALLY_ACCEPTED] == reference_steps.tally[kernels.TALLY_ACCEPTED] > n
+    np.testing.assert_array_equal(state, reference_state)  # the same draws
+    np.testing.assert_allclose(velocity, reference, rtol=0, atol=1e-11)
+    np.testing.assert_allclose(moments, reference_moments, rtol=1e-10, atol=1e-12)
+    speeds = np.sqrt(np.sum((velocity - bounds[:d, None]) ** 2, axis=0))
+    assert speeds.max() <= bounds[d] * (1 + 1e-12)  # the bounds hold for what is returned
+
+
+@pytest.mark.parametrize("kernel", [kernels.HARD_SPHERES, kernels.VERY_HARD])
+def test_stored_velocities_collide_at_the_rate_of_the_thermostatted_ones(kernel):
+    """Between a force update and the next, ``advance`` collides W, whose thermostatted
+    velocities are V = s (W - u), under ``_deferred``: candidates at s**p times W's rate
+    (p = 1 hard spheres, 2 very hard), accepted on W's relative speeds. With the same
+    random numbers that is V's collision step: the same candidates and collisions, and
+    s (W' - u) = V' to round-off. Without the factor s**p the candidates number 1/1.3 or
+    1/1.3² of V's and the test fails."""
+    d, n, scale, shift = 3, 500, 1.3, np.array([0.2, -0.1, 0.05])
+    v, state, _ = _gas(d, n)
+    w = v / scale + shift[:, None]
+    w_bounds = np.empty(d + 2)
+    kernels.speed_bounds(w, 0, n, w_bounds)
+    v_bounds = w_bounds.copy()  # the same bound, carried over to V (as apply_thermostat)
+    v_bounds[:d] = scale * (w_bounds[:d] - shift)
+    v_bounds[d:] *= scale
+    p = 1.0 if kernel == kernels.HARD_SPHERES else 2.0
+    runs = []
+    for velocity, velocity_bounds, factor in ((v, v_bounds, 1.0), (w, w_bounds, scale)):
+        tally = np.zeros(4, dtype=np.int64)
+        collisions = kernels.Collisions(
+            kernel, 0.7, 0.02, 1.0, False, velocity_bounds, np.zeros(1), tally
+        )
+        kernels.collide_range(
+            velocity, 0, n, state.copy(), kernels._deferred(collisions, factor, p)
+        )
+        runs.append(tally)
+    np.testing.assert_array_equal(runs[0], runs[1])
+    assert runs[0][kernels.TALLY_ACCEPTED] > n / 10
+    np.testing.assert_allclose(scale * (w - shift[:, None]), v, rtol=0, atol=1e-12)
+
+
 def test_exact_force_step_composes_like_the_flow_it_integrates():
     # V -> V/(1 + a V_x) is the time-a flow of dV/dt = -V_x V: two steps a/2 equal one step a
     vx, vy, a = 1.7, -0.4, 0.3
