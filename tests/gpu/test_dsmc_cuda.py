@@ -280,19 +280,18 @@ def test_hcs_cooling_rate_and_a2_match_the_cpu_engine_and_theory(regrouping):
     cpu = _run("cpu", **options)
     zeta, zeta_sem = _window_statistics(cuda, "cooling_rate")
     zeta_cpu, zeta_cpu_sem = _window_statistics(cpu, "cooling_rate")
-    a2, a2_sem = _window_statistics(cuda, "a2")
-    a2_cpu, a2_cpu_sem = _window_statistics(cpu, "a2")
     assert abs(zeta - zeta_cpu) < 4 * hypot(zeta_sem, zeta_cpu_sem)
-    assert abs(a2 - a2_cpu) < 4 * hypot(a2_sem, a2_cpu_sem)
     # Eq. 2.14 holds for N -> oo: at N = 128 the CPU engine's ζ stands about 5 % above it,
     # and the GPU may stand off by as much (within both error bars), no more
     expected = float(theory.reduced_cooling_rate(alpha) * theory.nu0_tau())
     finite_n_offset = abs(zeta_cpu - expected)
     assert abs(zeta - expected) < finite_n_offset + 4 * hypot(zeta_sem, zeta_cpu_sem)
-    # a2 relaxes from 0 (the Gaussian start) within a collision time; the energy shell
-    # of N particles biases it by about -2/(d N)
-    finite_n = 2 / (3 * TINY["n_particles"])
-    assert abs(a2 - float(theory.hcs_a2(alpha))) < 4 * a2_sem + finite_n
+    # a2 is not checked at this size: over five seeds a2 of these 128 particles ranged
+    # from -0.04 to 0.07 on either engine (theory 0.050), while its window errors said
+    # 0.011-0.025 (the windows are correlated), so a 4-error check failed with some
+    # seeds. a2 is checked with the GPU's groups at N = 2000 on the CPU
+    # (tests/physics/test_dsmc_gpu_groupings_match_the_whole_box.py) and at N = 2e4 on a
+    # GPU (bench cuda's hcs sections)
 
 
 def test_kappa_prime_matches_the_cpu_engine(forced_runs):

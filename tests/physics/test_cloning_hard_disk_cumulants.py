@@ -3,9 +3,13 @@ number of collisions of a hard disk, from a fit of the cloning μ(λ) near λ = 
 with the first-Sonine values 1, 1.137784, 1.107326 within the error of the fit, and with
 the deterministic solution of Eq. (28) (``kinetic.theory.visco2008_exact``).
 
-At the precision reachable here (~0.3% on the second cumulant) the Sonine values and
-the exact ones (1.1410, 1.0995) are indistinguishable; the fit uses both estimators of
-μ: the paper's compensation rate and the lower-noise (e^{-λ} - 1)<r> (same expectation).
+The fit uses both estimators of μ: the paper's compensation rate and the lower-noise
+(e^{-λ} - 1)<r> (same expectation). With the first (~0.3 % on the second cumulant) the
+Sonine values and the exact ones (1.1410, 1.0995) are indistinguishable. With the
+second (~0.07 %) the Sonine 1.1378 and the exact second cumulant are 4 errors apart, so
+one run can land anywhere between and beyond them (2.0 errors from Sonine and 1.8 from
+exact with the test's seed, 6.8 and 2.7 with another): it is checked against the exact
+solution only (the Sonine check failed with one seed in six).
 """
 
 import math
@@ -74,13 +78,13 @@ def test_cumulants_from_compensation_rate_match_sonine(scan):
 
 
 @pytest.mark.slow
-def test_cumulants_from_mean_rate_match_sonine_and_exact(scan):
+def test_cumulants_from_mean_rate_match_the_exact_solution(scan):
     c, err = fit_cumulants(LAMBDAS, scan["mu_rate"], scan["mu_rate_err"])
     # the deterministic solution, fitted the same way (noise-free)
     exact_mu = reference_solution(LAMBDAS, 2, n_nodes=300)[0]
     exact, _ = fit_cumulants(LAMBDAS, exact_mu, np.ones(LAMBDAS.size))
     for p in range(3):
-        assert abs(c[p] - SONINE[p]) < 4 * err[p], (p + 1, c[p], err[p])
         assert abs(c[p] - exact[p]) < 4 * err[p], (p + 1, c[p], exact[p], err[p])
+    assert abs(c[0] - SONINE[0]) < 4 * err[0]  # the mean rate, ω = 1, is exact in both
     # the mean-rate estimator is the sharper one
     assert err[1] < fit_cumulants(LAMBDAS, scan["mu"], scan["mu_err"])[1][1]

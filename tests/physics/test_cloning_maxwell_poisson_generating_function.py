@@ -1,7 +1,13 @@
 """visco2008 Fig. 4: for Maxwell molecules the number of collisions is Poissonian, so the
 cloning Monte Carlo must give μ(λ) = e^{-λ} - 1 over the whole λ range, and the tilted
 eigenfunction stays the bath Maxwellian (T = 1, a2 = 0) because the rate does not
-depend on the velocity."""
+depend on the velocity. The eigenfunction is measured where the population keeps its
+diversity: a member's velocity is renewed by a kept collision at the rate e^{-λ}, while
+clones replace members at the rate 1 - e^{-λ}, so the 200 members descend from one
+ancestor about every 200 mean free times; at λ = 2 a lineage renews its velocity 27 times
+in that time, at λ = 4 3.7 times and at λ = 8 0.07 times: the population is then a few
+velocities copied many times, whose T and a2 (-0.2 and -0.5 at λ = 4 and 8, 4-30 errors
+off, with other seeds) are not the eigenfunction's. μ holds at every λ."""
 
 import math
 
@@ -38,7 +44,7 @@ def test_mu_is_the_poisson_generating_function(results, lam):
     assert abs(float(ds.mu) - math.expm1(-lam)) < 4 * float(ds.mu_err)
 
 
-@pytest.mark.parametrize("lam", LAMBDAS)
+@pytest.mark.parametrize("lam", [lam for lam in LAMBDAS if lam <= 2.0])
 def test_eigenfunction_stays_maxwellian(results, lam):
     ds = results[lam]
     assert abs(float(ds.temperature) - 1.0) < 4 * float(ds.temperature_err)

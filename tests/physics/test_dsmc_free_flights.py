@@ -24,6 +24,14 @@ def _bin_average(pdf, edges):
     return 0.5 * np.sum(WEIGHTS * pdf(x.ravel()).reshape(x.shape), axis=1)
 
 
+CHI2_MAX = 3.0
+"""Largest mean of z² over the 20 bins. Each z is Student's t with 15 degrees of freedom
+(errors from 16 realizations): the mean of 20 such z² is 1.15 on average and exceeds 2.0
+with probability 3.7 %, the bound used before (one seed in four failed one of the four
+tests), 2.37 with 1 % and 3.0 with 0.1 %; the Poisson law that hard disks must reject
+gives more than 20."""
+
+
 def _compare(measured, theory):
     mean, sem = mean_and_sem(measured)
     z = (mean - theory) / sem
@@ -53,7 +61,7 @@ def test_hard_disk_free_flight_times_follow_eq_9(runs):
     run = runs["hard_spheres"]
     theory = _bin_average(lambda t: visco2008.free_flight_time_pdf(t, 2), run.time_edges.values)
     chi2, worst = _compare(run.time_pdf.values, theory)
-    assert chi2 < 2.0 and worst < 4.5
+    assert chi2 < CHI2_MAX and worst < 4.5
     # the Poisson expectation e^{-t} is clearly rejected by the same data
     poisson = _bin_average(lambda t: np.exp(-t), run.time_edges.values)
     assert _compare(run.time_pdf.values, poisson)[0] > 20
@@ -65,19 +73,21 @@ def test_maxwell_free_paths_follow_d3(runs):
     run = runs["maxwell"]
     theory = _bin_average(lambda x: visco2008.maxwell_free_path_pdf(x, 2), run.path_edges.values)
     chi2, worst = _compare(run.path_pdf.values, theory)
-    assert chi2 < 2.0 and worst < 4.5
-    assert int(run.unresolved_paths.sum()) == 0
+    assert chi2 < CHI2_MAX and worst < 4.5
+    # flights still open at the end with a path below the histogram's range: about 0.1 a
+    # realization (e^{-10} of 2000 flights, half of them slow), too few to bias it
+    assert int(run.unresolved_paths.sum()) <= 1e-5 * int(run.flights.sum())
 
 
 def test_maxwell_free_flight_times_are_exponential(runs):
     run = runs["maxwell"]
     exponential = _bin_average(lambda t: np.exp(-t), run.time_edges.values)
     chi2, worst = _compare(run.time_pdf.values, exponential)
-    assert chi2 < 2.0 and worst < 4.5
+    assert chi2 < CHI2_MAX and worst < 4.5
 
 
 def test_very_hard_particle_flight_times_follow_b4(runs):
     run = runs["very_hard"]
     theory = _bin_average(lambda t: visco2008.vhp_free_flight_time_pdf(t, 2), run.time_edges.values)
     chi2, worst = _compare(run.time_pdf.values, theory)
-    assert chi2 < 2.0 and worst < 4.5
+    assert chi2 < CHI2_MAX and worst < 4.5

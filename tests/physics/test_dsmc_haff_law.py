@@ -8,6 +8,7 @@ order in a2; the neglected terms are below 0.1 % for α = 0.8).
 
 import numpy as np
 
+from kinetic.analysis.montanero2007 import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import simulate_homogeneous
 
@@ -27,7 +28,7 @@ def test_haff_law_and_cooling_rate():
         time_step=0.2,
         sample_interval=2.0,
         seed=41,
-        n_realizations=4,
+        n_realizations=8,
         sample_stride=1,
     )
     late = run.isel(time=slice(3, None))  # after the relaxation of a2 from the Gaussian start
@@ -37,10 +38,15 @@ def test_haff_law_and_cooling_rate():
     assert abs(zeta - expected) < 4 * zeta_sem + 1e-3 * expected
 
     # Haff's law over the whole run (T falls by a factor ~ 200): compare ln T with the
-    # prediction from the measured late-time rate, allowing the short a2 transient
+    # prediction from the measured late-time rate, allowing the short a2 transient. The
+    # errors come from 8 realizations, so the band is Student's 4 sigma (8.5 errors): with
+    # the normal 4 and 4 realizations one seed in four failed at a point whose error
+    # happened to come out small. ζ itself is checked above to 4 errors + 0.1 %; here the
+    # shape: an exponential decay at the same rate would end 22 below, against a band of 0.03
     t = run.time_free.values
     log_t = run.log_temperature_free.values
     haff = -2 * np.log1p(zeta * t / 2)
     mean, sem = mean_and_sem(log_t - haff)
-    assert np.all(np.abs(mean) < 4 * sem + 2e-3 * np.abs(haff.mean(axis=0)))
+    band = tolerance_factor(4.0, log_t.shape[0] - 1) * sem
+    assert np.all(np.abs(mean) < band + 2e-3 * np.abs(haff.mean(axis=0)))
     assert log_t[:, -1].mean() < -5  # the check covers a real decay (T/T0 < 1/150)

@@ -16,6 +16,7 @@ import math
 import numpy as np
 import pytest
 
+from kinetic.analysis.montanero2007 import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import simulate_cooling_modes
 
@@ -72,7 +73,12 @@ def test_steady_state_dissipation_equals_the_drag_injection(dataset):
     ratio = lost_rate.sum(axis=1) / (2 * DRAG * temperature.sum(axis=1))
     mean, sem = mean_and_sem(ratio)
     x = DRAG * STEP
-    assert abs(mean - math.expm1(2 * x) / (2 * x)) < 4 * sem
+    # by the identity above, the ratio differs from the streaming factor by the run's
+    # energy change over its total, -(E_n - E_0)/(2x Σ E_j): T's fluctuation at the ends.
+    # Its error comes from 6 realizations, so the band is Student's 4 sigma (13 errors;
+    # the normal 4 failed for one seed in five)
+    band = tolerance_factor(4.0, len(ratio) - 1) * sem
+    assert abs(mean - math.expm1(2 * x) / (2 * x)) < band
     assert abs(mean - 1.0) < 0.01
 
 

@@ -4,6 +4,7 @@ the exact force step agrees with the Euler step of the paper at its small time s
 import numpy as np
 import pytest
 
+from kinetic.analysis.montanero2007 import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import (
     HomogeneousSettings,
@@ -39,7 +40,7 @@ def test_exact_and_euler_force_steps_agree_at_the_papers_time_step():
         time_step=0.02,
         sample_interval=4.0,
         seed=72,
-        n_realizations=4,
+        n_realizations=8,
         sample_stride=5,
         reduced_field=0.05,
     )
@@ -47,7 +48,12 @@ def test_exact_and_euler_force_steps_agree_at_the_papers_time_step():
     for force_step in ("euler", "exact"):
         run = simulate_homogeneous(force_step=force_step, **common)
         fluxes[force_step] = run.heat_flux.isel(time=slice(1, None)).mean("time").values
-    difference, sem = mean_and_sem(fluxes["euler"] - fluxes["exact"])  # same streams: paired
+    # the same streams, but the runs part within a few collisions: the pairing removes
+    # little. The steps differ at O(ε*² δt), far below the error; the band is Student's 4
+    # sigma for 8 realizations (8.5 errors: with the normal 4 and 4 realizations one seed
+    # in five failed, its difference's error having come out small)
+    difference, sem = mean_and_sem(fluxes["euler"] - fluxes["exact"])
     flux, _ = mean_and_sem(fluxes["exact"])
     assert flux < -0.05  # a real heat flux against the field
-    assert abs(difference) < 4 * sem + 1e-3 * abs(flux)
+    band = tolerance_factor(4.0, len(fluxes["exact"]) - 1) * sem
+    assert abs(difference) < band + 1e-3 * abs(flux)

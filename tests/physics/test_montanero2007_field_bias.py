@@ -3,10 +3,11 @@ coefficients at O(eps*^2). At alpha = 0.3 the bias of b'_3 is resolved by two fi
 runs at eps* = 0.05 and 0.1, with the sign the default build measures at eps* = 0.025 and
 0.05 (+0.24 +- 0.03), while b'_1 (i.e. kappa') moves a hundred times less relative to its
 value. b'_3 weighs the far tail, so its error from few realizations scatters widely: with
-16 realizations a seed pair gave 1.2 to 7 standard errors; with 48, 4.9 to 10 over eight
-seed pairs (the test's is one of them)."""
+16 realizations a seed pair gave 1.2 to 7 standard errors; with 48, 3.5 to 10 over nine
+seed pairs (the test's is one of them). The check is a one-sided detection of a positive
+bias at 3 standard errors (were there no bias, 0.1 % of seeds would pass it)."""
 
-from _montanero2007_runs import SIGMAS, steady_run
+from _montanero2007_runs import steady_run
 
 from kinetic.analysis import montanero2007 as analysis
 
@@ -19,7 +20,7 @@ def test_b3_carries_a_resolved_positive_field_bias():
     )
     out = analysis.field_extrapolation(low, high)
     z_b3 = out["b3_full_bias"] / out["b3_full_bias_err"]
-    assert z_b3 > SIGMAS, out
+    assert z_b3 > 3.0, out
     # relative to the value, the bias of b'_3 exceeds that of b'_1 (kappa') many times
     relative_b3 = out["b3_full_bias"] / out["b3_full_extrapolated"]
     relative_b1 = abs(out["b1_full_bias"]) / out["b1_full_extrapolated"]

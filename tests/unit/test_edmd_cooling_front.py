@@ -58,7 +58,9 @@ def test_elastic_run_without_drag_is_the_plain_engine_run():
     modes, norms = transverse_modes(system.positions(), system.velocities(), side)
     np.testing.assert_allclose(dataset.mode_real[0, -1], modes.real, rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(dataset.mode_imag[0, -1], modes.imag, rtol=1e-9, atol=1e-9)
-    np.testing.assert_allclose(dataset.mode_norm[0, -1], norms, rtol=1e-12)
+    # the two runs order their arithmetic differently, and chaos amplifies the round-off
+    # over the three intervals: 5e-12 relative in the norms with one seed of three
+    np.testing.assert_allclose(dataset.mode_norm[0, -1], norms, rtol=1e-9)
     np.testing.assert_allclose(dataset.temperature, 1.0, rtol=1e-12)
     assert float(np.abs(dataset.momentum).max()) < 1e-12
 
@@ -67,15 +69,18 @@ def test_scaling_every_velocity_only_changes_the_time_scale():
     """The property the stationary representation rests on: velocities times c and the
     duration divided by c give the same trajectory. c = 2 is exact in floating point, so
     the trajectories agree bit for bit; c = 3 rounds, and chaos amplifies the round-off
-    (about x1000 per 30 collisions here), so it is compared over a short run."""
+    (about x1000 per 30 collisions here), so it is compared over a short run: 15 time
+    units, 13-32 collisions over eleven seeds, positions within 2e-11 and velocities
+    within 2e-10 of each other (a run of 10 held 7-22 collisions, too few to check with
+    some seeds; one of 25 reached 2e-9 and 2e-7)."""
     stream = rng.stream_states(9, 1)[0]
-    for factor, duration, tolerance in ((2.0, 100.0, 0.0), (3.0, 10.0, 1e-9)):
+    for factor, duration, tolerance in ((2.0, 100.0, 0.0), (3.0, 15.0, 1e-9)):
         reference = HardSphereSystem(n_particles=80, density=0.01, restitution=0.8, stream=stream)
         scaled = HardSphereSystem(n_particles=80, density=0.01, restitution=0.8, stream=stream)
         scaled.scale_velocities(factor)
         reference.run(until=duration)
         scaled.run(until=duration / factor)
-        assert scaled.collisions == reference.collisions > 20
+        assert scaled.collisions == reference.collisions > 10
         np.testing.assert_allclose(
             scaled.positions(), reference.positions(), rtol=0, atol=tolerance
         )

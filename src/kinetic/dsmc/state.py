@@ -425,7 +425,8 @@ def advance_gas(gas: HomogeneousGas, n_steps: int, samples: Samples | None = Non
     )
     gas.cpu_seconds += time.process_time() - start
     if status != kernels.STATUS_OK:
-        per_unit = s.reduced_field * s.time_step / 2.0  # ε δt/2 times v0 per unit c_x
+        # a = ε δt/2 (ε δt/4 for Strang's half steps) times v0 per unit c_x
+        per_unit = s.reduced_field * s.time_step / (4.0 if s.splitting == "strang" else 2.0)
         message = _STATUS_MESSAGES[status].format(
             limit=-1.0 / per_unit if per_unit else -math.inf,
             euler=kernels.EULER_LIMIT / per_unit if per_unit else math.inf,
