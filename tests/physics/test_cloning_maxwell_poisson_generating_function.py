@@ -13,6 +13,7 @@ import math
 
 import pytest
 
+from kinetic.analysis.montanero2007 import tolerance_factor
 from kinetic.cloning import simulate
 
 LAMBDAS = [-1.5, -0.5, 0.5, 1.0, 2.0, 4.0, 8.0]
@@ -46,9 +47,12 @@ def test_mu_is_the_poisson_generating_function(results, lam):
 
 @pytest.mark.parametrize("lam", [lam for lam in LAMBDAS if lam <= 2.0])
 def test_eigenfunction_stays_maxwellian(results, lam):
+    # errors from 6 realizations: Student's 4 sigma (13 errors; the normal 4 failed at
+    # λ = -1.5 for one seed in eight, a2 = 0.0080 ± 0.0019)
     ds = results[lam]
-    assert abs(float(ds.temperature) - 1.0) < 4 * float(ds.temperature_err)
-    assert abs(float(ds.a2)) < 4 * float(ds.a2_err)
+    band = tolerance_factor(4.0, ds.sizes["realization"] - 1)
+    assert abs(float(ds.temperature) - 1.0) < band * float(ds.temperature_err)
+    assert abs(float(ds.a2)) < band * float(ds.a2_err)
 
 
 def test_three_dimensions_too():

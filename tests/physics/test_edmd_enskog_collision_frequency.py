@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from kinetic.analysis.montanero2007 import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.edmd import HardSphereSystem
 from kinetic.edmd.system import contact_value, enskog_collision_frequency
@@ -51,10 +52,14 @@ def test_very_dilute_gas_rho_1e_4_runs_correctly():
     energy = np.sum(system.velocities() ** 2)
     expected = enskog_collision_frequency(density, 2)
     # act
-    rates = measured_frequencies(density, 500, 4, 20_000)
+    rates = measured_frequencies(density, 500, 16, 20_000)
     system.run(collisions=20_000)
     mean, sem = mean_and_sem(rates)
-    # assert: the right collision rate, energy conserved, no overlap
-    assert abs(mean - expected) < 4 * sem, (mean, sem, expected)
+    # assert: the right collision rate, energy conserved, no overlap. One realization's
+    # rate scatters by 0.55 %, and 500 particles sit 0.2-0.35 % below Enskog's N -> oo
+    # rate (over nine seeds); the band is Student's 4 sigma for 16 realizations (5.5
+    # errors, about 0.75 %): with the normal 4 and 4 realizations one seed in nine failed
+    band = tolerance_factor(4.0, len(rates) - 1) * sem
+    assert abs(mean - expected) < band, (mean, sem, expected)
     assert abs(np.sum(system.velocities() ** 2) / energy - 1) < 1e-11
     assert system.min_distance() >= 1 - 1e-9
