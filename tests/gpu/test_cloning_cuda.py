@@ -2,9 +2,10 @@
 tiny populations, exact results.
 
 - Maxwell molecules: a clone's collision count over a control interval is Poisson(Δ)
-  whatever its velocity, so the discrete-time algorithm gives μ(λ) = e^{-λ} - 1, T = 1,
-  a2 = 0 for every Δ and λ; only the log of the mean weight is biased, by about
-  -Var(w)/(2 N_c <w>²) per interval, which the tolerance adds to the error bar.
+  whatever its velocity, so the discrete-time algorithm gives μ(λ) = e^{-λ} - 1 for every
+  Δ and λ; only the log of the mean weight is biased, by about -Var(w)/(2 N_c <w>²) per
+  interval, which the tolerance adds to the error bar. (T = 1, a2 = 0 hold for large
+  populations only; 16 clones under selection keep few distinct velocities.)
 - Hard disks at λ = 0: every weight is 1, μ = 0 exactly, and the population stays in
   equilibrium: T = 1, a2 = 0, and the untilted clones collide at the bath's mean rate
   ω = 1 (the GPU's per-clone uniformisation against the CPU engine's population-level one).
@@ -70,8 +71,11 @@ def test_maxwell_molecules_have_the_exact_large_deviation_function(maxwell):
     spread = math.expm1(interval * math.expm1(-lam) ** 2)
     bias = spread / (2 * n * interval)
     assert abs(float(maxwell.mu) - exact) < Z * float(maxwell.mu_err) + bias
-    assert abs(float(maxwell.temperature) - 1.0) < Z * float(maxwell.temperature_err)
-    assert abs(float(maxwell.a2)) < Z * float(maxwell.a2_err)
+    # T = 1 and a2 = 0 are not checked with 16 clones: selection at λ = 1 leaves them few
+    # distinct velocities, and 16 realizations of another seed gave a2 = -0.23 ± 0.03 (T
+    # scatters by 0.4 between realizations). The CPU engine checks them with 200 clones
+    # (tests/physics/test_cloning_maxwell_poisson_generating_function.py), the H100 with
+    # 10^4 (docs/gpu.md)
     assert maxwell.attrs["backend"] == "cuda"
     assert ("simulator" in maxwell.attrs["device"]) == backends.simulated()
 
