@@ -13,7 +13,7 @@ import math
 
 import pytest
 
-from kinetic.analysis.montanero2007 import tolerance_factor
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.cloning import simulate
 
 LAMBDAS = [-1.5, -0.5, 0.5, 1.0, 2.0, 4.0, 8.0]

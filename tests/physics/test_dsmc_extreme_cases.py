@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from kinetic import rng
-from kinetic.analysis.montanero2007 import tolerance_factor
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import (
     HomogeneousSettings,

@@ -8,7 +8,7 @@ order in a2; the neglected terms are below 0.1 % for α = 0.8).
 
 import numpy as np
 
-from kinetic.analysis.montanero2007 import tolerance_factor
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import simulate_homogeneous
 

@@ -16,7 +16,7 @@ import math
 import numpy as np
 import pytest
 
-from kinetic.analysis.montanero2007 import tolerance_factor
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import simulate_cooling_modes
 

@@ -4,7 +4,7 @@ the exact force step agrees with the Euler step of the paper at its small time s
 import numpy as np
 import pytest
 
-from kinetic.analysis.montanero2007 import tolerance_factor
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import (
     HomogeneousSettings,

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from kinetic.analysis.montanero2007 import tolerance_factor
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.edmd import simulate_cooling_modes
 from kinetic.theory import costantini2010 as theory

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from kinetic.analysis.montanero2007 import tolerance_factor
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.edmd import HardSphereSystem
 from kinetic.edmd.system import contact_value, enskog_collision_frequency

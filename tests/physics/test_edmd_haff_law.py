@@ -11,7 +11,7 @@ normal 4 sigma of 4 realizations and no allowance one seed in six failed.
 
 import numpy as np
 
-from kinetic.analysis.montanero2007 import tolerance_factor
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.edmd import HardSphereSystem, Observers
 from kinetic.edmd.system import enskog_collision_frequency

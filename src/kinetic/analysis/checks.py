@@ -11,6 +11,9 @@ quantity) with what a document, a theory or a conservation law says (``expected`
   errors: a percent-level claim, a conservation law to round-off, χ² below its quantile);
 - :func:`reported`: measured beside the expectation, with no verdict (``passed`` empty).
 
+:func:`tolerance_factor` widens a number of standard errors to Student's t when the
+error comes from few realizations (for checks and tests alike).
+
 ``z = (value - expected) / error`` wherever ``error > 0``. Every document writes its checks
 with :func:`write` to ``<results>/<document>/checks.csv`` (and ``.md``) with the columns
 :data:`COLUMNS`; a failed check stops the build only for the documents the config's
@@ -35,6 +38,7 @@ __all__ = [
     "overview_rst",
     "reported",
     "table",
+    "tolerance_factor",
     "within",
     "write",
 ]
@@ -62,6 +66,22 @@ class Check:
     z: float
     rule: str
     passed: bool | None
+
+
+def tolerance_factor(sigmas: float, dof: int) -> float:
+    """Multiple of a standard error with the two-sided probability of ``sigmas`` Gaussian
+    standard deviations, for an error estimated from ``dof`` degrees of freedom.
+
+    A standard error from R realizations is itself uncertain (Student's t with R - 1
+    degrees of freedom): with R = 4, a "4 sigma" check needs about 20 estimated errors,
+    with R = 32 about 4.9, and it tends to ``sigmas`` as R grows.
+    """
+    from scipy import stats
+
+    if dof < 1:
+        raise ValueError(f"need >= 1 degree of freedom (>= 2 realizations), got {dof}")
+    tail = stats.norm.sf(sigmas)
+    return float(stats.t.isf(tail, dof))
 
 
 def _z(value: float, error: float, expected: float) -> float:

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from kinetic.analysis import checks as check
-from kinetic.analysis.checks import Check
+from kinetic.analysis.checks import Check, tolerance_factor
 from kinetic.analysis.statistics import cpu_for_error, mean_and_sem
 from kinetic.io import parameters_of
 from kinetic.theory import montanero2007 as theory
@@ -56,22 +56,6 @@ ROUTES = ("full", "marginal")
 
 
 # ------------------------------------------------------------------- array level
-
-
-def tolerance_factor(sigmas: float, dof: int) -> float:
-    """Multiple of a standard error with the two-sided probability of ``sigmas`` Gaussian
-    standard deviations, for an error estimated from ``dof`` degrees of freedom.
-
-    A standard error from R realizations is itself uncertain (Student's t with R - 1
-    degrees of freedom): with R = 4, a "4 sigma" check needs about 20 estimated errors,
-    with R = 32 about 4.9, and it tends to ``sigmas`` as R grows.
-    """
-    from scipy import stats
-
-    if dof < 1:
-        raise ValueError(f"need >= 1 degree of freedom (>= 2 realizations), got {dof}")
-    tail = stats.norm.sf(sigmas)
-    return float(stats.t.isf(tail, dof))
 
 
 def steady_average(series, times, t_start: float):

@@ -87,6 +87,7 @@ from kinetic.dsmc.kernels import (
     _pair,
     _raise,
     _trial,
+    _two_largest,
     maxwellian,
 )
 from kinetic.jit import inline, kernel
@@ -229,12 +230,7 @@ def _cell_statistics(velocity, first, last):
         b = velocity[1, i] - m1
         s = a * a + b * b
         total += s
-        if s > top2:
-            if s > top1:
-                top2 = top1
-                top1 = s
-            else:
-                top2 = s
+        top1, top2 = _two_largest(s, top1, top2)
     return m0, m1, total, math.sqrt(top1), math.sqrt(top2)
 
 
