@@ -35,6 +35,7 @@ from kinetic.cloning import gpu, simulate
 pytestmark = [pytest.mark.cuda, pytest.mark.filterwarnings("ignore:overflow encountered")]
 
 Z = 4.5  # standard errors of a fixed-seed run's tolerance
+MAXWELL_SPREAD = 0.07  # standard deviation of one realization's mu in ``run()``
 
 
 def run(**overrides):
@@ -70,7 +71,13 @@ def test_maxwell_molecules_have_the_exact_large_deviation_function(maxwell):
     # relative variance of w = e^{-λK}, K ~ Poisson(Δ): the log's bias per unit time
     spread = math.expm1(interval * math.expm1(-lam) ** 2)
     bias = spread / (2 * n * interval)
-    assert abs(float(maxwell.mu) - exact) < Z * float(maxwell.mu_err) + bias
+    # the error comes from 4 realizations, so it scatters itself (0.013 to 0.061 across
+    # eight seeds) and a small one made the normal band fail for one salted seed in 11. It is
+    # held at least at the measured spread of one realization's mu, 0.069 over 28
+    # realizations of these settings, divided by sqrt(4)
+    realizations = maxwell.sizes["realization"]
+    error = max(float(maxwell.mu_err), MAXWELL_SPREAD / math.sqrt(realizations))
+    assert abs(float(maxwell.mu) - exact) < Z * error + bias
     # T = 1 and a2 = 0 are not checked with 16 clones: selection at λ = 1 leaves them few
     # distinct velocities, and 16 realizations of another seed gave a2 = -0.23 ± 0.03 (T
     # scatters by 0.4 between realizations). The CPU engine checks them with 200 clones

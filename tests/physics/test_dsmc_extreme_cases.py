@@ -156,7 +156,10 @@ def test_large_field_works_and_shows_the_departure_from_linear_response(force_st
     assert aniso > 5 * aniso_sem
     band = tolerance_factor(4.0, len(anisotropy[0.05]) - 1) * np.hypot(aniso_sem / 16, small_sem)
     assert abs(aniso / 16 - small) < band
-    # the power-law tail: c_x < -6 (a Gaussian gives 1e-17) in every realization at 0.2,
-    # never in ~ 10^6 observations per realization at 0.05
+    # the power-law tail: c_x < -6 (a Gaussian gives 1e-17) in every realization at 0.2
+    # (1.0e-4 to 1.8e-4 at the least over 12 seeds), hardly ever at 0.05: pooled over 8
+    # realizations (1.6e7 observations) it is at least 100 times rarer there than in any
+    # realization at 0.2. Over 12 seeds it never occurred at 0.05 (the exact step); one
+    # salted seed saw it 3 times in a realization, so "never" was a claim about the seed
     assert np.all(far_tail[0.2] > 1e-5)
-    assert np.all(far_tail[0.05] == 0)
+    assert np.mean(far_tail[0.05]) < 0.01 * np.min(far_tail[0.2])

@@ -3,6 +3,7 @@
 import numpy as np
 from scipy import special
 
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import (
     HomogeneousSettings,
@@ -15,6 +16,10 @@ from kinetic.dsmc import (
 
 
 def test_maxwellian_stays_maxwellian():
+    """Moments and the c_x histogram against the Maxwellian, with errors from 16
+    realizations and so Student's bands (4 sigma: 5.5 errors, 4.5 sigma over the 12 bins:
+    6.7): with 6 realizations and the normal 4 the isotropic <c_x^2> = 1/2 failed for
+    one seed in 11 (z = 4.05)."""
     run = simulate_homogeneous(
         n_particles=4000,
         restitution=1.0,
@@ -22,25 +27,27 @@ def test_maxwellian_stays_maxwellian():
         time_step=0.1,
         sample_interval=2.0,
         seed=31,
-        n_realizations=6,
+        n_realizations=16,
         sample_stride=2,
         histogram_start=2.0,
         cx_max=3.0,
         n_cx_bins=12,
     )
     steady = run.isel(time=slice(1, None))
+    dof = run.sizes["realization"] - 1
     # fourth and sixth moments of c = V/v0 in d = 3: <c^4> = 15/4, <c^6> = 105/8
     for name, exact in (("c4", 15 / 4), ("c6", 105 / 8), ("cx2", 1 / 2)):
         mean, sem = mean_and_sem(steady.moments.sel(moment=name).mean("time").values)
-        assert abs(mean - exact) < 4 * sem, name
+        assert abs(mean - exact) < tolerance_factor(4.0, dof) * sem, name
     # the c_x histogram against the Gaussian exp(-c_x^2)/sqrt(pi), bin by bin
     edges = run.cx_edges.values
     gaussian = 0.5 * np.diff(special.erf(edges))
     fraction = run.cx_counts.values / run.histogram_observations.values[:, None]
     mean, sem = mean_and_sem(fraction)
     z = (mean - gaussian) / sem
-    assert np.mean(z**2) < 1 + 5 * np.sqrt(2 / z.size) + 0.5  # chi2/dof (sem from 6 runs)
-    assert np.max(np.abs(z)) < 5
+    # chi2/dof: z is Student's, <z^2> = dof/(dof - 2) = 1.15
+    assert np.mean(z**2) < 1 + 5 * np.sqrt(2 / z.size) + 0.5
+    assert np.max(np.abs(z)) < tolerance_factor(4.5, dof)
 
 
 def test_a_uniform_start_relaxes_to_the_maxwellian():

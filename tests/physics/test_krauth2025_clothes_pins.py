@@ -10,6 +10,7 @@ of its expectation (bins on the line are nearly independent).
 import numpy as np
 import pytest
 
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.krauth2025 import pin_contact_density
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.samplers import kernels, naive_acceptance, pin_snapshots, sample_line, sample_ring
@@ -56,13 +57,16 @@ def test_line_density_matches_eq_4_7(method, length, samples):
     assert int(data.counts.sum()) == n * samples * realizations
 
 
-@pytest.mark.parametrize(("method", "samples"), [("direct", 20_000), ("naive", 2000)])
+@pytest.mark.parametrize(("method", "samples"), [("direct", 20_000), ("naive", 4000)])
 def test_wall_rift_pressure_is_the_contact_density(method, samples):
     """§4.4.3 in one dimension: the pin density at contact with a post is βP, exactly
     N/(L − 2Nσ) = 0.6 for 15 pins of width 1 on L = 40; the extrapolation to the post
-    leaves no visible bias on the exact bin averages. naive-pin draws 2000 configurations
-    a realization: with 500 the standard error was 0.029-0.058 across seeds, so whether
-    the check had power (< 0.03) hung on the seed; with 2000 it is 0.014-0.020."""
+    leaves no visible bias on the exact bin averages. The standard error comes from 12
+    realizations, so the band is Student's 4 sigma (6.2 errors): a realization's contact
+    value is an extrapolation from the first bins, with heavier tails than a Gaussian,
+    and the normal 4.5 failed for one seed in 60. naive-pin draws 4000 configurations a
+    realization: with 2000 the standard error was 0.013-0.032 over 60 seeds, so whether
+    the check had power (< 0.03) hung on the seed; with 4000 it is 0.010-0.022 (40)."""
     n, length, sigma, realizations = 15, 40.0, 0.5, 12
     data = sample_line(
         method,
@@ -79,7 +83,7 @@ def test_wall_rift_pressure_is_the_contact_density(method, samples):
     per_realization = data.counts.values / (samples * width)
     contact, sem = mean_and_sem([pin_contact_density(edges, row) for row in per_realization])
     beta_p = n / (length - 2 * n * sigma)
-    assert abs(contact - beta_p) < 4.5 * sem
+    assert abs(contact - beta_p) < tolerance_factor(4.0, realizations - 1) * sem
     assert sem < 0.05 * beta_p  # the check has power
     exact = theory.bin_average(lambda x: n * theory.pin_density(x, n, length, sigma), edges)
     assert abs(pin_contact_density(edges, exact) - beta_p) < 0.1 * sem

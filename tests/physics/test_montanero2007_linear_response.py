@@ -64,10 +64,13 @@ def test_euler_and_exact_force_steps_agree():
 
 def test_a_large_field_leaves_linear_response():
     # extreme case eps* = 0.2: kappa' grows by tens of per cent (results/montanero2007/
-    # extreme.csv: +50 % at alpha = 1) and the pressure tensor becomes anisotropic, O(eps^2)
-    # 16 realizations each: with 8 the Student band (8.5 errors) made the check pass or
-    # fail with the seed (0.50 against 0.52 once); with 16 (5.5 errors) the difference
-    # stood 1.5-2.3 bands clear over six seed pairs
+    # extreme.csv: +50 % at alpha = 1) and the pressure tensor becomes anisotropic, O(eps^2).
+    # At 0.2 the heat flux has no variance (a power-law tail), so the mean's standard
+    # error there means nothing: one realization in 16 came out at 3.3 against 1.4-1.6 for
+    # the others, and the band of the difference of means swallowed it. The claim is
+    # checked realization by realization instead: even the lowest kappa' at 0.2 (1.37-1.45
+    # over eight seed pairs) lies above the 0.025 mean by more than that mean's Student
+    # band (4 sigma of 16 realizations: 5.5 errors, 0.17-0.22)
     weak = steady_run(
         restitution=1.0,
         reduced_field=0.025,
@@ -85,7 +88,8 @@ def test_a_large_field_leaves_linear_response():
         duration=30.0,
         seed=8,
     )
-    difference, tolerance = _difference_tolerance(weak, strong)
-    assert strong["kappa_ratio"] > weak["kappa_ratio"] and difference > tolerance
+    lowest = np.min(strong["per_realization"]["kappa_ratio"])
+    band = analysis.tolerance_factor(SIGMAS, weak["realizations"] - 1) * weak["kappa_ratio_err"]
+    assert lowest - weak["kappa_ratio"] > band
     factor = analysis.tolerance_factor(SIGMAS, strong["realizations"] - 1)
     assert strong["anisotropy"] > factor * strong["anisotropy_err"]
