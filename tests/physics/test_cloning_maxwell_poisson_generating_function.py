@@ -39,10 +39,18 @@ def results():
     return {lam: run(lam) for lam in LAMBDAS}
 
 
+def _band(ds):
+    """Student's 4 sigma for an error from the run's realizations (6: 12.3 errors). The
+    error of 6 realizations scatters itself: in 3D at λ = -1 it ranged 0.0011-0.0043
+    over 12 seeds (the deviations' spread 0.0038, their mean 0.0002 ± 0.0011: no bias),
+    and one salted seed's 0.00048 put a deviation of 0.0024 at 5 normal errors."""
+    return tolerance_factor(4.0, ds.sizes["realization"] - 1) * float(ds.mu_err)
+
+
 @pytest.mark.parametrize("lam", LAMBDAS)
 def test_mu_is_the_poisson_generating_function(results, lam):
     ds = results[lam]
-    assert abs(float(ds.mu) - math.expm1(-lam)) < 4 * float(ds.mu_err)
+    assert abs(float(ds.mu) - math.expm1(-lam)) < _band(ds)
 
 
 @pytest.mark.parametrize("lam", [lam for lam in LAMBDAS if lam <= 2.0])
@@ -64,8 +72,9 @@ def test_three_dimensions_too():
         duration=100.0,
         transient=5.0,
         n_blocks=5,
-        n_realizations=6,
+        n_realizations=24,  # 0.2 s: Student's band is 5.0 errors, against 12.3 for 6
         seed=405,
     )
-    assert abs(float(ds.mu) - math.expm1(1.0)) < 4 * float(ds.mu_err)
-    assert abs(float(ds.temperature) - 1.0) < 4 * float(ds.temperature_err)
+    assert abs(float(ds.mu) - math.expm1(1.0)) < _band(ds)
+    band = tolerance_factor(4.0, ds.sizes["realization"] - 1)
+    assert abs(float(ds.temperature) - 1.0) < band * float(ds.temperature_err)

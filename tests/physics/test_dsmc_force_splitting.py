@@ -10,10 +10,15 @@ steady heat flux is the splitting of collisions and force: the paper's order
 
 from math import hypot
 
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import simulate_homogeneous
 
 KAPPA_PER_FLUX = -0.48144  # κ'/κ0 = -(v0 λ ν0 / T)(4/15) q/ε* in d = 3 (ν0 τ = 8/(5√π))
+REALIZATIONS = 32
+"""With 12 the Lie bias (+0.10-0.12) stood only 5-6 of its errors clear, and a seed that
+drew it at 0.103 against an error of 0.021 failed the 5-error claim; with 32 it is about
+9 errors, and the agreements use Student's 4 sigma (4.7 errors)."""
 
 
 def _kappa_ratio(time_step, splitting, force_step="exact"):
@@ -26,7 +31,7 @@ def _kappa_ratio(time_step, splitting, force_step="exact"):
         sample_interval=interval,
         duration=interval * round(24 / interval),
         seed=91,
-        n_realizations=12,
+        n_realizations=REALIZATIONS,
         sample_stride=max(1, round(0.05 / time_step)),
         force_step=force_step,
         splitting=splitting,
@@ -40,7 +45,8 @@ def test_lie_splitting_is_biased_at_large_steps_and_strang_is_not():
     lie, lie_sem = _kappa_ratio(0.4, "lie")
     strang, strang_sem = _kappa_ratio(0.4, "strang")
     euler, euler_sem = _kappa_ratio(0.4, "strang", force_step="euler")
+    band = tolerance_factor(4.0, REALIZATIONS - 1)
     assert lie - reference > 5 * hypot(lie_sem, reference_sem)  # O(δt) bias, ~ +0.12
-    assert abs(strang - reference) < 4 * hypot(strang_sem, reference_sem)
-    assert abs(euler - strang) < 4 * hypot(euler_sem, strang_sem)
-    assert abs(reference - 1.025218) < 4 * reference_sem + 0.01  # the elastic κ/κ0
+    assert abs(strang - reference) < band * hypot(strang_sem, reference_sem)
+    assert abs(euler - strang) < band * hypot(euler_sem, strang_sem)
+    assert abs(reference - 1.025218) < band * reference_sem + 0.01  # the elastic κ/κ0

@@ -9,7 +9,9 @@ realizations: chi²/dof and the largest deviation in units of the standard error
 
 import numpy as np
 import pytest
+from scipy import stats
 
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import simulate_free_flights
 from kinetic.theory import visco2008
@@ -30,6 +32,11 @@ CHI2_MAX = 3.0
 with probability 3.7 %, the bound used before (one seed in four failed one of the four
 tests), 2.37 with 1 % and 3.0 with 0.1 %; the Poisson law that hard disks must reject
 gives more than 20."""
+
+WORST_MAX = float(stats.t.isf(1e-3 / (2 * 20), 15))
+"""Largest |z| of the 20 bins: Student's quantile at a family-wise false-alarm rate of
+0.1 % (5.6 errors). A fixed 4.5 (4e-4 a bin, 0.8 % a test) failed for one salted seed
+in 19 (4.7)."""
 
 
 def _compare(measured, theory):
@@ -61,19 +68,19 @@ def test_hard_disk_free_flight_times_follow_eq_9(runs):
     run = runs["hard_spheres"]
     theory = _bin_average(lambda t: visco2008.free_flight_time_pdf(t, 2), run.time_edges.values)
     chi2, worst = _compare(run.time_pdf.values, theory)
-    assert chi2 < CHI2_MAX and worst < 4.5
+    assert chi2 < CHI2_MAX and worst < WORST_MAX
     # the Poisson expectation e^{-t} is clearly rejected by the same data
     poisson = _bin_average(lambda t: np.exp(-t), run.time_edges.values)
     assert _compare(run.time_pdf.values, poisson)[0] > 20
     mean, sem = mean_and_sem(run.collision_frequency.values)
-    assert abs(mean - 1.0) < 4 * sem
+    assert abs(mean - 1.0) < tolerance_factor(4.0, run.sizes["realization"] - 1) * sem
 
 
 def test_maxwell_free_paths_follow_d3(runs):
     run = runs["maxwell"]
     theory = _bin_average(lambda x: visco2008.maxwell_free_path_pdf(x, 2), run.path_edges.values)
     chi2, worst = _compare(run.path_pdf.values, theory)
-    assert chi2 < CHI2_MAX and worst < 4.5
+    assert chi2 < CHI2_MAX and worst < WORST_MAX
     # flights still open at the end with a path below the histogram's range: about 0.1 a
     # realization (e^{-10} of 2000 flights, half of them slow), too few to bias it
     assert int(run.unresolved_paths.sum()) <= 1e-5 * int(run.flights.sum())
@@ -83,11 +90,11 @@ def test_maxwell_free_flight_times_are_exponential(runs):
     run = runs["maxwell"]
     exponential = _bin_average(lambda t: np.exp(-t), run.time_edges.values)
     chi2, worst = _compare(run.time_pdf.values, exponential)
-    assert chi2 < CHI2_MAX and worst < 4.5
+    assert chi2 < CHI2_MAX and worst < WORST_MAX
 
 
 def test_very_hard_particle_flight_times_follow_b4(runs):
     run = runs["very_hard"]
     theory = _bin_average(lambda t: visco2008.vhp_free_flight_time_pdf(t, 2), run.time_edges.values)
     chi2, worst = _compare(run.time_pdf.values, theory)
-    assert chi2 < CHI2_MAX and worst < 4.5
+    assert chi2 < CHI2_MAX and worst < WORST_MAX

@@ -84,5 +84,7 @@ def test_steady_state_dissipation_equals_the_drag_injection(dataset):
 
 def test_steady_temperature_is_close_to_t0(dataset):
     mean, sem = mean_and_sem(dataset.temperature.values.mean(axis=1))
-    assert sem < 0.005
+    # the 3 % band is at least 4 errors wide (the error of 6 realizations was 0.0008-0.0052
+    # over 12 seeds of each rule; a bound of 0.005 failed for two salted seeds)
+    assert sem < 0.0075
     assert abs(mean - 1.0) < 0.03
