@@ -17,8 +17,8 @@ from kinetic.dsmc import simulate_homogeneous
 KAPPA_PER_FLUX = -0.48144  # κ'/κ0 = -(v0 λ ν0 / T)(4/15) q/ε* in d = 3 (ν0 τ = 8/(5√π))
 REALIZATIONS = 32
 """With 12 the Lie bias (+0.10-0.12) stood only 5-6 of its errors clear, and a seed that
-drew it at 0.103 against an error of 0.021 failed the 5-error claim; with 32 it is about
-9 errors, and the agreements use Student's 4 sigma (4.7 errors)."""
+drew it at 0.103 against an error of 0.021 failed the 5-error claim; 32 make it about
+sqrt(32/12) times more errors (9), and the agreements use Student's 4 sigma (4.7 errors)."""
 
 
 def _kappa_ratio(time_step, splitting, force_step="exact"):

@@ -36,7 +36,7 @@ gives more than 20."""
 WORST_MAX = float(stats.t.isf(1e-3 / (2 * 20), 15))
 """Largest |z| of the 20 bins: Student's quantile at a family-wise false-alarm rate of
 0.1 % (5.6 errors). A fixed 4.5 (4e-4 a bin, 0.8 % a test) failed for one salted seed
-in 19 (4.7)."""
+in 20 (4.7)."""
 
 
 def _compare(measured, theory):
