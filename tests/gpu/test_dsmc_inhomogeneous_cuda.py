@@ -285,8 +285,9 @@ def test_transverse_correlation_at_lag_zero_is_one_at_alpha_one(elastic_run):
     run = elastic_run
     modes = (run.mode_real + 1j * run.mode_imag).transpose("realization", "time", "mode")
     norms = run.mode_norm.transpose("realization", "time", "mode").values
-    blocks = block_correlations(modes.values, norms, n_lags=1, blocks_per_realization=4)[:, 0]
-    per_realization = blocks.reshape(run.sizes["realization"], 4).mean(axis=1)
+    per_block = 4
+    blocks = block_correlations(modes.values, norms, n_lags=1, blocks_per_realization=per_block)
+    per_realization = blocks[:, 0].reshape(run.sizes["realization"], per_block).mean(axis=1)
     mean, sem = mean_and_sem(per_realization)
     assert 0.0 < sem < 0.2
     assert abs(mean - 1.0) < tolerance_factor(4.0, per_realization.size - 1) * sem

@@ -9,9 +9,8 @@ realizations: chi²/dof and the largest deviation in units of the standard error
 
 import numpy as np
 import pytest
-from scipy import stats
 
-from kinetic.analysis.checks import tolerance_factor
+from kinetic.analysis.checks import largest_z_tolerance, tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import simulate_free_flights
 from kinetic.theory import visco2008
@@ -33,8 +32,10 @@ with probability 3.7 %, the bound used before (one seed in four failed one of th
 tests), 2.37 with 1 % and 3.0 with 0.1 %; the Poisson law that hard disks must reject
 gives more than 20."""
 
-WORST_MAX = float(stats.t.isf(1e-3 / (2 * 20), 15))
-"""Largest |z| of the 20 bins: Student's quantile at a family-wise false-alarm rate of
+BINS, REALIZATIONS = 20, 16
+
+WORST_MAX = largest_z_tolerance(BINS, REALIZATIONS - 1)
+"""Largest |z| of the bins: Student's quantile at a family-wise false-alarm rate of
 0.1 % (5.6 errors). A fixed 4.5 (4e-4 a bin, 0.8 % a test) failed for one salted seed
 in 20 (4.7)."""
 
@@ -51,12 +52,12 @@ def runs():
         n_particles=2000,
         duration=30.0,
         seed=61,
-        n_realizations=16,
+        n_realizations=REALIZATIONS,
         dimension=2,
         max_flight_time=10.0,
-        n_time_bins=20,
+        n_time_bins=BINS,
         max_free_path=10.0,
-        n_path_bins=20,
+        n_path_bins=BINS,
     )
     return {
         kernel: simulate_free_flights(kernel=kernel, **common)

@@ -10,15 +10,12 @@ independent), which is what carries the power.
 
 import numpy as np
 import pytest
-from scipy import stats
 
-from kinetic.analysis.checks import tolerance_factor
+from kinetic.analysis.checks import largest_z_tolerance, tolerance_factor
 from kinetic.analysis.krauth2025 import pin_contact_density
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.samplers import kernels, naive_acceptance, pin_snapshots, sample_line, sample_ring
 from kinetic.theory import krauth2025 as theory
-
-FAMILY_ALARM = 1e-3
 
 
 def _z_scores(measured, error, exact):
@@ -31,7 +28,7 @@ def _check(z, realizations):
     # the largest |z| of the bins: Student's quantile at a family-wise false-alarm rate of
     # 0.1 % (6.4 for 78 bins of 16 realizations; a fixed 4.5, 4e-4 per bin, failed for
     # about one run in 30)
-    assert np.abs(z).max() < stats.t.isf(FAMILY_ALARM / (2 * z.size), realizations - 1)
+    assert np.abs(z).max() < largest_z_tolerance(z.size, realizations - 1)
     # t with ν = B − 1 degrees of freedom: E[t²] = ν/(ν − 2), Var[t²] =
     # 2ν²(ν − 1)/((ν − 2)²(ν − 4)); the mean over the bins has Var[t²]/bins
     nu = realizations - 1

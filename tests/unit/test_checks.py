@@ -155,3 +155,21 @@ def test_table1_scores_our_rows_against_the_printed_ones_and_finds_their_density
     assert list(table.columns[:9]) == visco2008.TABLE1_COLUMNS
     numbers = visco2008.table1_caption_numbers(table, [10, 50])
     assert numbers["rho_doc"] == 0.001 and numbers["dk2_10"] == pytest.approx(-0.0105)
+
+
+def test_largest_z_tolerance_holds_its_family_wise_false_alarm_rate():
+    # the quoted values, and the false alarms of the largest |t| of many bins: 1 - (1 -
+    # p)^n with p = P(|t| > bound), within the Bonferroni bound and close to it
+    from scipy import stats
+
+    assert checks.largest_z_tolerance(20, 15) == pytest.approx(5.607, abs=1e-3)
+    assert checks.largest_z_tolerance(78, 15) == pytest.approx(6.360, abs=1e-3)
+    for bins, dof in ((20, 15), (78, 15), (5, 100)):
+        bound = checks.largest_z_tolerance(bins, dof)
+        alarm = 1 - (1 - 2 * stats.t.sf(bound, dof)) ** bins
+        assert 0.99e-3 < alarm <= 1e-3
+    # more bins or fewer degrees of freedom need a wider bound
+    assert checks.largest_z_tolerance(78, 15) > checks.largest_z_tolerance(20, 15)
+    assert checks.largest_z_tolerance(20, 7) > checks.largest_z_tolerance(20, 15)
+    with pytest.raises(ValueError, match="degree of freedom"):
+        checks.largest_z_tolerance(20, 0)
