@@ -53,6 +53,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
 import time
 import traceback
 from collections.abc import Callable
@@ -63,7 +64,8 @@ import numpy as np
 
 __all__ = ["run"]
 
-_BUDGET_SECONDS = 420.0  # sections not started after this are skipped (device leases are short)
+_BUDGET_SECONDS = float(os.environ.get("KINETIC_BENCH_BUDGET", "420"))
+"""Sections not started after this many seconds are skipped (device leases are short)."""
 
 
 def _device() -> dict[str, Any]:
@@ -865,13 +867,16 @@ first cloning and homogeneous DSMC kernels)."""
 
 
 def run(quick: bool = False, checkpoint=None, sections=None) -> dict[str, Any]:
-    """Every section in order (or those named in ``sections``); ``checkpoint(report)`` is
-    called after each one. A failing section records its traceback and the next runs."""
+    """Every section in ``SECTIONS``' order, or those named in ``sections`` in the order
+    named; ``checkpoint(report)`` is called after each one. A failing section records its
+    traceback and the next runs."""
+    unknown = set(sections or ()) - set(SECTIONS)
+    if unknown:
+        raise ValueError(f"unknown sections {sorted(unknown)}; known: {list(SECTIONS)}")
     started = time.perf_counter()
     report: dict[str, Any] = {"gpu": _device(), "sections": {}}
-    for name, section in SECTIONS.items():
-        if sections and name not in sections:
-            continue
+    for name in sections or SECTIONS:
+        section = SECTIONS[name]
         if time.perf_counter() - started > _BUDGET_SECONDS:
             report["sections"][name] = {"skipped": "time budget spent"}
             continue
