@@ -4,6 +4,8 @@
 #   make test-fast lint and run the tests not marked slow (minutes, for editing)
 #   make docs      after make figures and the benches: the README's and docs/' numbers,
 #                  thumbnails and tables from results/ (python -m kinetic.docs)
+#   make gpu-wheels  the wheels a GPU machine without network needs for
+#                  tests/gpu/check-on-gpu.sh, into .whl/ (docs/gpu.md)
 # make figures and make test record their duration in results/timings/ (kinetic.docs timed).
 PYTHON ?= python3
 VENV ?= .venv
@@ -18,7 +20,7 @@ SNAKEMAKE_ARGS ?=
 TIMED = $(BIN)/python -m kinetic.docs timed
 FIGURES_TIMING = results/timings/figures-$(basename $(notdir $(CONFIG))).json
 
-.PHONY: install figures test test-fast lint docs clean-results
+.PHONY: install figures test test-fast lint docs clean-results gpu-wheels
 
 install: $(VENV)/.installed
 
@@ -49,6 +51,18 @@ test-fast: lint
 docs: install
 	$(BIN)/python -m kinetic.docs collect
 	$(BIN)/python -m kinetic.docs render
+
+# CPython 3.12 x86-64 wheels of the pins a GPU machine lacks or has in other versions: numpy
+# (numba-cuda 0.30 does not compile on numpy >= 2.5), numba-cuda, and jsonschema with its
+# dependencies (kinetic.config); attrs and the rest are on the lent machines.
+GPU_WHEELS = numpy numba-cuda jsonschema jsonschema-specifications referencing rpds-py
+GPU_PLATFORMS = manylinux_2_28_x86_64 manylinux_2_27_x86_64 manylinux_2_24_x86_64 \
+	manylinux_2_17_x86_64 manylinux2014_x86_64
+
+gpu-wheels: install
+	$(BIN)/python -m pip download --quiet --no-deps --only-binary=:all: --python-version 3.12 \
+		--implementation cp $(addprefix --platform ,$(GPU_PLATFORMS)) -d .whl \
+		$$($(BIN)/python -m pip freeze | grep -i -E '^($(subst $(eval ) ,|,$(GPU_WHEELS)))==')
 
 clean-results:
 	rm -rf results logs .snakemake

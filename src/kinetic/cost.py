@@ -203,12 +203,12 @@ def edmd_box(*, n_disks: int, duration: float, realizations: int, **_: object) -
 
 
 GPU_JOB_STARTUP_SECONDS = 5.0
-"""Wall seconds of a ``cuda`` job before its first launch: Python and the package's
-imports, the CUDA context, the kernels loaded from numba-cuda's cache (``kinetic.gpu``;
-the first job after an edit compiles them instead: 15-26 s per GPU module on the
-development machine's CPU, not in this constant). The same job on the CPU starts in
-about 2 s there. A model until ``python -m kinetic.bench cuda --sections
-job_startup`` measures it."""
+"""Wall seconds of a ``cuda`` job's process with its kernels loaded from numba-cuda's
+cache (``kinetic.gpu``): Python, the package's imports, the CUDA context and a tiny job.
+Measured on an H100 machine (bench cuda ``job_startup``, revision 2984f74): 4.0 s
+(cloning), 4.6 s (homogeneous DSMC), 5.6 s (inhomogeneous DSMC), the same numbers as the
+first process, which compiled into the empty cache in 44, 69 and 29 s (not in this
+constant: once per edit)."""
 
 
 # ------------------------------------------------------------------ costantini2010
@@ -363,10 +363,11 @@ DSMC_GPU_SECONDS_PER_STEP = 5.0e-4
 little to do (bench cuda: 0.52 ms a step at N = 2 × 10⁵, one realization, Strang, sampled
 every step)."""
 
-DSMC_GPU_SECONDS_PER_PARTICLE_STEP = 1.5e-10
+DSMC_GPU_SECONDS_PER_PARTICLE_STEP = 1.1e-10
 """``cuda`` backend, one H100: seconds per particle-step once the launches are full, Lie
-splitting, snapshots every 10 steps (1.5 ms a step at N = 2 × 10⁵ × 50 realizations,
-montanero2007's δt = 0.003 τ, Euler force); times DSMC_STRANG_FACTOR for Strang."""
+splitting, the ``columns`` regrouping (bench cuda ``memory_bound``, revision 2984f74:
+1.07 ms a step at N = 2 × 10⁵ × 50 realizations, montanero2007's δt = 0.003 τ; 1.53 ms
+with the ``feistel`` regrouping); times DSMC_STRANG_FACTOR for Strang."""
 
 DSMC_GPU_SECONDS_PER_SAMPLED_PARTICLE = 2.8e-10
 """``cuda`` backend, one H100: seconds per particle of a snapshot (moments, histograms):
@@ -456,7 +457,7 @@ CLONING_GPU_EVENTS_PER_SECOND = 2.5e9
 the launch cost (bench cuda: hard disks at λ = 1, 4 × 10⁶ clones, 2.2 × 10⁹ events per
 wall second with the launches included)."""
 
-CLONING_GPU_RESIDENT_MAX_POPULATION = 10_000
+CLONING_GPU_RESIDENT_MAX_POPULATION = 5_000
 """``kinetic.cloning.gpu.RESIDENT_MAX_POPULATION`` (a unit test keeps the two equal): up to
 this N_c a realization's control intervals run in one thread block, one launch per block
 of the run, without the four launches per interval."""
@@ -464,15 +465,24 @@ of the run, without the four launches per interval."""
 CLONING_GPU_THREADS_PER_BLOCK = 128
 """``kinetic.gpu.BLOCK`` on a GPU: the threads that share a resident realization's clones."""
 
-CLONING_GPU_RESIDENT_SECONDS_PER_EVENT = 5.0e-7
-"""``cuda`` backend, resident kernel: wall seconds of one event in one thread (an
-exponential, a uniform, a square root and the proposal's Gaussian pair in float64,
-latency-bound at a few warps per multiprocessor). A model, not yet measured:
-``python -m kinetic.bench cuda`` times the resident kernel (section cloning_speed)."""
+CLONING_GPU_RESIDENT_SECONDS_PER_EVENT = 7.2e-6
+"""``cuda`` backend, resident kernel: wall seconds of one collision event of the untilted
+dynamics in one thread (an exponential, a uniform, a square root and the proposal's
+Gaussian pair in float64), latency-bound at four warps per multiprocessor (one block of
+128 threads per realization). Fitted with ``CLONING_GPU_RESIDENT_SECONDS_PER_MEMBER`` to
+bench cuda's ``cloning_speed`` on an H100 (revision 2984f74): hard disks, 32 realizations,
+0.100 ms an interval at N_c = 10³ and 1.04 ms at 10⁴ with Δ = 1, 0.56 ms at 10⁴ with
+Δ = 0.137 (λ = -1)."""
 
-CLONING_GPU_RESIDENT_SECONDS_PER_INTERVAL = 5.0e-6
-"""``cuda`` backend, resident kernel: the barriers of one control interval (eight block
-reductions and a scan, about 60 barriers). A model, not yet measured."""
+CLONING_GPU_RESIDENT_SECONDS_PER_MEMBER = 6.1e-6
+"""``cuda`` backend, resident kernel: wall seconds one thread spends on each of its clones
+every control interval besides the events (the weight, the scan, the copy into the new
+population, the snapshot sums), from the same fit."""
+
+CLONING_GPU_RESIDENT_SECONDS_PER_INTERVAL = 0.0
+"""``cuda`` backend, resident kernel: the block barriers of one control interval beyond
+the per-clone costs. The fit of the three measured rates puts it at -6 µs, i.e. below
+what they resolve: zero."""
 
 CLONING_GPU_BYTES_PER_MEMBER = 120.0
 """``cuda`` backend: two velocity buffers, the stream, the count and the scan of a member."""
@@ -510,9 +520,13 @@ def _cloning_gpu(lam, population, elapsed, n_realizations, control_interval=None
     events = n_realizations * population * elapsed
     intervals = elapsed / interval
     if population <= CLONING_GPU_RESIDENT_MAX_POPULATION:
-        per_thread = math.ceil(population / CLONING_GPU_THREADS_PER_BLOCK) * interval
+        per_thread = math.ceil(population / CLONING_GPU_THREADS_PER_BLOCK)
         latency = intervals * (
-            per_thread * CLONING_GPU_RESIDENT_SECONDS_PER_EVENT
+            per_thread
+            * (
+                CLONING_GPU_RESIDENT_SECONDS_PER_MEMBER
+                + interval * CLONING_GPU_RESIDENT_SECONDS_PER_EVENT
+            )
             + CLONING_GPU_RESIDENT_SECONDS_PER_INTERVAL
         )
     else:

@@ -6,7 +6,8 @@
 #
 # WHEELS_DIR (optional) holds wheels installed first, without network and ahead of the
 # machine's own packages: the project's pinned numpy (numba-cuda 0.30 does not compile on
-# numpy >= 2.5) and numba-cuda, if the machine has other versions.
+# numpy >= 2.5), numba-cuda, and what the package imports that the machine lacks
+# (jsonschema and its own dependencies): `make gpu-wheels` downloads them into .whl/.
 #
 # First `python -m kinetic.bench cuda` (what only a GPU can measure; its sections in the
 # order given, none started after KINETIC_BENCH_BUDGET seconds, default 420), then the GPU
@@ -35,6 +36,7 @@ export PYTHONUNBUFFERED=1
 export NUMBA_ENABLE_CUDASIM=0
 export KINETIC_GIT_REVISION=${KINETIC_GIT_REVISION:-$(git rev-parse --short HEAD 2>/dev/null || echo unknown)}
 python -c "import numpy, numba; from numba import cuda; print('numpy', numpy.__version__, 'numba', numba.__version__, cuda.get_current_device().name)" || exit 1
+python -c "from kinetic.bench import cuda; cuda.preflight()" || exit 1
 nvidia-smi --query-gpu=name,memory.total,clocks.max.sm,clocks.max.mem,pcie.link.gen.max --format=csv 2>/dev/null
 timeout "${BENCH_SECONDS:-$((total - 100))}" python -m kinetic.bench cuda --out "$out" "$@" >"$out/bench.log" 2>&1
 echo "bench: exit $? after $((SECONDS - start)) s (tail of $out/bench.log below)"

@@ -223,7 +223,10 @@ def test_first_step_sorts_like_the_cpu(rule):
     the cells' moments (Σw, Σ|w|², two largest |w|², accumulated in that order) are the
     CPU engine's bit for bit: the same initial state and streaming, and the per-cell sort
     gives back the CPU's stable counting-sort order whatever order the atomics landed in
-    (only the collisions, with other random streams, differ)."""
+    (only the collisions, with other random streams, differ). On a GPU the order is still
+    exact, but the numbers agree to a few units in the last place: NVVM fuses a·b + c into
+    one rounding where the CPU rounds twice (an H100 left 10 of 240 coordinates 1 ulp off,
+    revision 2984f74)."""
     from kinetic.dsmc import inhomogeneous_gpu
 
     settings = CoolingModesSettings(
@@ -241,9 +244,14 @@ def test_first_step_sorts_like_the_cpu(rule):
     for r in range(2):
         gas = new_cooling_gas(settings, streams[r])
         gas.advance(1)
-        np.testing.assert_array_equal(position[r].T, gas.positions())
         np.testing.assert_array_equal(labels[r, 0], gas.identities())
-        np.testing.assert_array_equal(moments[r], gas.cell_moments)
+        if backends.simulated():
+            np.testing.assert_array_equal(position[r].T, gas.positions())
+            np.testing.assert_array_equal(moments[r], gas.cell_moments)
+        else:
+            ulps = 4 * np.finfo(np.float64).eps
+            np.testing.assert_allclose(position[r].T, gas.positions(), rtol=ulps, atol=0)
+            np.testing.assert_allclose(moments[r], gas.cell_moments, rtol=64 * ulps, atol=64 * ulps)
 
 
 def _elastic_run():

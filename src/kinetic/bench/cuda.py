@@ -866,6 +866,42 @@ job, the startup) before what an H100 has measured once (the speeds and physics 
 first cloning and homogeneous DSMC kernels)."""
 
 
+PREFLIGHT_MODULES = (
+    "kinetic.config",
+    "kinetic.studies",
+    "kinetic.cloning",
+    "kinetic.cloning.gpu",
+    "kinetic.dsmc",
+    "kinetic.dsmc.gpu",
+    "kinetic.dsmc.inhomogeneous_gpu",
+    "kinetic.theory.costantini2010",
+    "kinetic.theory.visco2008_exact",
+)
+"""Every module a section imports. ``preflight`` imports them before the first section,
+so that a package missing on the GPU machine stops the bench in seconds instead of failing
+its sections one by one after minutes of GPU time (an H100 lease lost four sections to a
+missing jsonschema, revision 2984f74)."""
+
+
+def preflight() -> None:
+    """Import ``PREFLIGHT_MODULES`` and read the paper config: raise ``ImportError`` naming
+    every missing package at once."""
+    import importlib
+
+    missing = []
+    for module in PREFLIGHT_MODULES:
+        try:
+            importlib.import_module(module)
+        except ImportError as error:
+            missing.append(f"{module}: {error}")
+    if missing:
+        raise ImportError(
+            "bench cuda cannot run its sections here; carry these packages as wheels "
+            "(docs/gpu.md, 'Measuring on a GPU'):\n  " + "\n  ".join(missing)
+        )
+    _paper_config()
+
+
 def run(quick: bool = False, checkpoint=None, sections=None) -> dict[str, Any]:
     """Every section in ``SECTIONS``' order, or those named in ``sections`` in the order
     named; ``checkpoint(report)`` is called after each one. A failing section records its
@@ -873,6 +909,7 @@ def run(quick: bool = False, checkpoint=None, sections=None) -> dict[str, Any]:
     unknown = set(sections or ()) - set(SECTIONS)
     if unknown:
         raise ValueError(f"unknown sections {sorted(unknown)}; known: {list(SECTIONS)}")
+    preflight()
     started = time.perf_counter()
     report: dict[str, Any] = {"gpu": _device(), "sections": {}}
     for name in sections or SECTIONS:

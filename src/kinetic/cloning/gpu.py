@@ -401,14 +401,16 @@ def _fold_snapshot(partials, out, interval):
     _add_snapshot(shared, partials, out, cuda.blockIdx.x, interval)
 
 
-RESIDENT_MAX_POPULATION = 10_000
+RESIDENT_MAX_POPULATION = 5_000
 """Largest population run by ``_resident`` (one thread block per realization for the
 whole of a block of the run); larger ones run ``_advance``/``_weigh``/``_close_interval``/
-``_select``, four launches per control interval over many thread blocks. Below about 10⁵
-clones those four launches cost more than the work (0.28-0.43 ms per interval on an H100,
-whatever N_c: docs/gpu.md); the resident kernel pays a few block barriers instead. The
-crossover is a model, not a measurement: ``python -m kinetic.bench cuda`` times both
-paths at N_c = 10³ and 10⁴."""
+``_select``, four launches per control interval over many thread blocks. Timed on an H100
+(bench cuda ``cloning_speed``, revision 2984f74; hard disks, λ = 1, 32 realizations): the
+resident kernel took 0.100 ms an interval at N_c = 10³ against the launches' 0.371 ms,
+and 1.04 ms at 10⁴ against 0.651 ms, since its 128 threads run a realization's clones one
+after the other (``kinetic.cost.CLONING_GPU_RESIDENT_*``: 6.1 µs a clone and 7.2 µs an
+event in one thread). The two cross at about 3300 clones for Δ = 1 and 6100 for
+Δ = 0.137 (λ = -1): 5000 between them."""
 
 
 @cuda.jit(device=True, inline="always")

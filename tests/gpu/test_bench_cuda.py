@@ -1,0 +1,44 @@
+"""The driver of ``python -m kinetic.bench cuda`` (no section is timed here): a missing
+package stops it before any GPU work, and ``--sections`` runs what it names, in the
+order named."""
+
+import os
+import sys
+
+os.environ.setdefault("NUMBA_ENABLE_CUDASIM", "1")
+
+import pytest
+
+pytest.importorskip("numba.cuda")
+
+from kinetic.bench import cuda as bench
+
+pytestmark = pytest.mark.cuda
+
+
+def test_preflight_names_a_missing_package_before_any_section(monkeypatch):
+    """jsonschema missing (as on the H100 machine of revision 2984f74): ``run`` raises at
+    once, naming it, and no section starts."""
+    started = []
+    monkeypatch.setattr(bench, "SECTIONS", {"memory_bound": lambda quick: started.append(1)})
+    for name in [m for m in sys.modules if m == "kinetic.config" or m.startswith("jsonschema")]:
+        monkeypatch.delitem(sys.modules, name)
+    monkeypatch.setitem(sys.modules, "jsonschema", None)
+    with pytest.raises(ImportError, match="jsonschema"):
+        bench.run(sections=["memory_bound"])
+    assert started == []
+
+
+def test_sections_run_in_the_order_named_and_unknown_ones_are_refused(monkeypatch):
+    order = []
+    fake = {name: (lambda quick, name=name: order.append(name) or {}) for name in "abc"}
+    monkeypatch.setattr(bench, "SECTIONS", fake)
+    monkeypatch.setattr(bench, "_device", lambda: {})
+    report = bench.run(sections=["c", "a"])
+    assert order == ["c", "a"]
+    assert list(report["sections"]) == ["c", "a"]
+    order.clear()
+    bench.run()
+    assert order == ["a", "b", "c"]
+    with pytest.raises(ValueError, match="unknown sections"):
+        bench.run(sections=["d"])
