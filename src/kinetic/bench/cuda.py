@@ -29,7 +29,7 @@ second at α = 1 and 0.5 for N = 2 × 10⁵ × 100, 2 × 10⁶ × 10, 2 × 10⁷
 for one realization over a tenth of the duration, both scaled to the whole job
 (``dsmc_paper_job``).
 
-Memory bound (``memory_bound``, first): the GPU's coalesced copy bandwidth, and each pass
+Memory bound (``memory_bound``): the GPU's coalesced copy bandwidth, and each pass
 of the homogeneous DSMC's step (regrouping, collisions, force, thermostat) launched alone
 at montanero2007's paper settings, with its bytes per second; the step's time against the
 time its least DRAM traffic (``PASS_BYTES``, 120 bytes a particle) takes at that
@@ -850,20 +850,20 @@ def job_startup(quick: bool) -> dict[str, Any]:
 
 
 SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
-    "memory_bound": memory_bound,
     "inhomogeneous_bound": inhomogeneous_bound,
     "inhomogeneous_speed": inhomogeneous_speed,
-    "cloning_speed": cloning_speed,
     "dsmc_paper_job": dsmc_paper_job,
-    "job_startup": job_startup,
-    "dsmc_scaling": dsmc_scaling,
     "cloning_physics": cloning_physics,
+    "memory_bound": memory_bound,
+    "cloning_speed": cloning_speed,
     "dsmc_speed": dsmc_speed,
+    "dsmc_scaling": dsmc_scaling,
+    "job_startup": job_startup,
 }
 """In the order a short device lease should spend its minutes: what no GPU has timed yet
-(the bounds, the cooperative and grouped inhomogeneous DSMC, the resident cloning kernel, the paper
-job, the startup) before what an H100 has measured once (the speeds and physics of the
-first cloning and homogeneous DSMC kernels)."""
+first (the inhomogeneous DSMC's phases and speed, the montanero2007 paper job, the physics
+of the resident cloning kernel), then what the H100 run of revision 2984f74 measured
+(the homogeneous DSMC's passes and speed, both cloning paths, the job startup)."""
 
 
 PREFLIGHT_MODULES = (

@@ -102,7 +102,8 @@ def _cuda(report: dict[str, Any]):
     for case in dsmc.get("gpu", []):
         yield (
             f"homogeneous DSMC on {device}, N = {case['n_particles']:.0e} x "
-            f"{case['realizations']} realizations",
+            f"{case['realizations']} realizations"
+            + (f", {case['regrouping']} regrouping" if case.get("regrouping") else ""),
             case["collisions_per_second"],
             "collisions per wall-s",
             case["n_particles"] == 200_000 and case["realizations"] == 50,
