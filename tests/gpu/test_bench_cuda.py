@@ -42,3 +42,26 @@ def test_sections_run_in_the_order_named_and_unknown_ones_are_refused(monkeypatc
     assert order == ["a", "b", "c"]
     with pytest.raises(ValueError, match="unknown sections"):
         bench.run(sections=["d"])
+
+
+def test_a_failing_section_keeps_what_it_measured(monkeypatch):
+    """A section that fails after some cases (as ``inhomogeneous_speed`` did on the H100,
+    after 85 s of GPU runs) reports them under ``partial``; the next section starts
+    empty."""
+
+    def failing(quick):
+        cases = []
+        bench._keep(gpu=cases)
+        cases.append({"rate": 1.0})
+        raise RuntimeError("late failure")
+
+    def fine(quick):
+        return {"partial_seen": dict(bench._PARTIAL)}
+
+    monkeypatch.setattr(bench, "SECTIONS", {"failing": failing, "fine": fine})
+    monkeypatch.setattr(bench, "_device", lambda: {})
+    report = bench.run()
+    failed = report["sections"]["failing"]
+    assert "late failure" in failed["error"]
+    assert failed["partial"] == {"gpu": [{"rate": 1.0}]}
+    assert report["sections"]["fine"]["partial_seen"] == {}

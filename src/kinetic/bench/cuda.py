@@ -68,6 +68,17 @@ _BUDGET_SECONDS = float(os.environ.get("KINETIC_BENCH_BUDGET", "420"))
 """Sections not started after this many seconds are skipped (device leases are short)."""
 
 
+_PARTIAL: dict[str, Any] = {}
+"""The containers of the section that is running, registered by ``_keep`` as they are made
+and filled in place: a section that fails keeps in its report (``partial``) what it had
+measured before the failure."""
+
+
+def _keep(**containers) -> None:
+    """Register a running section's lists and dicts under the names of its report."""
+    _PARTIAL.update(containers)
+
+
 def _device() -> dict[str, Any]:
     import logging
 
@@ -166,6 +177,7 @@ def cloning_speed(quick: bool) -> dict[str, Any]:
             _cloning("hard_spheres", 1.0, 256, 4.0, 2)
     _cloning("hard_spheres", 1.0, 256, 4.0, 2, backend="cpu")
     cases = []
+    _keep(gpu=cases)
     sizes = [
         (1000, 1, 20.0),
         (1000, 100, 100.0),
@@ -179,6 +191,7 @@ def cloning_speed(quick: bool) -> dict[str, Any]:
             resident = population <= gpu.RESIDENT_MAX_POPULATION
             cases.append(case | {"path": "resident" if resident else "launched"})
     paths = []
+    _keep(paths=paths)
     for population, duration in ((1000, 2000.0), (10_000, 200.0))[: 1 if quick else None]:
         for resident in (True, False):
             with _cloning_path(resident):
@@ -224,6 +237,7 @@ def cloning_physics(quick: bool) -> dict[str, Any]:
 
     out: dict[str, Any] = {}
     maxwell = []
+    _keep(maxwell_mu=maxwell, results=out)
     for lam in _paper_lambdas("maxwell")[:: 4 if quick else 1]:
         r = _cloning("maxwell", lam, 10_000, 40.0, 10, seed=7)
         exact = math.expm1(-lam)
@@ -247,6 +261,7 @@ def cloning_physics(quick: bool) -> dict[str, Any]:
     cpu = _cloning("hard_spheres", 1.0, 1000, 400.0, 8, backend="cpu", seed=13)
     out["hard_disks_n1000_gpu_vs_cpu"] = {"gpu": gpu, "cpu": cpu}
     bias = []
+    _keep(control_interval_study=bias)
     for interval in (0.1, 0.25, 0.5, 1.0, 2.0):
         bias.append(
             _cloning("hard_spheres", 1.0, 1000, 200.0, 64, seed=17, control_interval=interval)
@@ -312,14 +327,15 @@ def dsmc_speed(quick: bool) -> dict[str, Any]:
     from kinetic.dsmc import gpu as dsmc_gpu
 
     _dsmc(2000, 2, 1.0, "cuda")  # compile
-    gpu = [_dsmc(200_000, 50, 20.0, "cuda", seed=s) for s in range(2)]
+    gpu: list[dict[str, Any]] = []
+    physics: dict[str, Any] = {}
+    _keep(gpu=gpu, physics=physics)
+    gpu += [_dsmc(200_000, 50, 20.0, "cuda", seed=s) for s in range(2)]
     gpu += [_dsmc(200_000, 1, 20.0, "cuda"), _dsmc(2_000_000, 5, 20.0, "cuda")]
     _dsmc(2000, 1, 1.0, "cpu")
     cpu = _dsmc(200_000, 1, 2.0, "cpu")
-    physics = {
-        "hcs": _dsmc(20_000, 16, 60.0, "cuda", seed=21),
-        "forced": _dsmc(20_000, 48, 60.0, "cuda", seed=22, reduced_field=0.025),
-    }
+    physics["hcs"] = _dsmc(20_000, 16, 60.0, "cuda", seed=21)
+    physics["forced"] = _dsmc(20_000, 48, 60.0, "cuda", seed=22, reduced_field=0.025)
     other = next(name for name in dsmc_gpu.REGROUPINGS if name != dsmc_gpu.REGROUPING)
     with _regrouping(other):  # the same HCS and the fullest launch, regrouped the other way
         physics[f"hcs_{other}"] = _dsmc(20_000, 16, 60.0, "cuda", seed=21)
@@ -436,6 +452,7 @@ def inhomogeneous_speed(quick: bool) -> dict[str, Any]:
             _inhomogeneous(3000, 10, 2, 20, "cuda", "paper")
     _inhomogeneous(300, 1, 1, 4, "cpu", "paper")
     gpu, cpu = [], []
+    _keep(gpu=gpu, cpu_one_core=cpu)
     for rule in ("paper", "majorant"):
         gpu.append(_inhomogeneous(3000, 10, 100, 2000 // scale, "cuda", rule))
         gpu.append(_inhomogeneous(3_000_000, 1, 1, 1000 // scale, "cuda", rule))
@@ -453,6 +470,7 @@ def inhomogeneous_speed(quick: bool) -> dict[str, Any]:
         )
         case["path"] = "together" if inhomogeneous_gpu.TOGETHER else "launched"
     paths = []
+    _keep(paths=paths)
     for together in (True, False):
         with _inhomogeneous_path(together):
             steps = 4000 // scale
@@ -476,6 +494,7 @@ def dsmc_scaling(quick: bool) -> dict[str, Any]:
     _dsmc(2000, 2, 1.0, "cuda", restitution=1.0)  # compile (same types as every case)
     sizes = [(200_000, 100), (2_000_000, 10), (20_000_000, 1)]
     cases = []
+    _keep(gpu=cases)
     for restitution in (1.0, 0.5):
         for n, realizations in sizes[: 1 if quick else None]:
             case = _dsmc(n, realizations, 10.0, "cuda", restitution=restitution)
@@ -824,6 +843,7 @@ def job_startup(quick: bool) -> dict[str, Any]:
     import tempfile
 
     out: dict[str, Any] = {}
+    _keep(jobs=out)
     for name, body in _STARTUP_JOBS.items():
         code = "import time\nSTART = time.perf_counter()\n" + body + _STARTUP_FOOTER
         with tempfile.TemporaryDirectory() as cache:
@@ -910,7 +930,7 @@ def preflight() -> None:
 def run(quick: bool = False, checkpoint=None, sections=None) -> dict[str, Any]:
     """Every section in ``SECTIONS``' order, or those named in ``sections`` in the order
     named; ``checkpoint(report)`` is called after each one. A failing section records its
-    traceback and the next runs."""
+    traceback and what it had measured (``partial``), and the next runs."""
     unknown = set(sections or ()) - set(SECTIONS)
     if unknown:
         raise ValueError(f"unknown sections {sorted(unknown)}; known: {list(SECTIONS)}")
@@ -923,10 +943,11 @@ def run(quick: bool = False, checkpoint=None, sections=None) -> dict[str, Any]:
             report["sections"][name] = {"skipped": "time budget spent"}
             continue
         begin = time.perf_counter()
+        _PARTIAL.clear()
         try:
             result = section(quick)
         except Exception:
-            result = {"error": traceback.format_exc()}
+            result = {"error": traceback.format_exc(), "partial": dict(_PARTIAL)}
         result["section_seconds"] = time.perf_counter() - begin
         report["sections"][name] = result
         if checkpoint is not None:
