@@ -463,7 +463,8 @@ this N_c a realization's control intervals run in one thread block, one launch p
 of the run, without the four launches per interval."""
 
 CLONING_GPU_THREADS_PER_BLOCK = 128
-"""``kinetic.gpu.BLOCK`` on a GPU: the threads that share a resident realization's clones."""
+"""``kinetic.cloning.gpu.RESIDENT_THREADS`` on a GPU: the threads that share a resident
+realization's clones (the fit of the ``RESIDENT_*`` constants is at 128)."""
 
 CLONING_GPU_RESIDENT_SECONDS_PER_EVENT = 7.2e-6
 """``cuda`` backend, resident kernel: wall seconds of one collision event of the untilted
@@ -497,10 +498,14 @@ def cloning_control_interval(lam: float) -> float:
     return min(1.0, math.log1p(0.5) / spread)
 
 
-CLONING_GPU_RESIDENT_BLOCKS = 132 * 8
+CLONING_GPU_RESIDENT_BLOCKS = 132 * 3
 """Resident-kernel thread blocks (one per realization of a point) an H100 runs at once:
-132 SMs x 8 blocks of 128 threads (a model: the kernel's registers and shared memory
-decide). More blocks than this run in waves."""
+132 SMs x 3 blocks of 128 threads. ptxas (nvJitLink 13.5, sm_90, revision after 2984f74)
+gives ``_resident`` 152 registers a thread, 19 456 a block of 128, and a multiprocessor
+has 65 536: 3 blocks (its 25.6 KB of shared memory would allow 8). More blocks than this
+run in waves. From the compiled kernel, not yet from a GPU: ``bench cuda``'s
+``cloning_speed`` records ``resident_kernel`` (registers, the most threads a block) and
+times the grouped job's shape."""
 
 
 def _cloning_elapsed(duration: float, transient: float, n_blocks: int) -> float:

@@ -280,14 +280,15 @@ def fold_partials(partials, out, field_of, scale=1.0):
     _fold[(partials.shape[0], partials.shape[2]), BLOCK](partials, out, field_of, scale)
 
 
-def block_reduce_sum(shared, value):
-    """Sum of ``value`` over the threads of a block of ``BLOCK`` threads (a power of two), by
-    a fixed tree in the shared array ``shared[BLOCK]``; every thread must call it. Returns
-    the sum in thread 0 (other threads get a partial sum)."""
+def block_reduce_sum(shared, value, threads=BLOCK):
+    """Sum of ``value`` over the threads of a block of ``threads`` threads (a power of two,
+    by default ``BLOCK``, a compile-time constant), by a fixed tree in the shared array
+    ``shared`` (at least ``threads`` long); every thread must call it. Returns the sum in
+    thread 0 (other threads get a partial sum)."""
     t = cuda.threadIdx.x
     shared[t] = value
     cuda.syncthreads()
-    stride = BLOCK // 2
+    stride = threads // 2
     while stride > 0:
         if t < stride:
             shared[t] += shared[t + stride]
@@ -301,15 +302,15 @@ def block_reduce_sum(shared, value):
 block_reduce_sum = cuda.jit(device=True, inline="always")(block_reduce_sum)
 
 
-def block_reduce_extreme(shared, value, largest):
-    """Largest (``largest``) or smallest ``value`` over the threads of a block, by a fixed
-    tree in ``shared[BLOCK]`` (of the values' type); every thread must call it and gets
-    the result. One atomic per block then replaces one per thread: thousands of threads
-    hitting one address serialise at the L2 cache."""
+def block_reduce_extreme(shared, value, largest, threads=BLOCK):
+    """Largest (``largest``) or smallest ``value`` over the threads of a block of
+    ``threads``, by a fixed tree in ``shared`` (of the values' type); every thread must
+    call it and gets the result. One atomic per block then replaces one per thread:
+    thousands of threads hitting one address serialise at the L2 cache."""
     t = cuda.threadIdx.x
     shared[t] = value
     cuda.syncthreads()
-    stride = BLOCK // 2
+    stride = threads // 2
     while stride > 0:
         if t < stride:
             other = shared[t + stride]
@@ -338,22 +339,22 @@ def _fold(partials, out, field_of, scale):
         out[r, field_of[f]] += scale * total
 
 
-def block_inclusive_scan(shared, value, zero):
-    """Inclusive prefix sum of ``value`` over the threads of a block of ``BLOCK`` threads, by
-    a fixed Hillis-Steele tree in ``shared[BLOCK]`` (of the values' type, ``zero`` its 0);
+def block_inclusive_scan(shared, value, zero, threads=BLOCK):
+    """Inclusive prefix sum of ``value`` over the threads of a block of ``threads`` threads,
+    by a fixed Hillis-Steele tree in ``shared`` (of the values' type, ``zero`` its 0);
     every thread must call it. Returns ``(this thread's prefix, the block's total)``."""
     t = cuda.threadIdx.x
     shared[t] = value
     cuda.syncthreads()
     offset = 1
-    while offset < BLOCK:
+    while offset < threads:
         add = shared[t - offset] if t >= offset else zero
         cuda.syncthreads()
         shared[t] += add
         cuda.syncthreads()
         offset *= 2
     prefix = shared[t]
-    total = shared[BLOCK - 1]
+    total = shared[threads - 1]
     cuda.syncthreads()
     return prefix, total
 

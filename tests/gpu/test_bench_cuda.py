@@ -13,7 +13,11 @@ pytest.importorskip("numba.cuda")
 
 from kinetic.bench import cuda as bench
 
-pytestmark = pytest.mark.cuda
+pytestmark = [
+    pytest.mark.cuda,
+    # the simulator runs the uint64 random streams in numpy, which warns when they wrap
+    pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning"),
+]
 
 
 def test_preflight_names_a_missing_package_before_any_section(monkeypatch):
@@ -65,3 +69,13 @@ def test_a_failing_section_keeps_what_it_measured(monkeypatch):
     assert "late failure" in failed["error"]
     assert failed["partial"] == {"gpu": [{"rate": 1.0}]}
     assert report["sections"]["fine"]["partial_seen"] == {}
+
+
+def test_grouped_cloning_case_counts_every_points_events(monkeypatch):
+    """``cloning_speed``'s grouped-job case (``resident_threads``), at a tiny size under
+    the simulator: every point's collisions, over the wall time of the one call."""
+    monkeypatch.setattr(bench, "_paper_lambdas", lambda kernel: [1.0, -0.5])
+    case = bench._cloning_grouped(8, 2.0, realizations=1)
+    assert case["points"] == 2 and case["realizations"] == 2
+    assert case["events"] > 0
+    assert case["events_per_second"] == case["events"] / case["wall_seconds"]

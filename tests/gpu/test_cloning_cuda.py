@@ -184,12 +184,24 @@ def test_resident_and_launched_intervals_make_the_same_selections(
     }
     assert arguments["population"] <= gpu.RESIDENT_MAX_POPULATION
     resident = run(**arguments)
+    monkeypatch.setattr(gpu, "RESIDENT_THREADS", 4)  # 4 clones a thread instead of 1
+    fewer_threads = run(**arguments)
     monkeypatch.setattr(gpu, "RESIDENT_MAX_POPULATION", 0)
     launched = run(**arguments)
-    for name in ("elastic_collisions", "candidates", "velocity_density", "max_speed"):
-        np.testing.assert_array_equal(resident[name].values, launched[name].values)
-    for name in ("mu_per_realization", "temperature_per_realization", "a2_per_realization"):
-        np.testing.assert_allclose(resident[name].values, launched[name].values, rtol=1e-12)
+    for other in (launched, fewer_threads):
+        for name in ("elastic_collisions", "candidates", "velocity_density", "max_speed"):
+            np.testing.assert_array_equal(resident[name].values, other[name].values)
+        for name in ("mu_per_realization", "temperature_per_realization", "a2_per_realization"):
+            np.testing.assert_allclose(resident[name].values, other[name].values, rtol=1e-12)
+
+
+def test_resident_threads_must_be_a_power_of_two(monkeypatch):
+    monkeypatch.setattr(gpu, "RESIDENT_THREADS", 96)
+    with pytest.raises(ValueError, match="power of two"):
+        gpu._resident_threads()
+    monkeypatch.setattr(gpu, "RESIDENT_THREADS", 2048)
+    with pytest.raises(ValueError, match="power of two up to 1024"):
+        gpu._resident_threads()
 
 
 def test_the_cuda_backend_is_refused_before_any_work_without_a_gpu():

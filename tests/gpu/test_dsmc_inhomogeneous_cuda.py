@@ -254,15 +254,24 @@ def test_first_step_sorts_like_the_cpu(rule):
             np.testing.assert_allclose(moments[r], gas.cell_moments, rtol=64 * ulps, atol=64 * ulps)
 
 
+ELASTIC_PARTICLES = 50
+ELASTIC_REALIZATIONS = 16
+"""The elastic run's size: C(0)'s error comes from the scatter of the realizations'
+means, which is large and itself scattered (0.25, 0.67 and 0.81 for three seeds of 8
+realizations of 100 particles: a mode decorrelates over about 6 of the 12 samples), so
+many small realizations rather than a few larger ones: 24 of 50 particles scattered by
+0.35-0.43 for the same three seeds. 16 keep the simulator's fixture near 100 s."""
+
+
 def _elastic_run():
     """α = 1 without drag (the elastic gas at equilibrium from its first sample)."""
     return simulate_cooling_modes(
-        **DILUTE,
+        **{**DILUTE, "n_particles": ELASTIC_PARTICLES},
         restitution=1.0,
         drag_rate=0.0,
         collision_rule="paper",
         seed=31,
-        n_realizations=8,
+        n_realizations=ELASTIC_REALIZATIONS,
         backend="cuda",
     )
 
@@ -274,7 +283,7 @@ def elastic_run(once):
 
 def test_elastic_collisions_conserve_energy_and_momentum(elastic_run):
     run = elastic_run
-    assert np.all(run.collisions > 50)
+    assert np.all(run.collisions > 25)  # 47-50 in each realization of 50 particles
     # T0 = 1 exactly at the start; α = 1 collisions conserve it to round-off
     np.testing.assert_allclose(run.temperature.values, 1.0, rtol=1e-12)
     np.testing.assert_array_equal(run.dissipated_energy.values[:, 1:], 0.0)
@@ -284,12 +293,12 @@ def test_elastic_collisions_conserve_energy_and_momentum(elastic_run):
 def test_transverse_correlation_at_lag_zero_is_one_at_alpha_one(elastic_run):
     """costantini2010's C(0) = <|w⊥|²>/<Σ w_y²> = 1 in the elastic gas (positions
     uniform and independent of the velocities), by the analysis' own block estimator.
-    Error bar: the scatter of the realizations' means, within Student's 4 sigma (8.5
-    errors for 8). Each sample's ratio is exponential (a complex Gaussian mode) and a
+    Error bar: the scatter of the realizations' means, within Student's 4 sigma (5.5
+    errors for 16). Each sample's ratio is exponential (a complex Gaussian mode) and a
     mode decorrelates over about 6 samples, so blocks of 3 samples are not independent:
-    with 2 realizations and the blocks' scatter, one salted seed gave 0.53 ± 0.066.
-    A realization's mean scatters by about 0.24, so the band is about ±0.7: it rejects
-    a mode that lost its phase (C(0) near 0) or a normalisation off by 2."""
+    with 2 realizations and the blocks' scatter, one salted seed gave 0.53 ± 0.066. The
+    band must exclude C(0) = 0, a mode that lost its phase: a run whose band is wider
+    than 1 could not tell, and fails (``ELASTIC_REALIZATIONS``)."""
     run = elastic_run
     modes = (run.mode_real + 1j * run.mode_imag).transpose("realization", "time", "mode")
     norms = run.mode_norm.transpose("realization", "time", "mode").values
@@ -297,8 +306,9 @@ def test_transverse_correlation_at_lag_zero_is_one_at_alpha_one(elastic_run):
     blocks = block_correlations(modes.values, norms, n_lags=1, blocks_per_realization=per_block)
     per_realization = blocks[:, 0].reshape(run.sizes["realization"], per_block).mean(axis=1)
     mean, sem = mean_and_sem(per_realization)
-    assert 0.0 < sem < 0.2
-    assert abs(mean - 1.0) < tolerance_factor(4.0, per_realization.size - 1) * sem
+    band = tolerance_factor(4.0, per_realization.size - 1) * sem
+    assert 0.0 < band < 1.0
+    assert abs(mean - 1.0) < band
 
 
 def _agree(gpu, cpu, name):

@@ -21,7 +21,9 @@ def test_b3_carries_a_resolved_positive_field_bias():
     out = analysis.field_extrapolation(low, high)
     z_b3 = out["b3_full_bias"] / out["b3_full_bias_err"]
     assert z_b3 > 3.0, out
-    # relative to the value, the bias of b'_3 exceeds that of b'_1 (kappa') many times
-    relative_b3 = out["b3_full_bias"] / out["b3_full_extrapolated"]
-    relative_b1 = abs(out["b1_full_bias"]) / out["b1_full_extrapolated"]
-    assert relative_b3 > 3 * relative_b1, out
+    # relative to the value, the bias of b'_3 exceeds that of b'_1 (kappa') many times;
+    # the value is the one measured at the lower field (b'_3 = 2.7 +- 0.13 for one salted
+    # seed pair, whose extrapolation to zero field, -0.3 +- 0.7, resolved nothing)
+    relative_b3 = out["b3_full_bias"] / low["b3_full"]
+    relative_b1 = abs(out["b1_full_bias"]) / low["b1_full"]
+    assert relative_b3 > 3 * relative_b1, (out, low)

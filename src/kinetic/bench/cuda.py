@@ -166,10 +166,70 @@ def _median_run(*arguments, **keywords) -> dict[str, Any]:
     return best | {"rates": [r["events_per_second"] for r in runs]}
 
 
+def _kernel_resources(kernel) -> dict[str, Any]:
+    """Registers per thread and the most threads a block can have, of a kernel's compiled
+    variant (its first, on the current device): what decides how many of its thread
+    blocks a multiprocessor holds at once."""
+    out: dict[str, Any] = {}
+    for key, method in (
+        ("registers_per_thread", "get_regs_per_thread"),
+        ("max_threads_per_block", "get_max_threads_per_block"),
+        ("shared_memory_bytes", "get_shared_mem_per_block"),
+    ):
+        try:
+            value = getattr(kernel, method)()
+        except Exception as error:  # the simulator has none of them
+            out[key] = f"unavailable: {error}"
+            continue
+        out[key] = next(iter(value.values())) if isinstance(value, dict) else value
+    return out
+
+
+def _cloning_grouped(population: int, duration: float, realizations: int = 32) -> dict[str, Any]:
+    """The shape of a grouped paper job (``simulate_points``): every hard-disk λ of
+    paper.yaml's Fig. 3 × ``realizations`` of ``population`` clones in the same launches,
+    each point ``duration`` long after its transient. Events per second over the job."""
+    from kinetic.cloning import simulate_points
+
+    lambdas = _paper_lambdas("hard_disks")
+    points = [
+        {
+            "kernel": "hard_spheres",
+            "dimension": 2,
+            "lam": lam,
+            "population": population,
+            "duration": duration,
+            "transient": max(4.0, 2.0 * math.exp(lam)),
+            "n_blocks": 10,
+            "n_realizations": realizations,
+            "seed": 100 + k,
+            "backend": "cuda",
+        }
+        for k, lam in enumerate(lambdas)
+    ]
+    start = time.perf_counter()
+    datasets = simulate_points(points)
+    wall = time.perf_counter() - start
+    events = float(sum(ds.elastic_collisions.sum() for ds in datasets))
+    return {
+        "kernel": "hard_spheres",
+        "population": population,
+        "points": len(points),
+        "realizations": realizations * len(points),
+        "duration": duration,
+        "path": "grouped",
+        "wall_seconds": wall,
+        "events": events,
+        "events_per_second": events / wall,
+    }
+
+
 def cloning_speed(quick: bool) -> dict[str, Any]:
     """Events per second against N_c (each population on the engine's own path), the
     resident kernel against the four launches per interval at the paper config's
-    populations, and the CPU engine on one core."""
+    populations, the resident kernel's thread count (``RESIDENT_THREADS`` = 128 to 1024:
+    32 realizations of 10³ and 10⁴ clones, and a grouped paper job's shape of 41 λ × 32
+    realizations of 10³ clones: ``resident_threads``), and the CPU engine on one core."""
     from kinetic.cloning import gpu
 
     for resident in (True, False):  # compile both paths (same types as every case)
@@ -197,13 +257,28 @@ def cloning_speed(quick: bool) -> dict[str, Any]:
             with _cloning_path(resident):
                 case = _median_run("hard_spheres", 1.0, population, duration, 32)
             paths.append(case | {"path": "resident" if resident else "launched"})
+    threads = []
+    kernel = _kernel_resources(gpu._resident)
+    _keep(resident_threads=threads, resident_kernel=kernel)
+    for count in (128, 256, 512, 1024)[: 2 if quick else None]:
+        limit = kernel.get("max_threads_per_block")
+        if isinstance(limit, int) and count > limit:
+            threads.append({"threads": count, "skipped": "more than the kernel can launch"})
+            continue
+        with _cloning_path(True), mock.patch.object(gpu, "RESIDENT_THREADS", count):
+            for population, duration in ((1000, 2000.0), (10_000, 200.0))[: 1 if quick else None]:
+                case = _median_run("hard_spheres", 1.0, population, duration, 32)
+                threads.append(case | {"path": "resident", "threads": count})
+            threads.append(_cloning_grouped(1000, 10 if quick else 100) | {"threads": count})
     cpu = [_cloning("hard_spheres", 1.0, 1000, 2000.0, 1, backend="cpu", seed=s) for s in range(3)]
     cpu_rate = float(np.median([r["events_per_second"] for r in cpu]))
-    for case in cases + paths:
+    for case in cases + paths + threads:
         case["speedup_over_one_core"] = case["events_per_second"] / cpu_rate
     return {
         "gpu": cases,
         "paths": paths,
+        "resident_threads": threads,
+        "resident_kernel": kernel,
         "resident_max_population": gpu.RESIDENT_MAX_POPULATION,
         "cpu_one_core_events_per_second": cpu_rate,
         "cpu_runs": cpu,

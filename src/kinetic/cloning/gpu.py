@@ -412,6 +412,22 @@ after the other (``kinetic.cost.CLONING_GPU_RESIDENT_*``: 6.1 µs a clone and 7.
 event in one thread). The two cross at about 3300 clones for Δ = 1 and 6100 for
 Δ = 0.137 (λ = -1): 5000 between them."""
 
+_RESIDENT_MAX_THREADS = 1024
+"""Most threads of a ``_resident`` block: its shared trees are this long (16 KB), whatever
+the launch uses."""
+
+RESIDENT_THREADS = BLOCK
+"""Threads of one realization's block in ``_resident`` (a power of two, at most
+``_RESIDENT_MAX_THREADS``; read at each launch, so the bench can compare counts with one
+compiled kernel). 128 on a GPU, as timed on the H100 (revision 2984f74): a realization's
+clones are then run 8 (N_c = 10³) to 79 (10⁴) a thread, one after the other, at four warps
+a multiprocessor, and that serial work is the resident kernel's whole cost. More threads
+share a realization's clones among more warps; whether that pays at the paper config's
+batch (41 λ × 32 realizations, more blocks than run at once) is what ``bench cuda``'s
+``cloning_speed`` (``resident_threads``) times at 128-1024. The populations and counts do
+not depend on it (the scan is exact), μ and the sums only in the last bits (another
+summation tree)."""
+
 
 @cuda.jit(device=True, inline="always")
 def _slot(position, n, total, u):
@@ -424,7 +440,9 @@ def _slot(position, n, total, u):
 @kernel
 def _resident(first, second, states, counts, controls, out, observers, run, plan):
     """The control intervals of a block of the run for every clone of realization
-    r = blockIdx.x, in one thread block: advance (clones t, t + BLOCK, ...), weigh and
+    r = blockIdx.x, in one thread block of ``RESIDENT_THREADS`` threads (a power of two up
+    to ``_RESIDENT_MAX_THREADS``, read from the launch): advance (clones t, t + threads,
+    ...), weigh and
     scan (thread t the contiguous chunk t of the clones), select, the snapshot sums, with
     block barriers between the phases instead of launches. ``plan[r]`` is the
     realization's (interval Δ, number of intervals, λ, record the histogram: 0 or 1), so
@@ -433,13 +451,14 @@ def _resident(first, second, states, counts, controls, out, observers, run, plan
     same populations; μ and the snapshot sums differ from it in the last bits only (other
     summation order). The population starts and ends in ``first`` (``second`` is
     scratch)."""
-    shared = cuda.shared.array(BLOCK, np.float64)
-    shared_q = cuda.shared.array(BLOCK, np.int64)
+    shared = cuda.shared.array(_RESIDENT_MAX_THREADS, np.float64)
+    shared_q = cuda.shared.array(_RESIDENT_MAX_THREADS, np.int64)
     counts_shared = cuda.shared.array(MAX_CUDA_HISTOGRAM_BINS, np.int64)
     selection = cuda.shared.array(1, np.float64)
     table, table_step, histogram, half_width = observers
     code, rate_a = run
     t = cuda.threadIdx.x
+    threads = cuda.blockDim.x
     r = cuda.blockIdx.x
     interval = plan[r, 0]
     steps = np.int64(plan[r, 1])
@@ -448,11 +467,11 @@ def _resident(first, second, states, counts, controls, out, observers, run, plan
     n = states.shape[1]
     d = first.shape[1]
     bins = histogram.shape[1]
-    chunk = (n + BLOCK - 1) // BLOCK
+    chunk = (n + threads - 1) // threads
     start = min(t * chunk, n)
     stop = min(start + chunk, n)
     if record:
-        for b in range(t, bins, BLOCK):
+        for b in range(t, bins, threads):
             counts_shared[b] = 0
     cuda.syncthreads()
     for step in range(steps):
@@ -462,17 +481,17 @@ def _resident(first, second, states, counts, controls, out, observers, run, plan
         candidates = 0
         low = _NO_MIN
         high = np.int64(-1)
-        for i in range(t, n, BLOCK):
+        for i in range(t, n, threads):
             k, c = _advance_clone(source, states, r, i, code, interval, rate_a)
             counts[r, i] = k
             collisions += k
             candidates += c
             low = min(low, k)
             high = max(high, k)
-        low = block_reduce_extreme(shared_q, low, False)
-        high = block_reduce_extreme(shared_q, high, True)
-        total_collisions = block_reduce_sum(shared, float(collisions))
-        total_candidates = block_reduce_sum(shared, float(candidates))
+        low = block_reduce_extreme(shared_q, low, False, threads)
+        high = block_reduce_extreme(shared_q, high, True, threads)
+        total_collisions = block_reduce_sum(shared, float(collisions), threads)
+        total_candidates = block_reduce_sum(shared, float(candidates), threads)
         shift = low if lam >= 0.0 else high
         weights = 0.0
         chunk_q = _ZERO
@@ -480,8 +499,8 @@ def _resident(first, second, states, counts, controls, out, observers, run, plan
             w = math.exp(-lam * (counts[r, k] - shift))
             weights += w
             chunk_q += np.int64(w * _FIXED_POINT + 0.5)
-        weight = block_reduce_sum(shared, weights)
-        prefix, total_q = block_inclusive_scan(shared_q, chunk_q, _ZERO)
+        weight = block_reduce_sum(shared, weights, threads)
+        prefix, total_q = block_inclusive_scan(shared_q, chunk_q, _ZERO, threads)
         if t == 0:
             out[r, _ELAPSED] += interval
             out[r, _NET] += n * (math.log(weight / n) - lam * shift)
@@ -518,10 +537,10 @@ def _resident(first, second, states, counts, controls, out, observers, run, plan
                 rate_sum += copies * _tabulated_rate(speed, table, table_step)
                 v4_sum += copies * v2 * v2
                 v2_sum += copies * v2
-        v2_sum = block_reduce_sum(shared, v2_sum)
-        v4_sum = block_reduce_sum(shared, v4_sum)
-        rate_sum = block_reduce_sum(shared, rate_sum)
-        fastest = block_reduce_extreme(shared, fastest, True)
+        v2_sum = block_reduce_sum(shared, v2_sum, threads)
+        v4_sum = block_reduce_sum(shared, v4_sum, threads)
+        rate_sum = block_reduce_sum(shared, rate_sum, threads)
+        fastest = block_reduce_extreme(shared, fastest, True, threads)
         if t == 0:
             out[r, _SNAPSHOT[0]] += interval * v2_sum
             out[r, _SNAPSHOT[1]] += interval * v4_sum
@@ -529,12 +548,22 @@ def _resident(first, second, states, counts, controls, out, observers, run, plan
             out[r, _MAX_SPEED] = max(out[r, _MAX_SPEED], fastest)
         cuda.syncthreads()
     if record:
-        for b in range(t, bins, BLOCK):
+        for b in range(t, bins, threads):
             histogram[r, b] += counts_shared[b]
     if steps % 2:  # the population ended in ``second``: back to ``first``
         for dim in range(d):
-            for i in range(t, n, BLOCK):
+            for i in range(t, n, threads):
                 first[r, dim, i] = second[r, dim, i]
+
+
+def _resident_threads() -> int:
+    """``RESIDENT_THREADS``, checked (a power of two, at most ``_RESIDENT_MAX_THREADS``)."""
+    threads = int(RESIDENT_THREADS)
+    if threads < 1 or threads & (threads - 1) or threads > _RESIDENT_MAX_THREADS:
+        raise ValueError(
+            f"RESIDENT_THREADS must be a power of two up to {_RESIDENT_MAX_THREADS}, got {threads}"
+        )
+    return threads
 
 
 def run(p, durations, n_transient, rows, progress):
@@ -696,7 +725,7 @@ def _run_together(points, progress):
                 snapshots[j] += steps if record else 0
                 plan[owner == j] = (interval, steps, p["lam"], float(record))
                 simulated_time += sizes[j] * durations[b]
-        _resident[clones.count, BLOCK](
+        _resident[clones.count, _resident_threads()](
             clones.velocity[0],
             clones.velocity[1],
             clones.states,
