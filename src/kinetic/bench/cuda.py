@@ -99,12 +99,10 @@ def _device() -> dict[str, Any]:
     return info
 
 
-def _cloning(
-    kernel, lam, population, duration, realizations=1, backend="cuda", seed=1, **extra
-) -> dict[str, Any]:
-    from kinetic.cloning import simulate
-
-    arguments = {
+def _cloning_arguments(kernel, lam, population, duration, realizations, backend, seed, **extra):
+    """``kinetic.cloning.simulate``'s arguments for a bench point (d = 2, a transient of
+    2 e^λ mean free times, at least 4, ten blocks)."""
+    return {
         "kernel": kernel,
         "dimension": 2,
         "lam": lam,
@@ -117,6 +115,16 @@ def _cloning(
         "backend": backend,
         **extra,
     }
+
+
+def _cloning(
+    kernel, lam, population, duration, realizations=1, backend="cuda", seed=1, **extra
+) -> dict[str, Any]:
+    from kinetic.cloning import simulate
+
+    arguments = _cloning_arguments(
+        kernel, lam, population, duration, realizations, backend, seed, **extra
+    )
     start = time.perf_counter()
     ds = simulate(**arguments)
     wall = time.perf_counter() - start
@@ -193,18 +201,7 @@ def _cloning_grouped(population: int, duration: float, realizations: int = 32) -
 
     lambdas = _paper_lambdas("hard_disks")
     points = [
-        {
-            "kernel": "hard_spheres",
-            "dimension": 2,
-            "lam": lam,
-            "population": population,
-            "duration": duration,
-            "transient": max(4.0, 2.0 * math.exp(lam)),
-            "n_blocks": 10,
-            "n_realizations": realizations,
-            "seed": 100 + k,
-            "backend": "cuda",
-        }
+        _cloning_arguments("hard_spheres", lam, population, duration, realizations, "cuda", 100 + k)
         for k, lam in enumerate(lambdas)
     ]
     start = time.perf_counter()
