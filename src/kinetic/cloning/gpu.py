@@ -422,10 +422,12 @@ RESIDENT_THREADS = BLOCK
 compiled kernel). 128 on a GPU, as timed on the H100 (revision 2984f74): a realization's
 clones are then run 8 (N_c = 10³) to 79 (10⁴) a thread, one after the other, at four warps
 a multiprocessor, and that serial work is the resident kernel's whole cost. More threads
-share a realization's clones among more warps; whether that pays at the paper config's
-batch (41 λ × 32 realizations, more blocks than run at once) is what ``bench cuda``'s
-``cloning_speed`` (``resident_threads``) times at 128-1024. The populations and counts do
-not depend on it (the scan is exact), μ and the sums only in the last bits (another
+share a realization's clones among more warps, but ptxas gives the kernel 152 registers a
+thread: a multiprocessor's 65 536 hold three blocks of 128, one of 256, none of 512. So
+256 can halve a lone realization's latency and lengthen a batch of many (41 λ × 32
+realizations: 10 waves instead of 4); ``bench cuda``'s ``cloning_speed``
+(``resident_threads``) times the counts that launch. The populations and counts do not
+depend on it (the scan is exact), μ and the sums only in the last bits (another
 summation tree)."""
 
 
