@@ -83,7 +83,8 @@ def test_md_follows_the_gaussian_closure_not_poisson_at_t_10():
         theory = curve(estimate["t"], counts)[estimate["count"]]
         ok = np.isfinite(theory)
         chi2[name] = np.mean(((estimate["ldf"][ok] - theory[ok]) / estimate["error"][ok]) ** 2)
-    # a correct model gives χ²/dof = 1 ± √(2/dof); 5 of those bound it
-    bound = 1 + 5 * np.sqrt(2 / estimate["count"].size)
-    assert chi2["gaussian"] < bound, chi2
-    assert chi2["poisson"] > 4 * bound, chi2
+    # Measured over 24 seeds (7-30): χ²/dof of the Gaussian closure 0.53-2.58 (median 1.5:
+    # the bins share their normalisation and the closure is not exact, so not the
+    # 1 ± √(2/dof) of independent bins), of Poisson 40-67, their ratio at least 15.
+    assert chi2["gaussian"] < 4.0, chi2
+    assert chi2["poisson"] > 8 * chi2["gaussian"], chi2
