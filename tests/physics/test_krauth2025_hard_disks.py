@@ -135,14 +135,17 @@ def test_pressure_estimators_agree_with_the_contact_density(md, direct):
 def test_rate_form_of_the_pressure_needs_the_finite_n_average(md, direct):
     """βP = 2⟨1/|v⊥|⟩ n̂ (Eqs. 4.9b, c): with the finite-N average of Eq. (4.13a) the rate
     of wall hits gives the contact pressure; with its N → ∞ limit (4.9d) it is
-    √N Γ(N)/Γ(N+1/2) = 1.032 times too large at N = 4, which these runs resolve."""
+    √N Γ(N)/Γ(N+1/2) = 1.032 times too large at N = 4, which these runs resolve: the
+    3.2 % excess is more than 3 of their errors (about 5.6). The limit form's own distance
+    from the reference is not asserted: at 5.6 errors expected, a 4.5-error bound on it
+    failed for one salted seed (4.3)."""
     finite, limit = rate_pressures(md, "all")
     np.testing.assert_allclose(limit / finite, 1 / 0.969311, rtol=1e-5)
     value, sem = mean_and_sem(finite)
     reference, reference_sem = mean_and_sem(contact_pressure(direct))
     error = math.hypot(sem, reference_sem)
     assert abs(value - reference) < 4.5 * error
-    assert mean_and_sem(limit)[0] - reference > 4.5 * error
+    assert (1 / 0.969311 - 1) * reference > 3 * error  # the comparison has power
 
 
 def test_finite_n_averages_of_eqs_4_13_and_4_14(md):
