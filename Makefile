@@ -62,7 +62,7 @@ GPU_PLATFORMS = manylinux_2_28_x86_64 manylinux_2_27_x86_64 manylinux_2_24_x86_6
 gpu-wheels: install
 	$(BIN)/python -m pip download --quiet --no-deps --only-binary=:all: --python-version 3.12 \
 		--implementation cp $(addprefix --platform ,$(GPU_PLATFORMS)) -d .whl \
-		$$($(BIN)/python -m pip freeze | grep -i -E '^($(subst $(eval ) ,|,$(GPU_WHEELS)))==')
+		$$($(BIN)/python -m pip freeze | grep -i $(foreach wheel,$(GPU_WHEELS),-e '^$(wheel)=='))
 
 clean-results:
 	rm -rf results logs .snakemake
