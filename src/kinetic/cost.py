@@ -486,7 +486,12 @@ the per-clone costs. The fit of the three measured rates puts it at -6 µs, i.e.
 what they resolve: zero."""
 
 CLONING_GPU_BYTES_PER_MEMBER = 120.0
-"""``cuda`` backend: two velocity buffers, the stream, the count and the scan of a member."""
+"""``cuda`` backend, GPU memory: two velocity buffers, the stream, the count and the scan
+of a member."""
+
+CLONING_GPU_HOST_BYTES_PER_MEMBER = 32.0
+"""``cuda`` backend, host memory (a job's ``mem_mb``): the final velocities copied back
+(up to 3 float64 components a member, for the count of distinct clones), rounded up."""
 
 
 def cloning_control_interval(lam: float) -> float:
@@ -508,12 +513,34 @@ run in waves. From the compiled kernel, not yet from a GPU: ``bench cuda``'s
 times the grouped job's shape."""
 
 
+CLONING_MAX_TRANSIENT_BLOCKS = 50
+"""``kinetic.cloning.simulate.MAX_TRANSIENT_BLOCKS`` (a unit test keeps the two equal): the
+transient runs in at most this many blocks, none shorter than a measured block."""
+
+CLONING_GPU_GROUPED_MAX_POPULATION = 100_000
+"""With the ``cuda`` backend, the points of a (study, kernel, N_c) with N_c up to this run
+in one job and the same launches (``kinetic.cloning.simulate_points``), on either path:
+one job's startup instead of one per point, and the launched path's fixed cost of an
+interval (``CLONING_GPU_SECONDS_PER_INTERVAL``) paid once for all the points' rows. 41
+points of 32 realizations of 10⁵ clones hold 1.3 × 10⁸ clones: 16 GB of GPU memory at
+``CLONING_GPU_BYTES_PER_MEMBER`` (an 80 GB H100 holds it; a 16 GB card would not), 4 GB
+of host memory. A point of 10⁶ clones fills the GPU alone."""
+
+
+def _cloning_blocks(duration: float, transient: float, n_blocks: int) -> list[float]:
+    """The block durations of a cloning realization, as the front cuts them
+    (``kinetic.cloning.simulate``): the transient in blocks no shorter than a measured
+    block, at most ``CLONING_MAX_TRANSIENT_BLOCKS`` of them, then ``n_blocks`` measured."""
+    block = duration / n_blocks
+    transient_block = max(block, transient / CLONING_MAX_TRANSIENT_BLOCKS)
+    count = math.ceil(transient / transient_block - 1e-9) if transient else 0
+    return [transient_block] * count + [block] * n_blocks
+
+
 def _cloning_elapsed(duration: float, transient: float, n_blocks: int) -> float:
     """Simulated time of a cloning realization: the measured ``duration`` and the
     transient rounded up to whole blocks."""
-    block = duration / n_blocks
-    transient_blocks = math.ceil(transient / block - 1e-9) if block > 0 else 0
-    return duration + transient_blocks * block
+    return sum(_cloning_blocks(duration, transient, n_blocks))
 
 
 def _cloning_gpu(lam, population, elapsed, n_realizations, control_interval=None):
@@ -539,14 +566,30 @@ def _cloning_gpu(lam, population, elapsed, n_realizations, control_interval=None
     return latency, events
 
 
+def _launched_intervals(points) -> int:
+    """Control intervals the launched path runs for ``points`` in the same launches: in
+    each block of the run, as many as the point with the most (the others idle)."""
+    per_point = []
+    for point in points:
+        interval = point.get("control_interval") or cloning_control_interval(point["lam"])
+        blocks = _cloning_blocks(point["duration"], point["transient"], point["n_blocks"])
+        per_point.append([max(1, math.ceil(block / interval - 1e-9)) for block in blocks])
+    longest = max(len(steps) for steps in per_point)
+    return sum(
+        max(steps[b] if b < len(steps) else 0 for steps in per_point) for b in range(longest)
+    )
+
+
 def cloning_points(points) -> Estimate:
     """One ``cuda`` job of several cloning points in the same launches
-    (``kinetic.cloning.simulate_points``, ``points`` its keyword arguments): every
-    realization of every point is a thread block of the same launches, so the job lasts
-    as long as its slowest realization (times the waves when there are more blocks than
-    the GPU holds) or the events at the GPU's rate, whichever is longer, plus one job's
-    startup."""
-    latency, events, blocks, memory = 0.0, 0.0, 0, 0.0
+    (``kinetic.cloning.simulate_points``, ``points`` its keyword arguments). Up to
+    ``CLONING_GPU_RESIDENT_MAX_POPULATION`` clones every realization of every point is a
+    thread block of the same launches, so the job lasts as long as its slowest realization
+    (times the waves when there are more blocks than the GPU holds) or the events at the
+    GPU's rate, whichever is longer; above, the launches of every interval of the point
+    with the most in each block of the run plus every point's events at the GPU's rate.
+    Plus one job's startup."""
+    latency, events, blocks, members = 0.0, 0.0, 0, 0.0
     for point in points:
         elapsed = _cloning_elapsed(point["duration"], point["transient"], point["n_blocks"])
         one, count = _cloning_gpu(
@@ -559,11 +602,18 @@ def cloning_points(points) -> Estimate:
         latency = max(latency, one)
         events += count
         blocks += point["n_realizations"]
-        memory += CLONING_GPU_BYTES_PER_MEMBER * point["population"] * point["n_realizations"]
-    waves = math.ceil(blocks / CLONING_GPU_RESIDENT_BLOCKS)
-    seconds = max(waves * latency, events / CLONING_GPU_EVENTS_PER_SECOND)
+        members += point["population"] * point["n_realizations"]
+    if points[0]["population"] <= CLONING_GPU_RESIDENT_MAX_POPULATION:
+        waves = math.ceil(blocks / CLONING_GPU_RESIDENT_BLOCKS)
+        seconds = max(waves * latency, events / CLONING_GPU_EVENTS_PER_SECOND)
+    else:
+        seconds = (
+            _launched_intervals(points) * CLONING_GPU_SECONDS_PER_INTERVAL
+            + events / CLONING_GPU_EVENTS_PER_SECOND
+        )
     work = f"{events:.2e} collision events of {len(points)} points on one GPU"
-    return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, _mb(memory), work, gpus=1)
+    memory = _mb(CLONING_GPU_HOST_BYTES_PER_MEMBER * members)
+    return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, memory, work, gpus=1)
 
 
 def cloning_batch(
@@ -597,7 +647,7 @@ def cloning_batch(
             seconds = max(waves * latency, events / CLONING_GPU_EVENTS_PER_SECOND)
         else:
             seconds = latency + events / CLONING_GPU_EVENTS_PER_SECOND
-        memory = _mb(CLONING_GPU_BYTES_PER_MEMBER * population * n_realizations)
+        memory = _mb(CLONING_GPU_HOST_BYTES_PER_MEMBER * population * n_realizations)
         work = f"{events:.2e} collision events on one GPU"
         return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, memory, work, gpus=1)
     events = n_realizations * population * rate_factor * elapsed

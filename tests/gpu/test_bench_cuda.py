@@ -79,3 +79,4 @@ def test_grouped_cloning_case_counts_every_points_events(monkeypatch):
     assert case["points"] == 2 and case["realizations"] == 2
     assert case["events"] > 0
     assert case["events_per_second"] == case["events"] / case["wall_seconds"]
+    assert case["path"] == "grouped" and case["planned_seconds"] > 0

@@ -118,12 +118,17 @@ def test_hard_disks_stay_in_equilibrium_and_collide_at_the_bath_rate():
     assert abs(rates.mean() - 1.0) < Z * error
 
 
-def test_points_sharing_launches_give_what_they_give_alone(maxwell):
+@pytest.mark.parametrize("path", ["resident", "launched"])
+def test_points_sharing_launches_give_what_they_give_alone(maxwell, monkeypatch, path):
     """``simulate_points``: two points of other tilts, control intervals, transients, run
     lengths and seeds in the same launches (the shorter run idles through the last blocks
-    of the longer) give the datasets they give alone, every variable to the bit; the
+    of the longer, and a point with fewer intervals in a block through the last intervals)
+    give the datasets they give alone, every variable to the bit, on both paths; the
     fixture's point is the third, sharing them too."""
     from kinetic.cloning import simulate_points
+
+    if path == "launched":
+        monkeypatch.setattr(gpu, "RESIDENT_MAX_POPULATION", 0)
 
     common = {"kernel": "maxwell", "dimension": 2, "population": 16, "backend": "cuda"}
     points = [
@@ -157,8 +162,12 @@ def test_points_sharing_launches_give_what_they_give_alone(maxwell):
             "control_interval": 4.0,
         },
     ]
+    if path == "launched":  # four launches an interval: two points under the simulator
+        points = points[:2]  # 1 interval a block (point 0) against 2 (point 1)
+        points[0] |= {"control_interval": 1.0}
+        points[1] |= {"control_interval": 1.5}
     together = simulate_points(points)
-    alone = [simulate(**point) for point in points[:2]] + [maxwell]
+    alone = [simulate(**point) for point in points[:2]] + [maxwell][: len(points) - 2]
     for shared, single in zip(together, alone, strict=True):
         assert set(shared.data_vars) == set(single.data_vars)
         for name in shared.data_vars:
@@ -179,8 +188,10 @@ def test_resident_and_launched_intervals_make_the_same_selections(
         "lam": lam,
         "population": 16,
         "n_realizations": 2,
-        "duration": 4.0,
-        "control_interval": 1.0,
+        "duration": 3.0,
+        "n_blocks": 3,
+        "transient": 2.0,
+        "control_interval": 0.4,  # 3 intervals a block: the launches end one in ``second``
     }
     assert arguments["population"] <= gpu.RESIDENT_MAX_POPULATION
     resident = run(**arguments)

@@ -1,8 +1,10 @@
 """kinetic.cost and kinetic.plan: resource requests, the budget check, the summary."""
 
+import importlib
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from kinetic import cost, plan
@@ -187,7 +189,7 @@ def test_cuda_cloning_estimate_switches_path_where_the_engine_does():
     from kinetic.studies import visco2008_cloning
 
     assert cost.CLONING_GPU_RESIDENT_MAX_POPULATION == gpu.RESIDENT_MAX_POPULATION
-    assert visco2008_cloning.GROUPED_MAX_POPULATION == gpu.RESIDENT_MAX_POPULATION
+    assert visco2008_cloning.GROUPED_MAX_POPULATION >= gpu.RESIDENT_MAX_POPULATION
     largest = gpu.RESIDENT_MAX_POPULATION
     for lam in (1.0, -1.0):
         arguments = {"lam": lam, "duration": 1e5, "transient": 50.0, "n_blocks": 20}
@@ -226,6 +228,64 @@ def test_cuda_cloning_points_sharing_launches_cost_their_slowest_point():
     rate = events / cost.CLONING_GPU_EVENTS_PER_SECOND + cost.GPU_JOB_STARTUP_SECONDS
     assert together.cpu_seconds == pytest.approx(max(slowest, rate))  # 128 blocks: one wave
     assert together.cpu_seconds < sum(estimate.cpu_seconds for estimate in alone) - 15.0
+
+
+def test_cloning_blocks_are_cut_as_the_front_cuts_them():
+    """cost._cloning_blocks repeats the front's cut of a run into blocks (the transient in at
+    most MAX_TRANSIENT_BLOCKS blocks, none shorter than a measured one) without loading
+    the kernels."""
+    front = importlib.import_module("kinetic.cloning.simulate")  # the package exports its function
+
+    assert cost.CLONING_MAX_TRANSIENT_BLOCKS == front.MAX_TRANSIENT_BLOCKS
+    for duration, transient, n_blocks in [(100.0, 2.5, 4), (100.0, 30.0, 10), (40.0, 3e3, 8)]:
+        p = front.validate_parameters(
+            kernel="hard_spheres",
+            dimension=2,
+            lam=0.5,
+            population=10,
+            duration=duration,
+            transient=transient,
+            n_blocks=n_blocks,
+            n_realizations=1,
+            first_realization=0,
+            seed=1,
+            histogram_half_width=6.0,
+            histogram_bins=8,
+            backend="cpu",
+            control_interval=None,
+        )
+        blocks = cost._cloning_blocks(duration, transient, n_blocks)
+        np.testing.assert_allclose(blocks, front._Plan(p, None).durations, rtol=1e-15)
+
+
+def test_cuda_cloning_points_above_the_resident_kernel_pay_each_interval_once():
+    """Points of more clones than the resident kernel holds share the four launches of
+    every interval: the job costs the intervals of the point with the most (the others
+    idle through the rest of a block) plus every point's events at the GPU's rate and one
+    startup, far less than one job per point."""
+    population = cost.CLONING_GPU_RESIDENT_MAX_POPULATION + 1
+    points = [
+        {
+            "lam": lam,
+            "population": population,
+            "duration": 1e3,
+            "transient": 0.0,
+            "n_blocks": 10,
+            "n_realizations": 32,
+        }
+        for lam in (-1.0, 1.0, 2.0)
+    ]
+    together = cost.cloning_points(points)
+    intervals = 1e3 / min(cost.cloning_control_interval(lam) for lam in (-1.0, 1.0, 2.0))
+    events = 3 * 32 * population * 1e3
+    expected = (
+        intervals * cost.CLONING_GPU_SECONDS_PER_INTERVAL
+        + events / cost.CLONING_GPU_EVENTS_PER_SECOND
+        + cost.GPU_JOB_STARTUP_SECONDS
+    )
+    assert together.cpu_seconds == pytest.approx(expected, rel=0.01)  # whole intervals
+    alone = [cost.cloning_batch(**point, backend="cuda") for point in points]
+    assert together.cpu_seconds < sum(estimate.cpu_seconds for estimate in alone)
 
 
 def test_inhomogeneous_dsmc_runs_sharing_launches_pay_the_longest_runs_steps_once():

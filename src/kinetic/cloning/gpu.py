@@ -28,11 +28,13 @@ clones, ``_resident`` runs all the intervals of a block of the run in one thread
 realization (the phases separated by block barriers); above, four launches per interval
 (``_advance``, ``_weigh``, ``_close_interval``, ``_select``) over N_c/BLOCK thread blocks
 per realization. Both draw the same random numbers and make the same integer selections.
-The resident kernel reads each realization's interval, count of intervals, λ and
-histogram flag from a plan array, so that several points (λ) of one population share its
-launches (``run_points``, behind ``kinetic.cloning.simulate_points``): a point's numbers
-are those it gets alone, while the GPU holds many more thread blocks than one point has
-realizations.
+Both read each realization's interval, count of intervals, λ and histogram flag from a
+plan array, so that several points (λ) of one population share their launches
+(``run_points``, behind ``kinetic.cloning.simulate_points``): a point's numbers are those
+it gets alone, while the GPU holds many more threads than one point has clones. On the
+launched path a realization's population alternates between two buffers on its own
+count of intervals, and each interval's launches cover only the realizations that run
+it.
 
 For any Δ the product of the mean weights is an unbiased estimate of the tilted
 partition function; its logarithm is biased by about -Var(w)/(2 N_c <w>²) per interval,
@@ -201,18 +203,39 @@ def _advance_clone(velocity, states, r, i, code, interval, rate_a):
     return collisions, candidates
 
 
+@cuda.jit(device=True, inline="always")
+def _active(plan, r, step):
+    """Whether realization r runs interval ``step`` of the block (``plan[r, 1]`` of them)."""
+    return step < np.int64(plan[r, 1])
+
+
+@cuda.jit(device=True, inline="always")
+def _buffers(first, second, step):
+    """(source, target) of interval ``step``: the population starts a block in ``first``
+    and alternates between the two buffers."""
+    if step % 2 == 0:
+        return first, second
+    return second, first
+
+
 @kernel
-def _advance(velocity, states, counts, extremes, partials, code, interval, rate_a):
-    """One control interval of the untilted process for every clone (thread (i, r))."""
+def _advance(first, second, states, counts, extremes, partials, run, plan, order, step):
+    """One control interval of the untilted process for every clone (thread (i, r)) of the
+    realizations that run interval ``step`` (``plan[r]``: Δ, intervals, λ, record; the
+    launch's rows are the realizations ``order[:rows]``)."""
     shared = cuda.shared.array(BLOCK, np.float64)
     shared_counts = cuda.shared.array(BLOCK, np.int64)
     i = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
-    r = cuda.blockIdx.y
+    r = order[cuda.blockIdx.y]
+    if not _active(plan, r, step):
+        return  # the whole thread block: r is its own
+    code, rate_a = run
+    source, _ = _buffers(first, second, step)
     n = states.shape[1]
     collisions = 0
     candidates = 0
     if i < n:
-        collisions, candidates = _advance_clone(velocity, states, r, i, code, interval, rate_a)
+        collisions, candidates = _advance_clone(source, states, r, i, code, plan[r, 0], rate_a)
         counts[r, i] = collisions
     low = block_reduce_extreme(shared_counts, collisions if i < n else _NO_MIN, False)
     high = block_reduce_extreme(shared_counts, collisions if i < n else -1, True)
@@ -227,7 +250,7 @@ def _advance(velocity, states, counts, extremes, partials, code, interval, rate_
 
 
 @kernel
-def _weigh(counts, extremes, lam, cumulative, block_sums, partials):
+def _weigh(counts, extremes, cumulative, block_sums, partials, plan, order, step):
     """w_i = e^{-λ(K_i - K*)} <= 1: its sum per thread block (for μ), and the inclusive
     scan of q_i = round(2³² w_i) inside each thread block (exact int64), the block's
     total in ``block_sums``."""
@@ -235,7 +258,10 @@ def _weigh(counts, extremes, lam, cumulative, block_sums, partials):
     shared_q = cuda.shared.array(BLOCK, np.int64)
     t = cuda.threadIdx.x
     i = cuda.blockIdx.x * cuda.blockDim.x + t
-    r = cuda.blockIdx.y
+    r = order[cuda.blockIdx.y]
+    if not _active(plan, r, step):
+        return
+    lam = plan[r, 2]
     n = counts.shape[1]
     shift = extremes[r, 0] if lam >= 0.0 else extremes[r, 1]
     weight = 0.0
@@ -279,16 +305,21 @@ def _selection_uniform(controls, r):
 
 
 @kernel
-def _close_interval(block_sums, extremes, controls, partials, out, lam, intervals):
+def _close_interval(block_sums, extremes, controls, partials, out, plan, order, step):
     """One thread block per realization: the block offsets of the integer scan, the
     interval's collision and candidate counts, ln<w> into ``net_compensations``, the
-    next selection uniform, and the previous selection's snapshot sums times its
-    interval ``intervals[1]`` (0 when they were folded already). ``extremes[r]`` holds
-    (K min, K max, N_c, Q); K min and max are reset for the next interval."""
+    next selection uniform, and the previous selection's snapshot sums times Δ (from the
+    block's second interval on: the last one's are folded by ``_fold_snapshot``).
+    ``extremes[r]`` holds (K min, K max, N_c, Q); K min and max are reset for the next
+    interval."""
     shared = cuda.shared.array(BLOCK, np.float64)
     shared_q = cuda.shared.array(BLOCK, np.int64)
-    r = cuda.blockIdx.x
-    interval, previous = intervals
+    r = order[cuda.blockIdx.x]
+    if not _active(plan, r, step):
+        return
+    interval = plan[r, 0]
+    lam = plan[r, 2]
+    previous = interval if step > 0 else 0.0
     total_q = block_exclusive_scan(shared_q, block_sums[r], block_sums.shape[1], _ZERO)
     weight = _fold(shared, partials, r, _P_WEIGHT)
     collisions = _fold(shared, partials, r, _P_COLLISIONS)
@@ -323,15 +354,22 @@ def _slots_below(cumulative, offsets, r, i, n, total, u):
 
 
 @kernel
-def _select(source, target, cumulative, offsets, extremes, controls, partials, observers):
-    """Clone i copies itself into its slots [g(Q_{i-1}), g(Q_i)); then the snapshot sums
-    (each clone counted once per copy) and the histogram of the new population."""
+def _select(
+    first, second, cumulative, offsets, extremes, controls, partials, observers, plan, order, step
+):
+    """Clone i copies itself into its slots [g(Q_{i-1}), g(Q_i)) of the other buffer; then
+    the snapshot sums (each clone counted once per copy) and, if ``plan[r, 3]``, the
+    histogram of the new population."""
     shared = cuda.shared.array(BLOCK, np.float64)
     counts = cuda.shared.array(MAX_CUDA_HISTOGRAM_BINS, np.int64)
-    table, table_step, histogram, half_width, block_max, record = observers
+    table, table_step, histogram, half_width, block_max = observers
     t = cuda.threadIdx.x
     i = cuda.blockIdx.x * cuda.blockDim.x + t
-    r = cuda.blockIdx.y
+    r = order[cuda.blockIdx.y]
+    if not _active(plan, r, step):
+        return
+    source, target = _buffers(first, second, step)
+    record = plan[r, 3] != 0.0
     n = cumulative.shape[1]
     d = source.shape[1]
     bins = histogram.shape[1]
@@ -395,10 +433,24 @@ def _add_snapshot(shared, partials, out, r, interval):
 
 
 @kernel
-def _fold_snapshot(partials, out, interval):
+def _fold_snapshot(partials, out, plan):
     """One thread block per realization: the block's last selection's snapshot sums."""
     shared = cuda.shared.array(BLOCK, np.float64)
-    _add_snapshot(shared, partials, out, cuda.blockIdx.x, interval)
+    r = cuda.blockIdx.x
+    if np.int64(plan[r, 1]) > 0:
+        _add_snapshot(shared, partials, out, r, plan[r, 0])
+
+
+@kernel
+def _settle(first, second, plan):
+    """The population of a realization that ran an odd number of intervals this block,
+    from ``second`` back to ``first`` (thread (i, r))."""
+    i = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    r = cuda.blockIdx.y
+    if np.int64(plan[r, 1]) % 2 == 0 or i >= first.shape[2]:
+        return
+    for k in range(first.shape[1]):
+        first[r, k, i] = second[r, k, i]
 
 
 RESIDENT_MAX_POPULATION = 5_000
@@ -584,18 +636,16 @@ def run(p, durations, n_transient, rows, progress):
 def run_points(points, progress):
     """``run`` for several points at once: ``points`` is a list of ``(p, durations,
     n_transient, rows)`` of one kernel, dimension, population and histogram (the λ, the
-    control interval, the transient and the rows may differ). Up to
-    ``RESIDENT_MAX_POPULATION`` clones every realization of every point shares the same
-    launches (one thread block each: a point's numbers are those it gets alone); above,
-    the points run one after the other. Returns ``run``'s tuple for each point; the wall
-    time is shared equally among all the realizations."""
+    control interval, the transient and the rows may differ). Every realization of every
+    point shares the same launches: up to ``RESIDENT_MAX_POPULATION`` clones as one thread
+    block of ``_resident``, above as the rows of the four launches per interval. A point's
+    numbers are those it gets alone. Returns ``run``'s tuple for each point; the wall time
+    is shared equally among all the realizations."""
     if not simulated():
         warm("cuda_cloning", "cloning", _compile_kernels)
     started = time.perf_counter()
-    if points[0][0]["population"] <= RESIDENT_MAX_POPULATION:
-        results = _run_together(points, progress)
-    else:
-        results = [_run(*point, progress) for point in points]
+    resident = points[0][0]["population"] <= RESIDENT_MAX_POPULATION
+    results = _run_together(points, progress, resident)
     realizations = sum(point[3].shape[0] for point in points)
     seconds = (time.perf_counter() - started) / realizations
     out = []
@@ -677,34 +727,14 @@ def _run(p, durations, n_transient, rows, progress, resident=None):
     and the final velocities; ``resident`` forces a path (default: by the population)."""
     if resident is None:
         resident = p["population"] <= RESIDENT_MAX_POPULATION
-    if resident:
-        return _run_together([(p, durations, n_transient, rows)], progress)[0]
-    clones = _Clones(p, rows, len(durations))
-    advance = _launched_intervals(
-        clones.velocity, clones.states, clones.counts, clones.controls, p["lam"]
-    )
-    snapshots = 0
-    for b, duration in enumerate(durations):
-        interval, steps = _intervals(p, duration)
-        record = b >= n_transient
-        snapshots += steps if record else 0
-        observers = (
-            clones.table,
-            clones.table_step,
-            clones.histogram,
-            p["histogram_half_width"],
-            record,
-        )
-        advance(clones.blocks[:, b, :], observers, (clones.code, interval, steps, clones.rate_a))
-        cuda.synchronize()
-        if progress is not None:
-            progress.update(clones.count * duration)
-    return clones.results([(p, durations)], [snapshots], [clones.count])[0]
+    return _run_together([(p, durations, n_transient, rows)], progress, resident)[0]
 
 
-def _run_together(points, progress):
-    """The points' realizations in the same ``_resident`` launches, one per block of the
-    run (a point whose run has fewer blocks idles through the last ones)."""
+def _run_together(points, progress, resident):
+    """The points' realizations in the same launches, block of the run after block: one
+    ``_resident`` launch per block, or (``resident`` false) the four launches of each of
+    the block's intervals (``_launched_intervals``). A point whose run has fewer blocks,
+    or whose block has fewer intervals, idles through the rest."""
     rows = np.concatenate([point[3] for point in points])
     sizes = [point[3].shape[0] for point in points]
     owner = np.repeat(np.arange(len(points)), sizes)
@@ -717,6 +747,9 @@ def _run_together(points, progress):
         clones.histogram,
         points[0][0]["histogram_half_width"],
     )
+    run = (clones.code, clones.rate_a)
+    if not resident:
+        advance = _launched_intervals(clones)
     for b in range(n_blocks):
         plan = np.zeros((clones.count, 4))
         simulated_time = 0.0
@@ -727,57 +760,89 @@ def _run_together(points, progress):
                 snapshots[j] += steps if record else 0
                 plan[owner == j] = (interval, steps, p["lam"], float(record))
                 simulated_time += sizes[j] * durations[b]
-        _resident[clones.count, _resident_threads()](
-            clones.velocity[0],
-            clones.velocity[1],
-            clones.states,
-            clones.counts,
-            clones.controls,
-            clones.blocks[:, b, :],
-            observers,
-            (clones.code, clones.rate_a),
-            to_device(plan),
-        )
+        if resident:
+            _resident[clones.count, _resident_threads()](
+                clones.velocity[0],
+                clones.velocity[1],
+                clones.states,
+                clones.counts,
+                clones.controls,
+                clones.blocks[:, b, :],
+                observers,
+                run,
+                to_device(plan),
+            )
+        else:
+            advance(clones.blocks[:, b, :], observers, run, plan)
         cuda.synchronize()
         if progress is not None:
             progress.update(simulated_time)
     return clones.results([(p, durations) for p, durations, _, _ in points], snapshots, sizes)
 
 
-def _launched_intervals(velocity, states, counts, controls, lam):
+def _launched_intervals(clones):
     """Control intervals by four launches each over ``grid(N_c)`` thread blocks per
-    realization (``_advance``, ``_weigh``, ``_close_interval``, ``_select``)."""
-    count, n = states.shape[0], states.shape[1]
+    realization (``_advance``, ``_weigh``, ``_close_interval``, ``_select``): returns
+    ``advance(out, observers, run, plan)``, which runs the intervals of one block of the
+    run (``plan``: each realization's Δ, intervals, λ and record flag) and leaves every
+    population in ``clones.velocity[0]``."""
+    count, n = clones.count, clones.n
+    first, second = clones.velocity
+    states, counts, controls = clones.states, clones.counts, clones.controls
     launch = ((grid(n), count), BLOCK)
     extremes = to_device(np.tile(np.array([_NO_MIN, -1, n, 0], dtype=np.int64), (count, 1)))
     cumulative = cuda.device_array((count, n), dtype=np.int64)
     block_sums = cuda.device_array((count, grid(n)), dtype=np.int64)
     partials = to_device(np.zeros((count, grid(n), 6)))
-    launch_advance, weigh, select = _advance[launch], _weigh[launch], _select[launch]
-    close, fold = _close_interval[count, BLOCK], _fold_snapshot[count, BLOCK]
+    fold, settle = _fold_snapshot[count, BLOCK], _settle[launch]
 
-    def advance(out, observers, run):
-        code, interval, steps, rate_a = run
-        table, table_step, histogram, half_width, record = observers
-        fastest = out[:, _MAX_SPEED]
-        observers = (table, table_step, histogram, half_width, fastest, record)
-        for step in range(steps):
-            launch_advance(velocity[0], states, counts, extremes, partials, code, interval, rate_a)
-            weigh(counts, extremes, lam, cumulative, block_sums, partials)
+    def kernels(rows):
+        """The four kernels configured for ``rows`` realizations (configured at each
+        launch: the simulator's configured kernels share one launch shape)."""
+        over = ((grid(n), rows), BLOCK)
+        return _advance[over], _weigh[over], _close_interval[rows, BLOCK], _select[over]
+
+    def advance(out, observers, run, plan):
+        table, table_step, histogram, half_width = observers
+        observers = (table, table_step, histogram, half_width, out[:, _MAX_SPEED])
+        steps = plan[:, 1].astype(np.int64)
+        order = np.argsort(-steps, kind="stable")  # the realizations with the most first
+        # the realizations that run interval k: the first rows[k] of ``order``
+        rows = count - np.searchsorted(np.sort(steps), np.arange(steps.max()), side="right")
+        device_plan, device_order = to_device(plan), to_device(order.astype(np.int64))
+        for step in range(int(steps.max())):
+            launch_advance, weigh, close, select = kernels(int(rows[step]))
+            launch_advance(
+                first,
+                second,
+                states,
+                counts,
+                extremes,
+                partials,
+                run,
+                device_plan,
+                device_order,
+                step,
+            )
+            weigh(
+                counts, extremes, cumulative, block_sums, partials, device_plan, device_order, step
+            )
             # the previous selection's snapshot is folded here, the last one by ``fold``
-            previous = interval if step else 0.0
-            close(block_sums, extremes, controls, partials, out, lam, (interval, previous))
+            close(block_sums, extremes, controls, partials, out, device_plan, device_order, step)
             select(
-                velocity[0],
-                velocity[1],
+                first,
+                second,
                 cumulative,
                 block_sums,
                 extremes,
                 controls,
                 partials,
                 observers,
+                device_plan,
+                device_order,
+                step,
             )
-            velocity.reverse()
-        fold(partials, out, interval)
+        fold(partials, out, device_plan)
+        settle(first, second, device_plan)
 
     return advance

@@ -173,8 +173,9 @@ def dsmc_jobs(config: Mapping[str, Any]) -> list[Job]:
 
 def cloning_jobs(config: Mapping[str, Any]) -> list[Job]:
     """The cloning jobs of the scan and of the error study: every point cut into batches;
-    with the ``cuda`` backend the points of a study, kernel and population small enough for
-    the GPU's resident kernel share one job (``visco2008_cloning.grouped``)."""
+    with the ``cuda`` backend the points of a study, kernel and population (up to
+    ``visco2008_cloning.GROUPED_MAX_POPULATION`` clones) share one job
+    (``visco2008_cloning.grouped``)."""
     from kinetic import cost
     from kinetic.batches import batch_name
     from kinetic.seeds import derive_seed

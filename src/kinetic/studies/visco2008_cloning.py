@@ -96,16 +96,17 @@ def jobs(section: Mapping[str, Any], study: str, backend: str = "cpu") -> list[b
     return batches.plan(realizations=realizations, realizations_per_job=per_job)
 
 
-GROUPED_MAX_POPULATION = cost.CLONING_GPU_RESIDENT_MAX_POPULATION
+GROUPED_MAX_POPULATION = cost.CLONING_GPU_GROUPED_MAX_POPULATION
 """With the ``cuda`` backend, the points of a (study, kernel, N_c) with N_c up to this share
-one job and the GPU's launches (``kinetic.cloning.simulate_points``): the resident kernel's
-limit, ``kinetic.cloning.gpu.RESIDENT_MAX_POPULATION``, as ``kinetic.cost`` (which imports
-no engine either) holds it; a unit test keeps it equal to the engine's."""
+one job and the GPU's launches (``kinetic.cloning.simulate_points``): as one thread block
+of the resident kernel each up to ``kinetic.cloning.gpu.RESIDENT_MAX_POPULATION`` clones,
+as rows of the four launches of an interval above (``kinetic.cost`` holds the limit and
+says why)."""
 
 
 def grouped(backend: str, population: int) -> bool:
     """Whether a point of ``population`` clones runs in its (study, kernel, N_c) group's
-    job: the ``cuda`` backend and a population of the resident kernel."""
+    job: the ``cuda`` backend and at most ``GROUPED_MAX_POPULATION`` clones."""
     return backend == "cuda" and int(population) <= GROUPED_MAX_POPULATION
 
 
