@@ -229,6 +229,33 @@ def test_column_groups_give_a_realization_the_same_numbers_alone(monkeypatch):
     assert not np.array_equal(other.moments.values, alone.moments.values)
 
 
+def test_group_majorants_found_by_several_threads_give_the_one_thread_numbers(monkeypatch):
+    """``columns``: a group's majorant (mean velocity, two largest speeds about it) found
+    by 2 or 8 threads of the block together (``BOUND_LANE_BITS`` 1, 3) instead of one
+    (0, ``kernels.speed_bounds``) differs in rounding only, which moves no candidate count,
+    acceptance or raised bound: the same collisions, and the moments to 1e-12. N = 131:
+    groups a particle short, and 4 threads x 2 lanes share the block's groups over
+    several passes."""
+    from kinetic.dsmc import gpu
+
+    monkeypatch.setattr(gpu, "REGROUPING", "columns")
+    options = {"restitution": 0.8, "n_particles": 131, "n_realizations": 2}
+    monkeypatch.setattr(gpu, "BOUND_LANE_BITS", 0)
+    one = _run("cuda", **options)
+    for bits in (1, 3):
+        monkeypatch.setattr(gpu, "BOUND_LANE_BITS", bits)
+        lanes = _run("cuda", **options)
+        np.testing.assert_array_equal(lanes.collisions.values, one.collisions.values)
+        for name in ("moments", "cooling_rate", "thermostat_rate"):
+            np.testing.assert_allclose(
+                lanes[name].values, one[name].values, rtol=1e-12, atol=1e-14, err_msg=name
+            )
+    assert np.all(one.collisions > 0)
+    monkeypatch.setattr(gpu, "BOUND_LANE_BITS", 4)  # 16 threads: more than a block has
+    with pytest.raises(ValueError, match="BOUND_LANE_BITS"):
+        _run("cuda", **options)
+
+
 def test_column_pass_folds_in_the_force_step_of_the_force_kernel():
     """``columns`` applies the force step as it writes its tile back (``_scatter``): one
     pass, with a field, gives the velocities of the same pass without a field followed
@@ -331,3 +358,5 @@ def test_bench_memory_bound_times_every_pass_of_the_step():
     assert columns["step"]["bound_seconds"] == pytest.approx(
         48 * particles / report["copy_bytes_per_second"]
     )
+    # the threads a group's majorant, every count a block of the simulator's 8 has
+    assert [case["bound_lane_bits"] for case in columns["lanes"]] == [0, 1, 2, 3]

@@ -21,21 +21,22 @@ pytestmark = [
 
 
 def _signatures():
-    from numba import boolean, float64, int64, types, uint64
-    from numba.core.types import UniTuple
+    from numba import float64, int64, types, uint64
 
     f3, f1 = float64[:, :, ::1], float64[::1]
     i2 = int64[:, ::1]
     u3, u2 = uint64[:, :, ::1], uint64[:, ::1]
     a2, a1 = types.Array(float64, 2, "A"), types.Array(float64, 1, "A")
-    observers = types.Tuple((f1, float64, i2, float64, a1, boolean))
+    observers = types.Tuple((f1, float64, i2, float64, a1))
+    plan, order, run = float64[:, ::1], int64[::1], types.Tuple((int64, float64))
     cloning = {
         "_seed": (u3, f3, u2),
-        "_advance": (f3, u3, i2, i2, f3, int64, float64, float64),
-        "_weigh": (i2, i2, float64, i2, i2, f3),
-        "_close_interval": (i2, i2, u2, f3, a2, float64, UniTuple(float64, 2)),
-        "_select": (f3, f3, i2, i2, i2, u2, f3, observers),
-        "_fold_snapshot": (f3, a2, float64),
+        "_advance": (f3, f3, u3, i2, i2, f3, run, plan, order, int64),
+        "_weigh": (i2, i2, i2, i2, f3, plan, order, int64),
+        "_close_interval": (i2, i2, u2, f3, a2, plan, order, int64),
+        "_select": (f3, f3, i2, i2, i2, u2, f3, observers, plan, order, int64),
+        "_fold_snapshot": (f3, a2, plan),
+        "_settle": (f3, f3, plan),
         "_resident": (
             f3,
             f3,
@@ -74,27 +75,13 @@ def _dsmc_signatures():
     f3, f2, f1 = float64[:, :, ::1], float64[:, ::1], float64[::1]
     i3, i2, i1 = int64[:, :, ::1], int64[:, ::1], int64[::1]
     u3, u2 = uint64[:, :, ::1], uint64[:, ::1]
+    columns = (f3, u3, f3, f3, i3, f1, i1, u2, i1, f2, boolean, f3, i1, float64, int64, int64)
     return {
         "_permute": (f3, f3, u2, uint64, f2, boolean),
         "_seed_groups": (u2, u3, u2),
         "_collide": (f3, u3, f3, f3, i3, f1, i1),
-        "_collide_columns": (
-            f3,
-            u3,
-            f3,
-            f3,
-            i3,
-            f1,
-            i1,
-            u2,
-            i1,
-            f2,
-            boolean,
-            f3,
-            i1,
-            float64,
-            int64,
-        ),
+        "_collide_columns": columns,
+        "_collide_columns_lanes": columns,
         "_force": (f3, f3, i1, float64, int64, f2, boolean),
         "_finish": (f3, int64, f2, f2, i1, f1, i1, boolean, u2),
         "_observe": (f3, f3, UniTuple(i2, 3), f1, i1, boolean, f2, boolean),

@@ -742,6 +742,7 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     collide = _launch_seconds(lambda: batch._collide_columns(field_step), repeats)
     step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
     out["columns"] = {
+        "bound_lane_bits": dsmc_gpu.BOUND_LANE_BITS,
         "passes": {
             "collide_columns": _traffic(
                 collide, COLUMNS_PASS_BYTES["collide_columns"], particles, copy_bandwidth
@@ -749,6 +750,22 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
         },
         "step": _against_bound(step, sum(COLUMNS_PASS_BYTES.values()), particles, copy_bandwidth),
     }
+    # the threads that find a group's majorant together (``BOUND_LANE_BITS``: 0 is one)
+    lanes = []
+    out["columns"]["lanes"] = lanes
+    for bits in range(5):
+        if (1 << bits) > dsmc_gpu._TILE_THREADS:
+            continue  # more threads a group than a block has (under the simulator)
+        with mock.patch.object(dsmc_gpu, "BOUND_LANE_BITS", bits):
+            collide = _launch_seconds(lambda: batch._collide_columns(field_step), repeats)
+        lanes.append(
+            {
+                "bound_lane_bits": bits,
+                "collide_columns": _traffic(
+                    collide, COLUMNS_PASS_BYTES["collide_columns"], particles, copy_bandwidth
+                ),
+            }
+        )
     return out
 
 

@@ -158,6 +158,16 @@ _TILE_THREADS = 8 if simulated() else 128
 """Threads per block of ``_collide_columns`` (each gathers and scatters its share of the
 tile; then each collides groups of it, one at a time)."""
 
+BOUND_LANE_BITS = 1 if simulated() else 3
+"""``columns``: log2 of the threads of a ``_collide_columns`` block that compute one group's
+majorant together (its mean velocity, then its two largest speeds about it: each thread
+a strided share of the group's particles, then a fixed-order fold, so fixed numbers for
+fixed N), before one of them runs the group's collisions. 3 (8 threads, 16 groups a pass
+of 128 threads, which covers a block's at most 14 groups) on a GPU; 0 is the single
+thread per group of ``kernels.speed_bounds`` (the kernel timed on the H100 at revision
+2984f74). Read at each launch, so that the bench compares both with one compiled kernel.
+Under the simulator 1 (its blocks have 8 threads)."""
+
 N_MOMENTS = kernels.N_MOMENTS
 _N_FORCE_SUMS = 4
 
@@ -168,6 +178,7 @@ _KERNEL, _POISSON, _EXACT, _N_CX, _N_SPEED, _N = 0, 1, 2, 3, 4, 5
 
 _collide_range = device_function(kernels.collide_range)
 _speed_bounds = device_function(kernels.speed_bounds)
+_two_largest = device_function(kernels._two_largest)
 _column_particle = device_function(kernels.column_particle)
 _force_factor = device_function(kernels._force_factor)
 _thermostat_scale = device_function(kernels._thermostat_scale)
@@ -329,8 +340,16 @@ def _collide_group(v, first, last, states, bounds, carry, tally, reals, flags, r
     """One time step of collisions in group g of realization r, the particles
     ``first..last-1`` of ``v`` (d, n): ``kernels.collide_range`` with the group's own
     majorant, stream, carry and tally."""
-    state = states[r, g]
     _speed_bounds(v, first, last, bounds[r, g])
+    _collide_bounded(v, first, last, states, bounds, carry, tally, reals, flags, r, g)
+
+
+_collide_group = cuda.jit(device=True, inline="always")(_collide_group)
+
+
+def _collide_bounded(v, first, last, states, bounds, carry, tally, reals, flags, r, g):
+    """``_collide_group`` with the group's majorant already in ``bounds[r, g]``."""
+    state = states[r, g]
     u, s0, s1, s2, s3 = _uniform(state[0], state[1], state[2], state[3])
     state[0] = s0
     state[1] = s1
@@ -352,7 +371,7 @@ def _collide_group(v, first, last, states, bounds, carry, tally, reals, flags, r
     _collide_range(v, first, last, state, collisions)
 
 
-_collide_group = cuda.jit(device=True, inline="always")(_collide_group)
+_collide_bounded = cuda.jit(device=True, inline="always")(_collide_bounded)
 
 
 @kernel
@@ -379,18 +398,14 @@ def _column_shift(j, key, n_rows):
 _column_shift = cuda.jit(device=True, inline="always")(_column_shift)
 
 
-def _tile_slot(slot, first_group, per_block, shifts, layout):
-    """Slot ``slot`` of a block's tile of groups ``first_group ..`` (``per_block`` of
-    them): ``(p, i)``, the particle's index in its realization and its place in the tile,
-    or p = -1 where the slot holds none. Slots run over the rows of one column, then the
-    next column: consecutive threads take consecutive rows (coalesced reads and writes).
-    Group l's particle of column j sits at ``l * (columns | 1) + j``: an odd stride
-    between groups, so that threads walking their groups side by side use different
-    shared-memory banks."""
+def _tile_slot(j, l, first_group, shifts, layout):
+    """Slot (column j, group l) of a block's tile of groups ``first_group ..``: ``(p, i)``,
+    the particle's index in its realization and its place in the tile, or p = -1 where the
+    slot holds none. Group l's particle of column j sits at ``l * (columns | 1) + j``: an
+    odd stride between groups, so that threads walking their groups side by side use
+    different shared-memory banks."""
     n_rows = layout[0]
     n_columns = layout[1]
-    j = slot // per_block
-    l = slot - j * per_block
     g = first_group + l
     if g >= n_rows:
         return -1, 0
@@ -401,18 +416,49 @@ def _tile_slot(slot, first_group, per_block, shifts, layout):
 _tile_slot = cuda.jit(device=True, inline="always")(_tile_slot)
 
 
+def _first_slot(per_block):
+    """This thread's first slot of a tile and the step to its next, as (column, group)
+    pairs ``(j, l, dj, dl)``: the slots s = j per_block + l run over the ``per_block`` rows
+    of one column, then the next column, and thread t takes s = t, t + T, ... (T threads):
+    consecutive threads take consecutive rows (coalesced reads and writes). Two integer
+    divisions a thread, none a slot (``_next_slot``)."""
+    t = cuda.threadIdx.x
+    threads = cuda.blockDim.x
+    j = t // per_block
+    dj = threads // per_block
+    return j, t - j * per_block, dj, threads - dj * per_block
+
+
+_first_slot = cuda.jit(device=True, inline="always")(_first_slot)
+
+
+def _next_slot(j, l, dj, dl, per_block):
+    """The slot ``T`` after (column j, group l): ``(j, l)`` moved by ``_first_slot``'s step."""
+    l += dl
+    j += dj
+    if l >= per_block:
+        l -= per_block
+        j += 1
+    return j, l
+
+
+_next_slot = cuda.jit(device=True, inline="always")(_next_slot)
+
+
 def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale):
     """Copy the particles of groups ``first_group ..`` (``per_block`` of them) of
     realization r from ``velocity`` into the block's ``tile`` (``_tile_slot``), after the
     pending thermostat if ``rescale``."""
-    for slot in range(cuda.threadIdx.x, per_block * layout[1], cuda.blockDim.x):
-        p, i = _tile_slot(slot, first_group, per_block, shifts, layout)
+    j, l, dj, dl = _first_slot(per_block)
+    while j < layout[1]:
+        p, i = _tile_slot(j, l, first_group, shifts, layout)
         if p >= 0:
             for k in range(d):
                 if rescale:
                     tile[k, i] = _thermostat(velocity[r, k, p], thermo, r, k)
                 else:
                     tile[k, i] = velocity[r, k, p]
+        j, l = _next_slot(j, l, dj, dl, per_block)
 
 
 _gather = cuda.jit(device=True, inline="always")(_gather)
@@ -428,8 +474,9 @@ def _scatter(velocity, tile, shifts, layout, r, first_group, per_block, d, field
     sum2 = 0.0
     total_sq = 0.0
     failed = 0
-    for slot in range(cuda.threadIdx.x, per_block * layout[1], cuda.blockDim.x):
-        p, i = _tile_slot(slot, first_group, per_block, shifts, layout)
+    j, l, dj, dl = _first_slot(per_block)
+    while j < layout[1]:
+        p, i = _tile_slot(j, l, first_group, shifts, layout)
         if p >= 0:
             v0 = tile[0, i]
             v1 = tile[1, i]
@@ -446,10 +493,181 @@ def _scatter(velocity, tile, shifts, layout, r, first_group, per_block, d, field
             sum1 += v1
             sum2 += v2
             total_sq += v0 * v0 + v1 * v1 + v2 * v2
+        j, l = _next_slot(j, l, dj, dl, per_block)
     return sum0, sum1, sum2, total_sq, failed
 
 
 _scatter = cuda.jit(device=True, inline="always")(_scatter)
+
+
+def _group_size(g, shifts, layout):
+    """Particles of group g in the ``columns`` layout: m, or m - 1 where the last column
+    has no row for it."""
+    n_columns = layout[1]
+    last = _column_particle(
+        n_columns - 1, g, shifts[n_columns - 1], layout[0], n_columns, layout[2]
+    )
+    return n_columns if last >= 0 else n_columns - 1
+
+
+_group_size = cuda.jit(device=True, inline="always")(_group_size)
+
+
+def _lane_bounds(tile, shared, first, size, lane, lanes, leader, d):
+    """The majorant of the group at ``tile[:, first:first + size]`` computed by its
+    ``lanes`` threads together (this one is ``lane``; ``leader`` is the row of ``shared``
+    of its lane 0): ``(c0, c1, c2, top1, top2)``, the mean velocity and the two largest
+    speeds about it (squared), valid in lane 0. Each lane sums, then ranks, the particles
+    ``first + lane``, ``+ lanes``, ...; lane 0 folds the lanes' rows of ``shared`` in
+    lane order. Every thread of the block calls it (its barriers), inactive ones with
+    size 0."""
+    t = cuda.threadIdx.x
+    cuda.syncthreads()  # ``shared`` is free: the last pass's lane 0 has folded it
+    s0 = 0.0
+    s1 = 0.0
+    s2 = 0.0
+    for i in range(first + lane, first + size, lanes):
+        s0 += tile[0, i]
+        s1 += tile[1, i]
+        if d == 3:
+            s2 += tile[2, i]
+    shared[t, 0] = s0
+    shared[t, 1] = s1
+    shared[t, 2] = s2
+    cuda.syncthreads()
+    if lane == 0 and size > 0:
+        for q in range(1, lanes):
+            s0 += shared[t + q, 0]
+            s1 += shared[t + q, 1]
+            s2 += shared[t + q, 2]
+        shared[t, 0] = s0 / size
+        shared[t, 1] = s1 / size
+        shared[t, 2] = s2 / size
+    cuda.syncthreads()
+    c0 = shared[leader, 0]
+    c1 = shared[leader, 1]
+    c2 = shared[leader, 2]
+    top1 = 0.0
+    top2 = 0.0
+    for i in range(first + lane, first + size, lanes):
+        e0 = tile[0, i] - c0
+        e1 = tile[1, i] - c1
+        e = e0 * e0 + e1 * e1
+        if d == 3:
+            e2 = tile[2, i] - c2
+            e += e2 * e2
+        top1, top2 = _two_largest(e, top1, top2)
+    cuda.syncthreads()  # every lane has read its centre
+    shared[t, 0] = top1
+    shared[t, 1] = top2
+    cuda.syncthreads()
+    if lane == 0:
+        for q in range(1, lanes):
+            top1, top2 = _two_largest(shared[t + q, 0], top1, top2)
+            top1, top2 = _two_largest(shared[t + q, 1], top1, top2)
+    return c0, c1, c2, top1, top2
+
+
+_lane_bounds = cuda.jit(device=True, inline="always")(_lane_bounds)
+
+
+def _columns_pass(
+    velocity,
+    states,
+    bounds,
+    carry,
+    tally,
+    reals,
+    flags,
+    keys,
+    layout,
+    thermo,
+    rescale,
+    partials,
+    status,
+    field_step,
+    exact,
+    lane_bits,
+    lanes_path,
+    tile,
+    shifts,
+    shared,
+):
+    """One time step of collisions of every group, regrouped without a copy (``columns``),
+    and the force step after them.
+
+    The N particles of a realization are ``layout`` = (G, m, rows of the last column)
+    columns of G rows, particle j G + row in column j (the last column holds
+    N - (m - 1) G). In a step, group g takes the particle of row (g + s_j) mod G of each
+    column j (``_column_shift`` of the step's key ``keys[r, 4]``): m particles, or m - 1
+    where the last column has no such row. Block b gathers groups b T/m .. (T = ``_TILE``)
+    into shared memory (after the pending thermostat if ``rescale``), its threads find each
+    group's majorant, 2^``lane_bits`` threads a group (``_lane_bounds``; with 0 bits one
+    thread, ``kernels.speed_bounds``), one thread a group collides it
+    (``_collide_bounded``), and the block writes the tile back after the force
+    step of a = ``field_step`` (``_scatter``), with the thermostat's sums ΣV_x, ΣV_y, ΣV_z,
+    Σ|V|² of its particles in ``partials[r, b, :4]`` (a fixed tree over the block's
+    threads, so fixed numbers for fixed N); a failed force step raises ``status[r]``. One
+    pass over the particles for the whole collide-and-force half of a step."""
+    r = cuda.blockIdx.y
+    d = velocity.shape[1]
+    n_rows = layout[0]
+    n_columns = layout[1]
+    per_block = _TILE // (n_columns | 1)
+    first_group = cuda.blockIdx.x * per_block
+    for j in range(cuda.threadIdx.x, n_columns, cuda.blockDim.x):
+        shifts[j] = _column_shift(j, keys[r, 4], n_rows)
+    cuda.syncthreads()
+    _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale)
+    cuda.syncthreads()
+    v = tile[:d]
+    if not lanes_path:  # one thread a group, majorant and collisions
+        for l in range(cuda.threadIdx.x, per_block, cuda.blockDim.x):
+            g = first_group + l
+            if g < n_rows:
+                first = l * (n_columns | 1)
+                size = _group_size(g, shifts, layout)
+                _collide_group(
+                    v, first, first + size, states, bounds, carry, tally, reals, flags, r, g
+                )
+    else:  # 2^lane_bits threads a group's majorant, its first thread the collisions
+        lanes = 1 << lane_bits
+        lane = cuda.threadIdx.x & (lanes - 1)
+        leader = cuda.threadIdx.x - lane
+        for start in range(0, per_block, cuda.blockDim.x >> lane_bits):
+            l = start + (cuda.threadIdx.x >> lane_bits)
+            g = first_group + l
+            size = 0
+            if l < per_block and g < n_rows:
+                size = _group_size(g, shifts, layout)
+            first = l * (n_columns | 1)
+            c0, c1, c2, top1, top2 = _lane_bounds(tile, shared, first, size, lane, lanes, leader, d)
+            if lane == 0 and size > 0:
+                row = bounds[r, g]
+                row[0] = c0
+                row[1] = c1
+                if d == 3:
+                    row[2] = c2
+                row[d] = math.sqrt(top1)
+                row[d + 1] = math.sqrt(top2)
+                _collide_bounded(
+                    v, first, first + size, states, bounds, carry, tally, reals, flags, r, g
+                )
+    cuda.syncthreads()
+    sum0, sum1, sum2, total_sq, failed = _scatter(
+        velocity, tile, shifts, layout, r, first_group, per_block, d, field_step, exact
+    )
+    if failed != 0:
+        cuda.atomic.max(status, r, failed)
+    sums = cuda.local.array(_N_FORCE_SUMS, np.float64)
+    sums[0] = sum0
+    sums[1] = sum1
+    sums[2] = sum2
+    sums[3] = total_sq
+    _block_sums(shared, sums, partials[r, cuda.blockIdx.x])
+
+
+_columns_pass = cuda.jit(device=True, inline="always")(_columns_pass)
 
 
 @kernel
@@ -469,60 +687,100 @@ def _collide_columns(
     status,
     field_step,
     exact,
+    lane_bits,
 ):
-    """One time step of collisions of every group, regrouped without a copy (``columns``),
-    and the force step after them.
-
-    The N particles of a realization are ``layout`` = (G, m, rows of the last column)
-    columns of G rows, particle j G + row in column j (the last column holds
-    N - (m - 1) G). In a step, group g takes the particle of row (g + s_j) mod G of each
-    column j (``_column_shift`` of the step's key ``keys[r, 4]``): m particles, or m - 1
-    where the last column has no such row. Block b gathers groups b T/m .. (T = ``_TILE``)
-    into shared memory (after the pending thermostat if ``rescale``), its threads collide
-    a group each (``_collide_group``), and the block writes the tile back after the force
-    step of a = ``field_step`` (``_scatter``), with the thermostat's sums ΣV_x, ΣV_y, ΣV_z,
-    Σ|V|² of its particles in ``partials[r, b, :4]`` (a fixed tree over the block's
-    threads, so fixed numbers for fixed N); a failed force step raises ``status[r]``. One
-    pass over the particles for the whole collide-and-force half of a step."""
+    """``_columns_pass`` with each group's majorant found by one thread
+    (``kernels.speed_bounds``; ``lane_bits`` is not read). A kernel of its own, not a
+    branch of ``_collide_columns_lanes``: ptxas gives the two paths 144 and 152 registers a
+    thread apart and 176 in one kernel, 2 blocks of 128 threads a multiprocessor instead
+    of 3."""
     tile = cuda.shared.array((3, _TILE), np.float64)
     shifts = cuda.shared.array(_MAX_COLUMNS, np.int32)
     shared = cuda.shared.array((_TILE_THREADS, _N_FORCE_SUMS), np.float64)
-    r = cuda.blockIdx.y
-    d = velocity.shape[1]
-    n_rows = layout[0]
-    n_columns = layout[1]
-    per_block = _TILE // (n_columns | 1)
-    first_group = cuda.blockIdx.x * per_block
-    for j in range(cuda.threadIdx.x, n_columns, cuda.blockDim.x):
-        shifts[j] = _column_shift(j, keys[r, 4], n_rows)
-    cuda.syncthreads()
-    _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale)
-    cuda.syncthreads()
-    for l in range(cuda.threadIdx.x, per_block, cuda.blockDim.x):
-        g = first_group + l
-        if g < n_rows:
-            last = _column_particle(
-                n_columns - 1, g, shifts[n_columns - 1], n_rows, n_columns, layout[2]
-            )
-            size = n_columns if last >= 0 else n_columns - 1
-            first = l * (n_columns | 1)
-            v = tile[:d]
-            _collide_group(v, first, first + size, states, bounds, carry, tally, reals, flags, r, g)
-    cuda.syncthreads()
-    sum0, sum1, sum2, total_sq, failed = _scatter(
-        velocity, tile, shifts, layout, r, first_group, per_block, d, field_step, exact
+    _columns_pass(
+        velocity,
+        states,
+        bounds,
+        carry,
+        tally,
+        reals,
+        flags,
+        keys,
+        layout,
+        thermo,
+        rescale,
+        partials,
+        status,
+        field_step,
+        exact,
+        lane_bits,
+        False,
+        tile,
+        shifts,
+        shared,
     )
-    if failed != 0:
-        cuda.atomic.max(status, r, failed)
-    sums = cuda.local.array(_N_FORCE_SUMS, np.float64)
-    sums[0] = sum0
-    sums[1] = sum1
-    sums[2] = sum2
-    sums[3] = total_sq
-    _block_sums(shared, sums, partials[r, cuda.blockIdx.x])
+
+
+@kernel
+def _collide_columns_lanes(
+    velocity,
+    states,
+    bounds,
+    carry,
+    tally,
+    reals,
+    flags,
+    keys,
+    layout,
+    thermo,
+    rescale,
+    partials,
+    status,
+    field_step,
+    exact,
+    lane_bits,
+):
+    """``_columns_pass`` with each group's majorant found by 2^``lane_bits`` threads
+    together (``_lane_bounds``)."""
+    tile = cuda.shared.array((3, _TILE), np.float64)
+    shifts = cuda.shared.array(_MAX_COLUMNS, np.int32)
+    shared = cuda.shared.array((_TILE_THREADS, _N_FORCE_SUMS), np.float64)
+    _columns_pass(
+        velocity,
+        states,
+        bounds,
+        carry,
+        tally,
+        reals,
+        flags,
+        keys,
+        layout,
+        thermo,
+        rescale,
+        partials,
+        status,
+        field_step,
+        exact,
+        lane_bits,
+        True,
+        tile,
+        shifts,
+        shared,
+    )
 
 
 # --------------------------------------------------------------- force and thermostat
+
+
+def _bound_lane_bits() -> int:
+    """``BOUND_LANE_BITS``, checked: 2^bits threads a group must fit a warp and leave the
+    block at least one group a pass."""
+    bits = int(BOUND_LANE_BITS)
+    if not 0 <= bits <= 5 or (1 << bits) > _TILE_THREADS:
+        raise ValueError(
+            f"BOUND_LANE_BITS must be 0 to 5 and 2^bits <= {_TILE_THREADS}, got {bits}"
+        )
+    return bits
 
 
 def _forced(v0, v1, v2, field_step, exact):
@@ -812,10 +1070,13 @@ class _Batch:
         )
         self.pending = False
 
-    def _collide_columns(self, field_step: float) -> None:
+    def _collide_columns(self, field_step: float, lane_bits: int | None = None) -> None:
         """``columns``: the pending thermostat, the collision stage of every group and the
-        force step with the thermostat's sums (``column_partials``), in one launch."""
-        _collide_columns[(self.column_blocks, self.count), _TILE_THREADS](
+        force step with the thermostat's sums (``column_partials``), in one launch; each
+        group's majorant by 2^``lane_bits`` threads (default ``BOUND_LANE_BITS``)."""
+        bits = _bound_lane_bits() if lane_bits is None else int(lane_bits)
+        launch = _collide_columns_lanes if bits else _collide_columns
+        launch[(self.column_blocks, self.count), _TILE_THREADS](
             self.velocity,
             *self._groups(),
             self.keys,
@@ -826,6 +1087,7 @@ class _Batch:
             self.status,
             field_step,
             self.exact,
+            bits,
         )
         self.pending = False
 
@@ -991,6 +1253,8 @@ def _compile_outside_the_timer(settings: HomogeneousSettings, samples: Samples) 
                 streams = np.array([[1, 2, 3, 4]], dtype=np.uint64)
                 batch = _Batch(tiny, samples, streams, regrouping)
                 batch.step(sample=True, histogram=True)
+                if regrouping == "columns":  # the one-thread majorant's kernel too
+                    batch._collide_columns(0.0, lane_bits=0)
             synchronize()
 
     warm("cuda_dsmc", "dsmc", compile_kernels)
