@@ -973,19 +973,22 @@ def job_startup(quick: bool) -> dict[str, Any]:
 
 SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
     "inhomogeneous_bound": inhomogeneous_bound,
+    "memory_bound": memory_bound,
+    "cloning_speed": cloning_speed,
     "inhomogeneous_speed": inhomogeneous_speed,
     "dsmc_paper_job": dsmc_paper_job,
     "cloning_physics": cloning_physics,
-    "memory_bound": memory_bound,
-    "cloning_speed": cloning_speed,
     "dsmc_speed": dsmc_speed,
     "dsmc_scaling": dsmc_scaling,
     "job_startup": job_startup,
 }
 """In the order a short device lease should spend its minutes: what no GPU has timed yet
-first (the inhomogeneous DSMC's phases and speed, the montanero2007 paper job, the physics
-of the resident cloning kernel), then what the H100 run of revision 2984f74 measured
-(the homogeneous DSMC's passes and speed, both cloning paths, the job startup)."""
+first (the inhomogeneous DSMC's phases; the homogeneous DSMC's collide-and-force pass with
+a group's majorant found by several threads, ``memory_bound``'s ``columns.lanes``; the
+cloning points of 10⁴ clones sharing the launched path, ``cloning_speed``'s
+``grouped_launched`` against its plan; the inhomogeneous DSMC's speed, the montanero2007
+paper job, the physics of the resident cloning kernel), then what the H100 run of revision
+2984f74 measured (the homogeneous DSMC's speed, the job startup)."""
 
 
 PREFLIGHT_MODULES = (
