@@ -179,6 +179,7 @@ _KERNEL, _POISSON, _EXACT, _N_CX, _N_SPEED, _N = 0, 1, 2, 3, 4, 5
 _collide_range = device_function(kernels.collide_range)
 _speed_bounds = device_function(kernels.speed_bounds)
 _two_largest = device_function(kernels._two_largest)
+_speed_sq = device_function(kernels._speed_sq)
 _column_particle = device_function(kernels.column_particle)
 _force_factor = device_function(kernels._force_factor)
 _thermostat_scale = device_function(kernels._thermostat_scale)
@@ -550,13 +551,7 @@ def _lane_bounds(tile, shared, first, size, lane, lanes, leader, d):
     top1 = 0.0
     top2 = 0.0
     for i in range(first + lane, first + size, lanes):
-        e0 = tile[0, i] - c0
-        e1 = tile[1, i] - c1
-        e = e0 * e0 + e1 * e1
-        if d == 3:
-            e2 = tile[2, i] - c2
-            e += e2 * e2
-        top1, top2 = _two_largest(e, top1, top2)
+        top1, top2 = _two_largest(_speed_sq(tile, i, d, c0, c1, c2), top1, top2)
     cuda.syncthreads()  # every lane has read its centre
     shared[t, 0] = top1
     shared[t, 1] = top2
