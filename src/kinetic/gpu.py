@@ -183,9 +183,11 @@ __all__ = [
     "cuda",
     "device_function",
     "device_name",
+    "first_pair",
     "fold_partials",
     "grid",
     "kernel",
+    "next_pair",
     "require",
     "synchronize",
     "to_device",
@@ -278,6 +280,31 @@ def fold_partials(partials, out, field_of, scale=1.0):
     fixed order (deterministic; no atomics): one thread block per (r, f), each thread
     summing the rows b = t, t + BLOCK, ... in order, then a fixed tree."""
     _fold[(partials.shape[0], partials.shape[2]), BLOCK](partials, out, field_of, scale)
+
+
+def first_pair(k, n, stride):
+    """A grid-stride walk over the pairs (q, i) of a flat index k = q n + i, without a
+    64-bit division a step (a long instruction sequence on a GPU): ``(q, i, dq, di)``,
+    k's pair and the stride's, stride = dq n + di; ``next_pair`` takes the next."""
+    q = k // n
+    dq = stride // n
+    return q, k - q * n, dq, stride - dq * n
+
+
+first_pair = cuda.jit(device=True, inline="always")(first_pair)
+
+
+def next_pair(q, i, dq, di, n):
+    """The pair ``stride`` after (q, i) in ``first_pair``'s walk over rows of ``n``."""
+    i += di
+    q += dq
+    if i >= n:
+        i -= n
+        q += 1
+    return q, i
+
+
+next_pair = cuda.jit(device=True, inline="always")(next_pair)
 
 
 def block_reduce_sum(shared, value, threads=BLOCK):

@@ -93,8 +93,10 @@ from kinetic.gpu import (
     cuda,
     device_function,
     device_zeros,
+    first_pair,
     grid,
     kernel,
+    next_pair,
     synchronize,
     to_device,
     warm,
@@ -419,31 +421,14 @@ _tile_slot = cuda.jit(device=True, inline="always")(_tile_slot)
 
 def _first_slot(per_block):
     """This thread's first slot of a tile and the step to its next, as (column, group)
-    pairs ``(j, l, dj, dl)``: the slots s = j per_block + l run over the ``per_block`` rows
-    of one column, then the next column, and thread t takes s = t, t + T, ... (T threads):
-    consecutive threads take consecutive rows (coalesced reads and writes). Two integer
-    divisions a thread, none a slot (``_next_slot``)."""
-    t = cuda.threadIdx.x
-    threads = cuda.blockDim.x
-    j = t // per_block
-    dj = threads // per_block
-    return j, t - j * per_block, dj, threads - dj * per_block
+    pairs ``(j, l, dj, dl)`` (``kinetic.gpu.first_pair``): the slots s = j per_block + l
+    run over the ``per_block`` rows of one column, then the next column, and thread t takes
+    s = t, t + T, ... (T threads): consecutive threads take consecutive rows (coalesced
+    reads and writes). Two integer divisions a thread, none a slot (``next_pair``)."""
+    return first_pair(cuda.threadIdx.x, per_block, cuda.blockDim.x)
 
 
 _first_slot = cuda.jit(device=True, inline="always")(_first_slot)
-
-
-def _next_slot(j, l, dj, dl, per_block):
-    """The slot ``T`` after (column j, group l): ``(j, l)`` moved by ``_first_slot``'s step."""
-    l += dl
-    j += dj
-    if l >= per_block:
-        l -= per_block
-        j += 1
-    return j, l
-
-
-_next_slot = cuda.jit(device=True, inline="always")(_next_slot)
 
 
 def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale):
@@ -459,7 +444,7 @@ def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo
                     tile[k, i] = _thermostat(velocity[r, k, p], thermo, r, k)
                 else:
                     tile[k, i] = velocity[r, k, p]
-        j, l = _next_slot(j, l, dj, dl, per_block)
+        j, l = next_pair(j, l, dj, dl, per_block)
 
 
 _gather = cuda.jit(device=True, inline="always")(_gather)
@@ -494,7 +479,7 @@ def _scatter(velocity, tile, shifts, layout, r, first_group, per_block, d, field
             sum1 += v1
             sum2 += v2
             total_sq += v0 * v0 + v1 * v1 + v2 * v2
-        j, l = _next_slot(j, l, dj, dl, per_block)
+        j, l = next_pair(j, l, dj, dl, per_block)
     return sum0, sum1, sum2, total_sq, failed
 
 

@@ -85,8 +85,10 @@ from kinetic.gpu import (
     cuda,
     device_function,
     device_zeros,
+    first_pair,
     grid,
     kernel,
+    next_pair,
     synchronize,
     to_device,
     warm,
@@ -362,22 +364,23 @@ def _advance_together(first, second, work, cells, u, rows, stream, step, inverse
         for r in range(block, count, blocks):
             _centre_row(cells[0], u, cell_start, inverse_n, sums, r)
         grid_group.sync()
-        for k in range(thread, count * n, threads):
-            r = k // n
-            i = k - r * n
+        r, i, dr, di = first_pair(thread, n, threads)  # k = r n + i, no division a step
+        while r < count:
             _stream_particle(source[0], source[1], cell_of, cell_start, u, rows, stream, r, i)
+            r, i = next_pair(r, i, dr, di, n)
         grid_group.sync()
         for r in range(block, count, blocks):
             _scan_row(cell_start, fill, counts, r)
         grid_group.sync()
-        for k in range(thread, count * n, threads):
-            r = k // n
-            _scatter_particle(cell_of, fill, order, r, k - r * n)
+        r, i, dr, di = first_pair(thread, n, threads)
+        while r < count:
+            _scatter_particle(cell_of, fill, order, r, i)
+            r, i = next_pair(r, i, dr, di, n)
         grid_group.sync()
-        for k in range(thread, count * n_cells, threads):
-            r = k // n_cells
-            c = k - r * n_cells
+        r, c, dr, dc = first_pair(thread, n_cells, threads)
+        while r < count:
             _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
+            r, c = next_pair(r, c, dr, dc, n_cells)
         grid_group.sync()
 
 
