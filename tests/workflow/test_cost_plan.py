@@ -117,9 +117,9 @@ def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
     and costantini2010 DSMC jobs ask the scheduler for one GPU (resources gpu=1, the SLURM
     executor's --gpus=1), hold every realization of their point or run, and carry
     backend='cuda'; every other simulation job asks for none. The cloning points of a study,
-    kernel and population of the resident kernel (all of the ci config's) share one job of
-    their group's rule, which writes each point's file; so do costantini2010's grid DSMC
-    runs of one N (every α)."""
+    kernel and population up to ``visco2008_cloning.GROUPED_MAX_POPULATION`` (all of the ci
+    config's) share one job of their group's rule, which writes each point's file; so do
+    costantini2010's grid DSMC runs of one N (every α)."""
     from kinetic.studies import costantini2010 as costantini2010_study
     from kinetic.studies import visco2008_cloning as cloning_plan
 
