@@ -16,7 +16,15 @@ from __future__ import annotations
 
 import os
 
-__all__ = ["BACKENDS", "BackendUnavailable", "check", "require", "simulated"]
+__all__ = [
+    "BACKENDS",
+    "MAX_CUDA_REALIZATIONS",
+    "BackendUnavailable",
+    "check",
+    "check_realizations",
+    "require",
+    "simulated",
+]
 
 BACKENDS = ("cpu", "cuda")
 """The backends an engine front accepts (``backend=`` argument, ``backend:`` config key)."""
@@ -31,6 +39,23 @@ def check(backend) -> str:
     if backend not in BACKENDS:
         raise ValueError(f"backend must be one of {list(BACKENDS)}, got {backend!r}")
     return backend
+
+
+MAX_CUDA_REALIZATIONS = 65_535
+"""Most realizations one ``cuda`` call runs: its kernels put the realization on a CUDA
+grid's y (or a block's x) index, whose y extent is 65 535."""
+
+
+def check_realizations(backend, count: int) -> int:
+    """``count`` realizations in one call of ``backend``, checked against the GPU's grid
+    (``MAX_CUDA_REALIZATIONS`` for ``cuda``, no limit on the ``cpu``): ``ValueError``
+    before any work. A count that is not an integer is left to the front's own check."""
+    if backend == "cuda" and isinstance(count, int) and count > MAX_CUDA_REALIZATIONS:
+        raise ValueError(
+            f"a cuda call runs at most {MAX_CUDA_REALIZATIONS} realizations (the CUDA grid's "
+            f"y extent), got {count}: split them into jobs (first_realization, n_realizations)"
+        )
+    return count
 
 
 def simulated() -> bool:

@@ -178,6 +178,15 @@ def test_points_sharing_launches_give_what_they_give_alone(maxwell, monkeypatch,
         simulate_points([points[0], points[1] | {"population": 32}])
 
 
+def test_points_of_more_realizations_than_a_grid_holds_are_refused_before_any_work():
+    from kinetic.cloning import simulate_points
+
+    point = {"lam": 1.0, "population": 8, "duration": 1.0, "transient": 4.0, "seed": 1}
+    point |= {"backend": "cuda", "n_realizations": 40_000}
+    with pytest.raises(ValueError, match="at most 65535 realizations"):
+        simulate_points([point, point | {"lam": 0.5}])
+
+
 @pytest.mark.parametrize(("kernel", "dimension", "lam"), [("hard_spheres", 3, -0.5)])
 def test_resident_and_launched_intervals_make_the_same_selections(
     monkeypatch, kernel, dimension, lam

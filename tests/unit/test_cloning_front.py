@@ -39,6 +39,7 @@ SMALL = {
         ({"seed": -1}, "seed must be >= 0"),
         ({"n_realizations": 1, "n_blocks": 1}, "n_blocks >= 2"),
         ({"lam": 8.0, "transient": 100.0}, "transient=100 is too short at lam=8"),
+        ({"backend": "cuda", "n_realizations": 65_536}, "at most 65535 realizations"),
     ],
 )
 def test_bad_input_is_refused_before_work(change, message):

@@ -50,6 +50,7 @@ SMALL = dict(
         ({"n_cx_bins": 7}, "n_cx_bins = 7 must be an even integer"),
         ({"seed": -1}, "seed = -1 is not allowed"),
         ({"n_realizations": 0}, "n_realizations = 0 is not allowed"),
+        ({"backend": "cuda", "n_realizations": 70_000}, "at most 65535 realizations"),
     ],
 )
 def test_bad_parameters_are_refused_with_the_value_and_range(changes, fragment):

@@ -69,6 +69,7 @@ SMALL = dict(
         ({"seed": -1}, "seed = -1 is not allowed"),
         ({"n_realizations": 0}, "n_realizations = 0 is not allowed"),
         ({"first_realization": 1.5}, "first_realization must be an integer"),
+        ({"backend": "cuda", "n_realizations": 65_536}, "at most 65535 realizations"),
         (
             {"n_particles": 10**7, "fictive_factor": 10},
             "n_particles x fictive_factor = 10000000 x 10 = 100000000 simulated particles",

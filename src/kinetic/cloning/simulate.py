@@ -190,6 +190,7 @@ def validate_parameters(
     )
     histogram_bins = _check_integer("histogram_bins", histogram_bins, 1, 10**6)
     backends.check(backend)
+    backends.check_realizations(backend, n_realizations)
     if backend == "cuda" and histogram_bins > MAX_CUDA_HISTOGRAM_BINS:
         raise ValueError(
             f"histogram_bins must be <= {MAX_CUDA_HISTOGRAM_BINS} with backend 'cuda' "
@@ -331,6 +332,7 @@ def simulate_points(points, *, label: str | None = None):
             raise ValueError(f"the points of one launch must share {key}, got {sorted(values)}")
     if checked[0]["backend"] != "cuda":
         raise ValueError("simulate_points runs the cuda backend only; use simulate on the cpu")
+    backends.check_realizations("cuda", sum(p["n_realizations"] for p in checked))
     device = backends.require("cuda")  # before any work
     runs = [_Plan(p, None) for p in checked]
     text = label or f"cloning {len(runs)} points N={checked[0]['population']}"

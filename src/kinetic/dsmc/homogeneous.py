@@ -132,6 +132,7 @@ def simulate_homogeneous(
     the regrouping of the GPU's random groups on ``cuda`` (``gpu.REGROUPING``).
     """
     backends.check(backend)
+    backends.check_realizations(backend, n_realizations)
     settings = HomogeneousSettings(
         n_particles=n_particles,
         restitution=restitution,

@@ -498,6 +498,7 @@ def simulate_cooling_modes_points(points, *, label: str | None = None):
             "simulate_cooling_modes_points runs the cuda backend only; use "
             "simulate_cooling_modes on the cpu"
         )
+    backends.check_realizations("cuda", sum(run.p["n_realizations"] for run in runs))
     device = backends.require("cuda")  # before any work
     for run in runs:
         run.warn()
@@ -536,6 +537,7 @@ class _Run:
         p = defaults | dict(p)
         backend = p["backend"]
         backends.check(backend)
+        backends.check_realizations(backend, p["n_realizations"])
         settings = CoolingModesSettings(
             **{key: p[key] for key in CoolingModesSettings.__dataclass_fields__}
         )
