@@ -485,10 +485,6 @@ CLONING_GPU_RESIDENT_SECONDS_PER_INTERVAL = 0.0
 the per-clone costs. The fit of the three measured rates puts it at -6 µs, i.e. below
 what they resolve: zero."""
 
-CLONING_GPU_BYTES_PER_MEMBER = 120.0
-"""``cuda`` backend, GPU memory: two velocity buffers, the stream, the count and the scan
-of a member."""
-
 CLONING_GPU_HOST_BYTES_PER_MEMBER = 32.0
 """``cuda`` backend, host memory (a job's ``mem_mb``): the final velocities copied back
 (up to 3 float64 components a member, for the count of distinct clones), rounded up."""
@@ -523,8 +519,9 @@ in one job and the same launches (``kinetic.cloning.simulate_points``), on eithe
 one job's startup instead of one per point, and the launched path's fixed cost of an
 interval (``CLONING_GPU_SECONDS_PER_INTERVAL``) paid once for all the points' rows. 41
 points of 32 realizations of 10⁵ clones hold 1.3 × 10⁸ clones: 16 GB of GPU memory at
-``CLONING_GPU_BYTES_PER_MEMBER`` (an 80 GB H100 holds it; a 16 GB card would not), 4 GB
-of host memory. A point of 10⁶ clones fills the GPU alone."""
+120 bytes a clone (two velocity buffers, the stream, the count and the scan; an 80 GB
+H100 holds it, a 16 GB card would not), 4 GB of host memory. A point of 10⁶ clones
+fills the GPU alone."""
 
 
 def _cloning_blocks(duration: float, transient: float, n_blocks: int) -> list[float]:

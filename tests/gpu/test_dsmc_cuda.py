@@ -232,10 +232,10 @@ def test_column_groups_give_a_realization_the_same_numbers_alone(monkeypatch):
 def test_group_majorants_found_by_several_threads_give_the_one_thread_numbers(monkeypatch):
     """``columns``: a group's majorant (mean velocity, two largest speeds about it) found
     by 2 or 8 threads of the block together (``BOUND_LANE_BITS`` 1, 3) instead of one
-    (0, ``kernels.speed_bounds``) differs in rounding only, which moves no candidate count,
-    acceptance or raised bound: the same collisions, and the moments to 1e-12. N = 131:
-    groups a particle short, and 4 threads x 2 lanes share the block's groups over
-    several passes."""
+    (0: the numbers of ``kernels.speed_bounds``) differs in rounding only, which moves no
+    candidate count, acceptance or raised bound: the same collisions, and the moments to
+    1e-12. N = 131: groups a particle short, and 4 threads x 2 lanes share the block's
+    groups over several passes."""
     from kinetic.dsmc import gpu
 
     monkeypatch.setattr(gpu, "REGROUPING", "columns")

@@ -204,12 +204,6 @@ def _advance_clone(velocity, states, r, i, code, interval, rate_a):
 
 
 @cuda.jit(device=True, inline="always")
-def _active(plan, r, step):
-    """Whether realization r runs interval ``step`` of the block (``plan[r, 1]`` of them)."""
-    return step < np.int64(plan[r, 1])
-
-
-@cuda.jit(device=True, inline="always")
 def _buffers(first, second, step):
     """(source, target) of interval ``step``: the population starts a block in ``first``
     and alternates between the two buffers."""
@@ -221,14 +215,13 @@ def _buffers(first, second, step):
 @kernel
 def _advance(first, second, states, counts, extremes, partials, run, plan, order, step):
     """One control interval of the untilted process for every clone (thread (i, r)) of the
-    realizations that run interval ``step`` (``plan[r]``: Δ, intervals, λ, record; the
-    launch's rows are the realizations ``order[:rows]``)."""
+    realizations that run interval ``step`` (``plan[r]``: Δ, intervals, λ, record): the
+    launch's rows are the first of ``order``, the realizations by their intervals in the
+    block, most first, and the host launches as many rows as run the interval."""
     shared = cuda.shared.array(BLOCK, np.float64)
     shared_counts = cuda.shared.array(BLOCK, np.int64)
     i = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
     r = order[cuda.blockIdx.y]
-    if not _active(plan, r, step):
-        return  # the whole thread block: r is its own
     code, rate_a = run
     source, _ = _buffers(first, second, step)
     n = states.shape[1]
@@ -259,8 +252,6 @@ def _weigh(counts, extremes, cumulative, block_sums, partials, plan, order, step
     t = cuda.threadIdx.x
     i = cuda.blockIdx.x * cuda.blockDim.x + t
     r = order[cuda.blockIdx.y]
-    if not _active(plan, r, step):
-        return
     lam = plan[r, 2]
     n = counts.shape[1]
     shift = extremes[r, 0] if lam >= 0.0 else extremes[r, 1]
@@ -315,8 +306,6 @@ def _close_interval(block_sums, extremes, controls, partials, out, plan, order, 
     shared = cuda.shared.array(BLOCK, np.float64)
     shared_q = cuda.shared.array(BLOCK, np.int64)
     r = order[cuda.blockIdx.x]
-    if not _active(plan, r, step):
-        return
     interval = plan[r, 0]
     lam = plan[r, 2]
     previous = interval if step > 0 else 0.0
@@ -366,8 +355,6 @@ def _select(
     t = cuda.threadIdx.x
     i = cuda.blockIdx.x * cuda.blockDim.x + t
     r = order[cuda.blockIdx.y]
-    if not _active(plan, r, step):
-        return
     source, target = _buffers(first, second, step)
     record = plan[r, 3] != 0.0
     n = cumulative.shape[1]
@@ -529,8 +516,7 @@ def _resident(first, second, states, counts, controls, out, observers, run, plan
             counts_shared[b] = 0
     cuda.syncthreads()
     for step in range(steps):
-        source = first if step % 2 == 0 else second
-        target = second if step % 2 == 0 else first
+        source, target = _buffers(first, second, step)
         collisions = 0
         candidates = 0
         low = _NO_MIN

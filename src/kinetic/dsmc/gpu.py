@@ -165,10 +165,11 @@ BOUND_LANE_BITS = 1 if simulated() else 3
 majorant together (its mean velocity, then its two largest speeds about it: each thread
 a strided share of the group's particles, then a fixed-order fold, so fixed numbers for
 fixed N), before one of them runs the group's collisions. 3 (8 threads, 16 groups a pass
-of 128 threads, which covers a block's at most 14 groups) on a GPU; 0 is the single
-thread per group of ``kernels.speed_bounds`` (the kernel timed on the H100 at revision
-2984f74). Read at each launch, so that the bench compares both with one compiled kernel.
-Under the simulator 1 (its blocks have 8 threads)."""
+of 128 threads, which covers a block's at most 14 groups) on a GPU, not yet timed; 0 is
+one thread a group, the majorant of ``kernels.speed_bounds`` bit for bit, as in the
+kernel timed on the H100 at revision 2984f74. Read at each launch (a kernel argument), so
+that the bench compares the counts with one compiled kernel. Under the simulator 1 (its
+blocks have 8 threads)."""
 
 N_MOMENTS = kernels.N_MOMENTS
 _N_FORCE_SUMS = 4
@@ -551,105 +552,6 @@ def _lane_bounds(tile, shared, first, size, lane, lanes, leader, d):
 _lane_bounds = cuda.jit(device=True, inline="always")(_lane_bounds)
 
 
-def _columns_pass(
-    velocity,
-    states,
-    bounds,
-    carry,
-    tally,
-    reals,
-    flags,
-    keys,
-    layout,
-    thermo,
-    rescale,
-    partials,
-    status,
-    field_step,
-    exact,
-    lane_bits,
-    lanes_path,
-    tile,
-    shifts,
-    shared,
-):
-    """One time step of collisions of every group, regrouped without a copy (``columns``),
-    and the force step after them.
-
-    The N particles of a realization are ``layout`` = (G, m, rows of the last column)
-    columns of G rows, particle j G + row in column j (the last column holds
-    N - (m - 1) G). In a step, group g takes the particle of row (g + s_j) mod G of each
-    column j (``_column_shift`` of the step's key ``keys[r, 4]``): m particles, or m - 1
-    where the last column has no such row. Block b gathers groups b T/m .. (T = ``_TILE``)
-    into shared memory (after the pending thermostat if ``rescale``), its threads find each
-    group's majorant, 2^``lane_bits`` threads a group (``_lane_bounds``; with 0 bits one
-    thread, ``kernels.speed_bounds``), one thread a group collides it
-    (``_collide_bounded``), and the block writes the tile back after the force
-    step of a = ``field_step`` (``_scatter``), with the thermostat's sums ΣV_x, ΣV_y, ΣV_z,
-    Σ|V|² of its particles in ``partials[r, b, :4]`` (a fixed tree over the block's
-    threads, so fixed numbers for fixed N); a failed force step raises ``status[r]``. One
-    pass over the particles for the whole collide-and-force half of a step."""
-    r = cuda.blockIdx.y
-    d = velocity.shape[1]
-    n_rows = layout[0]
-    n_columns = layout[1]
-    per_block = _TILE // (n_columns | 1)
-    first_group = cuda.blockIdx.x * per_block
-    for j in range(cuda.threadIdx.x, n_columns, cuda.blockDim.x):
-        shifts[j] = _column_shift(j, keys[r, 4], n_rows)
-    cuda.syncthreads()
-    _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale)
-    cuda.syncthreads()
-    v = tile[:d]
-    if not lanes_path:  # one thread a group, majorant and collisions
-        for l in range(cuda.threadIdx.x, per_block, cuda.blockDim.x):
-            g = first_group + l
-            if g < n_rows:
-                first = l * (n_columns | 1)
-                size = _group_size(g, shifts, layout)
-                _collide_group(
-                    v, first, first + size, states, bounds, carry, tally, reals, flags, r, g
-                )
-    else:  # 2^lane_bits threads a group's majorant, its first thread the collisions
-        lanes = 1 << lane_bits
-        lane = cuda.threadIdx.x & (lanes - 1)
-        leader = cuda.threadIdx.x - lane
-        for start in range(0, per_block, cuda.blockDim.x >> lane_bits):
-            l = start + (cuda.threadIdx.x >> lane_bits)
-            g = first_group + l
-            size = 0
-            if l < per_block and g < n_rows:
-                size = _group_size(g, shifts, layout)
-            first = l * (n_columns | 1)
-            c0, c1, c2, top1, top2 = _lane_bounds(tile, shared, first, size, lane, lanes, leader, d)
-            if lane == 0 and size > 0:
-                row = bounds[r, g]
-                row[0] = c0
-                row[1] = c1
-                if d == 3:
-                    row[2] = c2
-                row[d] = math.sqrt(top1)
-                row[d + 1] = math.sqrt(top2)
-                _collide_bounded(
-                    v, first, first + size, states, bounds, carry, tally, reals, flags, r, g
-                )
-    cuda.syncthreads()
-    sum0, sum1, sum2, total_sq, failed = _scatter(
-        velocity, tile, shifts, layout, r, first_group, per_block, d, field_step, exact
-    )
-    if failed != 0:
-        cuda.atomic.max(status, r, failed)
-    sums = cuda.local.array(_N_FORCE_SUMS, np.float64)
-    sums[0] = sum0
-    sums[1] = sum1
-    sums[2] = sum2
-    sums[3] = total_sq
-    _block_sums(shared, sums, partials[r, cuda.blockIdx.x])
-
-
-_columns_pass = cuda.jit(device=True, inline="always")(_columns_pass)
-
-
 @kernel
 def _collide_columns(
     velocity,
@@ -669,84 +571,73 @@ def _collide_columns(
     exact,
     lane_bits,
 ):
-    """``_columns_pass`` with each group's majorant found by one thread
-    (``kernels.speed_bounds``; ``lane_bits`` is not read). A kernel of its own, not a
-    branch of ``_collide_columns_lanes``: ptxas gives the two paths 144 and 152 registers a
-    thread apart and 176 in one kernel, 2 blocks of 128 threads a multiprocessor instead
-    of 3."""
+    """One time step of collisions of every group, regrouped without a copy (``columns``),
+    and the force step after them.
+
+    The N particles of a realization are ``layout`` = (G, m, rows of the last column)
+    columns of G rows, particle j G + row in column j (the last column holds
+    N - (m - 1) G). In a step, group g takes the particle of row (g + s_j) mod G of each
+    column j (``_column_shift`` of the step's key ``keys[r, 4]``): m particles, or m - 1
+    where the last column has no such row. Block b gathers groups b T/m .. (T = ``_TILE``)
+    into shared memory (after the pending thermostat if ``rescale``), its threads find each
+    group's majorant, 2^``lane_bits`` threads a group (``_lane_bounds``; with 0 bits one
+    thread, the numbers of ``kernels.speed_bounds`` bit for bit), one thread a group
+    collides it
+    (``_collide_bounded``), and the block writes the tile back after the force
+    step of a = ``field_step`` (``_scatter``), with the thermostat's sums ΣV_x, ΣV_y, ΣV_z,
+    Σ|V|² of its particles in ``partials[r, b, :4]`` (a fixed tree over the block's
+    threads, so fixed numbers for fixed N); a failed force step raises ``status[r]``. One
+    pass over the particles for the whole collide-and-force half of a step."""
     tile = cuda.shared.array((3, _TILE), np.float64)
     shifts = cuda.shared.array(_MAX_COLUMNS, np.int32)
     shared = cuda.shared.array((_TILE_THREADS, _N_FORCE_SUMS), np.float64)
-    _columns_pass(
-        velocity,
-        states,
-        bounds,
-        carry,
-        tally,
-        reals,
-        flags,
-        keys,
-        layout,
-        thermo,
-        rescale,
-        partials,
-        status,
-        field_step,
-        exact,
-        lane_bits,
-        False,
-        tile,
-        shifts,
-        shared,
+    r = cuda.blockIdx.y
+    d = velocity.shape[1]
+    n_rows = layout[0]
+    n_columns = layout[1]
+    per_block = _TILE // (n_columns | 1)
+    first_group = cuda.blockIdx.x * per_block
+    for j in range(cuda.threadIdx.x, n_columns, cuda.blockDim.x):
+        shifts[j] = _column_shift(j, keys[r, 4], n_rows)
+    cuda.syncthreads()
+    _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale)
+    cuda.syncthreads()
+    v = tile[:d]
+    # 2^lane_bits threads a group's majorant, its first thread the collisions
+    lanes = 1 << lane_bits
+    lane = cuda.threadIdx.x & (lanes - 1)
+    leader = cuda.threadIdx.x - lane
+    for start in range(0, per_block, cuda.blockDim.x >> lane_bits):
+        l = start + (cuda.threadIdx.x >> lane_bits)
+        g = first_group + l
+        size = 0
+        if l < per_block and g < n_rows:
+            size = _group_size(g, shifts, layout)
+        first = l * (n_columns | 1)
+        c0, c1, c2, top1, top2 = _lane_bounds(tile, shared, first, size, lane, lanes, leader, d)
+        if lane == 0 and size > 0:
+            row = bounds[r, g]
+            row[0] = c0
+            row[1] = c1
+            if d == 3:
+                row[2] = c2
+            row[d] = math.sqrt(top1)
+            row[d + 1] = math.sqrt(top2)
+            _collide_bounded(
+                v, first, first + size, states, bounds, carry, tally, reals, flags, r, g
+            )
+    cuda.syncthreads()
+    sum0, sum1, sum2, total_sq, failed = _scatter(
+        velocity, tile, shifts, layout, r, first_group, per_block, d, field_step, exact
     )
-
-
-@kernel
-def _collide_columns_lanes(
-    velocity,
-    states,
-    bounds,
-    carry,
-    tally,
-    reals,
-    flags,
-    keys,
-    layout,
-    thermo,
-    rescale,
-    partials,
-    status,
-    field_step,
-    exact,
-    lane_bits,
-):
-    """``_columns_pass`` with each group's majorant found by 2^``lane_bits`` threads
-    together (``_lane_bounds``)."""
-    tile = cuda.shared.array((3, _TILE), np.float64)
-    shifts = cuda.shared.array(_MAX_COLUMNS, np.int32)
-    shared = cuda.shared.array((_TILE_THREADS, _N_FORCE_SUMS), np.float64)
-    _columns_pass(
-        velocity,
-        states,
-        bounds,
-        carry,
-        tally,
-        reals,
-        flags,
-        keys,
-        layout,
-        thermo,
-        rescale,
-        partials,
-        status,
-        field_step,
-        exact,
-        lane_bits,
-        True,
-        tile,
-        shifts,
-        shared,
-    )
+    if failed != 0:
+        cuda.atomic.max(status, r, failed)
+    sums = cuda.local.array(_N_FORCE_SUMS, np.float64)
+    sums[0] = sum0
+    sums[1] = sum1
+    sums[2] = sum2
+    sums[3] = total_sq
+    _block_sums(shared, sums, partials[r, cuda.blockIdx.x])
 
 
 # --------------------------------------------------------------- force and thermostat
@@ -1050,13 +941,11 @@ class _Batch:
         )
         self.pending = False
 
-    def _collide_columns(self, field_step: float, lane_bits: int | None = None) -> None:
+    def _collide_columns(self, field_step: float) -> None:
         """``columns``: the pending thermostat, the collision stage of every group and the
         force step with the thermostat's sums (``column_partials``), in one launch; each
-        group's majorant by 2^``lane_bits`` threads (default ``BOUND_LANE_BITS``)."""
-        bits = _bound_lane_bits() if lane_bits is None else int(lane_bits)
-        launch = _collide_columns_lanes if bits else _collide_columns
-        launch[(self.column_blocks, self.count), _TILE_THREADS](
+        group's majorant by 2^``BOUND_LANE_BITS`` threads."""
+        _collide_columns[(self.column_blocks, self.count), _TILE_THREADS](
             self.velocity,
             *self._groups(),
             self.keys,
@@ -1067,7 +956,7 @@ class _Batch:
             self.status,
             field_step,
             self.exact,
-            bits,
+            _bound_lane_bits(),
         )
         self.pending = False
 
@@ -1233,8 +1122,6 @@ def _compile_outside_the_timer(settings: HomogeneousSettings, samples: Samples) 
                 streams = np.array([[1, 2, 3, 4]], dtype=np.uint64)
                 batch = _Batch(tiny, samples, streams, regrouping)
                 batch.step(sample=True, histogram=True)
-                if regrouping == "columns":  # the one-thread majorant's kernel too
-                    batch._collide_columns(0.0, lane_bits=0)
             synchronize()
 
     warm("cuda_dsmc", "dsmc", compile_kernels)
