@@ -179,7 +179,7 @@ def test_same_seed_gives_identical_datasets(forced_runs):
     assert not np.array_equal(other.moments.values, full.moments.values[:2, :1])
 
 
-@pytest.fixture(params=["feistel", "columns"])
+@pytest.fixture(params=["feistel", "columns", "sparse"])
 def regrouping(request, monkeypatch):
     """Each way of re-dealing the collision groups every step (``gpu.REGROUPING``)."""
     from kinetic.dsmc import gpu
@@ -189,10 +189,11 @@ def regrouping(request, monkeypatch):
 
 
 def test_elastic_collisions_conserve_energy_and_momentum(regrouping):
-    """``columns`` at N = 131: its layout has holes (the last column holds 3 of 4 rows, so
-    one group in four is a particle short in each step); two groups writing one particle
-    would break the conservation."""
-    n_particles = 131 if regrouping == "columns" else 128
+    """The columns layout (``columns``, ``sparse``) at N = 131 has holes (the last column
+    holds 3 of 4 rows, so one group in four is a particle short in each step); two groups
+    writing one particle would break the conservation. A snapshot every other step: the
+    ``sparse`` collisions run with the thermostat pending and applied in turn."""
+    n_particles = 128 if regrouping == "feistel" else 131
     run = _run(
         "cuda",
         restitution=1.0,
@@ -209,13 +210,14 @@ def test_elastic_collisions_conserve_energy_and_momentum(regrouping):
     np.testing.assert_allclose(run.moments.sel(moment="cx"), 0.0, atol=1e-12)
 
 
-def test_column_groups_give_a_realization_the_same_numbers_alone(monkeypatch):
-    """``columns``: a realization run alone repeats, bit for bit, the numbers it got beside
-    another (its shifts and group streams depend on its seed and stream row only: the
-    same seed, the same numbers); another seed gives other numbers."""
+@pytest.mark.parametrize("regrouping", ["columns", "sparse"])
+def test_column_groups_give_a_realization_the_same_numbers_alone(monkeypatch, regrouping):
+    """The columns layout: a realization run alone repeats, bit for bit, the numbers it
+    got beside another (its shifts and group streams depend on its seed and stream row
+    only: the same seed, the same numbers); another seed gives other numbers."""
     from kinetic.dsmc import gpu
 
-    monkeypatch.setattr(gpu, "REGROUPING", "columns")
+    monkeypatch.setattr(gpu, "REGROUPING", regrouping)
     options = {"restitution": 0.8, "n_particles": 131, "n_realizations": 2}
     full = _run("cuda", **options)
     alone = _run("cuda", **{**options, "n_realizations": 1, "first_realization": 1})
@@ -283,13 +285,56 @@ def test_column_pass_folds_in_the_force_step_of_the_force_kernel():
     assert np.all(accepted.sum(axis=1) > 0)  # it collided
     folded._finish(end_of_step=True, folded=True)
     plain._finish(end_of_step=True)
-    thermo = folded.thermo.copy_to_host()
-    np.testing.assert_allclose(thermo, plain.thermo.copy_to_host(), rtol=1e-13, atol=1e-15)
+    thermo = folded.thermo.copy_to_host()[:, : gpu._TOP]  # the tops are the force kernel's
+    np.testing.assert_allclose(
+        thermo, plain.thermo.copy_to_host()[:, : gpu._TOP], rtol=1e-13, atol=1e-15
+    )
     np.testing.assert_allclose(thermo[:, :3], after.mean(axis=2), rtol=1e-12, atol=1e-15)
     assert np.all(np.abs(thermo[:, 3] - 1) > 1e-6)  # collisions and field: a real rescaling
     blown._collide_columns(50.0)
     with pytest.raises(RuntimeError, match="reduce time_step"):
         blown.check(1)
+
+
+def test_sparse_majorant_bounds_the_stored_velocities_exactly():
+    """``sparse`` tests every group's candidates against the realization's majorant, the
+    largest |W| after the last force pass (``thermo[:, _TOP]``, an exact maximum): with the
+    thermostat pending it is the stored velocities' largest speed; once a snapshot has
+    applied it (V = scale (W - u) in place) the speeds about -scale u are scale times
+    theirs. Lie steps with a field, so u is not 0 and a wrong centre shows;
+    snapshots every other step, so both cases arise; each group's bound row of the next
+    collisions has that centre and at least those speeds; no bound is ever exceeded."""
+    from kinetic.dsmc import gpu, kernels
+    from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
+
+    settings = HomogeneousSettings(
+        n_particles=131, restitution=0.8, time_step=0.2, reduced_field=0.25, force_step="exact"
+    )
+    batch = gpu._Batch(settings, Samples(stride=1), realization_streams(5, 0, 2), "sparse")
+    seen = set()
+    for step in range(4):
+        batch.step(sample=step % 2 == 1, histogram=False)
+        velocity = batch.velocity.copy_to_host()
+        thermo = batch.thermo.copy_to_host()
+        scale = thermo[:, gpu._SCALE]
+        if batch.pending:
+            centre, stretch = np.zeros((2, 3)), np.ones(2)
+        else:
+            centre, stretch = -scale[:, None] * thermo[:, :3], scale
+        seen.add(batch.pending)
+        assert np.all(np.abs(thermo[:, :3]) > 1e-6)  # the field moves the mean
+        top = np.linalg.norm(velocity - centre[:, :, None], axis=1).max(axis=1)
+        np.testing.assert_allclose(
+            top, stretch * thermo[:, gpu._TOP], rtol=1e-13, err_msg=f"step {step}"
+        )
+        batch._collide_sparse()  # the rows of the groups' bounds it starts from
+        bounds = batch.bounds.copy_to_host()
+        np.testing.assert_array_equal(bounds[:, :, :3], np.broadcast_to(centre[:, None], (2, 4, 3)))
+        assert np.all(bounds[:, :, 3:] >= stretch[:, None, None] * thermo[:, gpu._TOP, None, None])
+    assert seen == {True, False}
+    tally = batch.tally.copy_to_host().sum(axis=1)
+    assert np.all(tally[:, kernels.TALLY_ACCEPTED] > 0)
+    assert not tally[:, kernels.TALLY_EXCEEDED].any()
 
 
 def _window_statistics(run, name):

@@ -348,3 +348,49 @@ def test_column_groups_hold_every_particle_once_whatever_the_shifts(n_particles)
         groups.append(members)
     if n_rows > 1:
         assert groups[0] != groups[1]
+
+
+def test_group_members_collide_in_place_as_the_group_copied_out():
+    """``kernels.collide_members`` (the CUDA backend's ``sparse`` collisions) on one group
+    of the columns layout, in place, gives the group's particles bit for bit what
+    ``collide_range`` gives them copied out in member order (the same stream, majorant and
+    tally), and leaves every other particle alone; ``member_bounds`` is ``speed_bounds``
+    of the copy."""
+    d, n = 3, 2047
+    velocity, state, _ = _gas(d, n)
+    n_rows = n // 128
+    n_columns = -(-n // n_rows)
+    full_rows = n - (n_columns - 1) * n_rows
+    key = np.uint64(0x9E3779B97F4A7C15)
+    sizes = set()
+    for g in range(n_rows):
+        members = (n_rows, n_columns, full_rows, g, key)
+        size = kernels.group_size(members)
+        sizes.add(size)
+        index = [kernels._member(0, a, members) for a in range(size)]
+        assert min(index) >= 0 and len(set(index)) == size
+        copied = velocity[:, index].copy()
+        bounds = np.empty(d + 2)
+        copied_bounds = np.empty(d + 2)
+        kernels.member_bounds(velocity, 0, size, members, bounds)
+        kernels.speed_bounds(copied, 0, size, copied_bounds)
+        np.testing.assert_array_equal(bounds, copied_bounds)
+        coefficient = candidate_coefficient("hard_spheres", d, 1.0, size)
+        tallies = np.zeros((2, 4), dtype=np.int64)
+        streams = np.stack([state, state])
+        before = velocity.copy()
+        for k, (v, b, m) in enumerate(((velocity, bounds, members), (copied, copied_bounds, None))):
+            collisions = kernels.Collisions(
+                kernels.HARD_SPHERES, 0.8, coefficient, 1.0, False, b, np.zeros(1), tallies[k]
+            )
+            if m is None:
+                kernels.collide_range(v, 0, size, streams[k], collisions)
+            else:
+                kernels.collide_members(v, 0, size, m, streams[k], collisions)
+        assert tallies[0, kernels.TALLY_ACCEPTED] > 10
+        np.testing.assert_array_equal(tallies[0], tallies[1])
+        np.testing.assert_array_equal(velocity[:, index], copied)
+        others = np.setdiff1d(np.arange(n), index)
+        np.testing.assert_array_equal(velocity[:, others], before[:, others])
+        np.testing.assert_array_equal(bounds, copied_bounds)
+    assert sizes == {n_columns, n_columns - 1}  # groups with and without the last column

@@ -131,8 +131,8 @@ over the particles with the grid's stride (the number of blocks depends on N onl
 WEIGHT_UNIT = 2.0**-20
 """Resolution of the fixed-point ``cx_weights`` sums (per observation)."""
 
-REGROUPINGS = ("feistel", "columns")
-REGROUPING = "columns"
+REGROUPINGS = ("feistel", "columns", "sparse")
+REGROUPING = "sparse"
 """How the particles are re-dealt into collision groups every step (read when a batch is
 made): ``feistel``, a random bijection of the indices and a copy of the particles in
 that order (``_permute``), then one thread per group of consecutive particles
@@ -179,11 +179,20 @@ _RESTITUTION, _PAIR_BASE, _DURATION, _TARGET, _RATE_EXPONENT = 0, 1, 2, 3, 4
 _INVERSE_V0, _CX_LOW, _INVERSE_CX, _INVERSE_SPEED = 5, 6, 7, 8
 _KERNEL, _POISSON, _EXACT, _N_CX, _N_SPEED, _N = 0, 1, 2, 3, 4, 5
 
+# columns of ``thermo[r]``: u (0..2) and scale of the pending thermostat V = scale (W - u),
+# the step's ln(scale) so far, and the largest |W| after the last force pass (the
+# ``sparse`` majorant: top1 = top2 = it; at the start, of the Maxwellian)
+_SCALE, _LOG_SCALE, _TOP, _N_THERMO = 3, 4, 5, 6
+
 _collide_range = device_function(kernels.collide_range)
 _speed_bounds = device_function(kernels.speed_bounds)
 _two_largest = device_function(kernels._two_largest)
 _speed_sq = device_function(kernels._speed_sq)
 _column_particle = device_function(kernels.column_particle)
+_column_shift = device_function(kernels.column_shift)
+_round = device_function(kernels.feistel_round)
+_group_members = device_function(kernels.group_size)
+_collide_members = device_function(kernels.collide_members)
 _force_factor = device_function(kernels._force_factor)
 _thermostat_scale = device_function(kernels._thermostat_scale)
 _advance_clock = device_function(kernels._advance_clock)
@@ -191,13 +200,6 @@ _particle_moments = device_function(kernels._particle_moments)
 _histogram_bins = device_function(kernels._histogram_bins)
 _uniform = device_function(rng.xoshiro_uniform)
 _thread_state = device_function(rng.thread_state)
-
-_LOW_32 = np.uint64(0xFFFFFFFF)
-_SHIFT_32 = np.uint64(32)
-_SHIFT_16 = np.uint64(16)
-_SHIFT_15 = np.uint64(15)
-_MIX_1 = np.uint64(0x7FEB352D)
-_MIX_2 = np.uint64(0x846CA68B)
 
 
 # ------------------------------------------------------------------------- reductions
@@ -228,30 +230,28 @@ def _block_sums(shared, values, out):
 _block_sums = cuda.jit(device=True, inline="always")(_block_sums)
 
 
+def _block_max(shared, value, out):
+    """``out[0]``, the largest of the block's threads' ``value``, by a tree in
+    ``shared[T, 0]`` (as ``_block_sums``); every thread must call it, thread 0 writes
+    ``out``."""
+    t = cuda.threadIdx.x
+    cuda.syncthreads()  # ``shared`` may still be read by a ``_block_sums`` before
+    shared[t, 0] = value
+    cuda.syncthreads()
+    stride = shared.shape[0] // 2
+    while stride > 0:
+        if t < stride:
+            shared[t, 0] = max(shared[t, 0], shared[t + stride, 0])
+        cuda.syncthreads()
+        stride //= 2
+    if t == 0:
+        out[0] = shared[0, 0]
+
+
+_block_max = cuda.jit(device=True, inline="always")(_block_max)
+
+
 # ------------------------------------------------------------------------- regrouping
-
-
-def _hash32(x):
-    """C. Wellons' ``lowbias32`` integer hash of x < 2**32 (held in a uint64): every
-    product is below 2**64, so the arithmetic never wraps (the same numbers on the GPU and
-    under the simulator, where numpy would warn about wrapping)."""
-    x ^= x >> _SHIFT_16
-    x = (x * _MIX_1) & _LOW_32
-    x ^= x >> _SHIFT_15
-    x = (x * _MIX_2) & _LOW_32
-    return x ^ (x >> _SHIFT_16)
-
-
-_hash32 = cuda.jit(device=True, inline="always")(_hash32)
-
-
-def _round(right, key):
-    """Round function of the Feistel network: the half word ``right`` (< 2**32) hashed
-    with the low and then the high half of the 64-bit round key."""
-    return _hash32(_hash32(right ^ (key & _LOW_32)) ^ (key >> _SHIFT_32))
-
-
-_round = cuda.jit(device=True, inline="always")(_round)
 
 
 def _feistel(x, half_bits, mask, k0, k1, k2, k3):
@@ -345,14 +345,20 @@ def _collide_group(v, first, last, states, bounds, carry, tally, reals, flags, r
     ``first..last-1`` of ``v`` (d, n): ``kernels.collide_range`` with the group's own
     majorant, stream, carry and tally."""
     _speed_bounds(v, first, last, bounds[r, g])
-    _collide_bounded(v, first, last, states, bounds, carry, tally, reals, flags, r, g)
+    _collide_bounded(
+        v, first, last, kernels.CONTIGUOUS, 1.0, states, bounds, carry, tally, reals, flags, r, g
+    )
 
 
 _collide_group = cuda.jit(device=True, inline="always")(_collide_group)
 
 
-def _collide_bounded(v, first, last, states, bounds, carry, tally, reals, flags, r, g):
-    """``_collide_group`` with the group's majorant already in ``bounds[r, g]``."""
+def _collide_bounded(
+    v, first, last, members, factor, states, bounds, carry, tally, reals, flags, r, g
+):
+    """``_collide_group`` with the group's majorant already in ``bounds[r, g]``: the
+    members ``first..last-1`` of ``v`` (``kernels.collide_members``; ``kernels.CONTIGUOUS``
+    for consecutive particles) at ``factor`` times the pair coefficient of the settings."""
     state = states[r, g]
     u, s0, s1, s2, s3 = _uniform(state[0], state[1], state[2], state[3])
     state[0] = s0
@@ -365,14 +371,14 @@ def _collide_bounded(v, first, last, states, bounds, carry, tally, reals, flags,
     collisions = Collisions(
         flags[_KERNEL],
         reals[_RESTITUTION],
-        reals[_PAIR_BASE] / (last - first - 1),
+        reals[_PAIR_BASE] * factor / (last - first - 1),
         reals[_DURATION],
         flags[_POISSON] != 0,
         bounds[r, g],
         carry[r, g],
         tally[r, g],
     )
-    _collide_range(v, first, last, state, collisions)
+    _collide_members(v, first, last, members, state, collisions)
 
 
 _collide_bounded = cuda.jit(device=True, inline="always")(_collide_bounded)
@@ -393,13 +399,46 @@ def _collide(velocity, states, bounds, carry, tally, reals, flags):
     _collide_group(velocity[r], first, last, states, bounds, carry, tally, reals, flags, r, g)
 
 
-def _column_shift(j, key, n_rows):
-    """The row shift of column j in a step: the Feistel round function of j with the
-    step's key, scaled to 0..n_rows-1."""
-    return np.int64((_round(np.uint64(j), key) * np.uint64(n_rows)) >> _SHIFT_32)
-
-
-_column_shift = cuda.jit(device=True, inline="always")(_column_shift)
+@kernel
+def _collide_sparse(
+    velocity, states, bounds, carry, tally, reals, flags, keys, layout, thermo, pending
+):
+    """``sparse``: one time step of collisions in group g of realization r, one thread a
+    group, in place: the particles group g takes from the columns ``layout`` in this
+    step (``kernels.collide_members``; the shifts of the step's key ``keys[r, 4]``), of
+    which the thread reads and writes only its candidate pairs. The majorant is the
+    realization's, from the last force pass (``thermo[r, _TOP]``: the largest |W| of the
+    stored velocities W, about 0, for both of the two largest speeds), as in the CPU
+    engine's one box: with the thermostat ``pending`` (V = scale (W - u)), the collisions
+    run on W at scale^p times the rate (``kernels._deferred``), else (applied by a
+    snapshot, or the start: scale 1, u 0) on V about the centre -scale u, where
+    |V + scale u| = scale |W|. The collisions raise the group's bound where they make a
+    faster particle, as on the CPU."""
+    g = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    r = cuda.blockIdx.y
+    n_rows = layout[0]
+    if g >= n_rows:
+        return
+    d = velocity.shape[1]
+    members = (n_rows, layout[1], layout[2], np.int64(g), keys[r, 4])
+    scale = thermo[r, _SCALE]
+    row = bounds[r, g]
+    if pending:
+        stretch = 1.0
+        factor = scale ** reals[_RATE_EXPONENT]
+        for k in range(d):
+            row[k] = 0.0
+    else:
+        stretch = scale
+        factor = 1.0
+        for k in range(d):
+            row[k] = -scale * thermo[r, k]
+    row[d] = stretch * thermo[r, _TOP]
+    row[d + 1] = row[d]
+    size = _group_members(members)
+    _collide_bounded(
+        velocity[r], 0, size, members, factor, states, bounds, carry, tally, reals, flags, r, g
+    )
 
 
 def _tile_slot(j, l, first_group, shifts, layout):
@@ -624,7 +663,19 @@ def _collide_columns(
             row[d] = math.sqrt(top1)
             row[d + 1] = math.sqrt(top2)
             _collide_bounded(
-                v, first, first + size, states, bounds, carry, tally, reals, flags, r, g
+                v,
+                first,
+                first + size,
+                kernels.CONTIGUOUS,
+                1.0,
+                states,
+                bounds,
+                carry,
+                tally,
+                reals,
+                flags,
+                r,
+                g,
             )
     cuda.syncthreads()
     sum0, sum1, sum2, total_sq, failed = _scatter(
@@ -668,7 +719,8 @@ _forced = cuda.jit(device=True, inline="always")(_forced)
 def _force(velocity, partials, status, field_step, exact, thermo, rescale):
     """Force step V -> f V of every particle (a = ``field_step``; after the pending
     thermostat if ``rescale``), and the per-block sums ``partials[r, b, :4]`` = ΣV_x,
-    ΣV_y, ΣV_z, Σ|V|² after it; a failed step raises ``status[r]`` to its STATUS_* code."""
+    ΣV_y, ΣV_z, Σ|V|² after it and the largest |V|² in ``partials[r, b, 4]``; a failed
+    step raises ``status[r]`` to its STATUS_* code."""
     shared = cuda.shared.array((THREADS, _N_FORCE_SUMS), np.float64)
     r = cuda.blockIdx.y
     b = cuda.blockIdx.x
@@ -678,6 +730,7 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale):
     sum1 = 0.0
     sum2 = 0.0
     total_sq = 0.0
+    top = 0.0
     failed = 0
     for i in range(b * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
         v0 = velocity[r, 0, i]
@@ -699,7 +752,9 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale):
         sum0 += v0
         sum1 += v1
         sum2 += v2
-        total_sq += v0 * v0 + v1 * v1 + v2 * v2
+        speed_sq = v0 * v0 + v1 * v1 + v2 * v2
+        total_sq += speed_sq
+        top = max(top, speed_sq)
     if failed != 0:
         cuda.atomic.max(status, r, failed)
     sums = cuda.local.array(_N_FORCE_SUMS, np.float64)
@@ -708,13 +763,15 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale):
     sums[2] = sum2
     sums[3] = total_sq
     _block_sums(shared, sums, partials[r, b])
+    _block_max(shared, top, partials[r, b, _N_FORCE_SUMS:])
 
 
 @kernel
-def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step, keys):
+def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step, keys, tops):
     """One thread per realization: the thermostat's mean velocity and scale
     (``thermo[r, :4]`` = u, scale) from the block sums; ``thermo[r, 4]`` collects the
-    step's ln(scale); at the ``end_of_step`` the step is closed in ``clock[r]`` and the
+    step's ln(scale); with ``tops``, the largest |W| from the blocks' (``_force``) in
+    ``thermo[r, 5]``; at the ``end_of_step`` the step is closed in ``clock[r]`` and the
     next step's round keys are drawn (``_round_keys``)."""
     r = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
     if r >= partials.shape[0]:
@@ -723,11 +780,16 @@ def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step
     sum1 = 0.0
     sum2 = 0.0
     total_sq = 0.0
+    top = 0.0
     for b in range(n_blocks):
         sum0 += partials[r, b, 0]
         sum1 += partials[r, b, 1]
         sum2 += partials[r, b, 2]
         total_sq += partials[r, b, 3]
+        if tops:
+            top = max(top, partials[r, b, _N_FORCE_SUMS])
+    if tops:
+        thermo[r, _TOP] = math.sqrt(top)
     code, u0, u1, u2, scale, log_scale = _thermostat_scale(
         sum0, sum1, sum2, total_sq, flags[_N], reals[_TARGET]
     )
@@ -742,19 +804,19 @@ def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step
     thermo[r, 0] = u0
     thermo[r, 1] = u1
     thermo[r, 2] = u2
-    thermo[r, 3] = scale
-    log_scale += thermo[r, 4]
+    thermo[r, _SCALE] = scale
+    log_scale += thermo[r, _LOG_SCALE]
     if end_of_step:
-        thermo[r, 4] = 0.0
+        thermo[r, _LOG_SCALE] = 0.0
         _advance_clock(clock[r], reals[_DURATION], reals[_RATE_EXPONENT], log_scale)
         _round_keys(keys, r, np.int64(clock[r, 3]))
     else:
-        thermo[r, 4] = log_scale
+        thermo[r, _LOG_SCALE] = log_scale
 
 
 def _thermostat(value, thermo, r, k):
     """Component k of the thermostat of realization r: scale (V_k - u_k) (Eq. 4.2)."""
-    return thermo[r, 3] * (value - thermo[r, k])
+    return thermo[r, _SCALE] * (value - thermo[r, k])
 
 
 _thermostat = cuda.jit(device=True, inline="always")(_thermostat)
@@ -858,16 +920,18 @@ class _Batch:
         self.half_bits = np.uint64(max(1, math.ceil(math.log2(n) / 2)))
         if regrouping not in REGROUPINGS:
             raise ValueError(f"regrouping must be one of {REGROUPINGS}, not {regrouping!r}")
+        self.regrouping = regrouping
         self.columns = regrouping == "columns"
         self.velocity = to_device(velocity)
-        if self.columns:  # G rows of m columns, the last one holding the rest
+        if regrouping == "feistel":
+            self.spare = device_zeros(velocity.shape)
+        else:  # G rows of m columns, the last one holding the rest
             n_columns = -(-n // self.n_groups)
             layout = [self.n_groups, n_columns, n - (n_columns - 1) * self.n_groups]
             self.layout = to_device(np.array(layout, dtype=np.int64))
+        if self.columns:
             self.column_blocks = grid(self.n_groups, _TILE // (n_columns | 1))
             self.column_partials = device_zeros((count, self.column_blocks, _N_FORCE_SUMS))
-        else:
-            self.spare = device_zeros(velocity.shape)
         keys = np.zeros((count, 8), dtype=np.uint64)
         keys[:, :4] = streams
         self.keys = to_device(keys)
@@ -879,7 +943,7 @@ class _Batch:
         self.carry = device_zeros((count, self.n_groups, 1))
         self.tally = device_zeros((count, self.n_groups, 4), np.int64)
         self.partials = device_zeros((count, self.n_blocks, N_MOMENTS))
-        self.thermo = device_zeros((count, 5))
+        self.thermo = to_device(_start_thermo(velocity))
         self.clock = device_zeros((count, 5))
         self.status = device_zeros(count, np.int64)
         self.moment_sums = device_zeros((count, N_MOMENTS))
@@ -893,8 +957,8 @@ class _Batch:
 
     def step(self, sample: bool, histogram: bool) -> None:
         """Launch one time step for every realization: 4 launches (Lie splitting) or 6
-        (Strang), 2 fewer with the ``columns`` regrouping, and 2 more on a sampled
-        step."""
+        (Strang), 1 fewer with the ``sparse`` collisions and 2 fewer with the ``columns``
+        ones, and 2 more on a sampled step."""
         s = self.settings
         strang = s.splitting == "strang"
         field_step = 0.5 * s.half_field_step if strang else s.half_field_step
@@ -905,7 +969,10 @@ class _Batch:
             self._collide_columns(field_step)
             self._finish(end_of_step=True, folded=True)
         else:
-            self._permute_and_collide()
+            if self.regrouping == "sparse":
+                self._collide_sparse()
+            else:
+                self._permute_and_collide()
             self._force_and_thermostat(field_step)
             self._finish(end_of_step=True)
         if sample:
@@ -940,6 +1007,14 @@ class _Batch:
             self.velocity, *self._groups()
         )
         self.pending = False
+
+    def _collide_sparse(self) -> None:
+        """``sparse``: the collision stage of every group, in place (one launch; the
+        pending thermostat stays pending)."""
+        threads = min(BLOCK, self.n_groups)
+        _collide_sparse[(grid(self.n_groups, threads), self.count), threads](
+            self.velocity, *self._groups(), self.keys, self.layout, self.thermo, self.pending
+        )
 
     def _collide_columns(self, field_step: float) -> None:
         """``columns``: the pending thermostat, the collision stage of every group and the
@@ -989,6 +1064,7 @@ class _Batch:
             self.flags,
             end_of_step,
             self.keys,
+            not folded,
         )
         self.pending = True
 
@@ -1008,6 +1084,15 @@ class _Batch:
                 f"{step * s.time_step:.6g} τ) of the run with {s.parameters()} on the GPU: "
                 f"{message}; reduce time_step or reduced_field"
             )
+
+
+def _start_thermo(velocity: np.ndarray) -> np.ndarray:
+    """``thermo`` at the start (``_N_THERMO`` columns a realization): no thermostat (u = 0,
+    scale 1) and the largest speed of each realization's ``velocity[r]`` (d, N)."""
+    thermo = np.zeros((velocity.shape[0], _N_THERMO))
+    thermo[:, _SCALE] = 1.0
+    thermo[:, _TOP] = np.sqrt(np.einsum("rkn,rkn->rn", velocity, velocity).max(axis=1))
+    return thermo
 
 
 def _settings_arrays(settings: HomogeneousSettings, samples: Samples):

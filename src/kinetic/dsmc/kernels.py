@@ -82,6 +82,7 @@ __all__ = [
     "accumulate_moments",
     "advance",
     "apply_thermostat",
+    "collide_members",
     "collide_observed",
     "collide_range",
     "force_and_thermostat",
@@ -187,8 +188,15 @@ class Flights(NamedTuple):
 
 
 _SHIFT_32 = np.uint64(32)
+_SHIFT_16 = np.uint64(16)
+_SHIFT_15 = np.uint64(15)
 _SHIFT_11 = np.uint64(11)
 _LOW_32 = np.uint64(0xFFFFFFFF)
+_MIX_1 = np.uint64(0x7FEB352D)
+_MIX_2 = np.uint64(0x846CA68B)
+
+CONTIGUOUS = (0, 0, 0, 0, np.uint64(0))
+"""``members`` of a range of consecutive particles (``_member``: first + a)."""
 
 # ----------------------------------------------------------------------------- helpers
 #
@@ -374,6 +382,54 @@ def column_particle(j, g, shift, n_rows, n_columns, full_rows):
 
 
 @kernel
+def _hash32(x):
+    """C. Wellons' ``lowbias32`` integer hash of x < 2**32 (held in a uint64): every
+    product is below 2**64, so the arithmetic never wraps (the same numbers compiled for
+    the CPU, for the GPU and under numba's CUDA simulator, where numpy would warn about
+    wrapping)."""
+    x ^= x >> _SHIFT_16
+    x = (x * _MIX_1) & _LOW_32
+    x ^= x >> _SHIFT_15
+    x = (x * _MIX_2) & _LOW_32
+    return x ^ (x >> _SHIFT_16)
+
+
+@kernel
+def feistel_round(right, key):
+    """Round function of a Feistel network: the half word ``right`` (< 2**32) hashed with
+    the low and then the high half of the 64-bit round key."""
+    return _hash32(_hash32(right ^ (key & _LOW_32)) ^ (key >> _SHIFT_32))
+
+
+@kernel
+def column_shift(j, key, n_rows):
+    """The row shift of column j in a step of the columns layout (``column_particle``):
+    the Feistel round function of j with the step's key, scaled to 0..n_rows-1."""
+    return np.int64((feistel_round(np.uint64(j), key) * np.uint64(n_rows)) >> _SHIFT_32)
+
+
+@kernel
+def _member(first, a, members):
+    """The particle index of member a of a range: ``first + a`` where ``members`` is
+    ``CONTIGUOUS``; else, with ``members`` = (n_rows, n_columns, full_rows, g, key), the
+    particle group g takes from column a of the columns layout in the step of ``key``
+    (``column_particle`` with the shift ``column_shift``; first is 0)."""
+    n_rows = members[0]
+    if n_rows == 0:
+        return first + a
+    shift = column_shift(a, members[4], n_rows)
+    return column_particle(a, members[3], shift, n_rows, members[1], members[2])
+
+
+@kernel
+def group_size(members):
+    """Particles of the group of ``members`` (not ``CONTIGUOUS``): n_columns, or one fewer
+    where the last column has no row for it."""
+    last = _member(0, members[1] - 1, members)
+    return members[1] if last >= 0 else members[1] - 1
+
+
+@kernel
 def _two_largest(s, top1, top2):
     """``(top1, top2)``, the two largest of ``top1 >= top2`` and ``s``: a compiled helper
     that LLVM inlines (as an IR-inlined one, the pair it returns cost the force pass a
@@ -392,20 +448,27 @@ def speed_bounds(velocity, first, last, bounds):
     ``bounds[:d]`` = their mean velocity c, ``bounds[d] >= bounds[d+1]`` = the two
     largest speeds |v_i - c| (the second is 0 for a single particle).
     """
+    member_bounds(velocity, first, last, CONTIGUOUS, bounds)
+
+
+@kernel
+def member_bounds(velocity, first, last, members, bounds):
+    """``speed_bounds`` of the members ``first..last-1`` of a range (``_member``), summed
+    and ranked in member order."""
     d = velocity.shape[0]
     n = last - first
     for k in range(d):
         total = 0.0
-        for i in range(first, last):
-            total += velocity[k, i]
+        for a in range(n):
+            total += velocity[k, _member(first, a, members)]
         bounds[k] = total / max(n, 1)
     c0 = bounds[0]
     c1 = bounds[1]
     c2 = bounds[2] if d == 3 else 0.0
     top1 = 0.0
     top2 = 0.0
-    for i in range(first, last):
-        s = _speed_sq(velocity, i, d, c0, c1, c2)
+    for a in range(n):
+        s = _speed_sq(velocity, _member(first, a, members), d, c0, c1, c2)
         top1, top2 = _two_largest(s, top1, top2)
     bounds[d] = math.sqrt(top1)
     bounds[d + 1] = math.sqrt(top2)
@@ -426,8 +489,9 @@ def _majorant(kernel, pair_coefficient, n_pairs, top1, top2):
 
 
 @inline
-def _collide_loop(velocity, first, last, state, collisions, d):
-    """Body of ``collide_range`` for a literal dimension ``d`` (specialised by inlining)."""
+def _collide_loop(velocity, first, last, members, state, collisions, d):
+    """Body of ``collide_members`` for a literal dimension ``d`` (specialised by
+    inlining)."""
     kernel = collisions.kernel
     restitution = collisions.restitution
     pair_coefficient = collisions.pair_coefficient
@@ -460,14 +524,14 @@ def _collide_loop(velocity, first, last, state, collisions, d):
         budget -= step
         candidates += 1
         a, b, s0, s1, s2, s3 = _pair(n, s0, s1, s2, s3)
-        i = first + a
-        j = first + b
+        i = _member(first, a, members)
+        j = _member(first, b, members)
         code, h0, h1, h2, s0, s1, s2, s3 = _trial(
             velocity, i, j, d, kernel, bound_sq, s0, s1, s2, s3
         )
         if code == 2:
             tally[TALLY_EXCEEDED] += 1
-            speed_bounds(velocity, first, last, bounds)
+            member_bounds(velocity, first, last, members, bounds)
             c0, c1, c2, top1, top2 = _bound_terms(bounds, d)
             bound_sq, spacing = _majorant(kernel, pair_coefficient, n_pairs, top1, top2)
             continue  # the candidate drawn under the stale bound is dropped
@@ -497,9 +561,20 @@ def collide_range(velocity, first, last, state, collisions):
     collisions: a :class:`Collisions` (its bounds, carry and tally updated in place).
     """
     if velocity.shape[0] == 3:
-        _collide_loop(velocity, first, last, state, collisions, 3)
+        _collide_loop(velocity, first, last, CONTIGUOUS, state, collisions, 3)
     else:
-        _collide_loop(velocity, first, last, state, collisions, 2)
+        _collide_loop(velocity, first, last, CONTIGUOUS, state, collisions, 2)
+
+
+@kernel
+def collide_members(velocity, first, last, members, state, collisions):
+    """``collide_range`` on the members ``first..last-1`` of a range (``_member``): with
+    ``members`` of the columns layout, the particles of one group, in place (the CUDA
+    backend's ``sparse`` collision stage)."""
+    if velocity.shape[0] == 3:
+        _collide_loop(velocity, first, last, members, state, collisions, 3)
+    else:
+        _collide_loop(velocity, first, last, members, state, collisions, 2)
 
 
 @kernel
