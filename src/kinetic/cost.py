@@ -361,13 +361,20 @@ three velocity components), with histograms and scratch, rounded up."""
 DSMC_GPU_SECONDS_PER_STEP = 5.0e-4
 """``cuda`` backend, one H100: wall seconds of one time step's launches when the GPU has
 little to do (bench cuda: 0.52 ms a step at N = 2 × 10⁵, one realization, Strang, sampled
-every step)."""
+every step). The launches are asynchronous, so a step costs the larger of this and its
+GPU work (at 2984f74, 1.07 ms a step of 10⁷ particle-steps, where the GPU work alone
+was 1.0 ms)."""
 
-DSMC_GPU_SECONDS_PER_PARTICLE_STEP = 1.1e-10
+DSMC_GPU_SECONDS_PER_PARTICLE_STEP = 3.5e-11
 """``cuda`` backend, one H100: seconds per particle-step once the launches are full, Lie
-splitting, the ``columns`` regrouping (bench cuda ``memory_bound``, revision 2984f74:
-1.07 ms a step at N = 2 × 10⁵ × 50 realizations, montanero2007's δt = 0.003 τ; 1.53 ms
-with the ``feistel`` regrouping); times DSMC_STRANG_FACTOR for Strang."""
+splitting, the ``sparse`` collisions; times DSMC_STRANG_FACTOR for Strang. A model, built
+from passes timed at revision 2984f74 (bench cuda ``memory_bound``, N = 2 × 10⁵ × 50
+realizations, montanero2007's δt = 0.003 τ; docs/data/cuda-h100-2984f74.json): the force
+pass, which is the ``sparse`` step's only pass over every particle, 2.36 × 10⁻¹¹ (at the
+copy bandwidth), and the thermostat's fold, 0.82 × 10⁻¹¹ at that size; plus
+0.3 × 10⁻¹¹ for the collisions, which read and write only the candidate pairs (about
+0.5 % of the particles a step) and were not timed. The ``columns`` step timed there was
+1.07 × 10⁻¹⁰; refit from ``memory_bound``'s ``sparse.step`` on a GPU."""
 
 DSMC_GPU_SECONDS_PER_SAMPLED_PARTICLE = 2.8e-10
 """``cuda`` backend, one H100: seconds per particle of a snapshot (moments, histograms):
@@ -390,8 +397,8 @@ def dsmc_homogeneous(
     **_: object,
 ) -> Estimate:
     """``realizations`` runs of kinetic.dsmc.simulate_homogeneous (montanero2007); with
-    ``backend='cuda'`` all in the same launches: the steps times their launch cost, plus
-    the particle-steps at the GPU's rate."""
+    ``backend='cuda'`` all in the same launches: each step the larger of its launch cost
+    and its particle-steps at the GPU's rate (the launches run ahead of the GPU)."""
     steps = math.ceil(duration / time_step - 1e-9)
     particle_steps = steps * n_particles
     if backend == "cuda":
@@ -399,7 +406,8 @@ def dsmc_homogeneous(
         per_particle_step = DSMC_GPU_SECONDS_PER_PARTICLE_STEP * (
             DSMC_STRANG_FACTOR if splitting == "strang" else 1.0
         ) + DSMC_GPU_SECONDS_PER_SAMPLED_PARTICLE / max(1, sample_stride)
-        seconds = steps * DSMC_GPU_SECONDS_PER_STEP + work * per_particle_step
+        step_work = realizations * n_particles * per_particle_step
+        seconds = steps * max(DSMC_GPU_SECONDS_PER_STEP, step_work)
         memory = _mb(DSMC_GPU_BYTES_PER_PARTICLE * n_particles * realizations)
         work = f"{work:.2e} particle-steps on one GPU"
         return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, memory, work, gpus=1)

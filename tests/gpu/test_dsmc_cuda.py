@@ -398,6 +398,13 @@ def test_bench_memory_bound_times_every_pass_of_the_step():
     step = report["step"]
     assert step["bound_seconds"] == pytest.approx(120 * particles / report["copy_bytes_per_second"])
     assert step["fraction_of_bound"] == pytest.approx(step["bound_seconds"] / step["seconds"])
+    sparse = report["sparse"]  # the same step with the sparse collisions
+    assert set(sparse["passes"]) == {"collide_sparse", "force", "finish"}
+    assert sparse["step"]["bound_seconds"] == pytest.approx(
+        48 * particles / report["copy_bytes_per_second"]
+    )
+    assert 0 < sparse["candidates_per_particle_step"] < 1
+    assert 0 < sparse["acceptance"] <= 1
     columns = report["columns"]  # the same step with the columns regrouping
     assert columns["passes"]["collide_columns"]["seconds"] > 0
     assert columns["step"]["bound_seconds"] == pytest.approx(

@@ -402,8 +402,8 @@ def dsmc_speed(quick: bool) -> dict[str, Any]:
     """Homogeneous DSMC: collisions per second at N = 2 × 10⁵ × 50 realizations (and one
     realization, and 2 × 10⁶ × 5), the CPU engine on one core, and the HCS cooling rate and
     a2 (α = 0.9) and the heat flux at ε* = 0.025 on the GPU; the first case and the HCS
-    once more with the regrouping that is not the default (``hcs_feistel``; each case
-    names its ``regrouping``)."""
+    once more with ``columns`` (or ``sparse`` where that is the default: ``hcs_columns``;
+    each case names its ``regrouping``)."""
     from kinetic.dsmc import gpu as dsmc_gpu
 
     _dsmc(2000, 2, 1.0, "cuda")  # compile
@@ -416,7 +416,7 @@ def dsmc_speed(quick: bool) -> dict[str, Any]:
     cpu = _dsmc(200_000, 1, 2.0, "cpu")
     physics["hcs"] = _dsmc(20_000, 16, 60.0, "cuda", seed=21)
     physics["forced"] = _dsmc(20_000, 48, 60.0, "cuda", seed=22, reduced_field=0.025)
-    other = next(name for name in dsmc_gpu.REGROUPINGS if name != dsmc_gpu.REGROUPING)
+    other = "columns" if dsmc_gpu.REGROUPING != "columns" else "sparse"
     with _regrouping(other):  # the same HCS and the fullest launch, regrouped the other way
         physics[f"hcs_{other}"] = _dsmc(20_000, 16, 60.0, "cuda", seed=21)
         gpu.append(_dsmc(200_000, 50, 20.0, "cuda"))
@@ -644,6 +644,13 @@ particles a step at montanero2007's δt = 0.003 τ, are left out); the force ste
 writes every particle. 120 bytes a particle-step in all; the thermostat's reduction and
 the clock (``_finish``) touch a few numbers per realization."""
 
+SPARSE_PASS_BYTES = {"collide_sparse": 0, "force": 48}
+"""The same for the ``sparse`` collisions (``dsmc.gpu.REGROUPING``): one thread a group
+reads and writes only its candidate pairs in place (about 0.5 % of the particles a step at
+montanero2007's δt = 0.003 τ: left out), then the force pass reads and writes every
+particle and finds the majorant of the next step (its largest speed): 48 bytes a
+particle-step, the least a step that moves every particle can touch."""
+
 COLUMNS_PASS_BYTES = {"collide_columns": 48}
 """The same for the ``columns`` regrouping (``dsmc.gpu.REGROUPING``): a thread block reads
 its groups' particles from consecutive rows of each column, collides them, and writes
@@ -685,8 +692,9 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     the velocities' size, each pass of a step launched alone and the whole step, with the
     passes' bytes (``PASS_BYTES``) over their time and the step's time against the time
     its 120 bytes a particle would take at the copy bandwidth; then the same step with the
-    ``columns`` regrouping (``columns``: its collide-and-force pass and whole step, 48
-    bytes)."""
+    ``sparse`` collisions (``sparse``: its passes and whole step, 48 bytes, and the
+    candidates a particle-step) and the ``columns`` regrouping (``columns``: its
+    collide-and-force pass and whole step, 48 bytes)."""
     from kinetic import gpu as device
     from kinetic.dsmc import gpu as dsmc_gpu
     from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
@@ -750,6 +758,30 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
         },
         "step": _against_bound(step, sum(COLUMNS_PASS_BYTES.values()), particles, copy_bandwidth),
     }
+    del batch
+    batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations), "sparse")
+    sparse = {
+        "collide_sparse": lambda: batch._collide_sparse(),
+        "force": lambda: batch._force_and_thermostat(field_step),
+        "finish": lambda: batch._finish(end_of_step=True),
+    }
+    out["sparse"] = {"passes": {}}
+    for name, launch in sparse.items():
+        seconds = _launch_seconds(launch, repeats)
+        out["sparse"]["passes"][name] = _traffic(
+            seconds, SPARSE_PASS_BYTES.get(name, 0), particles, copy_bandwidth
+        )
+    step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
+    out["sparse"]["step"] = _against_bound(
+        step, sum(SPARSE_PASS_BYTES.values()), particles, copy_bandwidth
+    )
+    # the collision stages run: each timing's untimed first launch and its repeats, twice
+    tally = batch.tally.copy_to_host().sum(axis=(0, 1))
+    candidates = int(tally[dsmc_gpu.kernels.TALLY_CANDIDATES])
+    out["sparse"]["candidates_per_particle_step"] = candidates / (particles * 2 * (repeats + 1))
+    out["sparse"]["acceptance"] = int(tally[dsmc_gpu.kernels.TALLY_ACCEPTED]) / max(candidates, 1)
+    del batch
+    batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations), "columns")
     # the threads that find a group's majorant together (``BOUND_LANE_BITS``: 0 is one)
     lanes = []
     out["columns"]["lanes"] = lanes

@@ -5,8 +5,8 @@ are row r of a ``(R, d, N)`` float64 array (each row the CPU engine's struct of 
 One time step is a short sequence of launches, each covering every realization (the
 realization is the grid's y index; the kernels over particles run THREADS x blocks
 threads per realization, each looping over the particles with the grid's stride): 4
-launches with the Lie splitting, 6 with the Strang splitting (2 fewer with the
-``columns`` regrouping), 2 more on a sampled step.
+launches with the Lie splitting, 6 with the Strang splitting (1 fewer with the
+``sparse`` collisions, 2 fewer with the ``columns`` ones), 2 more on a sampled step.
 
 1. **Regrouping** (``_permute``): the particles are copied in a new random order,
    ``target[p] = source[π(p)]``. π is a bijection of ``0..N-1``: a 4-round Feistel
@@ -40,6 +40,15 @@ launches with the Lie splitting, 6 with the Strang splitting (2 fewer with the
    gathered in shared memory by its thread block and written back after its collisions
    and the force step, with the block's thermostat sums (one read and one write of each
    particle a Lie step: 48 bytes).
+   With ``REGROUPING = "sparse"`` (the default) the same groups collide in place, one
+   thread a group (``_collide_sparse``: ``kernels.collide_members``, the CPU loop with a
+   map from a group's members to their places in the columns), each thread reading and
+   writing only its candidate pairs (at montanero2007's δt = 0.003 τ a group of 128 has
+   about 0.2 collisions a step). The majorant is the realization's, as in the CPU
+   engine's one box: twice the largest |W| of the stored velocities, found by the force
+   pass before (the collisions run on W at the thermostatted rate, ``kernels._deferred``),
+   or its image under the thermostat once a snapshot has applied it. The force pass of
+   step 3 is then the step's only pass over every particle (48 bytes a Lie step).
 3. **Force and thermostat** (``_force``, ``_finish``): the force step of every particle
    (``kernels._force_factor``: Euler or exact) with the sums ΣV_k, Σ|V|² per realization,
    then ``kernels._thermostat_scale`` and the step's clock (``kernels._advance_clock``)
@@ -133,18 +142,26 @@ WEIGHT_UNIT = 2.0**-20
 
 REGROUPINGS = ("feistel", "columns", "sparse")
 REGROUPING = "sparse"
-"""How the particles are re-dealt into collision groups every step (read when a batch is
-made): ``feistel``, a random bijection of the indices and a copy of the particles in
-that order (``_permute``), then one thread per group of consecutive particles
-(``_collide``); ``columns``, no copy: group g takes, from each column j of the
-velocities, the particle of row (g + s_j) mod G, with shifts s_j drawn afresh each step,
-and a thread block gathers its groups in shared memory, collides them and writes them
-back after the force step (``_collide_columns``). ``columns`` is the default since an
-H100 timed both (revision 2984f74, docs/data/cuda-h100-2984f74.json): a step of
-montanero2007's paper job (50 realizations of 2 × 10⁵) took 1.07 ms against ``feistel``'s
-1.53 ms, and the HCS of the same seed (N = 2 × 10⁴, 16 realizations, α = 0.9) gave
-ζ = 0.071302 ± 0.000036 and a2 = -0.0162 ± 0.0003 against 0.071310 ± 0.000028 and
--0.0159 ± 0.0005."""
+"""How the particles are re-dealt into collision groups every step, and collided (read
+when a batch is made): ``feistel``, a random bijection of the indices and a copy of the
+particles in that order (``_permute``), then one thread per group of consecutive
+particles with the group's own majorant (``_collide``); ``columns``, no copy: group g
+takes, from each column j of the velocities, the particle of row (g + s_j) mod G, with
+shifts s_j drawn afresh each step, and a thread block gathers its groups in shared
+memory, finds their majorants, collides them and writes them back after the force step
+(``_collide_columns``); ``sparse``, the same groups, each collided in place by one thread
+that reads and writes only its candidate pairs, against the realization's majorant from
+the force pass (``_collide_sparse``), then the force pass.
+
+An H100 timed the first two (revision 2984f74, docs/data/cuda-h100-2984f74.json): a step
+of montanero2007's paper job (50 realizations of 2 × 10⁵) took 1.07 ms with ``columns``
+against ``feistel``'s 1.53 ms, and the HCS of the same seed (N = 2 × 10⁴, 16
+realizations, α = 0.9) gave ζ = 0.071302 ± 0.000036 and a2 = -0.0162 ± 0.0003 against
+0.071310 ± 0.000028 and -0.0159 ± 0.0005. ``sparse`` is the default since it was built
+(not yet timed): its only pass over every particle is the force pass, timed in that run
+at 0.24 ms for the same particles (the copy bandwidth), where the ``columns`` pass took
+1.00 ms; its collisions touch about 0.5 % of the particles a step (bench cuda
+``memory_bound``'s ``sparse`` times both)."""
 
 _TILE = 1806
 """Particles a thread block of ``_collide_columns`` holds in shared memory: 14 groups of
