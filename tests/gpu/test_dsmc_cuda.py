@@ -337,6 +337,34 @@ def test_sparse_majorant_bounds_the_stored_velocities_exactly():
     assert not tally[:, kernels.TALLY_EXCEEDED].any()
 
 
+def test_private_histograms_count_what_global_atomics_count(monkeypatch):
+    """``_observe`` counts a block's particles into its own histograms in shared memory and
+    adds them to the realization's once (``private``): the same c_x counts, fixed-point
+    weights and speed counts, bit for bit, as every particle's atomics on global memory
+    (where the bins do not fit, ``_histogram_bytes`` 0), and the same moments."""
+    from kinetic.dsmc import gpu
+    from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
+
+    settings = HomogeneousSettings(n_particles=131, restitution=0.8, time_step=0.2)
+    samples = Samples(stride=1, n_cx_bins=40, cx_max=3.0, n_speed_bins=30, speed_max=3.0)
+    streams = realization_streams(5, 0, 2)
+    results = []
+    for shared_bytes in (gpu._SHARED_BYTES, 0):
+        monkeypatch.setattr(gpu, "_SHARED_BYTES", shared_bytes)
+        batch = gpu._Batch(settings, samples, streams)
+        assert (gpu._histogram_bytes(batch.histograms) > 0) == (shared_bytes > 0)
+        for _ in range(3):
+            batch.step(sample=True, histogram=True)
+        results.append([h.copy_to_host() for h in (*batch.histograms, batch.moment_sums)])
+    for private, atomics in zip(*results, strict=True):
+        np.testing.assert_array_equal(private, atomics)
+    cx_counts, cx_weights, speed_counts, _ = results[0]
+    assert np.all(cx_counts.sum(axis=1) == 3 * 131)  # every particle of every snapshot
+    assert np.all(speed_counts.sum(axis=1) == 3 * 131)
+    assert np.count_nonzero(cx_weights) > 20  # weights in many bins, of both signs
+    assert cx_weights.min() < 0 < cx_weights.max()
+
+
 def _window_statistics(run, name):
     """Mean and standard error of the per-realization, per-window values of ``name``
     (windows of a tiny system decorrelate within about a collision time)."""

@@ -84,7 +84,7 @@ def _dsmc_signatures():
         "_collide_sparse": (f3, u3, f3, f3, i3, f1, i1, u2, i1, f2, boolean),
         "_force": (f3, f3, i1, float64, int64, f2, boolean),
         "_finish": (f3, int64, f2, f2, i1, f1, i1, boolean, u2, boolean),
-        "_observe": (f3, f3, UniTuple(i2, 3), f1, i1, boolean, f2, boolean),
+        "_observe": (f3, f3, UniTuple(i2, 3), f1, i1, boolean, f2, boolean, boolean),
         "_fold_moments": (f3, int64, f2, float64),
     }
 

@@ -58,7 +58,9 @@ launches with the Lie splitting, 6 with the Strang splitting (1 fewer with the
    half the field before and after them.
 4. **Observers** on sampled steps (``_observe``): the moments of
    ``kernels._particle_moments`` and, in the histogram windows, the bins of
-   ``kernels._histogram_bins``.
+   ``kernels._histogram_bins``, counted by each thread block in its own histograms in
+   shared memory and added to the realization's once a block (where they fit, which the
+   configs' few hundred bins do).
 
 Determinism: the same call gives the same numbers twice (on one GPU model). Float sums
 are folded in a fixed order: each thread sums a fixed set of particles (stride THREADS
@@ -83,6 +85,7 @@ import time
 import warnings
 
 import numpy as np
+from numba.core import types
 from numba.core.errors import NumbaPerformanceWarning
 
 from kinetic import gas as units
@@ -843,24 +846,36 @@ _thermostat = cuda.jit(device=True, inline="always")(_thermostat)
 
 
 @kernel
-def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, rescale):
+def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, rescale, private):
     """One snapshot (after the pending thermostat if ``rescale``): per-block sums of the
     N_MOMENTS particle moments in ``partials`` and, if ``histogram``, the c_x and |c|
     histograms ``histograms`` = (cx_counts, cx_weights, speed_counts) (integer atomics;
-    the c_x weights in units of WEIGHT_UNIT)."""
+    the c_x weights in units of WEIGHT_UNIT). With ``private`` each block first counts
+    into its own copy in the launch's dynamic shared memory (``_histogram_bytes``) and
+    then adds its nonzero bins to the realization's: one atomic on global memory a bin a
+    block instead of three a particle, the same integers (sums of integers do not depend
+    on their order)."""
     cx_counts, cx_weights, speed_counts = histograms
     shared = cuda.shared.array((THREADS, N_MOMENTS), np.float64)
+    local = cuda.shared.array(0, types.int64)  # a numba type: the simulator needs one here
     sums = cuda.local.array(N_MOMENTS, np.float64)
     r = cuda.blockIdx.y
     b = cuda.blockIdx.x
+    t = cuda.threadIdx.x
     d = velocity.shape[1]
     n = velocity.shape[2]
+    n_cx = cx_counts.shape[1]
+    n_bins = 2 * n_cx + speed_counts.shape[1]
     inverse_v0 = reals[_INVERSE_V0]
     p_full = 0.5 * d
     for f in range(N_MOMENTS):
         sums[f] = 0.0
+    if histogram and private:
+        for k in range(t, n_bins, THREADS):
+            local[k] = 0
+        cuda.syncthreads()
     v = velocity[r]
-    for i in range(b * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
+    for i in range(b * THREADS + t, n, cuda.gridDim.x * THREADS):
         if rescale:
             for k in range(d):
                 v[k, i] = _thermostat(v[k, i], thermo, r, k)
@@ -879,10 +894,41 @@ def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, re
                 reals[_INVERSE_SPEED],
                 flags[_N_SPEED],
             )
-            cuda.atomic.add(cx_counts, (r, cx_bin), 1)
-            cuda.atomic.add(cx_weights, (r, cx_bin), _fixed_point(weight))
-            cuda.atomic.add(speed_counts, (r, speed_bin), 1)
+            if private:
+                cuda.atomic.add(local, cx_bin, 1)
+                cuda.atomic.add(local, n_cx + cx_bin, _fixed_point(weight))
+                cuda.atomic.add(local, 2 * n_cx + speed_bin, 1)
+            else:
+                cuda.atomic.add(cx_counts, (r, cx_bin), 1)
+                cuda.atomic.add(cx_weights, (r, cx_bin), _fixed_point(weight))
+                cuda.atomic.add(speed_counts, (r, speed_bin), 1)
+    if histogram and private:
+        cuda.syncthreads()
+        for k in range(t, n_bins, THREADS):
+            count = local[k]
+            if count != 0:
+                if k < n_cx:
+                    cuda.atomic.add(cx_counts, (r, k), count)
+                elif k < 2 * n_cx:
+                    cuda.atomic.add(cx_weights, (r, k - n_cx), count)
+                else:
+                    cuda.atomic.add(speed_counts, (r, k - 2 * n_cx), count)
     _block_sums(shared, sums, partials[r, b])
+
+
+def _histogram_bytes(histograms) -> int:
+    """Dynamic shared memory of a block's private histograms in ``_observe`` (int64 bins
+    of c_x counts, c_x weights and speeds), or 0 where they would not fit beside the
+    kernel's static shared memory in the 48 KiB a block may use without opting in (the
+    kernel then adds every particle's bins to global memory)."""
+    cx_counts, _, speed_counts = histograms
+    size = 8 * (2 * cx_counts.shape[1] + speed_counts.shape[1])
+    static = 8 * THREADS * N_MOMENTS
+    return size if size + static <= _SHARED_BYTES else 0
+
+
+_SHARED_BYTES = 48 * 1024
+"""Shared memory a thread block may use without opting in to more."""
 
 
 @kernel
@@ -993,7 +1039,8 @@ class _Batch:
             self._force_and_thermostat(field_step)
             self._finish(end_of_step=True)
         if sample:
-            _observe[(self.n_blocks, self.count), THREADS](
+            private = _histogram_bytes(self.histograms) if histogram else 0
+            _observe[(self.n_blocks, self.count), THREADS, 0, private](
                 self.velocity,
                 self.partials,
                 self.histograms,
@@ -1002,6 +1049,7 @@ class _Batch:
                 histogram,
                 self.thermo,
                 self.pending,
+                private > 0,
             )
             self.pending = False
             _fold_moments[grid(self.count, _SMALL), _SMALL](
@@ -1217,7 +1265,7 @@ def _compile_outside_the_timer(settings: HomogeneousSettings, samples: Samples) 
         return
     tiny = HomogeneousSettings(**{**settings.parameters_init(), "n_particles": 4})
 
-    def compile_kernels():  # both regroupings: the cache then holds every kernel
+    def compile_kernels():  # every regrouping: the cache then holds every kernel
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NumbaPerformanceWarning)  # a grid of one block
             for regrouping in REGROUPINGS:
