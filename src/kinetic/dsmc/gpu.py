@@ -204,7 +204,6 @@ _KERNEL, _POISSON, _EXACT, _N_CX, _N_SPEED, _N = 0, 1, 2, 3, 4, 5
 # ``sparse`` majorant: top1 = top2 = it; at the start, of the Maxwellian)
 _SCALE, _LOG_SCALE, _TOP, _N_THERMO = 3, 4, 5, 6
 
-_collide_range = device_function(kernels.collide_range)
 _speed_bounds = device_function(kernels.speed_bounds)
 _two_largest = device_function(kernels._two_largest)
 _speed_sq = device_function(kernels._speed_sq)
