@@ -203,3 +203,24 @@ def test_less_than_one_real_particle_per_cell_runs_with_a_warning(caplog):
         )
     assert "0.25 real particles per cell" in caplog.text
     assert dataset.collisions.item() > 0
+
+
+def test_cell_moments_held_as_values_are_those_accumulated_in_place():
+    """``_accumulated`` (the moments of one cell's loop, in registers: ``_cell_moments``
+    and the GPU engine's gather) gives, bit for bit, the row ``_accumulate`` builds in
+    place (the CPU sort): the sums, and the two largest |w|² whatever the order they
+    come in (here growing, shrinking and random speeds, ties included)."""
+    from kinetic.dsmc import inhomogeneous_kernels as kernels
+
+    generator = np.random.default_rng(7)
+    random = generator.normal(size=(50, 2))
+    growing = random[np.argsort(np.hypot(*random.T))]
+    for velocities in (random, growing, growing[::-1], np.repeat(random[:5], 3, axis=0)):
+        row = np.zeros((1, 5))
+        values = (0.0,) * 5
+        for wx, wy in velocities:
+            kernels._accumulate(row, 0, wx, wy)
+            values = kernels._accumulated(*values, wx, wy)
+        np.testing.assert_array_equal(row[0], values)
+        speeds = np.sort(np.hypot(*velocities.T) ** 2)
+        assert values[3] == pytest.approx(speeds[-1]) and values[4] == pytest.approx(speeds[-2])

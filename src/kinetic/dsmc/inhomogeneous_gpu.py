@@ -37,7 +37,7 @@ it, ``TOGETHER``) or by one launch per phase (the realization is the grid's y in
    particle index (insertion sort: the slice is then exactly the CPU's stable counting
    sort, whatever order the atomics landed in), copies its particles into the other
    buffer in that order, accumulates the cell's moments on the way
-   (``kernels._accumulate``: Σw, Σ|w|², two largest |w|², in the CPU's order) and runs
+   (``kernels._accumulated``: Σw, Σ|w|², two largest |w|², in the CPU's order) and runs
    ``kernels._collide_cell``, the CPU engine's per-cell collision code ("paper" or
    "majorant" rule, Λ, restitution, recollision tally), with the cell's own xoshiro256+
    stream (``kinetic.rng.thread_state`` of the realization's row after its initial
@@ -118,7 +118,7 @@ floats (their grid may change without changing a number): a single realization o
 grid that depends on N_sim only)."""
 
 _collide_cell = device_function(kernels._collide_cell)
-_accumulate = device_function(kernels._accumulate)
+_accumulated = device_function(kernels._accumulated)
 _streamed = device_function(kernels._streamed)
 _observables = device_function(kernels._observables)
 _thread_state = device_function(rng.thread_state)
@@ -218,7 +218,10 @@ _scatter_particle = cuda.jit(device=True, inline="always")(_scatter_particle)
 def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c):
     """Cell phase: sort cell c's slice of ``order`` by particle index, copy its particles
     from the ``source`` buffers (position, velocity, labels) into the ``target`` buffers
-    in that order with the cell's moments, then ``kernels._collide_cell`` with the cell's
+    in that order, two at a time (both particles' loads issued before their stores: the
+    thread waits on one round of scattered reads per pair, not per particle), with the
+    cell's moments in registers (``kernels._accumulated``, in the CPU's order), then
+    ``kernels._collide_cell`` with the cell's
     stream, carry, tallies and lost energy. ``cells`` is (moments, carry, states, tally,
     lost); ``step`` is (rule, density per count, pair coefficient, time step), ``rows[r,
     _HALF]`` the row's (1 + α)/2."""
@@ -226,7 +229,7 @@ def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
     rule, density_per_count, pair_coefficient, time_step = step
     half = rows[r, _HALF]
     position, velocity, labels = source
-    position_to, velocity_to, labels_to = target
+    _, velocity_to, labels_to = target
     first = cell_start[r, c]
     last = cell_start[r, c + 1]
     for a in range(first + 1, last):  # insertion sort: the CPU's stable order
@@ -236,20 +239,54 @@ def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
             order[r, b + 1] = order[r, b]
             b -= 1
         order[r, b + 1] = key
-    cell_moments = moments[r]
-    for k in range(5):
-        cell_moments[c, k] = 0.0
-    for p in range(first, last):
+    m0 = 0.0
+    m1 = 0.0
+    m2 = 0.0
+    m3 = 0.0
+    m4 = 0.0
+    p = first
+    while p + 2 <= last:  # two particles' loads in flight before their stores
         i = order[r, p]
-        wx = velocity[r, 0, i]
-        wy = velocity[r, 1, i]
-        position_to[r, 0, p] = position[r, 0, i]
-        position_to[r, 1, p] = position[r, 1, i]
-        velocity_to[r, 0, p] = wx
-        velocity_to[r, 1, p] = wy
-        labels_to[r, 0, p] = labels[r, 0, i]
-        labels_to[r, 1, p] = labels[r, 1, i]
-        _accumulate(cell_moments, c, wx, wy)
+        j = order[r, p + 1]
+        x0 = position[r, 0, i]
+        y0 = position[r, 1, i]
+        wx0 = velocity[r, 0, i]
+        wy0 = velocity[r, 1, i]
+        a0 = labels[r, 0, i]
+        b0 = labels[r, 1, i]
+        x1 = position[r, 0, j]
+        y1 = position[r, 1, j]
+        wx1 = velocity[r, 0, j]
+        wy1 = velocity[r, 1, j]
+        a1 = labels[r, 0, j]
+        b1 = labels[r, 1, j]
+        _copy_particle(target, r, p, x0, y0, wx0, wy0, a0, b0)
+        _copy_particle(target, r, p + 1, x1, y1, wx1, wy1, a1, b1)
+        m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, wx0, wy0)
+        m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, wx1, wy1)
+        p += 2
+    if p < last:
+        i = order[r, p]
+        wx0 = velocity[r, 0, i]
+        wy0 = velocity[r, 1, i]
+        _copy_particle(
+            target,
+            r,
+            p,
+            position[r, 0, i],
+            position[r, 1, i],
+            wx0,
+            wy0,
+            labels[r, 0, i],
+            labels[r, 1, i],
+        )
+        m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, wx0, wy0)
+    cell_moments = moments[r]
+    cell_moments[c, 0] = m0
+    cell_moments[c, 1] = m1
+    cell_moments[c, 2] = m2
+    cell_moments[c, 3] = m3
+    cell_moments[c, 4] = m4
     if last - first < 2:
         return
     state = states[r, c]
@@ -290,6 +327,20 @@ def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
 
 
 _collide_in_cell = cuda.jit(device=True, inline="always")(_collide_in_cell)
+
+
+def _copy_particle(target, r, p, x, y, wx, wy, ident, partner):
+    """Slot p of realization r of the ``target`` buffers (position, velocity, labels)."""
+    position_to, velocity_to, labels_to = target
+    position_to[r, 0, p] = x
+    position_to[r, 1, p] = y
+    velocity_to[r, 0, p] = wx
+    velocity_to[r, 1, p] = wy
+    labels_to[r, 0, p] = ident
+    labels_to[r, 1, p] = partner
+
+
+_copy_particle = cuda.jit(device=True, inline="always")(_copy_particle)
 
 
 # ------------------------------------------------------------ one launch per phase

@@ -237,7 +237,8 @@ def _cell_statistics(velocity, first, last):
 @inline
 def _accumulate(moments, c, wx, wy):
     """Add a particle of velocity (wx, wy) to row c of the cell moments: Σw_x, Σw_y,
-    Σ|w|² and the two largest |w|² (columns 0..4)."""
+    Σ|w|² and the two largest |w|² (columns 0..4), in place (the sort's order of
+    particles visits the cells in turn)."""
     s = wx * wx + wy * wy
     moments[c, 0] += wx
     moments[c, 1] += wy
@@ -250,14 +251,40 @@ def _accumulate(moments, c, wx, wy):
             moments[c, 4] = s
 
 
+@kernel
+def _accumulated(m0, m1, m2, m3, m4, wx, wy):
+    """``_accumulate`` on a cell's moments held as values (m0..m4, its columns 0..4):
+    the same arithmetic, for a loop over one cell's particles (``_cell_moments``, the GPU
+    engine's gather), which keeps them in registers."""
+    s = wx * wx + wy * wy
+    m0 += wx
+    m1 += wy
+    m2 += s
+    if s > m4:
+        if s > m3:
+            m4 = m3
+            m3 = s
+        else:
+            m4 = s
+    return m0, m1, m2, m3, m4
+
+
 @inline
 def _cell_moments(velocity, cell_start, moments):
     """Fill ``moments`` (M², 5) from particles sorted by cell (as the sort does)."""
     for c in range(moments.shape[0]):
-        for k in range(5):
-            moments[c, k] = 0.0
+        m0 = 0.0
+        m1 = 0.0
+        m2 = 0.0
+        m3 = 0.0
+        m4 = 0.0
         for i in range(cell_start[c], cell_start[c + 1]):
-            _accumulate(moments, c, velocity[0, i], velocity[1, i])
+            m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, velocity[0, i], velocity[1, i])
+        moments[c, 0] = m0
+        moments[c, 1] = m1
+        moments[c, 2] = m2
+        moments[c, 3] = m3
+        moments[c, 4] = m4
 
 
 @inline
