@@ -329,7 +329,9 @@ def test_sparse_majorant_bounds_the_stored_velocities_exactly():
         )
         batch._collide_sparse()  # the rows of the groups' bounds it starts from
         bounds = batch.bounds.copy_to_host()
-        np.testing.assert_array_equal(bounds[:, :, :3], np.broadcast_to(centre[:, None], (2, 4, 3)))
+        np.testing.assert_array_equal(
+            bounds[:, :, :3], np.broadcast_to(centre[:, None], bounds[:, :, :3].shape)
+        )
         assert np.all(bounds[:, :, 3:] >= stretch[:, None, None] * thermo[:, gpu._TOP, None, None])
     assert seen == {True, False}
     tally = batch.tally.copy_to_host().sum(axis=1)
