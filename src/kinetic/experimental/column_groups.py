@@ -3,13 +3,17 @@
 
 The homogeneous cooling state of d = 3 hard spheres (α = 0.5, no field, the energy
 rescaled to its start after every step) with the engine's own collision stage
-(``kernels.collide_range``, NTC) run three ways in the same loop:
+(``kernels.collide_range``, NTC) run four ways in the same loop:
 
 - ``whole``: one group of all N particles (the CPU engine's collisions);
 - ``permuted``: groups of N/G >= 128 consecutive particles of a random permutation drawn
   every step (the GPU's ``feistel`` regrouping, with a Fisher-Yates shuffle in its place);
 - ``columns``: group g takes from each column j the particle of row (g + s_j) mod G, the
-  shifts drawn every step (the GPU's ``columns`` regrouping, ``kernels.column_particle``).
+  shifts drawn every step (the GPU's ``columns`` regrouping, ``kernels.column_particle``);
+- ``in_place``: the same groups (the shifts of a key drawn every step,
+  ``kernels.column_shift``), each collided in place by ``kernels.collide_members``
+  against the whole gas's majorant (twice its largest speed), as the GPU's ``sparse``
+  collisions do.
 
 A group's pair coefficient is the whole box's times (N - 1)/(m - 1), as on the GPU. The
 cooling rate ζ (per unit time, from the energy lost in a step) and a2 (from <c⁴>) are
@@ -32,7 +36,7 @@ from kinetic.jit import kernel
 
 __all__ = ["GROUPINGS", "cooling_state", "main"]
 
-GROUPINGS = {"whole": 0, "permuted": 1, "columns": 2}
+GROUPINGS = {"whole": 0, "permuted": 1, "columns": 2, "in_place": 3}
 
 _GROUP_SIZE = 128
 """Fewest particles of a group: ``kinetic.dsmc.gpu.GROUP_SIZE`` (not imported here, as
@@ -69,11 +73,38 @@ def _run(velocity, grouping, n_steps, pair_base, duration, restitution, state, g
         elif grouping == 2:
             for j in range(n_columns):
                 shifts[j] = min(int(rng.uniform(state) * n_rows), n_rows - 1)
+        key = np.uint64(rng.uniform(state) * 2.0**53) if grouping == 3 else np.uint64(0)
         before = 0.0
         for i in range(n):
             for k in range(d):
                 before += velocity[k, i] * velocity[k, i]
+        top = 0.0  # the whole gas's largest speed (its mean velocity is 0 here)
+        for i in range(n if grouping == 3 else 0):
+            speed_sq = 0.0
+            for k in range(d):
+                speed_sq += velocity[k, i] * velocity[k, i]
+            top = max(top, speed_sq)
+        top = math.sqrt(top)
         for g in range(n_rows):
+            if grouping == 3:
+                group = (n_rows, n_columns, full_rows, g, key)
+                size = kernels.group_size(group)
+                bounds[g, :d] = 0.0
+                bounds[g, d] = top
+                bounds[g, d + 1] = top
+                carry[g, 0] = rng.uniform(state)
+                collisions = kernels.Collisions(
+                    kernels.HARD_SPHERES,
+                    restitution,
+                    pair_base / (size - 1),
+                    duration,
+                    False,
+                    bounds[g],
+                    carry[g],
+                    tally[g],
+                )
+                kernels.collide_members(velocity, 0, size, group, states[g], collisions)
+                continue
             size = 0
             if grouping == 0:
                 for i in range(n):
