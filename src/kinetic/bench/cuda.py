@@ -25,9 +25,9 @@ with 50 realizations in one launch, against the CPU engine on one core, and the 
 cooling rate and a2 against the CPU engine (``dsmc_speed``); accepted collisions per
 second at α = 1 and 0.5 for N = 2 × 10⁵ × 100, 2 × 10⁶ × 10, 2 × 10⁷ × 1, a snapshot
 every 10 steps (``dsmc_scaling``); one montanero2007 job of paper.yaml (α = 0.3,
-N = 2 × 10⁵, δt = 0.003, 60 τ, 200 realizations) timed on the GPU for 25 of its realizations and on one CPU core
-for one realization over a tenth of the duration, both scaled to the whole job
-(``dsmc_paper_job``).
+N = 2 × 10⁵, δt = 0.003, 60 τ, 200 realizations) timed on the GPU for 25 of its
+realizations and on one CPU core for one realization over a tenth of the duration, both
+scaled to the whole job (``dsmc_paper_job``).
 
 Memory bound (``memory_bound``): the GPU's coalesced copy bandwidth, and each pass
 of the homogeneous DSMC's step (regrouping, collisions, force, thermostat) launched alone
