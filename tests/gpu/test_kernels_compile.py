@@ -77,9 +77,7 @@ def _dsmc_signatures():
     u3, u2 = uint64[:, :, ::1], uint64[:, ::1]
     columns = (f3, u3, f3, f3, i3, f1, i1, u2, i1, f2, boolean, f3, i1, float64, int64, int64)
     return {
-        "_permute": (f3, f3, u2, uint64, f2, boolean),
         "_seed_groups": (u2, u3, u2),
-        "_collide": (f3, u3, f3, f3, i3, f1, i1),
         "_collide_columns": columns,
         "_collide_sparse": (f3, u3, f3, f3, i3, f1, i1, u2, i1, f2, boolean),
         "_force": (f3, f3, i1, float64, int64, f2, boolean),

@@ -30,10 +30,10 @@ realizations and on one CPU core for one realization over a tenth of the duratio
 scaled to the whole job (``dsmc_paper_job``).
 
 Memory bound (``memory_bound``): the GPU's coalesced copy bandwidth, and each pass
-of the homogeneous DSMC's step (regrouping, collisions, force, thermostat) launched alone
-at montanero2007's paper settings, with its bytes per second; the step's time against the
-time its least DRAM traffic (``PASS_BYTES``, 120 bytes a particle) takes at that
-bandwidth.
+of the homogeneous DSMC's step (collisions, force, thermostat) launched alone at
+montanero2007's paper settings, with its bytes per second; the step's time against the
+time its least DRAM traffic (``SPARSE_PASS_BYTES``, ``COLUMNS_PASS_BYTES``: 48 bytes a
+particle) takes at that bandwidth, for the ``sparse`` and the ``columns`` collisions.
 
 Inhomogeneous DSMC (costantini2010, ``inhomogeneous_speed``): particle-steps and
 collisions per second of ``simulate_cooling_modes(backend="cuda")`` at N = 3000 × Λ = 10
@@ -639,24 +639,17 @@ def dsmc_paper_job(quick: bool) -> dict[str, Any]:
     }
 
 
-PASS_BYTES = {"permute": 48, "collide": 24, "force": 48}
-"""Least DRAM bytes per particle of each pass of a Lie step of the homogeneous DSMC
-(kinetic.dsmc.gpu, float64 velocities, d = 3): the regrouping reads a particle's three
-components (from scattered addresses) and writes them in their new order; the collision
-stage reads its group once for the majorant (the collided pairs, about 1 % of the
-particles a step at montanero2007's δt = 0.003 τ, are left out); the force step reads and
-writes every particle. 120 bytes a particle-step in all; the thermostat's reduction and
-the clock (``_finish``) touch a few numbers per realization."""
-
 SPARSE_PASS_BYTES = {"collide_sparse": 0, "force": 48}
-"""The same for the ``sparse`` collisions (``dsmc.gpu.REGROUPING``): one thread a group
+"""Least DRAM bytes per particle of each pass of a Lie step of the homogeneous DSMC
+(kinetic.dsmc.gpu, float64 velocities, d = 3) with the ``sparse`` collisions
+(``dsmc.gpu.REGROUPING``): one thread a group
 reads and writes only its candidate pairs in place (about 0.5 % of the particles a step at
 montanero2007's δt = 0.003 τ: left out), then the force pass reads and writes every
 particle and finds the majorant of the next step (its largest speed): 48 bytes a
 particle-step, the least a step that moves every particle can touch."""
 
 COLUMNS_PASS_BYTES = {"collide_columns": 48}
-"""The same for the ``columns`` regrouping (``dsmc.gpu.REGROUPING``): a thread block reads
+"""The same for the ``columns`` collisions (``dsmc.gpu.REGROUPING``): a thread block reads
 its groups' particles from consecutive rows of each column, collides them, and writes
 them back after the force step (with the thermostat's sums): 48 bytes a particle-step,
 the least a step that moves every particle can touch."""
@@ -693,13 +686,12 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     """The memory-bandwidth bound under the homogeneous DSMC at montanero2007's paper job
     settings (α = 0.3, ε* = 0.025, δt = 0.003 τ, Euler force step, Lie splitting) for
     ``realizations`` x ``n`` particles: the GPU's coalesced copy bandwidth over arrays of
-    the velocities' size, each pass of a step launched alone and the whole step, with the
-    passes' bytes (``PASS_BYTES``) over their time and the step's time against the time
-    its 120 bytes a particle would take at the copy bandwidth; then the same step with the
-    ``sparse`` collisions (``sparse``: its passes and whole step, 48 bytes, and the
-    candidates a particle-step) and the ``columns`` regrouping (``columns``: its
-    collide-and-force pass and whole step, 48 bytes)."""
-    from kinetic import gpu as device
+    the velocities' size; each pass of a step with the ``sparse`` collisions launched
+    alone and the whole step, with the passes' bytes (``SPARSE_PASS_BYTES``) over their
+    time and the step's time against the time its 48 bytes a particle would take at the
+    copy bandwidth, and the candidates a particle-step (``sparse``); the same for the
+    ``columns`` collisions (``columns``: its collide-and-force pass and whole step, 48
+    bytes), with 1 to 16 threads finding a group's majorant (``columns.lanes``)."""
     from kinetic.dsmc import gpu as dsmc_gpu
     from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
 
@@ -712,57 +704,16 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
         splitting="lie",
     )
     samples = Samples(stride=50)
-    batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations), "feistel")
     particles = n * realizations
     copy = _copy_seconds(3 * particles, repeats)
     copy_bandwidth = 2 * 8 * 3 * particles / copy
     field_step = settings.half_field_step
-    blocks_y = (batch.n_blocks, batch.count)
-    groups = min(device.BLOCK, batch.n_groups)
-    passes = {
-        "permute": lambda: dsmc_gpu._permute[blocks_y, dsmc_gpu.THREADS](
-            batch.velocity, batch.spare, batch.keys, batch.half_bits, batch.thermo, False
-        ),
-        "collide": lambda: dsmc_gpu._collide[
-            (device.grid(batch.n_groups, groups), batch.count), groups
-        ](
-            batch.velocity,
-            batch.states,
-            batch.bounds,
-            batch.carry,
-            batch.tally,
-            batch.reals,
-            batch.flags,
-        ),
-        "force": lambda: batch._force_and_thermostat(field_step),
-        "finish": lambda: batch._finish(end_of_step=True),
-    }
     out: dict[str, Any] = {
         "n_particles": n,
         "realizations": realizations,
         "copy_seconds": copy,
         "copy_bytes_per_second": copy_bandwidth,
-        "passes": {},
     }
-    for name, launch in passes.items():
-        seconds = _launch_seconds(launch, repeats)
-        out["passes"][name] = _traffic(seconds, PASS_BYTES.get(name, 0), particles, copy_bandwidth)
-    step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
-    out["step"] = _against_bound(step, sum(PASS_BYTES.values()), particles, copy_bandwidth)
-    del batch
-    batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations), "columns")
-    collide = _launch_seconds(lambda: batch._collide_columns(field_step), repeats)
-    step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
-    out["columns"] = {
-        "bound_lane_bits": dsmc_gpu.BOUND_LANE_BITS,
-        "passes": {
-            "collide_columns": _traffic(
-                collide, COLUMNS_PASS_BYTES["collide_columns"], particles, copy_bandwidth
-            )
-        },
-        "step": _against_bound(step, sum(COLUMNS_PASS_BYTES.values()), particles, copy_bandwidth),
-    }
-    del batch
     batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations), "sparse")
     sparse = {
         "collide_sparse": lambda: batch._collide_sparse(),
@@ -786,6 +737,17 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     out["sparse"]["acceptance"] = int(tally[dsmc_gpu.kernels.TALLY_ACCEPTED]) / max(candidates, 1)
     del batch
     batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations), "columns")
+    collide = _launch_seconds(lambda: batch._collide_columns(field_step), repeats)
+    step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
+    out["columns"] = {
+        "bound_lane_bits": dsmc_gpu.BOUND_LANE_BITS,
+        "passes": {
+            "collide_columns": _traffic(
+                collide, COLUMNS_PASS_BYTES["collide_columns"], particles, copy_bandwidth
+            )
+        },
+        "step": _against_bound(step, sum(COLUMNS_PASS_BYTES.values()), particles, copy_bandwidth),
+    }
     # the threads that find a group's majorant together (``BOUND_LANE_BITS``: 0 is one)
     lanes = []
     out["columns"]["lanes"] = lanes

@@ -4,56 +4,52 @@ All realizations of a call advance together, on one GPU: the velocities of reali
 are row r of a ``(R, d, N)`` float64 array (each row the CPU engine's struct of arrays).
 One time step is a short sequence of launches, each covering every realization (the
 realization is the grid's y index; the kernels over particles run THREADS x blocks
-threads per realization, each looping over the particles with the grid's stride): 4
-launches with the Lie splitting, 6 with the Strang splitting (1 fewer with the
-``sparse`` collisions, 2 fewer with the ``columns`` ones), 2 more on a sampled step.
+threads per realization, each looping over the particles with the grid's stride): 3
+launches with the Lie splitting, 5 with the Strang splitting (1 fewer with the
+``columns`` collisions), 2 more on a sampled step.
 
-1. **Regrouping** (``_permute``): the particles are copied in a new random order,
-   ``target[p] = source[π(p)]``. π is a bijection of ``0..N-1``: a 4-round Feistel
-   network on the 2h bits of the smallest power of four >= N (round function: the
-   ``lowbias32`` hash of the right half and a round key), walked along its cycle until
-   the image falls below N. The four round keys are ``kinetic.rng.thread_state`` of the
-   realization's stream row and the step, so a step's grouping is a function of (seed,
-   realization, step) only. No sort, no atomics.
-2. **Collisions** (``_collide``, one thread per group): the reordered particles form
-   G = max(1, N // GROUP_SIZE) groups of consecutive indices, N/G of the particles each
-   (GROUP_SIZE = 128 to 2 GROUP_SIZE - 1 of them; a gas of fewer than 2 GROUP_SIZE
-   particles is one group, as on the CPU). For a spatially homogeneous gas a
-   random group is a collision cell, and one thread per group writes only its own
-   particles. Each thread runs the CPU engine's own collision stage
-   (``kernels.collide_range``, compiled for the GPU by ``kinetic.gpu.device_function``:
+1. **Groups.** Every step the particles of a realization are re-dealt into G = max(1,
+   N // GROUP_SIZE) random groups without moving them: the N particles are m columns of
+   G rows (particle j G + row in column j; the last column holds the rest), and group g
+   takes from each column j the particle of row (g + s_j) mod G
+   (``kernels.column_particle``; m or m - 1 particles, GROUP_SIZE = 128 to 2 GROUP_SIZE - 1;
+   a gas of fewer than 2 GROUP_SIZE particles is one group, as on the CPU). The shifts
+   s_j are a hash of j with the step's key (``kernels.column_shift``), the key
+   ``kinetic.rng.thread_state`` of the realization's stream row and the step, so a step's
+   groups are a function of (seed, realization, step) only. For a spatially homogeneous
+   gas a random group is a collision cell, and one thread per group writes only its own
+   particles.
+2. **Collisions** (one thread per group): the CPU engine's own collision stage
+   (``kernels.collide_members``, ``collide_range``'s loop with the map from a group's
+   members to their particles, compiled for the GPU by ``kinetic.gpu.device_function``:
    the same NTC or Poisson clock, majorant, acceptance, collision rule and restitution)
    on its group for one time step, with
-   - the majorant (mean velocity and two largest speeds) from the group's own
-     velocities (``kernels.speed_bounds``), raised on the fly as on the CPU;
    - the pair coefficient of a group of m particles ``pair_coefficient (N - 1)/(m - 1)``:
      a particle meets each of its m - 1 group mates at the rate of the whole-box NTC
      times (N - 1)/(m - 1), so its collision rate is the CPU engine's, whatever m;
    - NTC: the fraction of a candidate (``carry``) is a fresh uniform number each step
      (the group changes every step), so the number of candidates is the expected one
-     rounded up or down at random, without bias.
-   Each group has its own xoshiro256+ stream (``thread_state`` of the realization's
-   row after its Maxwellian start and the group index), kept on the device.
-   With ``REGROUPING = "columns"`` steps 1, 2 and the force step after the collisions
-   are one launch (``_collide_columns``): no copy; group g takes from each column j of
-   the velocities the particle of row (g + s_j) mod G (``kernels.column_particle``),
-   gathered in shared memory by its thread block and written back after its collisions
-   and the force step, with the block's thermostat sums (one read and one write of each
-   particle a Lie step: 48 bytes).
-   With ``REGROUPING = "sparse"`` (the default) the same groups collide in place, one
-   thread a group (``_collide_sparse``: ``kernels.collide_members``, the CPU loop with a
-   map from a group's members to their places in the columns), each thread reading and
-   writing only its candidate pairs (at montanero2007's δt = 0.003 τ a group of 128 has
-   about 0.2 collisions a step). The majorant is the realization's, as in the CPU
-   engine's one box: twice the largest |W| of the stored velocities, found by the force
-   pass before (the collisions run on W at the thermostatted rate, ``kernels._deferred``),
-   or its image under the thermostat once a snapshot has applied it. The force pass of
+     rounded up or down at random, without bias;
+   - its own xoshiro256+ stream (``thread_state`` of the realization's row after its
+     Maxwellian start and the group index), kept on the device.
+   With ``REGROUPING = "sparse"`` (the default) each group collides in place
+   (``_collide_sparse``), its thread reading and writing only its candidate pairs (at
+   montanero2007's δt = 0.003 τ a group of 128 has about 0.2 collisions a step). The
+   majorant is the realization's, as in the CPU engine's one box: twice the largest |W|
+   of the stored velocities, found by the force pass before (the collisions run on W at
+   the thermostatted rate, ``kernels._deferred``), or its image under the thermostat
+   once a snapshot has applied it, raised on the fly as on the CPU. The force pass of
    step 3 is then the step's only pass over every particle (48 bytes a Lie step).
+   With ``REGROUPING = "columns"`` a thread block gathers 14 neighbouring groups into
+   shared memory, finds each group's own majorant (mean velocity and two largest speeds
+   about it, 2^BOUND_LANE_BITS threads a group), collides them and writes them back
+   after the force step, with the block's thermostat sums (``_collide_columns``: the
+   collisions and the force step in one launch, also 48 bytes a Lie step).
 3. **Force and thermostat** (``_force``, ``_finish``): the force step of every particle
    (``kernels._force_factor``: Euler or exact) with the sums ΣV_k, Σ|V|² per realization,
    then ``kernels._thermostat_scale`` and the step's clock (``kernels._advance_clock``)
    on one thread per realization. The thermostat V -> scale (V - u) itself is applied by
-   the next kernel that reads the velocities (the next permutation, force step or
+   the next kernel that reads the velocities (the next force step, ``columns`` pass or
    snapshot: no pass of its own). Lie splitting: once after the collisions; Strang: with
    half the field before and after them.
 4. **Observers** on sampled steps (``_observe``): the moments of
@@ -143,28 +139,25 @@ over the particles with the grid's stride (the number of blocks depends on N onl
 WEIGHT_UNIT = 2.0**-20
 """Resolution of the fixed-point ``cx_weights`` sums (per observation)."""
 
-REGROUPINGS = ("feistel", "columns", "sparse")
+REGROUPINGS = ("columns", "sparse")
 REGROUPING = "sparse"
-"""How the particles are re-dealt into collision groups every step, and collided (read
-when a batch is made): ``feistel``, a random bijection of the indices and a copy of the
-particles in that order (``_permute``), then one thread per group of consecutive
-particles with the group's own majorant (``_collide``); ``columns``, no copy: group g
-takes, from each column j of the velocities, the particle of row (g + s_j) mod G, with
-shifts s_j drawn afresh each step, and a thread block gathers its groups in shared
-memory, finds their majorants, collides them and writes them back after the force step
-(``_collide_columns``); ``sparse``, the same groups, each collided in place by one thread
-that reads and writes only its candidate pairs, against the realization's majorant from
-the force pass (``_collide_sparse``), then the force pass.
+"""How the groups of the columns layout collide every step (read when a batch is made):
+``columns``, a thread block gathers its groups into shared memory, finds their own
+majorants, collides them and writes them back after the force step
+(``_collide_columns``); ``sparse``, each group is collided in place by one thread that
+reads and writes only its candidate pairs, against the realization's majorant from the
+force pass (``_collide_sparse``), then the force pass.
 
-An H100 timed the first two (revision 2984f74, docs/data/cuda-h100-2984f74.json): a step
-of montanero2007's paper job (50 realizations of 2 × 10⁵) took 1.07 ms with ``columns``
-against ``feistel``'s 1.53 ms, and the HCS of the same seed (N = 2 × 10⁴, 16
-realizations, α = 0.9) gave ζ = 0.071302 ± 0.000036 and a2 = -0.0162 ± 0.0003 against
-0.071310 ± 0.000028 and -0.0159 ± 0.0005. ``sparse`` is the default since it was built
-(not yet timed): its only pass over every particle is the force pass, timed in that run
-at 0.24 ms for the same particles (the copy bandwidth), where the ``columns`` pass took
-1.00 ms; its collisions touch about 0.5 % of the particles a step (bench cuda
-``memory_bound``'s ``sparse`` times both)."""
+An H100 timed ``columns`` (revision 2984f74, docs/data/cuda-h100-2984f74.json): a step
+of montanero2007's paper job (50 realizations of 2 × 10⁵) took 1.07 ms, against 1.53 ms
+for the first regrouping, ``feistel`` (a Feistel bijection of the indices and a copy of
+the particles in its order every step, removed after revision 2c14c5a), and the HCS of
+the same seed (N = 2 × 10⁴, 16 realizations, α = 0.9) gave ζ = 0.071302 ± 0.000036 and
+a2 = -0.0162 ± 0.0003 against 0.071310 ± 0.000028 and -0.0159 ± 0.0005. ``sparse`` is
+the default since it was built (not yet timed): its only pass over every particle is the
+force pass, timed in that run at 0.24 ms for the same particles (the copy bandwidth),
+where the ``columns`` pass took 1.00 ms; its collisions touch about 0.5 % of the
+particles a step (bench cuda ``memory_bound``'s ``sparse`` times both)."""
 
 _TILE = 1806
 """Particles a thread block of ``_collide_columns`` holds in shared memory: 14 groups of
@@ -204,12 +197,10 @@ _KERNEL, _POISSON, _EXACT, _N_CX, _N_SPEED, _N = 0, 1, 2, 3, 4, 5
 # ``sparse`` majorant: top1 = top2 = it; at the start, of the Maxwellian)
 _SCALE, _LOG_SCALE, _TOP, _N_THERMO = 3, 4, 5, 6
 
-_speed_bounds = device_function(kernels.speed_bounds)
 _two_largest = device_function(kernels._two_largest)
 _speed_sq = device_function(kernels._speed_sq)
 _column_particle = device_function(kernels.column_particle)
 _column_shift = device_function(kernels.column_shift)
-_round = device_function(kernels.feistel_round)
 _group_members = device_function(kernels.group_size)
 _collide_members = device_function(kernels.collide_members)
 _force_factor = device_function(kernels._force_factor)
@@ -273,57 +264,6 @@ _block_max = cuda.jit(device=True, inline="always")(_block_max)
 # ------------------------------------------------------------------------- regrouping
 
 
-def _feistel(x, half_bits, mask, k0, k1, k2, k3):
-    """Four Feistel rounds on the 2 half_bits-bit word x (uint64, half_bits <= 32): a
-    bijection of 0..4**half_bits - 1."""
-    left = x >> half_bits
-    right = x & mask
-    left, right = right, left ^ (_round(right, k0) & mask)
-    left, right = right, left ^ (_round(right, k1) & mask)
-    left, right = right, left ^ (_round(right, k2) & mask)
-    left, right = right, left ^ (_round(right, k3) & mask)
-    return (left << half_bits) | right
-
-
-_feistel = cuda.jit(device=True, inline="always")(_feistel)
-
-
-def _permuted_index(p, n, half_bits, k0, k1, k2, k3):
-    """π(p) for p in 0..n-1: the Feistel bijection of the 4**half_bits words, walked along
-    its cycle until the image is below n (a bijection of 0..n-1)."""
-    one = np.uint64(1)
-    mask = (one << half_bits) - one
-    limit = np.uint64(n)
-    x = np.uint64(p)
-    while True:
-        x = _feistel(x, half_bits, mask, k0, k1, k2, k3)
-        if x < limit:
-            return x
-
-
-_permuted_index = cuda.jit(device=True, inline="always")(_permuted_index)
-
-
-@kernel
-def _permute(source, target, keys, half_bits, thermo, rescale):
-    """``target[r, :, p] = source[r, :, π_r(p)]``, π_r the bijection of realization r with
-    the round keys ``keys[r, 4:]`` of the step; with ``rescale`` the pending thermostat is
-    applied on the way (``_thermostat``)."""
-    r = cuda.blockIdx.y
-    n = source.shape[2]
-    k0 = keys[r, 4]
-    k1 = keys[r, 5]
-    k2 = keys[r, 6]
-    k3 = keys[r, 7]
-    for p in range(cuda.blockIdx.x * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
-        i = _permuted_index(p, n, half_bits, k0, k1, k2, k3)
-        for k in range(source.shape[1]):
-            value = source[r, k, i]
-            if rescale:
-                value = _thermostat(value, thermo, r, k)
-            target[r, k, p] = value
-
-
 def _round_keys(keys, r, step):
     """``keys[r, 4:]`` = the Feistel round keys of ``step``: ``thread_state`` of the
     realization's stream row ``keys[r, :4]`` and the step."""
@@ -359,25 +299,13 @@ def _seed_groups(group_keys, states, keys):
     states[r, g, 3] = s3
 
 
-def _collide_group(v, first, last, states, bounds, carry, tally, reals, flags, r, g):
-    """One time step of collisions in group g of realization r, the particles
-    ``first..last-1`` of ``v`` (d, n): ``kernels.collide_range`` with the group's own
-    majorant, stream, carry and tally."""
-    _speed_bounds(v, first, last, bounds[r, g])
-    _collide_bounded(
-        v, first, last, kernels.CONTIGUOUS, 1.0, states, bounds, carry, tally, reals, flags, r, g
-    )
-
-
-_collide_group = cuda.jit(device=True, inline="always")(_collide_group)
-
-
 def _collide_bounded(
     v, first, last, members, factor, states, bounds, carry, tally, reals, flags, r, g
 ):
-    """``_collide_group`` with the group's majorant already in ``bounds[r, g]``: the
-    members ``first..last-1`` of ``v`` (``kernels.collide_members``; ``kernels.CONTIGUOUS``
-    for consecutive particles) at ``factor`` times the pair coefficient of the settings."""
+    """One time step of collisions in group g of realization r, its majorant already in
+    ``bounds[r, g]``: ``kernels.collide_members`` on the members ``first..last-1`` of ``v``
+    (``kernels.CONTIGUOUS`` for consecutive particles) at ``factor`` times the pair
+    coefficient of the settings, with the group's stream, carry and tally."""
     state = states[r, g]
     u, s0, s1, s2, s3 = _uniform(state[0], state[1], state[2], state[3])
     state[0] = s0
@@ -401,21 +329,6 @@ def _collide_bounded(
 
 
 _collide_bounded = cuda.jit(device=True, inline="always")(_collide_bounded)
-
-
-@kernel
-def _collide(velocity, states, bounds, carry, tally, reals, flags):
-    """One time step of collisions in group g of realization r: ``kernels.collide_range``
-    on the particles ``g N // G .. (g + 1) N // G - 1`` of the regrouped velocities."""
-    g = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
-    r = cuda.blockIdx.y
-    n_groups = states.shape[1]
-    if g >= n_groups:
-        return
-    n = velocity.shape[2]
-    first = g * n // n_groups
-    last = (g + 1) * n // n_groups
-    _collide_group(velocity[r], first, last, states, bounds, carry, tally, reals, flags, r, g)
 
 
 @kernel
@@ -979,18 +892,13 @@ class _Batch:
         self.count = count
         self.n_groups = max(1, n // GROUP_SIZE)
         self.n_blocks = min(grid(n, THREADS), MAX_BLOCKS)
-        self.half_bits = np.uint64(max(1, math.ceil(math.log2(n) / 2)))
         if regrouping not in REGROUPINGS:
             raise ValueError(f"regrouping must be one of {REGROUPINGS}, not {regrouping!r}")
-        self.regrouping = regrouping
         self.columns = regrouping == "columns"
         self.velocity = to_device(velocity)
-        if regrouping == "feistel":
-            self.spare = device_zeros(velocity.shape)
-        else:  # G rows of m columns, the last one holding the rest
-            n_columns = -(-n // self.n_groups)
-            layout = [self.n_groups, n_columns, n - (n_columns - 1) * self.n_groups]
-            self.layout = to_device(np.array(layout, dtype=np.int64))
+        n_columns = -(-n // self.n_groups)  # G rows of m columns, the last holding the rest
+        layout = [self.n_groups, n_columns, n - (n_columns - 1) * self.n_groups]
+        self.layout = to_device(np.array(layout, dtype=np.int64))
         if self.columns:
             self.column_blocks = grid(self.n_groups, _TILE // (n_columns | 1))
             self.column_partials = device_zeros((count, self.column_blocks, _N_FORCE_SUMS))
@@ -1018,9 +926,9 @@ class _Batch:
         self.pending = False
 
     def step(self, sample: bool, histogram: bool) -> None:
-        """Launch one time step for every realization: 4 launches (Lie splitting) or 6
-        (Strang), 1 fewer with the ``sparse`` collisions and 2 fewer with the ``columns``
-        ones, and 2 more on a sampled step."""
+        """Launch one time step for every realization: 3 launches (Lie splitting) or 5
+        (Strang), 1 fewer with the ``columns`` collisions, and 2 more on a sampled
+        step."""
         s = self.settings
         strang = s.splitting == "strang"
         field_step = 0.5 * s.half_field_step if strang else s.half_field_step
@@ -1031,10 +939,7 @@ class _Batch:
             self._collide_columns(field_step)
             self._finish(end_of_step=True, folded=True)
         else:
-            if self.regrouping == "sparse":
-                self._collide_sparse()
-            else:
-                self._permute_and_collide()
+            self._collide_sparse()
             self._force_and_thermostat(field_step)
             self._finish(end_of_step=True)
         if sample:
@@ -1058,19 +963,6 @@ class _Batch:
     def _groups(self) -> tuple:
         """The per-group device arrays and the settings the collision kernels take."""
         return self.states, self.bounds, self.carry, self.tally, self.reals, self.flags
-
-    def _permute_and_collide(self) -> None:
-        """``feistel``: the collision stage of every group after the regrouping copy (and
-        the pending thermostat): two launches."""
-        _permute[(self.n_blocks, self.count), THREADS](
-            self.velocity, self.spare, self.keys, self.half_bits, self.thermo, self.pending
-        )
-        self.velocity, self.spare = self.spare, self.velocity
-        threads = min(BLOCK, self.n_groups)
-        _collide[(grid(self.n_groups, threads), self.count), threads](
-            self.velocity, *self._groups()
-        )
-        self.pending = False
 
     def _collide_sparse(self) -> None:
         """``sparse``: the collision stage of every group, in place (one launch; the

@@ -7,7 +7,8 @@ rescaled to its start after every step) with the engine's own collision stage
 
 - ``whole``: one group of all N particles (the CPU engine's collisions);
 - ``permuted``: groups of N/G >= 128 consecutive particles of a random permutation drawn
-  every step (the GPU's ``feistel`` regrouping, with a Fisher-Yates shuffle in its place);
+  every step (the GPU's first regrouping, ``feistel``, since removed, with a Fisher-Yates
+  shuffle in its place);
 - ``columns``: group g takes from each column j the particle of row (g + s_j) mod G, the
   shifts drawn every step (the GPU's ``columns`` regrouping, ``kernels.column_particle``);
 - ``in_place``: the same groups (the shifts of a key drawn every step,
