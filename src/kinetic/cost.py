@@ -382,7 +382,10 @@ bench cuda's 1.8-2.1 × 10⁹ particle-steps/s with Strang and a snapshot every 
 the step itself."""
 
 DSMC_GPU_BYTES_PER_PARTICLE = 80.0
-"""``cuda`` backend: velocities in two buffers, the permutation and its scratch."""
+"""``cuda`` backend, a job's host memory: the velocities of every realization built on the
+host (24 bytes a particle), each realization's Maxwellian start beside them and the
+majorant's scratch (8), rounded up; the GPU holds the 24 bytes and about 1 a particle of
+per-group state."""
 
 
 def dsmc_homogeneous(
