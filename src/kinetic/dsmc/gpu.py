@@ -264,17 +264,15 @@ _block_max = cuda.jit(device=True, inline="always")(_block_max)
 # ------------------------------------------------------------------------- regrouping
 
 
-def _round_keys(keys, r, step):
-    """``keys[r, 4:]`` = the Feistel round keys of ``step``: ``thread_state`` of the
-    realization's stream row ``keys[r, :4]`` and the step."""
-    k0, k1, k2, k3 = _thread_state(keys[r, 0], keys[r, 1], keys[r, 2], keys[r, 3], step)
+def _step_key(keys, r, step):
+    """``keys[r, 4]`` = the key of the groups of ``step`` (``kernels.column_shift``): the
+    first word of ``thread_state`` of the realization's stream row ``keys[r, :4]`` and
+    the step."""
+    k0, _, _, _ = _thread_state(keys[r, 0], keys[r, 1], keys[r, 2], keys[r, 3], step)
     keys[r, 4] = k0
-    keys[r, 5] = k1
-    keys[r, 6] = k2
-    keys[r, 7] = k3
 
 
-_round_keys = cuda.jit(device=True, inline="always")(_round_keys)
+_step_key = cuda.jit(device=True, inline="always")(_step_key)
 
 
 # ------------------------------------------------------------------------- collisions
@@ -283,13 +281,13 @@ _round_keys = cuda.jit(device=True, inline="always")(_round_keys)
 @kernel
 def _seed_groups(group_keys, states, keys):
     """``states[r, g] = thread_state(group_keys[r], g)``: one stream per group; and the
-    round keys of step 0."""
+    groups' key of step 0."""
     g = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
     r = cuda.blockIdx.y
     if g >= states.shape[1]:
         return
     if g == 0:
-        _round_keys(keys, r, 0)
+        _step_key(keys, r, 0)
     s0, s1, s2, s3 = _thread_state(
         group_keys[r, 0], group_keys[r, 1], group_keys[r, 2], group_keys[r, 3], g
     )
@@ -704,7 +702,7 @@ def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step
     (``thermo[r, :4]`` = u, scale) from the block sums; ``thermo[r, 4]`` collects the
     step's ln(scale); with ``tops``, the largest |W| from the blocks' (``_force``) in
     ``thermo[r, 5]``; at the ``end_of_step`` the step is closed in ``clock[r]`` and the
-    next step's round keys are drawn (``_round_keys``)."""
+    next step's key is drawn (``_step_key``)."""
     r = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
     if r >= partials.shape[0]:
         return
@@ -741,7 +739,7 @@ def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step
     if end_of_step:
         thermo[r, _LOG_SCALE] = 0.0
         _advance_clock(clock[r], reals[_DURATION], reals[_RATE_EXPONENT], log_scale)
-        _round_keys(keys, r, np.int64(clock[r, 3]))
+        _step_key(keys, r, np.int64(clock[r, 3]))
     else:
         thermo[r, _LOG_SCALE] = log_scale
 
@@ -902,7 +900,7 @@ class _Batch:
         if self.columns:
             self.column_blocks = grid(self.n_groups, _TILE // (n_columns | 1))
             self.column_partials = device_zeros((count, self.column_blocks, _N_FORCE_SUMS))
-        keys = np.zeros((count, 8), dtype=np.uint64)
+        keys = np.zeros((count, 5), dtype=np.uint64)
         keys[:, :4] = streams
         self.keys = to_device(keys)
         self.states = device_zeros((count, self.n_groups, 4), np.uint64)
