@@ -921,6 +921,7 @@ class _Batch:
             device_zeros((count, samples.n_speed_bins + 1), np.int64),
         )
         self.reals, self.flags = _settings_arrays(settings, samples)
+        self.histogram_bytes = _histogram_bytes(self.histograms)
         self.pending = False
 
     def step(self, sample: bool, histogram: bool) -> None:
@@ -941,7 +942,7 @@ class _Batch:
             self._force_and_thermostat(field_step)
             self._finish(end_of_step=True)
         if sample:
-            private = _histogram_bytes(self.histograms) if histogram else 0
+            private = self.histogram_bytes if histogram else 0
             _observe[(self.n_blocks, self.count), THREADS, 0, private](
                 self.velocity,
                 self.partials,

@@ -228,7 +228,6 @@ def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
     moments, carry, states, tally, lost = cells
     rule, density_per_count, pair_coefficient, time_step = step
     half = rows[r, _HALF]
-    position, velocity, labels = source
     _, velocity_to, labels_to = target
     first = cell_start[r, c]
     last = cell_start[r, c + 1]
@@ -246,40 +245,16 @@ def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
     m4 = 0.0
     p = first
     while p + 2 <= last:  # two particles' loads in flight before their stores
-        i = order[r, p]
-        j = order[r, p + 1]
-        x0 = position[r, 0, i]
-        y0 = position[r, 1, i]
-        wx0 = velocity[r, 0, i]
-        wy0 = velocity[r, 1, i]
-        a0 = labels[r, 0, i]
-        b0 = labels[r, 1, i]
-        x1 = position[r, 0, j]
-        y1 = position[r, 1, j]
-        wx1 = velocity[r, 0, j]
-        wy1 = velocity[r, 1, j]
-        a1 = labels[r, 0, j]
-        b1 = labels[r, 1, j]
+        x0, y0, wx0, wy0, a0, b0 = _particle(source, r, order[r, p])
+        x1, y1, wx1, wy1, a1, b1 = _particle(source, r, order[r, p + 1])
         _copy_particle(target, r, p, x0, y0, wx0, wy0, a0, b0)
         _copy_particle(target, r, p + 1, x1, y1, wx1, wy1, a1, b1)
         m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, wx0, wy0)
         m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, wx1, wy1)
         p += 2
     if p < last:
-        i = order[r, p]
-        wx0 = velocity[r, 0, i]
-        wy0 = velocity[r, 1, i]
-        _copy_particle(
-            target,
-            r,
-            p,
-            position[r, 0, i],
-            position[r, 1, i],
-            wx0,
-            wy0,
-            labels[r, 0, i],
-            labels[r, 1, i],
-        )
+        x0, y0, wx0, wy0, a0, b0 = _particle(source, r, order[r, p])
+        _copy_particle(target, r, p, x0, y0, wx0, wy0, a0, b0)
         m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, wx0, wy0)
     cell_moments = moments[r]
     cell_moments[c, 0] = m0
@@ -327,6 +302,23 @@ def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
 
 
 _collide_in_cell = cuda.jit(device=True, inline="always")(_collide_in_cell)
+
+
+def _particle(source, r, i):
+    """Particle i of realization r of the ``source`` buffers: ``(x, y, w_x, w_y, ident,
+    partner)``."""
+    position, velocity, labels = source
+    return (
+        position[r, 0, i],
+        position[r, 1, i],
+        velocity[r, 0, i],
+        velocity[r, 1, i],
+        labels[r, 0, i],
+        labels[r, 1, i],
+    )
+
+
+_particle = cuda.jit(device=True, inline="always")(_particle)
 
 
 def _copy_particle(target, r, p, x, y, wx, wy, ident, partner):

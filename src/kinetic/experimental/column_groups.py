@@ -87,44 +87,32 @@ def _run(velocity, grouping, n_steps, pair_base, duration, restitution, state, g
             top = max(top, speed_sq)
         top = math.sqrt(top)
         for g in range(n_rows):
-            if grouping == 3:
-                group = (n_rows, n_columns, full_rows, g, key)
+            group = (n_rows, n_columns, full_rows, g, key)
+            size = 0
+            if grouping == 3:  # in place, against the whole gas's majorant
                 size = kernels.group_size(group)
                 bounds[g, :d] = 0.0
                 bounds[g, d] = top
                 bounds[g, d + 1] = top
-                carry[g, 0] = rng.uniform(state)
-                collisions = kernels.Collisions(
-                    kernels.HARD_SPHERES,
-                    restitution,
-                    pair_base / (size - 1),
-                    duration,
-                    False,
-                    bounds[g],
-                    carry[g],
-                    tally[g],
-                )
-                kernels.collide_members(velocity, 0, size, group, states[g], collisions)
-                continue
-            size = 0
-            if grouping == 0:
-                for i in range(n):
-                    members[size] = i
-                    size += 1
-            elif grouping == 1:
-                for q in range(g * n // n_rows, (g + 1) * n // n_rows):
-                    members[size] = order[q]
-                    size += 1
-            else:
-                for j in range(n_columns):
-                    p = kernels.column_particle(j, g, shifts[j], n_rows, n_columns, full_rows)
-                    if p >= 0:
-                        members[size] = p
+            else:  # copied out in member order, against the group's own majorant
+                if grouping == 0:
+                    for i in range(n):
+                        members[size] = i
                         size += 1
-            for q in range(size):
-                for k in range(d):
-                    scratch[k, q] = velocity[k, members[q]]
-            kernels.speed_bounds(scratch, 0, size, bounds[g])
+                elif grouping == 1:
+                    for q in range(g * n // n_rows, (g + 1) * n // n_rows):
+                        members[size] = order[q]
+                        size += 1
+                else:
+                    for j in range(n_columns):
+                        p = kernels.column_particle(j, g, shifts[j], n_rows, n_columns, full_rows)
+                        if p >= 0:
+                            members[size] = p
+                            size += 1
+                for q in range(size):
+                    for k in range(d):
+                        scratch[k, q] = velocity[k, members[q]]
+                kernels.speed_bounds(scratch, 0, size, bounds[g])
             carry[g, 0] = rng.uniform(state)
             collisions = kernels.Collisions(
                 kernels.HARD_SPHERES,
@@ -136,6 +124,9 @@ def _run(velocity, grouping, n_steps, pair_base, duration, restitution, state, g
                 carry[g],
                 tally[g],
             )
+            if grouping == 3:
+                kernels.collide_members(velocity, 0, size, group, states[g], collisions)
+                continue
             kernels.collide_range(scratch, 0, size, states[g], collisions)
             for q in range(size):
                 for k in range(d):
