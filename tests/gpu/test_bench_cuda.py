@@ -80,3 +80,26 @@ def test_grouped_cloning_case_counts_every_points_events(monkeypatch):
     assert case["events"] > 0
     assert case["events_per_second"] == case["events"] / case["wall_seconds"]
     assert case["path"] == "grouped" and case["planned_seconds"] > 0
+
+
+def test_maxwell_z_score_at_lambda_zero_is_zero_not_a_division_by_zero():
+    """Maxwell molecules at λ = 0 give μ = 0 with no spread (every weight 1): the H100 run
+    of revision 5836ea7 lost ``cloning_physics`` to that division."""
+    assert bench._z_score(0.0, 0.0) == 0.0
+    assert bench._z_score(0.1, 0.0) is None
+    assert bench._z_score(-0.003, 0.0015) == pytest.approx(-2.0)
+
+
+def test_dsmc_case_rates_its_collisions_on_the_engines_clock():
+    """``dsmc_speed``/``dsmc_scaling`` cases report the rates on the engine's clock (the
+    steps, without the host's Maxwellian starts), which a short run on a GPU spends as
+    long on as on its steps, beside the wall-clock ones."""
+    case = bench._dsmc(64, 2, 2.0, "cuda")
+    assert 0 < case["engine_seconds"] <= case["wall_seconds"]
+    assert case["collisions"] > 0
+    assert case["engine_collisions_per_second"] == case["collisions"] / case["engine_seconds"]
+    steps = 2.0 / 0.1
+    assert case["engine_particle_steps_per_second"] == pytest.approx(
+        64 * 2 * steps / case["engine_seconds"]
+    )
+    assert case["engine_collisions_per_second"] >= case["collisions_per_second"]
