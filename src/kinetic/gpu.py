@@ -52,10 +52,10 @@ def _lock_simulated_shared_arrays() -> bool:
     when absent, creates it, without a lock: two threads of a block arriving together can
     each create their own (uninitialised) array and never see each other's writes (seen
     as a cloning batch that did not repeat its realizations, and as about one run in ten
-    of a script running ``dsmc.gpu._collide_columns``, whose threads start with their
-    shared arrays). The replacement keys on the caller's file and line as numba does,
-    under a lock; the GPU has no such race. Returns whether it is installed (False for a
-    numba-cuda without this layout)."""
+    of a script running the homogeneous DSMC's ``_collide_columns``, since removed, whose
+    threads started with their shared arrays). The replacement keys on the caller's file
+    and line as numba does, under a lock; the GPU has no such race. Returns whether it is
+    installed (False for a numba-cuda without this layout)."""
     import sys
     import threading
 

@@ -132,11 +132,9 @@ def test_cuda_without_a_gpu_stops_before_any_work(monkeypatch):
 
 
 def test_dataset_has_the_cpu_layout(forced_runs, assert_cpu_layout):
-    from kinetic.dsmc import gpu
-
     cuda, _, cpu, _ = forced_runs
     assert_cpu_layout(cuda, cpu)
-    assert cuda.attrs["collision_groups"] == gpu.REGROUPING
+    assert cuda.attrs["collision_groups"] == "sparse"
     assert cpu.attrs["collision_groups"] == "whole box"
 
 
@@ -179,16 +177,7 @@ def test_same_seed_gives_identical_datasets(forced_runs):
     assert not np.array_equal(other.moments.values, full.moments.values[:2, :1])
 
 
-@pytest.fixture(params=["columns", "sparse"])
-def regrouping(request, monkeypatch):
-    """Each way of colliding the groups re-dealt every step (``gpu.REGROUPING``)."""
-    from kinetic.dsmc import gpu
-
-    monkeypatch.setattr(gpu, "REGROUPING", request.param)
-    return request.param
-
-
-def test_elastic_collisions_conserve_energy_and_momentum(regrouping):
+def test_elastic_collisions_conserve_energy_and_momentum():
     """The columns layout at N = 131 has holes (the last column holds 3 of 4 rows, so one
     group in four is a particle short in each step); two groups writing one particle
     would break the conservation. A snapshot every other step: the ``sparse`` collisions
@@ -210,14 +199,10 @@ def test_elastic_collisions_conserve_energy_and_momentum(regrouping):
     np.testing.assert_allclose(run.moments.sel(moment="cx"), 0.0, atol=1e-12)
 
 
-@pytest.mark.parametrize("regrouping", ["columns", "sparse"])
-def test_column_groups_give_a_realization_the_same_numbers_alone(monkeypatch, regrouping):
+def test_column_groups_give_a_realization_the_same_numbers_alone():
     """The columns layout: a realization run alone repeats, bit for bit, the numbers it
     got beside another (its shifts and group streams depend on its seed and stream row
     only: the same seed, the same numbers); another seed gives other numbers."""
-    from kinetic.dsmc import gpu
-
-    monkeypatch.setattr(gpu, "REGROUPING", regrouping)
     options = {"restitution": 0.8, "n_particles": 131, "n_realizations": 2}
     full = _run("cuda", **options)
     alone = _run("cuda", **{**options, "n_realizations": 1, "first_realization": 1})
@@ -229,71 +214,6 @@ def test_column_groups_give_a_realization_the_same_numbers_alone(monkeypatch, re
     assert np.all(full.collisions > 0)
     other = _run("cuda", **{**options, "n_realizations": 1, "first_realization": 1, "seed": 6})
     assert not np.array_equal(other.moments.values, alone.moments.values)
-
-
-def test_group_majorants_found_by_several_threads_give_the_one_thread_numbers(monkeypatch):
-    """``columns``: a group's majorant (mean velocity, two largest speeds about it) found
-    by 2 or 8 threads of the block together (``BOUND_LANE_BITS`` 1, 3) instead of one
-    (0: the numbers of ``kernels.speed_bounds``) differs in rounding only, which moves no
-    candidate count, acceptance or raised bound: the same collisions, and the moments to
-    1e-12. N = 131: groups a particle short, and 4 threads x 2 lanes share the block's
-    groups over several passes."""
-    from kinetic.dsmc import gpu
-
-    monkeypatch.setattr(gpu, "REGROUPING", "columns")
-    options = {"restitution": 0.8, "n_particles": 131, "n_realizations": 2}
-    monkeypatch.setattr(gpu, "BOUND_LANE_BITS", 0)
-    one = _run("cuda", **options)
-    for bits in (1, 3):
-        monkeypatch.setattr(gpu, "BOUND_LANE_BITS", bits)
-        lanes = _run("cuda", **options)
-        np.testing.assert_array_equal(lanes.collisions.values, one.collisions.values)
-        for name in ("moments", "cooling_rate", "thermostat_rate"):
-            np.testing.assert_allclose(
-                lanes[name].values, one[name].values, rtol=1e-12, atol=1e-14, err_msg=name
-            )
-    assert np.all(one.collisions > 0)
-    monkeypatch.setattr(gpu, "BOUND_LANE_BITS", 4)  # 16 threads: more than a block has
-    with pytest.raises(ValueError, match="BOUND_LANE_BITS"):
-        _run("cuda", **options)
-
-
-def test_column_pass_folds_in_the_force_step_of_the_force_kernel():
-    """``columns`` applies the force step as it writes its tile back (``_scatter``): one
-    pass, with a field, gives the velocities of the same pass without a field followed
-    by the force kernel of the ``sparse`` path (``_force``), bit for bit (the same
-    arithmetic on the same particles), and the thermostat's mean velocity and scale to
-    rounding (its sums are taken in another order); an Euler step past its limit stops
-    the run there too."""
-    from kinetic.dsmc import gpu, kernels
-    from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
-
-    settings = HomogeneousSettings(
-        n_particles=131, restitution=0.8, time_step=0.4, reduced_field=0.25, force_step="euler"
-    )
-    streams = realization_streams(5, 0, 2)
-    folded, plain, blown = (
-        gpu._Batch(settings, Samples(stride=1), streams, "columns") for _ in range(3)
-    )
-    field_step = settings.half_field_step
-    folded._collide_columns(field_step)
-    plain._collide_columns(0.0)
-    plain._force_and_thermostat(field_step)
-    after = folded.velocity.copy_to_host()
-    np.testing.assert_array_equal(after, plain.velocity.copy_to_host())
-    accepted = folded.tally.copy_to_host()[:, :, kernels.TALLY_ACCEPTED]
-    assert np.all(accepted.sum(axis=1) > 0)  # it collided
-    folded._finish(end_of_step=True, folded=True)
-    plain._finish(end_of_step=True)
-    thermo = folded.thermo.copy_to_host()[:, : gpu._TOP]  # the tops are the force kernel's
-    np.testing.assert_allclose(
-        thermo, plain.thermo.copy_to_host()[:, : gpu._TOP], rtol=1e-13, atol=1e-15
-    )
-    np.testing.assert_allclose(thermo[:, :3], after.mean(axis=2), rtol=1e-12, atol=1e-15)
-    assert np.all(np.abs(thermo[:, 3] - 1) > 1e-6)  # collisions and field: a real rescaling
-    blown._collide_columns(50.0)
-    with pytest.raises(RuntimeError, match="reduce time_step"):
-        blown.check(1)
 
 
 def test_sparse_majorant_bounds_the_stored_velocities_exactly():
@@ -310,7 +230,7 @@ def test_sparse_majorant_bounds_the_stored_velocities_exactly():
     settings = HomogeneousSettings(
         n_particles=131, restitution=0.8, time_step=0.2, reduced_field=0.25, force_step="exact"
     )
-    batch = gpu._Batch(settings, Samples(stride=1), realization_streams(5, 0, 2), "sparse")
+    batch = gpu._Batch(settings, Samples(stride=1), realization_streams(5, 0, 2))
     seen = set()
     for step in range(4):
         batch.step(sample=step % 2 == 1, histogram=False)
@@ -373,7 +293,7 @@ def _window_statistics(run, name):
     return mean_and_sem(run[name].values.ravel())
 
 
-def test_hcs_cooling_rate_and_a2_match_the_cpu_engine_and_theory(regrouping):
+def test_hcs_cooling_rate_and_a2_match_the_cpu_engine_and_theory():
     alpha = 0.5
     # zero field: the thermostat only rescales, which commutes with the collisions, so
     # even δt = 0.4 τ has no splitting error
@@ -433,10 +353,10 @@ def test_bench_memory_bound_times_every_pass_of_the_step():
     )
     assert 0 < sparse["candidates_per_particle_step"] < 1
     assert 0 < sparse["acceptance"] <= 1
-    columns = report["columns"]  # the same step with the columns regrouping
-    assert columns["passes"]["collide_columns"]["seconds"] > 0
-    assert columns["step"]["bound_seconds"] == pytest.approx(
-        48 * particles / report["copy_bytes_per_second"]
-    )
-    # the threads a group's majorant, every count a block of the simulator's 8 has
-    assert [case["bound_lane_bits"] for case in columns["lanes"]] == [0, 1, 2, 3]
+    assert set(report) == {
+        "n_particles",
+        "realizations",
+        "copy_seconds",
+        "copy_bytes_per_second",
+        "sparse",
+    }

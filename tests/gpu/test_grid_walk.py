@@ -1,6 +1,6 @@
 """``kinetic.gpu.first_pair``/``next_pair``: the grid-stride walk over (row, index) pairs
-that the GPU kernels use instead of a 64-bit division per element (the columns tile's
-slots, the cooperative inhomogeneous step's particles and cells) visits exactly the pairs
+that the GPU kernels use instead of a 64-bit division per element (the cooperative
+inhomogeneous step's particles and cells) visits exactly the pairs
 divmod(k, n) of k = start, start + stride, ..., whatever the stride against the row."""
 
 import os

@@ -324,7 +324,7 @@ def test_speed_classes_conserve_the_particles_through_new_layouts(d):
 
 @pytest.mark.parametrize("n_particles", [20, 131, 2000, 2047])
 def test_column_groups_hold_every_particle_once_whatever_the_shifts(n_particles):
-    """``kernels.column_particle`` (the CUDA backend's ``columns`` regrouping): for random
+    """``kernels.column_particle`` (the CUDA backend's groups): for random
     shifts, the G groups of the column layout partition the N particles, each group
     holding m or m - 1 of them, and a group changes its members from one draw to the next."""
     n_rows = max(1, n_particles // 128)

@@ -32,8 +32,8 @@ scaled to the whole job (``dsmc_paper_job``).
 Memory bound (``memory_bound``): the GPU's coalesced copy bandwidth, and each pass
 of the homogeneous DSMC's step (collisions, force, thermostat) launched alone at
 montanero2007's paper settings, with its bytes per second; the step's time against the
-time its least DRAM traffic (``SPARSE_PASS_BYTES``, ``COLUMNS_PASS_BYTES``: 48 bytes a
-particle) takes at that bandwidth, for the ``sparse`` and the ``columns`` collisions.
+time its least DRAM traffic (``SPARSE_PASS_BYTES``: 48 bytes a particle) takes at that
+bandwidth (``sparse``).
 
 Inhomogeneous DSMC (costantini2010, ``inhomogeneous_speed``): particle-steps and
 collisions per second of ``simulate_cooling_modes(backend="cuda")`` at N = 3000 × Λ = 10
@@ -419,11 +419,8 @@ def _dsmc(n, realizations, duration, backend, seed=13, **extra) -> dict[str, Any
 def dsmc_speed(quick: bool) -> dict[str, Any]:
     """Homogeneous DSMC: collisions per second at N = 2 × 10⁵ × 50 realizations (and one
     realization, and 2 × 10⁶ × 5), the CPU engine on one core, and the HCS cooling rate and
-    a2 (α = 0.9) and the heat flux at ε* = 0.025 on the GPU; the first case and the HCS
-    once more with ``columns`` (or ``sparse`` where that is the default: ``hcs_columns``;
-    each case names its ``regrouping``)."""
-    from kinetic.dsmc import gpu as dsmc_gpu
-
+    a2 (α = 0.9) and the heat flux at ε* = 0.025 on the GPU (each case names its
+    ``regrouping``, the dataset's ``collision_groups``)."""
     _dsmc(2000, 2, 1.0, "cuda")  # compile
     gpu: list[dict[str, Any]] = []
     physics: dict[str, Any] = {}
@@ -434,10 +431,6 @@ def dsmc_speed(quick: bool) -> dict[str, Any]:
     cpu = _dsmc(200_000, 1, 2.0, "cpu")
     physics["hcs"] = _dsmc(20_000, 16, 60.0, "cuda", seed=21)
     physics["forced"] = _dsmc(20_000, 48, 60.0, "cuda", seed=22, reduced_field=0.025)
-    other = "columns" if dsmc_gpu.REGROUPING != "columns" else "sparse"
-    with _regrouping(other):  # the same HCS and the fullest launch, regrouped the other way
-        physics[f"hcs_{other}"] = _dsmc(20_000, 16, 60.0, "cuda", seed=21)
-        gpu.append(_dsmc(200_000, 50, 20.0, "cuda"))
     for case in gpu:
         case["speedup_over_one_core"] = case["collisions_per_second"] / cpu["collisions_per_second"]
         case["engine_speedup_over_one_core"] = (
@@ -661,18 +654,11 @@ def dsmc_paper_job(quick: bool) -> dict[str, Any]:
 
 SPARSE_PASS_BYTES = {"collide_sparse": 0, "force": 48}
 """Least DRAM bytes per particle of each pass of a Lie step of the homogeneous DSMC
-(kinetic.dsmc.gpu, float64 velocities, d = 3) with the ``sparse`` collisions
-(``dsmc.gpu.REGROUPING``): one thread a group
-reads and writes only its candidate pairs in place (about 0.5 % of the particles a step at
-montanero2007's δt = 0.003 τ: left out), then the force pass reads and writes every
-particle and finds the majorant of the next step (its largest speed): 48 bytes a
+(kinetic.dsmc.gpu, float64 velocities, d = 3) with its ``sparse`` collisions: one thread
+a group reads and writes only its candidate pairs in place (about 0.5 % of the particles
+a step at montanero2007's δt = 0.003 τ: left out), then the force pass reads and writes
+every particle and finds the majorant of the next step (its largest speed): 48 bytes a
 particle-step, the least a step that moves every particle can touch."""
-
-COLUMNS_PASS_BYTES = {"collide_columns": 48}
-"""The same for the ``columns`` collisions (``dsmc.gpu.REGROUPING``): a thread block reads
-its groups' particles from consecutive rows of each column, collides them, and writes
-them back after the force step (with the thermostat's sums): 48 bytes a particle-step,
-the least a step that moves every particle can touch."""
 
 
 def _launch_seconds(launch, repeats: int) -> float:
@@ -709,9 +695,7 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     the velocities' size; each pass of a step with the ``sparse`` collisions launched
     alone and the whole step, with the passes' bytes (``SPARSE_PASS_BYTES``) over their
     time and the step's time against the time its 48 bytes a particle would take at the
-    copy bandwidth, and the candidates a particle-step (``sparse``); the same for the
-    ``columns`` collisions (``columns``: its collide-and-force pass and whole step, 48
-    bytes), with 1 to 16 threads finding a group's majorant (``columns.lanes``)."""
+    copy bandwidth, and the candidates a particle-step (``sparse``)."""
     from kinetic.dsmc import gpu as dsmc_gpu
     from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
 
@@ -734,7 +718,7 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
         "copy_seconds": copy,
         "copy_bytes_per_second": copy_bandwidth,
     }
-    batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations), "sparse")
+    batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations))
     sparse = {
         "collide_sparse": lambda: batch._collide_sparse(),
         "force": lambda: batch._force_and_thermostat(field_step),
@@ -755,44 +739,7 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     candidates = int(tally[dsmc_gpu.kernels.TALLY_CANDIDATES])
     out["sparse"]["candidates_per_particle_step"] = candidates / (particles * 2 * (repeats + 1))
     out["sparse"]["acceptance"] = int(tally[dsmc_gpu.kernels.TALLY_ACCEPTED]) / max(candidates, 1)
-    del batch
-    batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations), "columns")
-    collide = _launch_seconds(lambda: batch._collide_columns(field_step), repeats)
-    step = _launch_seconds(lambda: batch.step(sample=False, histogram=False), repeats)
-    out["columns"] = {
-        "bound_lane_bits": dsmc_gpu.BOUND_LANE_BITS,
-        "passes": {
-            "collide_columns": _traffic(
-                collide, COLUMNS_PASS_BYTES["collide_columns"], particles, copy_bandwidth
-            )
-        },
-        "step": _against_bound(step, sum(COLUMNS_PASS_BYTES.values()), particles, copy_bandwidth),
-    }
-    # the threads that find a group's majorant together (``BOUND_LANE_BITS``: 0 is one)
-    lanes = []
-    out["columns"]["lanes"] = lanes
-    for bits in range(5):
-        if (1 << bits) > dsmc_gpu._TILE_THREADS:
-            continue  # more threads a group than a block has (under the simulator)
-        with mock.patch.object(dsmc_gpu, "BOUND_LANE_BITS", bits):
-            collide = _launch_seconds(lambda: batch._collide_columns(field_step), repeats)
-        lanes.append(
-            {
-                "bound_lane_bits": bits,
-                "collide_columns": _traffic(
-                    collide, COLUMNS_PASS_BYTES["collide_columns"], particles, copy_bandwidth
-                ),
-            }
-        )
     return out
-
-
-def _regrouping(name: str):
-    """Make the homogeneous DSMC batches regroup by ``name`` (``dsmc.gpu.REGROUPING``; a
-    context manager)."""
-    from kinetic.dsmc import gpu as dsmc_gpu
-
-    return mock.patch.object(dsmc_gpu, "REGROUPING", name)
 
 
 def _traffic(seconds, bytes_per_particle, particles, copy_bandwidth) -> dict[str, float]:
@@ -1001,12 +948,12 @@ SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
     "job_startup": job_startup,
 }
 """In the order a short device lease should spend its minutes: what no GPU has timed yet
-first (the inhomogeneous DSMC's phases; the homogeneous DSMC's collide-and-force pass with
-a group's majorant found by several threads, ``memory_bound``'s ``columns.lanes``; the
-cloning points of 10⁴ clones sharing the launched path, ``cloning_speed``'s
-``grouped_launched`` against its plan; the inhomogeneous DSMC's speed, the montanero2007
-paper job, the physics of the resident cloning kernel), then what the H100 run of revision
-2984f74 measured (the homogeneous DSMC's speed, the job startup)."""
+first (the inhomogeneous DSMC's phases; the homogeneous DSMC's ``sparse`` step against
+its bandwidth bound, ``memory_bound``; the cloning points of 10⁴ clones sharing the
+launched path, ``cloning_speed``'s ``grouped_launched`` against its plan; the
+inhomogeneous DSMC's speed, the montanero2007 paper job, the physics of the resident
+cloning kernel), then what the H100 run of revision 2984f74 measured (the homogeneous
+DSMC's speed, the job startup)."""
 
 
 PREFLIGHT_MODULES = (

@@ -5,8 +5,7 @@ are row r of a ``(R, d, N)`` float64 array (each row the CPU engine's struct of 
 One time step is a short sequence of launches, each covering every realization (the
 realization is the grid's y index; the kernels over particles run THREADS x blocks
 threads per realization, each looping over the particles with the grid's stride): 3
-launches with the Lie splitting, 5 with the Strang splitting (1 fewer with the
-``columns`` collisions), 2 more on a sampled step.
+launches with the Lie splitting, 5 with the Strang splitting, 2 more on a sampled step.
 
 1. **Groups.** Every step the particles of a realization are re-dealt into G = max(1,
    N // GROUP_SIZE) random groups without moving them: the N particles are m columns of
@@ -32,31 +31,39 @@ launches with the Lie splitting, 5 with the Strang splitting (1 fewer with the
      rounded up or down at random, without bias;
    - its own xoshiro256+ stream (``thread_state`` of the realization's row after its
      Maxwellian start and the group index), kept on the device.
-   With ``REGROUPING = "sparse"`` (the default) each group collides in place
-   (``_collide_sparse``), its thread reading and writing only its candidate pairs (at
-   montanero2007's δt = 0.003 τ a group of 128 has about 0.2 collisions a step). The
-   majorant is the realization's, as in the CPU engine's one box: twice the largest |W|
-   of the stored velocities, found by the force pass before (the collisions run on W at
-   the thermostatted rate, ``kernels._deferred``), or its image under the thermostat
-   once a snapshot has applied it, raised on the fly as on the CPU. The force pass of
-   step 3 is then the step's only pass over every particle (48 bytes a Lie step).
-   With ``REGROUPING = "columns"`` a thread block gathers 14 neighbouring groups into
-   shared memory, finds each group's own majorant (mean velocity and two largest speeds
-   about it, 2^BOUND_LANE_BITS threads a group), collides them and writes them back
-   after the force step, with the block's thermostat sums (``_collide_columns``: the
-   collisions and the force step in one launch, also 48 bytes a Lie step).
+   Each group collides in place (``_collide_sparse``, the ``sparse`` collisions), its
+   thread reading and writing only its candidate pairs (at montanero2007's δt = 0.003 τ
+   a group of 128 has about 0.2 collisions a step). The majorant is the realization's,
+   as in the CPU engine's one box: twice the largest |W| of the stored velocities, found
+   by the force pass before (the collisions run on W at the thermostatted rate,
+   ``kernels._deferred``), or its image under the thermostat once a snapshot has applied
+   it, raised on the fly as on the CPU. The force pass of step 3 is then the step's only
+   pass over every particle (48 bytes a Lie step).
 3. **Force and thermostat** (``_force``, ``_finish``): the force step of every particle
    (``kernels._force_factor``: Euler or exact) with the sums ΣV_k, Σ|V|² per realization,
    then ``kernels._thermostat_scale`` and the step's clock (``kernels._advance_clock``)
    on one thread per realization. The thermostat V -> scale (V - u) itself is applied by
-   the next kernel that reads the velocities (the next force step, ``columns`` pass or
-   snapshot: no pass of its own). Lie splitting: once after the collisions; Strang: with
-   half the field before and after them.
+   the next kernel that reads the velocities (the next force step or snapshot: no pass
+   of its own). Lie splitting: once after the collisions; Strang: with half the field
+   before and after them.
 4. **Observers** on sampled steps (``_observe``): the moments of
    ``kernels._particle_moments`` and, in the histogram windows, the bins of
    ``kernels._histogram_bins``, counted by each thread block in its own histograms in
    shared memory and added to the realization's once a block (where they fit, which the
    configs' few hundred bins do).
+
+Two earlier regroupings are gone. ``feistel`` (a Feistel bijection of the indices and a
+copy of the particles in its order every step) was removed after revision 2c14c5a: an
+H100 (revision 2984f74, docs/data/cuda-h100-2984f74.json) timed a step of
+montanero2007's paper job (50 realizations of 2 × 10⁵) at 1.53 ms against 1.07 ms for
+``columns``. ``columns`` (a thread block gathered 14 neighbouring groups into shared
+memory, found each group's own majorant, collided them and wrote them back after the
+force step, in one launch) was removed after revision cb514dd: an H100 (revision
+5836ea7, docs/data/cuda-h100-5836ea7.json, bench cuda ``memory_bound``) timed a Lie step
+of those 10⁷ particles at 0.738 ms against 0.341 ms for ``sparse`` (2.16 times slower),
+and ``dsmc_speed``'s HCS (N = 2 × 10⁴, 16 realizations, α = 0.9) gave ζ = 0.071302 ±
+0.000036, a2 = -0.0162 ± 0.0003 with ``columns`` against 0.071327 ± 0.000037, -0.0158 ±
+0.0004 with ``sparse``.
 
 Determinism: the same call gives the same numbers twice (on one GPU model). Float sums
 are folded in a fixed order: each thread sums a fixed set of particles (stride THREADS
@@ -101,10 +108,8 @@ from kinetic.gpu import (
     cuda,
     device_function,
     device_zeros,
-    first_pair,
     grid,
     kernel,
-    next_pair,
     synchronize,
     to_device,
     warm,
@@ -139,51 +144,6 @@ over the particles with the grid's stride (the number of blocks depends on N onl
 WEIGHT_UNIT = 2.0**-20
 """Resolution of the fixed-point ``cx_weights`` sums (per observation)."""
 
-REGROUPINGS = ("columns", "sparse")
-REGROUPING = "sparse"
-"""How the groups of the columns layout collide every step (read when a batch is made):
-``columns``, a thread block gathers its groups into shared memory, finds their own
-majorants, collides them and writes them back after the force step
-(``_collide_columns``); ``sparse``, each group is collided in place by one thread that
-reads and writes only its candidate pairs, against the realization's majorant from the
-force pass (``_collide_sparse``), then the force pass.
-
-An H100 timed ``columns`` (revision 2984f74, docs/data/cuda-h100-2984f74.json): a step
-of montanero2007's paper job (50 realizations of 2 × 10⁵) took 1.07 ms, against 1.53 ms
-for the first regrouping, ``feistel`` (a Feistel bijection of the indices and a copy of
-the particles in its order every step, removed after revision 2c14c5a), and the HCS of
-the same seed (N = 2 × 10⁴, 16 realizations, α = 0.9) gave ζ = 0.071302 ± 0.000036 and
-a2 = -0.0162 ± 0.0003 against 0.071310 ± 0.000028 and -0.0159 ± 0.0005. ``sparse`` is
-the default since it was built (not yet timed): its only pass over every particle is the
-force pass, timed in that run at 0.24 ms for the same particles (the copy bandwidth),
-where the ``columns`` pass took 1.00 ms; its collisions touch about 0.5 % of the
-particles a step (bench cuda ``memory_bound``'s ``sparse`` times both)."""
-
-_TILE = 1806
-"""Particles a thread block of ``_collide_columns`` holds in shared memory: 14 groups of
-128 at a stride of 129, 7 of 255. With its column shifts (int32) and the force step's
-block sums, the block declares 48 464 bytes, under the 49 152 a block may declare
-statically."""
-
-_MAX_COLUMNS = 2 * GROUP_SIZE
-"""Most columns (particles of a group) of the ``columns`` layout: groups hold fewer than
-2 GROUP_SIZE particles (256: the size of the kernel's shift array, fixed at import)."""
-
-_TILE_THREADS = 8 if simulated() else 128
-"""Threads per block of ``_collide_columns`` (each gathers and scatters its share of the
-tile; then each collides groups of it, one at a time)."""
-
-BOUND_LANE_BITS = 1 if simulated() else 3
-"""``columns``: log2 of the threads of a ``_collide_columns`` block that compute one group's
-majorant together (its mean velocity, then its two largest speeds about it: each thread
-a strided share of the group's particles, then a fixed-order fold, so fixed numbers for
-fixed N), before one of them runs the group's collisions. 3 (8 threads, 16 groups a pass
-of 128 threads, which covers a block's at most 14 groups) on a GPU, not yet timed; 0 is
-one thread a group, the majorant of ``kernels.speed_bounds`` bit for bit, as in the
-kernel timed on the H100 at revision 2984f74. Read at each launch (a kernel argument), so
-that the bench compares the counts with one compiled kernel. Under the simulator 1 (its
-blocks have 8 threads)."""
-
 N_MOMENTS = kernels.N_MOMENTS
 _N_FORCE_SUMS = 4
 
@@ -197,10 +157,6 @@ _KERNEL, _POISSON, _EXACT, _N_CX, _N_SPEED, _N = 0, 1, 2, 3, 4, 5
 # ``sparse`` majorant: top1 = top2 = it; at the start, of the Maxwellian)
 _SCALE, _LOG_SCALE, _TOP, _N_THERMO = 3, 4, 5, 6
 
-_two_largest = device_function(kernels._two_largest)
-_speed_sq = device_function(kernels._speed_sq)
-_column_particle = device_function(kernels.column_particle)
-_column_shift = device_function(kernels.column_shift)
 _group_members = device_function(kernels.group_size)
 _collide_members = device_function(kernels.collide_members)
 _force_factor = device_function(kernels._force_factor)
@@ -297,38 +253,6 @@ def _seed_groups(group_keys, states, keys):
     states[r, g, 3] = s3
 
 
-def _collide_bounded(
-    v, first, last, members, factor, states, bounds, carry, tally, reals, flags, r, g
-):
-    """One time step of collisions in group g of realization r, its majorant already in
-    ``bounds[r, g]``: ``kernels.collide_members`` on the members ``first..last-1`` of ``v``
-    (``kernels.CONTIGUOUS`` for consecutive particles) at ``factor`` times the pair
-    coefficient of the settings, with the group's stream, carry and tally."""
-    state = states[r, g]
-    u, s0, s1, s2, s3 = _uniform(state[0], state[1], state[2], state[3])
-    state[0] = s0
-    state[1] = s1
-    state[2] = s2
-    state[3] = s3
-    carry[r, g, 0] = u
-    if bounds[r, g, v.shape[0]] == 0.0:
-        return  # all the group's particles have one velocity: no collision
-    collisions = Collisions(
-        flags[_KERNEL],
-        reals[_RESTITUTION],
-        reals[_PAIR_BASE] * factor / (last - first - 1),
-        reals[_DURATION],
-        flags[_POISSON] != 0,
-        bounds[r, g],
-        carry[r, g],
-        tally[r, g],
-    )
-    _collide_members(v, first, last, members, state, collisions)
-
-
-_collide_bounded = cuda.jit(device=True, inline="always")(_collide_bounded)
-
-
 @kernel
 def _collide_sparse(
     velocity, states, bounds, carry, tally, reals, flags, keys, layout, thermo, pending
@@ -342,8 +266,9 @@ def _collide_sparse(
     engine's one box: with the thermostat ``pending`` (V = scale (W - u)), the collisions
     run on W at scale^p times the rate (``kernels._deferred``), else (applied by a
     snapshot, or the start: scale 1, u 0) on V about the centre -scale u, where
-    |V + scale u| = scale |W|. The collisions raise the group's bound where they make a
-    faster particle, as on the CPU."""
+    |V + scale u| = scale |W|. The group's pair coefficient is the settings' times
+    (N - 1)/(m - 1) (``reals[_PAIR_BASE]`` / (m - 1)), its stream, carry and tally its own; the
+    collisions raise the group's bound where they make a faster particle, as on the CPU."""
     g = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
     r = cuda.blockIdx.y
     n_rows = layout[0]
@@ -366,273 +291,29 @@ def _collide_sparse(
     row[d] = stretch * thermo[r, _TOP]
     row[d + 1] = row[d]
     size = _group_members(members)
-    _collide_bounded(
-        velocity[r], 0, size, members, factor, states, bounds, carry, tally, reals, flags, r, g
+    state = states[r, g]
+    u, s0, s1, s2, s3 = _uniform(state[0], state[1], state[2], state[3])
+    state[0] = s0
+    state[1] = s1
+    state[2] = s2
+    state[3] = s3
+    carry[r, g, 0] = u
+    if row[d] == 0.0:
+        return  # all the realization's particles have one velocity: no collision
+    collisions = Collisions(
+        flags[_KERNEL],
+        reals[_RESTITUTION],
+        reals[_PAIR_BASE] * factor / (size - 1),
+        reals[_DURATION],
+        flags[_POISSON] != 0,
+        row,
+        carry[r, g],
+        tally[r, g],
     )
-
-
-def _tile_slot(j, l, first_group, shifts, layout):
-    """Slot (column j, group l) of a block's tile of groups ``first_group ..``: ``(p, i)``,
-    the particle's index in its realization and its place in the tile, or p = -1 where the
-    slot holds none. Group l's particle of column j sits at ``l * (columns | 1) + j``: an
-    odd stride between groups, so that threads walking their groups side by side use
-    different shared-memory banks."""
-    n_rows = layout[0]
-    n_columns = layout[1]
-    g = first_group + l
-    if g >= n_rows:
-        return -1, 0
-    p = _column_particle(j, g, shifts[j], n_rows, n_columns, layout[2])
-    return p, l * (n_columns | 1) + j
-
-
-_tile_slot = cuda.jit(device=True, inline="always")(_tile_slot)
-
-
-def _first_slot(per_block):
-    """This thread's first slot of a tile and the step to its next, as (column, group)
-    pairs ``(j, l, dj, dl)`` (``kinetic.gpu.first_pair``): the slots s = j per_block + l
-    run over the ``per_block`` rows of one column, then the next column, and thread t takes
-    s = t, t + T, ... (T threads): consecutive threads take consecutive rows (coalesced
-    reads and writes). Two integer divisions a thread, none a slot (``next_pair``)."""
-    return first_pair(cuda.threadIdx.x, per_block, cuda.blockDim.x)
-
-
-_first_slot = cuda.jit(device=True, inline="always")(_first_slot)
-
-
-def _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale):
-    """Copy the particles of groups ``first_group ..`` (``per_block`` of them) of
-    realization r from ``velocity`` into the block's ``tile`` (``_tile_slot``), after the
-    pending thermostat if ``rescale``."""
-    j, l, dj, dl = _first_slot(per_block)
-    while j < layout[1]:
-        p, i = _tile_slot(j, l, first_group, shifts, layout)
-        if p >= 0:
-            for k in range(d):
-                if rescale:
-                    tile[k, i] = _thermostat(velocity[r, k, p], thermo, r, k)
-                else:
-                    tile[k, i] = velocity[r, k, p]
-        j, l = next_pair(j, l, dj, dl, per_block)
-
-
-_gather = cuda.jit(device=True, inline="always")(_gather)
-
-
-def _scatter(velocity, tile, shifts, layout, r, first_group, per_block, d, field_step, exact):
-    """The reverse of ``_gather``, with the force step: each particle of the tile goes
-    back to ``velocity`` as f V (``kernels._force_factor`` of a = ``field_step``, as in
-    ``_force``; none when a = 0). Returns this thread's sums ΣV_x, ΣV_y, ΣV_z, Σ|V|² after
-    the force and its failure code (0: none)."""
-    sum0 = 0.0
-    sum1 = 0.0
-    sum2 = 0.0
-    total_sq = 0.0
-    failed = 0
-    j, l, dj, dl = _first_slot(per_block)
-    while j < layout[1]:
-        p, i = _tile_slot(j, l, first_group, shifts, layout)
-        if p >= 0:
-            v0 = tile[0, i]
-            v1 = tile[1, i]
-            v2 = tile[2, i] if d == 3 else 0.0
-            if field_step != 0.0:
-                code, v0, v1, v2 = _forced(v0, v1, v2, field_step, exact)
-                if code != 0:
-                    failed = code
-            velocity[r, 0, p] = v0
-            velocity[r, 1, p] = v1
-            if d == 3:
-                velocity[r, 2, p] = v2
-            sum0 += v0
-            sum1 += v1
-            sum2 += v2
-            total_sq += v0 * v0 + v1 * v1 + v2 * v2
-        j, l = next_pair(j, l, dj, dl, per_block)
-    return sum0, sum1, sum2, total_sq, failed
-
-
-_scatter = cuda.jit(device=True, inline="always")(_scatter)
-
-
-def _group_size(g, shifts, layout):
-    """Particles of group g in the ``columns`` layout: m, or m - 1 where the last column
-    has no row for it."""
-    n_columns = layout[1]
-    last = _column_particle(
-        n_columns - 1, g, shifts[n_columns - 1], layout[0], n_columns, layout[2]
-    )
-    return n_columns if last >= 0 else n_columns - 1
-
-
-_group_size = cuda.jit(device=True, inline="always")(_group_size)
-
-
-def _lane_bounds(tile, shared, first, size, lane, lanes, leader, d):
-    """The majorant of the group at ``tile[:, first:first + size]`` computed by its
-    ``lanes`` threads together (this one is ``lane``; ``leader`` is the row of ``shared``
-    of its lane 0): ``(c0, c1, c2, top1, top2)``, the mean velocity and the two largest
-    speeds about it (squared), valid in lane 0. Each lane sums, then ranks, the particles
-    ``first + lane``, ``+ lanes``, ...; lane 0 folds the lanes' rows of ``shared`` in
-    lane order. Every thread of the block calls it (its barriers), inactive ones with
-    size 0."""
-    t = cuda.threadIdx.x
-    cuda.syncthreads()  # ``shared`` is free: the last pass's lane 0 has folded it
-    s0 = 0.0
-    s1 = 0.0
-    s2 = 0.0
-    for i in range(first + lane, first + size, lanes):
-        s0 += tile[0, i]
-        s1 += tile[1, i]
-        if d == 3:
-            s2 += tile[2, i]
-    shared[t, 0] = s0
-    shared[t, 1] = s1
-    shared[t, 2] = s2
-    cuda.syncthreads()
-    if lane == 0 and size > 0:
-        for q in range(1, lanes):
-            s0 += shared[t + q, 0]
-            s1 += shared[t + q, 1]
-            s2 += shared[t + q, 2]
-        shared[t, 0] = s0 / size
-        shared[t, 1] = s1 / size
-        shared[t, 2] = s2 / size
-    cuda.syncthreads()
-    c0 = shared[leader, 0]
-    c1 = shared[leader, 1]
-    c2 = shared[leader, 2]
-    top1 = 0.0
-    top2 = 0.0
-    for i in range(first + lane, first + size, lanes):
-        top1, top2 = _two_largest(_speed_sq(tile, i, d, c0, c1, c2), top1, top2)
-    cuda.syncthreads()  # every lane has read its centre
-    shared[t, 0] = top1
-    shared[t, 1] = top2
-    cuda.syncthreads()
-    if lane == 0:
-        for q in range(1, lanes):
-            top1, top2 = _two_largest(shared[t + q, 0], top1, top2)
-            top1, top2 = _two_largest(shared[t + q, 1], top1, top2)
-    return c0, c1, c2, top1, top2
-
-
-_lane_bounds = cuda.jit(device=True, inline="always")(_lane_bounds)
-
-
-@kernel
-def _collide_columns(
-    velocity,
-    states,
-    bounds,
-    carry,
-    tally,
-    reals,
-    flags,
-    keys,
-    layout,
-    thermo,
-    rescale,
-    partials,
-    status,
-    field_step,
-    exact,
-    lane_bits,
-):
-    """One time step of collisions of every group, regrouped without a copy (``columns``),
-    and the force step after them.
-
-    The N particles of a realization are ``layout`` = (G, m, rows of the last column)
-    columns of G rows, particle j G + row in column j (the last column holds
-    N - (m - 1) G). In a step, group g takes the particle of row (g + s_j) mod G of each
-    column j (``_column_shift`` of the step's key ``keys[r, 4]``): m particles, or m - 1
-    where the last column has no such row. Block b gathers groups b T/m .. (T = ``_TILE``)
-    into shared memory (after the pending thermostat if ``rescale``), its threads find each
-    group's majorant, 2^``lane_bits`` threads a group (``_lane_bounds``; with 0 bits one
-    thread, the numbers of ``kernels.speed_bounds`` bit for bit), one thread a group
-    collides it
-    (``_collide_bounded``), and the block writes the tile back after the force
-    step of a = ``field_step`` (``_scatter``), with the thermostat's sums ΣV_x, ΣV_y, ΣV_z,
-    Σ|V|² of its particles in ``partials[r, b, :4]`` (a fixed tree over the block's
-    threads, so fixed numbers for fixed N); a failed force step raises ``status[r]``. One
-    pass over the particles for the whole collide-and-force half of a step."""
-    tile = cuda.shared.array((3, _TILE), np.float64)
-    shifts = cuda.shared.array(_MAX_COLUMNS, np.int32)
-    shared = cuda.shared.array((_TILE_THREADS, _N_FORCE_SUMS), np.float64)
-    r = cuda.blockIdx.y
-    d = velocity.shape[1]
-    n_rows = layout[0]
-    n_columns = layout[1]
-    per_block = _TILE // (n_columns | 1)
-    first_group = cuda.blockIdx.x * per_block
-    for j in range(cuda.threadIdx.x, n_columns, cuda.blockDim.x):
-        shifts[j] = _column_shift(j, keys[r, 4], n_rows)
-    cuda.syncthreads()
-    _gather(velocity, tile, shifts, layout, r, first_group, per_block, d, thermo, rescale)
-    cuda.syncthreads()
-    v = tile[:d]
-    # 2^lane_bits threads a group's majorant, its first thread the collisions
-    lanes = 1 << lane_bits
-    lane = cuda.threadIdx.x & (lanes - 1)
-    leader = cuda.threadIdx.x - lane
-    for start in range(0, per_block, cuda.blockDim.x >> lane_bits):
-        l = start + (cuda.threadIdx.x >> lane_bits)
-        g = first_group + l
-        size = 0
-        if l < per_block and g < n_rows:
-            size = _group_size(g, shifts, layout)
-        first = l * (n_columns | 1)
-        c0, c1, c2, top1, top2 = _lane_bounds(tile, shared, first, size, lane, lanes, leader, d)
-        if lane == 0 and size > 0:
-            row = bounds[r, g]
-            row[0] = c0
-            row[1] = c1
-            if d == 3:
-                row[2] = c2
-            row[d] = math.sqrt(top1)
-            row[d + 1] = math.sqrt(top2)
-            _collide_bounded(
-                v,
-                first,
-                first + size,
-                kernels.CONTIGUOUS,
-                1.0,
-                states,
-                bounds,
-                carry,
-                tally,
-                reals,
-                flags,
-                r,
-                g,
-            )
-    cuda.syncthreads()
-    sum0, sum1, sum2, total_sq, failed = _scatter(
-        velocity, tile, shifts, layout, r, first_group, per_block, d, field_step, exact
-    )
-    if failed != 0:
-        cuda.atomic.max(status, r, failed)
-    sums = cuda.local.array(_N_FORCE_SUMS, np.float64)
-    sums[0] = sum0
-    sums[1] = sum1
-    sums[2] = sum2
-    sums[3] = total_sq
-    _block_sums(shared, sums, partials[r, cuda.blockIdx.x])
+    _collide_members(velocity[r], 0, size, members, state, collisions)
 
 
 # --------------------------------------------------------------- force and thermostat
-
-
-def _bound_lane_bits() -> int:
-    """``BOUND_LANE_BITS``, checked: 2^bits threads a group must fit a warp and leave the
-    block at least one group a pass."""
-    bits = int(BOUND_LANE_BITS)
-    if not 0 <= bits <= 5 or (1 << bits) > _TILE_THREADS:
-        raise ValueError(
-            f"BOUND_LANE_BITS must be 0 to 5 and 2^bits <= {_TILE_THREADS}, got {bits}"
-        )
-    return bits
 
 
 def _forced(v0, v1, v2, field_step, exact):
@@ -697,11 +378,11 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale):
 
 
 @kernel
-def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step, keys, tops):
+def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step, keys):
     """One thread per realization: the thermostat's mean velocity and scale
-    (``thermo[r, :4]`` = u, scale) from the block sums; ``thermo[r, 4]`` collects the
-    step's ln(scale); with ``tops``, the largest |W| from the blocks' (``_force``) in
-    ``thermo[r, 5]``; at the ``end_of_step`` the step is closed in ``clock[r]`` and the
+    (``thermo[r, :4]`` = u, scale) from the block sums of ``_force``; ``thermo[r, 4]``
+    collects the step's ln(scale); the largest |W| from the blocks' in ``thermo[r, 5]``;
+    at the ``end_of_step`` the step is closed in ``clock[r]`` and the
     next step's key is drawn (``_step_key``)."""
     r = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
     if r >= partials.shape[0]:
@@ -716,10 +397,8 @@ def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step
         sum1 += partials[r, b, 1]
         sum2 += partials[r, b, 2]
         total_sq += partials[r, b, 3]
-        if tops:
-            top = max(top, partials[r, b, _N_FORCE_SUMS])
-    if tops:
-        thermo[r, _TOP] = math.sqrt(top)
+        top = max(top, partials[r, b, _N_FORCE_SUMS])
+    thermo[r, _TOP] = math.sqrt(top)
     code, u0, u1, u2, scale, log_scale = _thermostat_scale(
         sum0, sum1, sum2, total_sq, flags[_N], reals[_TARGET]
     )
@@ -874,10 +553,8 @@ class _Batch:
         settings: HomogeneousSettings,
         samples: Samples,
         streams: np.ndarray,
-        regrouping: str | None = None,
     ):
         d, n = settings.dimension, settings.n_particles
-        regrouping = REGROUPING if regrouping is None else regrouping
         count = streams.shape[0]
         velocity = np.empty((count, d, n))
         group_keys = np.empty((count, 4), dtype=np.uint64)
@@ -890,16 +567,10 @@ class _Batch:
         self.count = count
         self.n_groups = max(1, n // GROUP_SIZE)
         self.n_blocks = min(grid(n, THREADS), MAX_BLOCKS)
-        if regrouping not in REGROUPINGS:
-            raise ValueError(f"regrouping must be one of {REGROUPINGS}, not {regrouping!r}")
-        self.columns = regrouping == "columns"
         self.velocity = to_device(velocity)
         n_columns = -(-n // self.n_groups)  # G rows of m columns, the last holding the rest
         layout = [self.n_groups, n_columns, n - (n_columns - 1) * self.n_groups]
         self.layout = to_device(np.array(layout, dtype=np.int64))
-        if self.columns:
-            self.column_blocks = grid(self.n_groups, _TILE // (n_columns | 1))
-            self.column_partials = device_zeros((count, self.column_blocks, _N_FORCE_SUMS))
         keys = np.zeros((count, 5), dtype=np.uint64)
         keys[:, :4] = streams
         self.keys = to_device(keys)
@@ -926,21 +597,16 @@ class _Batch:
 
     def step(self, sample: bool, histogram: bool) -> None:
         """Launch one time step for every realization: 3 launches (Lie splitting) or 5
-        (Strang), 1 fewer with the ``columns`` collisions, and 2 more on a sampled
-        step."""
+        (Strang), and 2 more on a sampled step."""
         s = self.settings
         strang = s.splitting == "strang"
         field_step = 0.5 * s.half_field_step if strang else s.half_field_step
         if strang:
             self._force_and_thermostat(field_step)
             self._finish(end_of_step=False)
-        if self.columns:
-            self._collide_columns(field_step)
-            self._finish(end_of_step=True, folded=True)
-        else:
-            self._collide_sparse()
-            self._force_and_thermostat(field_step)
-            self._finish(end_of_step=True)
+        self._collide_sparse()
+        self._force_and_thermostat(field_step)
+        self._finish(end_of_step=True)
         if sample:
             private = self.histogram_bytes if histogram else 0
             _observe[(self.n_blocks, self.count), THREADS, 0, private](
@@ -971,25 +637,6 @@ class _Batch:
             self.velocity, *self._groups(), self.keys, self.layout, self.thermo, self.pending
         )
 
-    def _collide_columns(self, field_step: float) -> None:
-        """``columns``: the pending thermostat, the collision stage of every group and the
-        force step with the thermostat's sums (``column_partials``), in one launch; each
-        group's majorant by 2^``BOUND_LANE_BITS`` threads."""
-        _collide_columns[(self.column_blocks, self.count), _TILE_THREADS](
-            self.velocity,
-            *self._groups(),
-            self.keys,
-            self.layout,
-            self.thermo,
-            self.pending,
-            self.column_partials,
-            self.status,
-            field_step,
-            self.exact,
-            _bound_lane_bits(),
-        )
-        self.pending = False
-
     def _force_and_thermostat(self, field_step: float) -> None:
         """The force step and the sums of the thermostat (the pending thermostat first)."""
         _force[(self.n_blocks, self.count), THREADS](
@@ -1003,15 +650,12 @@ class _Batch:
         )
         self.pending = False
 
-    def _finish(self, end_of_step: bool, folded: bool = False) -> None:
-        """The thermostat's u and scale (applied later: ``pending``) and the clock, from the
-        sums of ``_force`` or, ``folded``, of ``_collide_columns``."""
-        partials, n_blocks = (
-            (self.column_partials, self.column_blocks) if folded else (self.partials, self.n_blocks)
-        )
+    def _finish(self, end_of_step: bool) -> None:
+        """The thermostat's u and scale (applied later: ``pending``), the largest |W| and
+        the clock, from the sums of ``_force``."""
         _finish[grid(self.count, _SMALL), _SMALL](
-            partials,
-            n_blocks,
+            self.partials,
+            self.n_blocks,
             self.thermo,
             self.clock,
             self.status,
@@ -1019,7 +663,6 @@ class _Batch:
             self.flags,
             end_of_step,
             self.keys,
-            not folded,
         )
         self.pending = True
 
@@ -1148,20 +791,19 @@ def run_batch(
 
 
 def _compile_outside_the_timer(settings: HomogeneousSettings, samples: Samples) -> None:
-    """One sampled step of a tiny batch with the same argument types, for each regrouping,
-    so that the timed run does not include numba-cuda's compilation, which goes to the
-    cache once (``kinetic.gpu.warm``; skipped under the simulator)."""
+    """One sampled step of a tiny batch with the same argument types, so that the timed
+    run does not include numba-cuda's compilation, which goes to the cache once
+    (``kinetic.gpu.warm``; skipped under the simulator)."""
     if simulated():
         return
     tiny = HomogeneousSettings(**{**settings.parameters_init(), "n_particles": 4})
 
-    def compile_kernels():  # every regrouping: the cache then holds every kernel
+    def compile_kernels():  # the cache then holds every kernel
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NumbaPerformanceWarning)  # a grid of one block
-            for regrouping in REGROUPINGS:
-                streams = np.array([[1, 2, 3, 4]], dtype=np.uint64)
-                batch = _Batch(tiny, samples, streams, regrouping)
-                batch.step(sample=True, histogram=True)
+            streams = np.array([[1, 2, 3, 4]], dtype=np.uint64)
+            batch = _Batch(tiny, samples, streams)
+            batch.step(sample=True, histogram=True)
             synchronize()
 
     warm("cuda_dsmc", "dsmc", compile_kernels)

@@ -129,7 +129,8 @@ def simulate_homogeneous(
     ``candidates``, ``bound_raises``, ``steps``, ``cpu_seconds`` (cuda: the batch's wall
     time divided by the realizations). Attributes ``backend``, ``device`` and
     ``collision_groups``: ``whole box`` on the CPU (every pair of the gas a candidate),
-    the regrouping of the GPU's random groups on ``cuda`` (``gpu.REGROUPING``).
+    ``sparse`` on ``cuda`` (random groups re-dealt every step, each collided in place:
+    :mod:`kinetic.dsmc.gpu`).
     """
     backends.check(backend)
     backends.check_realizations(backend, n_realizations)
@@ -185,7 +186,7 @@ def simulate_homogeneous(
     if backend == "cuda":
         from kinetic.dsmc import gpu
 
-        collision_groups = gpu.REGROUPING
+        collision_groups = "sparse"
         gpu.run_batch(*run, out, progress)
     else:
         collision_groups = "whole box"

@@ -371,7 +371,7 @@ def column_particle(j, g, shift, n_rows, n_columns, full_rows):
     (g + shift) mod n_rows, the column's ``shift`` drawn for the step; -1 where the last
     column has no such row. For every shift, each particle belongs to exactly one of the
     n_rows groups, which hold n_columns or n_columns - 1 particles (the CUDA backend's
-    ``columns`` regrouping). 0 <= g, shift < n_rows: the row wraps by one subtraction,
+    groups). 0 <= g, shift < n_rows: the row wraps by one subtraction,
     not a 64-bit remainder (a long instruction sequence on a GPU)."""
     row = g + shift
     if row >= n_rows:

@@ -10,7 +10,8 @@ rescaled to its start after every step) with the engine's own collision stage
   every step (the GPU's first regrouping, ``feistel``, since removed, with a Fisher-Yates
   shuffle in its place);
 - ``columns``: group g takes from each column j the particle of row (g + s_j) mod G, the
-  shifts drawn every step (the GPU's ``columns`` regrouping, ``kernels.column_particle``);
+  shifts drawn every step (``kernels.column_particle``), each group against its own
+  majorant (the GPU's ``columns`` regrouping, since removed);
 - ``in_place``: the same groups (the shifts of a key drawn every step,
   ``kernels.column_shift``), each collided in place by ``kernels.collide_members``
   against the whole gas's majorant (twice its largest speed), as the GPU's ``sparse``
