@@ -238,11 +238,15 @@ COOLING_DSMC_GPU_SECONDS_PER_SAMPLE = 3.0e-4
 sample interval (the steps' launch, the observer and its fold: three of about 90 µs). A
 model."""
 
-COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND = 1.0e9
+COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND = 1.7e9
 """``cuda`` backend of simulate_cooling_modes, every realization in the same launches:
-particle-steps per second beyond the launches (half the homogeneous DSMC's measured
-1.8-2.1 × 10⁹ on an H100: the per-cell sort and the gather read scattered addresses). A
-model, not yet measured."""
+particle-steps per second beyond the launches. Measured at revision 5836ea7 on an H100
+(bench cuda ``inhomogeneous_speed``: N = 3000, Λ = 10, 100 realizations, 60 simulated
+particles a cell, costantini2010's shape: 1.72 × 10⁹ on the cooperative path, samples
+included; docs/data/cuda-h100-5836ea7.json), when one thread per cell sorted and gathered
+its particles (1.54 of the step's 1.72 ms). The cells' phase now runs a warp per cell
+(``inhomogeneous_gpu.CELL_THREADS``), not yet timed: refit from the next run's
+``inhomogeneous_bound``."""
 
 COOLING_DSMC_BYTES_PER_PARTICLE = 120.0
 """Positions, velocities, sort keys and scratch of one simulated particle."""
@@ -365,16 +369,15 @@ every step). The launches are asynchronous, so a step costs the larger of this a
 GPU work (at 2984f74, 1.07 ms a step of 10⁷ particle-steps, where the GPU work alone
 was 1.0 ms)."""
 
-DSMC_GPU_SECONDS_PER_PARTICLE_STEP = 3.5e-11
+DSMC_GPU_SECONDS_PER_PARTICLE_STEP = 3.4e-11
 """``cuda`` backend, one H100: seconds per particle-step once the launches are full, Lie
-splitting, the ``sparse`` collisions; times DSMC_STRANG_FACTOR for Strang. A model, built
-from passes timed at revision 2984f74 (bench cuda ``memory_bound``, N = 2 × 10⁵ × 50
-realizations, montanero2007's δt = 0.003 τ; docs/data/cuda-h100-2984f74.json): the force
-pass, which is the ``sparse`` step's only pass over every particle, 2.36 × 10⁻¹¹ (at the
-copy bandwidth), and the thermostat's fold, 0.82 × 10⁻¹¹ at that size; plus
-0.3 × 10⁻¹¹ for the collisions, which read and write only the candidate pairs (about
-0.5 % of the particles a step) and were not timed. The ``columns`` step timed there was
-1.07 × 10⁻¹⁰; refit from ``memory_bound``'s ``sparse.step`` on a GPU."""
+splitting, the ``sparse`` collisions; times DSMC_STRANG_FACTOR for Strang. Measured at
+revision 5836ea7 (bench cuda ``memory_bound``, N = 2 × 10⁵ × 50 realizations,
+montanero2007's δt = 0.003 τ; docs/data/cuda-h100-5836ea7.json): a step of 10⁷
+particle-steps in 0.341 ms, 3.41 × 10⁻¹¹ s each (60 % of the copy bandwidth's bound: the
+force pass alone ran at 89 % of it, the collisions and the thermostat's fold took the
+rest), against 0.738 ms for the ``columns`` regrouping it replaced. The timed
+montanero2007 paper job (``dsmc_paper_job``) took 37.2 s where this model plans 37.5 s."""
 
 DSMC_GPU_SECONDS_PER_SAMPLED_PARTICLE = 2.8e-10
 """``cuda`` backend, one H100: seconds per particle of a snapshot (moments, histograms):

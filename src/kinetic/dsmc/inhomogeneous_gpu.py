@@ -33,20 +33,23 @@ it, ``TOGETHER``) or by one launch per phase (the realization is the grid's y in
    by an integer atomic on the cell's fill pointer and writes its index there
    (``order``). The slots a cell's particles get depend on the order in which the
    atomics land, which the GPU does not fix.
-5. ``_collide`` (one thread per cell): the thread sorts its cell's slice of ``order`` by
-   particle index (insertion sort: the slice is then exactly the CPU's stable counting
-   sort, whatever order the atomics landed in), copies its particles into the other
-   buffer in that order, accumulates the cell's moments on the way
-   (``kernels._accumulated``: Σw, Σ|w|², two largest |w|², in the CPU's order) and runs
+5. ``_collide`` (a group of ``CELL_THREADS`` threads per cell: a warp on a GPU): the
+   group ranks its cell's slice of ``order`` by particle index (each index compared with
+   every other: the slice's sorted order is then exactly the CPU's stable counting sort,
+   whatever order the atomics landed in), copies its particles into the other buffer in
+   that order, folds the cell's moments (``kernels._accumulated``: Σw, Σ|w|², two largest
+   |w|², a fixed tree over the group) and its first thread runs
    ``kernels._collide_cell``, the CPU engine's per-cell collision code ("paper" or
    "majorant" rule, Λ, restitution, recollision tally), with the cell's own xoshiro256+
    stream (``kinetic.rng.thread_state`` of the realization's row after its initial
    state, and the cell index), its carried fraction and its tallies.
 
-Cost of the sort: the insertion sort is O(count²) per cell in the worst case and about
-O(count) when the atomics land nearly in index order (threads of a warp scatter in index
-order); a cell holds a few to a few hundred simulated particles (costantini2010: cells of
-0.5 λ, 60 at Λ = 10). The gather by one thread per cell reads scattered addresses.
+Cost of the sort: a cell of n particles takes ⌈n/32⌉² rounds of 32 comparisons a thread,
+the warp's threads side by side. Until revision 5836ea7 one thread per cell sorted its
+slice by insertion, which the atomics' order made a chain of about n²/4 dependent memory
+accesses: at costantini2010's 60 particles a cell that phase took 1.54 of the step's
+1.72 ms on an H100 (bench cuda ``inhomogeneous_bound``, 3 × 10⁶ particles), 5.4 × 10⁻¹⁰
+s a particle against 0.6 × 10⁻¹⁰ for the streaming.
 
 Sampled steps add two launches: ``_observe`` (per-block sums of the 8 particle sums of
 ``kernels.observe``, a fixed tree per block) and ``_finish`` (one block per realization:
@@ -116,6 +119,28 @@ _SPREAD_BLOCKS = 1 if simulated() else 2048
 floats (their grid may change without changing a number): a single realization of 3 x
 10⁶ particles fills the GPU. The observer keeps ``MAX_BLOCKS`` (its partial sums need a
 grid that depends on N_sim only)."""
+
+CELL_THREADS = BLOCK if simulated() else 32
+"""Threads that share a cell in the collision phase: a warp on a GPU (its barrier is
+``cuda.syncwarp``); the whole block under the simulator, which has no warp barrier."""
+
+_CELLS_PER_BLOCK = BLOCK // CELL_THREADS
+"""Cells a thread block works on at once, one per group of ``CELL_THREADS``."""
+
+_NO_KEY = np.int64(2**62)
+"""A sort key above every particle index: the empty slots of a group's last round."""
+
+
+def _cell_barrier():
+    """Barrier of the threads that share a cell (``CELL_THREADS``), with the ordering of
+    their shared and global memory."""
+    if CELL_THREADS == BLOCK:
+        cuda.syncthreads()
+    else:
+        cuda.syncwarp()
+
+
+_cell_barrier = cuda.jit(device=True, inline="always")(_cell_barrier)
 
 _collide_cell = device_function(kernels._collide_cell)
 _accumulated = device_function(kernels._accumulated)
@@ -215,54 +240,80 @@ def _scatter_particle(cell_of, fill, order, r, i):
 _scatter_particle = cuda.jit(device=True, inline="always")(_scatter_particle)
 
 
-def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c):
-    """Cell phase: sort cell c's slice of ``order`` by particle index, copy its particles
-    from the ``source`` buffers (position, velocity, labels) into the ``target`` buffers
-    in that order, two at a time (both particles' loads issued before their stores: the
-    thread waits on one round of scattered reads per pair, not per particle), with the
-    cell's moments in registers (``kernels._accumulated``, in the CPU's order), then
-    ``kernels._collide_cell`` with the cell's
-    stream, carry, tallies and lost energy. ``cells`` is (moments, carry, states, tally,
-    lost); ``step`` is (rule, density per count, pair coefficient, time step), ``rows[r,
-    _HALF]`` the row's (1 + α)/2."""
+def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c, keys, sums):
+    """Cell phase of cell c, by the ``CELL_THREADS`` threads of a group (every one calls
+    it with the same r and c; ``keys`` (CELL_THREADS,) int64 and ``sums``
+    (CELL_THREADS, 5) float64 are the group's shared scratch):
+
+    1. each particle of the cell's slice of ``order`` gets its rank among the slice's
+       particle indices (the group compares it with every index of the slice, a round of
+       ``CELL_THREADS`` indices at a time through ``keys``): the slice sorted by index,
+       the CPU's stable counting-sort order, whatever order the scatter's atomics landed
+       in;
+    2. each thread copies its particles from the ``source`` buffers (position, velocity,
+       labels) into slot ``first + rank`` of the ``target`` buffers (the loads of the
+       group's particles in flight together);
+    3. thread k accumulates the cell's moments over slots k, k + CELL_THREADS, ... of the
+       sorted cell (``kernels._accumulated``: Σw, Σ|w|², two largest |w|²) and the group
+       folds them by a fixed tree (the sums' rounding then differs from the CPU's one
+       loop; the two largest are exact);
+    4. its first thread runs ``kernels._collide_cell``, the CPU engine's per-cell
+       collisions, with the cell's stream, carry, tallies and lost energy.
+
+    ``cells`` is (moments, carry, states, tally, lost); ``step`` is (rule, density per
+    count, pair coefficient, time step), ``rows[r, _HALF]`` the row's (1 + α)/2. The
+    slice of ``order`` is left as the scatter wrote it (no later phase reads it)."""
     moments, carry, states, tally, lost = cells
     rule, density_per_count, pair_coefficient, time_step = step
-    half = rows[r, _HALF]
     _, velocity_to, labels_to = target
+    lane = cuda.threadIdx.x % CELL_THREADS
     first = cell_start[r, c]
-    last = cell_start[r, c + 1]
-    for a in range(first + 1, last):  # insertion sort: the CPU's stable order
-        key = order[r, a]
-        b = a - 1
-        while b >= first and order[r, b] > key:
-            order[r, b + 1] = order[r, b]
-            b -= 1
-        order[r, b + 1] = key
+    count = cell_start[r, c + 1] - first
+    for base in range(0, count, CELL_THREADS):
+        key = order[r, first + base + lane] if base + lane < count else _NO_KEY
+        rank = 0
+        for other in range(0, count, CELL_THREADS):
+            _cell_barrier()  # the group has compared with the previous round's keys
+            keys[lane] = order[r, first + other + lane] if other + lane < count else _NO_KEY
+            _cell_barrier()
+            for k in range(min(CELL_THREADS, count - other)):
+                if keys[k] < key:
+                    rank += 1
+        if key != _NO_KEY:
+            x, y, wx, wy, ident, partner = _particle(source, r, key)
+            _copy_particle(target, r, first + rank, x, y, wx, wy, ident, partner)
+    _cell_barrier()  # the group's copies visible to the group
     m0 = 0.0
     m1 = 0.0
     m2 = 0.0
     m3 = 0.0
     m4 = 0.0
-    p = first
-    while p + 2 <= last:  # two particles' loads in flight before their stores
-        x0, y0, wx0, wy0, a0, b0 = _particle(source, r, order[r, p])
-        x1, y1, wx1, wy1, a1, b1 = _particle(source, r, order[r, p + 1])
-        _copy_particle(target, r, p, x0, y0, wx0, wy0, a0, b0)
-        _copy_particle(target, r, p + 1, x1, y1, wx1, wy1, a1, b1)
-        m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, wx0, wy0)
-        m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, wx1, wy1)
-        p += 2
-    if p < last:
-        x0, y0, wx0, wy0, a0, b0 = _particle(source, r, order[r, p])
-        _copy_particle(target, r, p, x0, y0, wx0, wy0, a0, b0)
-        m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, wx0, wy0)
+    for p in range(first + lane, first + count, CELL_THREADS):
+        m0, m1, m2, m3, m4 = _accumulated(
+            m0, m1, m2, m3, m4, velocity_to[r, 0, p], velocity_to[r, 1, p]
+        )
+    sums[lane, 0] = m0
+    sums[lane, 1] = m1
+    sums[lane, 2] = m2
+    sums[lane, 3] = m3
+    sums[lane, 4] = m4
+    stride = CELL_THREADS // 2
+    while stride > 0:
+        _cell_barrier()
+        if lane < stride:
+            for f in range(3):
+                sums[lane, f] += sums[lane + stride, f]
+            a3 = sums[lane, 3]
+            b3 = sums[lane + stride, 3]
+            sums[lane, 4] = max(min(a3, b3), max(sums[lane, 4], sums[lane + stride, 4]))
+            sums[lane, 3] = max(a3, b3)
+        stride //= 2
+    if lane != 0:
+        return
     cell_moments = moments[r]
-    cell_moments[c, 0] = m0
-    cell_moments[c, 1] = m1
-    cell_moments[c, 2] = m2
-    cell_moments[c, 3] = m3
-    cell_moments[c, 4] = m4
-    if last - first < 2:
+    for f in range(5):
+        cell_moments[c, f] = sums[0, f]
+    if count < 2:
         return
     state = states[r, c]
     counts = tally[r, c]
@@ -271,12 +322,12 @@ def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
         labels_to[r, 0],
         labels_to[r, 1],
         first,
-        last,
+        first + count,
         cell_moments,
         c,
         carry[r],
         rule,
-        half,
+        rows[r, _HALF],
         density_per_count,
         pair_coefficient,
         time_step,
@@ -372,11 +423,17 @@ def _scatter(cell_of, fill, order):
 
 @kernel
 def _collide(source, target, order, cell_start, cells, rows, step):
-    """One thread per cell c of realization ``blockIdx.y``: ``_collide_in_cell``."""
-    c = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    """A group of ``CELL_THREADS`` threads per cell c of realization ``blockIdx.y``
+    (``_CELLS_PER_BLOCK`` cells a block): ``_collide_in_cell``."""
+    keys = cuda.shared.array((_CELLS_PER_BLOCK, CELL_THREADS), np.int64)
+    sums = cuda.shared.array((_CELLS_PER_BLOCK, CELL_THREADS, 5), np.float64)
+    group = cuda.threadIdx.x // CELL_THREADS
+    c = cuda.blockIdx.x * _CELLS_PER_BLOCK + group
     if c < cell_start.shape[1] - 1:
         r = cuda.blockIdx.y
-        _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
+        _collide_in_cell(
+            source, target, order, cell_start, cells, rows, step, r, c, keys[group], sums[group]
+        )
 
 
 # ----------------------------------------------------- every phase in one launch
@@ -395,6 +452,9 @@ def _advance_together(first, second, work, cells, u, rows, stream, step, inverse
     grid_group = cuda.cg.this_grid()
     sums = cuda.shared.array(BLOCK, np.float64)
     counts = cuda.shared.array(BLOCK, np.int64)
+    keys = cuda.shared.array((_CELLS_PER_BLOCK, CELL_THREADS), np.int64)
+    cell_sums = cuda.shared.array((_CELLS_PER_BLOCK, CELL_THREADS, 5), np.float64)
+    group = cuda.threadIdx.x // CELL_THREADS
     block = cuda.blockIdx.x
     blocks = cuda.gridDim.x
     thread = block * BLOCK + cuda.threadIdx.x
@@ -420,9 +480,22 @@ def _advance_together(first, second, work, cells, u, rows, stream, step, inverse
             _scatter_particle(cell_of, fill, order, r, i)
             r, i = next_pair(r, i, dr, di, n)
         grid_group.sync()
-        r, c, dr, dc = first_pair(thread, n_cells, threads)
+        worker = block * _CELLS_PER_BLOCK + group  # a group of CELL_THREADS per cell
+        r, c, dr, dc = first_pair(worker, n_cells, blocks * _CELLS_PER_BLOCK)
         while r < count:
-            _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c)
+            _collide_in_cell(
+                source,
+                target,
+                order,
+                cell_start,
+                cells,
+                rows,
+                step,
+                r,
+                c,
+                keys[group],
+                cell_sums[group],
+            )
             r, c = next_pair(r, c, dr, dc, n_cells)
         grid_group.sync()
 
@@ -508,7 +581,7 @@ def _cooperative_blocks(batch) -> int:
     then launches each phase (the same numbers)."""
     if simulated():
         return 1
-    needed = grid(batch.count * max(batch.n, batch.n_cells))
+    needed = grid(batch.count * max(batch.n, batch.n_cells * CELL_THREADS))
     try:
         _advance_together[1, BLOCK](*batch.together_arguments(0, 0))  # compiles; does nothing
         resident = min(
@@ -622,7 +695,7 @@ class _Batch:
         source, target = self.buffers
         position, velocity, _labels = source
         particles = (self.spread_blocks, count)
-        cell_grid = (grid(self.n_cells), count)
+        cell_grid = (grid(self.n_cells, _CELLS_PER_BLOCK), count)
         phases = (
             (
                 "centre",
