@@ -103,3 +103,14 @@ def test_dsmc_case_rates_its_collisions_on_the_engines_clock():
         64 * 2 * steps / case["engine_seconds"]
     )
     assert case["engine_collisions_per_second"] >= case["collisions_per_second"]
+
+
+def test_cloning_case_rates_its_events_on_the_engines_clock():
+    """``cloning_speed``'s cases report the event rate on the engine's clock (the launches
+    and the GPU, without the host's initial populations and the final sort that counts
+    the distinct clones) beside the wall-clock one."""
+    case = bench._cloning("hard_spheres", 1.0, 8, 2.0, 2)
+    assert 0 < case["engine_seconds"] <= case["wall_seconds"]
+    assert case["events"] > 0
+    assert case["engine_events_per_second"] == case["events"] / case["engine_seconds"]
+    assert case["engine_events_per_second"] >= case["events_per_second"]

@@ -259,6 +259,44 @@ def test_sparse_majorant_bounds_the_stored_velocities_exactly():
     assert not tally[:, kernels.TALLY_EXCEEDED].any()
 
 
+def test_force_pass_closes_the_thermostat_in_its_last_block_whatever_the_blocks(monkeypatch):
+    """The force pass's last block of a realization folds every block's sums and closes
+    the thermostat (no launch of its own): with 4 blocks a realization (the simulator's 8
+    threads fold them) the thermostat, the majorant, the clock and the velocities are
+    those of one block to rounding (the sums are taken in another order), the tickets are
+    back at 0 after every pass, and a realization's numbers do not depend on the other's
+    blocks. Strang with a field: two passes a step, the first one not closing the step."""
+    from kinetic.dsmc import gpu
+    from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
+
+    settings = HomogeneousSettings(
+        n_particles=131,
+        restitution=0.8,
+        time_step=0.2,
+        reduced_field=0.25,
+        force_step="exact",
+        splitting="strang",
+    )
+    streams = realization_streams(5, 0, 2)
+
+    def run(blocks):
+        monkeypatch.setattr(gpu, "MAX_BLOCKS", blocks)
+        batch = gpu._Batch(settings, Samples(stride=1), streams)
+        assert batch.n_blocks == blocks
+        for step in range(3):
+            batch.step(sample=step == 1, histogram=False)
+            assert not batch.done.copy_to_host().any()
+        return {
+            name: getattr(batch, name).copy_to_host() for name in ("thermo", "clock", "velocity")
+        }
+
+    one, four = run(1), run(4)
+    for name in one:
+        np.testing.assert_allclose(four[name], one[name], rtol=1e-12, atol=1e-14, err_msg=name)
+    assert not np.array_equal(four["thermo"], one["thermo"])  # the other order shows
+    assert np.all(one["clock"][:, 3] == 3)  # three steps closed, not six passes
+
+
 def test_private_histograms_count_what_global_atomics_count(monkeypatch):
     """``_observe`` counts a block's particles into its own histograms in shared memory and
     adds them to the realization's once (``private``): the same c_x counts, fixed-point
@@ -342,7 +380,7 @@ def test_bench_memory_bound_times_every_pass_of_the_step():
     particles = 256 * 2
     assert report["copy_bytes_per_second"] == pytest.approx(48 * particles / report["copy_seconds"])
     sparse = report["sparse"]  # the step with the sparse collisions
-    assert set(sparse["passes"]) == {"collide_sparse", "force", "finish"}
+    assert set(sparse["passes"]) == {"collide_sparse", "force"}
     for name, timed in sparse["passes"].items():
         assert timed["seconds"] > 0
         assert timed["bytes_per_particle"] == bench.SPARSE_PASS_BYTES.get(name, 0)

@@ -70,7 +70,7 @@ MODULES = {
 
 def _dsmc_signatures():
     from numba import boolean, float64, int64, uint64
-    from numba.core.types import UniTuple
+    from numba.core.types import Tuple, UniTuple
 
     f3, f2, f1 = float64[:, :, ::1], float64[:, ::1], float64[::1]
     i3, i2, i1 = int64[:, :, ::1], int64[:, ::1], int64[::1]
@@ -78,8 +78,7 @@ def _dsmc_signatures():
     return {
         "_seed_groups": (u2, u3, u2),
         "_collide_sparse": (f3, u3, f3, f3, i3, f1, i1, u2, i1, f2, boolean),
-        "_force": (f3, f3, i1, float64, int64, f2, boolean),
-        "_finish": (f3, int64, f2, f2, i1, f1, i1, boolean, u2),
+        "_force": (f3, f3, i1, float64, int64, f2, boolean, i1, Tuple((f2, f1, i1, boolean, u2))),
         "_observe": (f3, f3, UniTuple(i2, 3), f1, i1, boolean, f2, boolean, boolean),
         "_fold_moments": (f3, int64, f2, float64),
     }

@@ -133,6 +133,11 @@ def _cloning(
     events = float(ds.elastic_collisions.sum()) if backend == "cuda" else None
     if backend == "cpu":
         events = float(ds.collision_events.sum())
+    # the engine's clock (cuda: the launches and the GPU; cpu: process time), without the
+    # host's initial populations, the count of distinct clones (a sort of the final
+    # population) and the dataset, which at 10⁶ clones over 100 mean free times are a
+    # good part of the wall time
+    engine = float(ds.cpu_seconds.sum())
     return {
         "kernel": kernel,
         "lambda": lam,
@@ -144,6 +149,8 @@ def _cloning(
         "seconds_per_interval": wall / (elapsed / interval) if interval else None,
         "events": events,
         "events_per_second": events / wall,
+        "engine_seconds": engine,
+        "engine_events_per_second": events / engine if engine > 0 else None,
         "mu": float(ds.mu),
         "mu_err": float(ds.mu_err),
         "temperature": float(ds.temperature),
@@ -657,8 +664,9 @@ SPARSE_PASS_BYTES = {"collide_sparse": 0, "force": 48}
 (kinetic.dsmc.gpu, float64 velocities, d = 3) with its ``sparse`` collisions: one thread
 a group reads and writes only its candidate pairs in place (about 0.5 % of the particles
 a step at montanero2007's δt = 0.003 τ: left out), then the force pass reads and writes
-every particle and finds the majorant of the next step (its largest speed): 48 bytes a
-particle-step, the least a step that moves every particle can touch."""
+every particle, finds the majorant of the next step (its largest speed) and, in its last
+block a realization, closes the thermostat: 48 bytes a particle-step, the least a step
+that moves every particle can touch."""
 
 
 def _launch_seconds(launch, repeats: int) -> float:
@@ -721,8 +729,7 @@ def _memory_bound(n: int, realizations: int, repeats: int) -> dict[str, Any]:
     batch = dsmc_gpu._Batch(settings, samples, realization_streams(3, 0, realizations))
     sparse = {
         "collide_sparse": lambda: batch._collide_sparse(),
-        "force": lambda: batch._force_and_thermostat(field_step),
-        "finish": lambda: batch._finish(end_of_step=True),
+        "force": lambda: batch._force_and_thermostat(field_step, end_of_step=True),
     }
     out["sparse"] = {"passes": {}}
     for name, launch in sparse.items():

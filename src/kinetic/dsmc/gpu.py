@@ -4,8 +4,8 @@ All realizations of a call advance together, on one GPU: the velocities of reali
 are row r of a ``(R, d, N)`` float64 array (each row the CPU engine's struct of arrays).
 One time step is a short sequence of launches, each covering every realization (the
 realization is the grid's y index; the kernels over particles run THREADS x blocks
-threads per realization, each looping over the particles with the grid's stride): 3
-launches with the Lie splitting, 5 with the Strang splitting, 2 more on a sampled step.
+threads per realization, each looping over the particles with the grid's stride): 2
+launches with the Lie splitting, 3 with the Strang splitting, 2 more on a sampled step.
 
 1. **Groups.** Every step the particles of a realization are re-dealt into G = max(1,
    N // GROUP_SIZE) random groups without moving them: the N particles are m columns of
@@ -39,10 +39,14 @@ launches with the Lie splitting, 5 with the Strang splitting, 2 more on a sample
    ``kernels._deferred``), or its image under the thermostat once a snapshot has applied
    it, raised on the fly as on the CPU. The force pass of step 3 is then the step's only
    pass over every particle (48 bytes a Lie step).
-3. **Force and thermostat** (``_force``, ``_finish``): the force step of every particle
-   (``kernels._force_factor``: Euler or exact) with the sums ΣV_k, Σ|V|² per realization,
-   then ``kernels._thermostat_scale`` and the step's clock (``kernels._advance_clock``)
-   on one thread per realization. The thermostat V -> scale (V - u) itself is applied by
+3. **Force and thermostat** (``_force``): the force step of every particle
+   (``kernels._force_factor``: Euler or exact) with the sums ΣV_k, Σ|V|² and the largest
+   |V|² per block; the realization's last block to finish folds the blocks' sums (a
+   ticket taken by an integer atomic after a memory fence) and runs
+   ``kernels._thermostat_scale`` and the step's clock (``kernels._advance_clock``,
+   ``_close``). Until the H100 run of 5836ea7 a kernel of its own (``_finish``) did that,
+   one thread summing a realization's 64 blocks in turn: 0.077 ms of a 0.341 ms step
+   with its launch. The thermostat V -> scale (V - u) itself is applied by
    the next kernel that reads the velocities (the next force step or snapshot: no pass
    of its own). Lie splitting: once after the collisions; Strang: with half the field
    before and after them.
@@ -68,8 +72,9 @@ and ``dsmc_speed``'s HCS (N = 2 × 10⁴, 16 realizations, α = 0.9) gave ζ = 0
 Determinism: the same call gives the same numbers twice (on one GPU model). Float sums
 are folded in a fixed order: each thread sums a fixed set of particles (stride THREADS
 x blocks), a tree sums the threads of a block (``_block_sums``: the tree of
-``kinetic.gpu.block_reduce_sum`` on several fields at once), one thread sums the blocks
-in index order; the number of blocks per realization depends on N only, so a
+``kinetic.gpu.block_reduce_sum`` on several fields at once), the same tree sums the
+blocks (the force pass's last block; ``_fold_moments``, one thread, the snapshots'
+blocks in index order); the number of blocks per realization depends on N only, so a
 realization's numbers do not depend on the other realizations of the batch. Histogram
 counts are integer atomics. The ``cx_weights`` sums (c_x (3/2 - c_x²) per bin) are
 accumulated as integers in units of WEIGHT_UNIT = 2**-20 per observation (rounded to
@@ -146,6 +151,7 @@ WEIGHT_UNIT = 2.0**-20
 
 N_MOMENTS = kernels.N_MOMENTS
 _N_FORCE_SUMS = 4
+_N_FOLDED = _N_FORCE_SUMS + 1  # the sums and the largest |V|²
 
 # settings of a batch, read by the kernels from two small device arrays
 _RESTITUTION, _PAIR_BASE, _DURATION, _TARGET, _RATE_EXPONENT = 0, 1, 2, 3, 4
@@ -327,14 +333,21 @@ _forced = cuda.jit(device=True, inline="always")(_forced)
 
 
 @kernel
-def _force(velocity, partials, status, field_step, exact, thermo, rescale):
+def _force(velocity, partials, status, field_step, exact, thermo, rescale, done, close):
     """Force step V -> f V of every particle (a = ``field_step``; after the pending
     thermostat if ``rescale``), and the per-block sums ``partials[r, b, :4]`` = ΣV_x,
     ΣV_y, ΣV_z, Σ|V|² after it and the largest |V|² in ``partials[r, b, 4]``; a failed
-    step raises ``status[r]`` to its STATUS_* code."""
+    step raises ``status[r]`` to its STATUS_* code. The last block of realization r to
+    finish (its ticket ``done[r]``, an integer atomic after a memory fence) folds the
+    blocks' partials by a fixed tree, one block a thread (the same numbers whichever block
+    comes last), closes the thermostat (``_close``, with ``close`` = (clock, reals,
+    flags, end_of_step, keys)) and resets the ticket: no launch of its own."""
     shared = cuda.shared.array((THREADS, _N_FORCE_SUMS), np.float64)
+    folded = cuda.shared.array(_N_FOLDED, np.float64)
+    last = cuda.shared.array(1, np.int64)
     r = cuda.blockIdx.y
     b = cuda.blockIdx.x
+    t = cuda.threadIdx.x
     d = velocity.shape[1]
     n = velocity.shape[2]
     sum0 = 0.0
@@ -343,7 +356,7 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale):
     total_sq = 0.0
     top = 0.0
     failed = 0
-    for i in range(b * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
+    for i in range(b * THREADS + t, n, cuda.gridDim.x * THREADS):
         v0 = velocity[r, 0, i]
         v1 = velocity[r, 1, i]
         v2 = velocity[r, 2, i] if d == 3 else 0.0
@@ -375,32 +388,35 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale):
     sums[3] = total_sq
     _block_sums(shared, sums, partials[r, b])
     _block_max(shared, top, partials[r, b, _N_FORCE_SUMS:])
-
-
-@kernel
-def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step, keys):
-    """One thread per realization: the thermostat's mean velocity and scale
-    (``thermo[r, :4]`` = u, scale) from the block sums of ``_force``; ``thermo[r, 4]``
-    collects the step's ln(scale); the largest |W| from the blocks' in ``thermo[r, 5]``;
-    at the ``end_of_step`` the step is closed in ``clock[r]`` and the
-    next step's key is drawn (``_step_key``)."""
-    r = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
-    if r >= partials.shape[0]:
+    if t == 0:
+        cuda.threadfence()  # this block's partials reach memory before its ticket
+        last[0] = 1 if cuda.atomic.add(done, r, 1) == cuda.gridDim.x - 1 else 0
+    cuda.syncthreads()
+    if last[0] == 0:
         return
-    sum0 = 0.0
-    sum1 = 0.0
-    sum2 = 0.0
-    total_sq = 0.0
-    top = 0.0
-    for b in range(n_blocks):
-        sum0 += partials[r, b, 0]
-        sum1 += partials[r, b, 1]
-        sum2 += partials[r, b, 2]
-        total_sq += partials[r, b, 3]
-        top = max(top, partials[r, b, _N_FORCE_SUMS])
-    thermo[r, _TOP] = math.sqrt(top)
+    cuda.threadfence()
+    n_blocks = cuda.gridDim.x  # at most THREADS (the batch checks): one block a thread
+    for f in range(_N_FORCE_SUMS):
+        sums[f] = partials[r, t, f] if t < n_blocks else 0.0
+    top = partials[r, t, _N_FORCE_SUMS] if t < n_blocks else 0.0
+    _block_sums(shared, sums, folded)
+    _block_max(shared, top, folded[_N_FORCE_SUMS:])
+    if t == 0:
+        done[r] = 0
+        _close(folded, thermo, status, close, r)
+
+
+def _close(folded, thermo, status, close, r):
+    """Realization r's thermostat from the folded sums of ``_force`` (``folded`` = ΣV,
+    Σ|V|², the largest |V|²): its mean velocity and scale (``thermo[r, :4]`` = u, scale,
+    applied later); ``thermo[r, 4]`` collects the step's ln(scale), ``thermo[r, 5]`` the
+    largest |W|; at the ``end_of_step`` the step is closed in ``clock[r]`` and the next
+    step's key is drawn (``_step_key``). ``close`` is (clock, reals, flags, end_of_step,
+    keys)."""
+    clock, reals, flags, end_of_step, keys = close
+    thermo[r, _TOP] = math.sqrt(folded[_N_FORCE_SUMS])
     code, u0, u1, u2, scale, log_scale = _thermostat_scale(
-        sum0, sum1, sum2, total_sq, flags[_N], reals[_TARGET]
+        folded[0], folded[1], folded[2], folded[3], flags[_N], reals[_TARGET]
     )
     if code != 0:
         cuda.atomic.max(status, r, code)
@@ -421,6 +437,9 @@ def _finish(partials, n_blocks, thermo, clock, status, reals, flags, end_of_step
         _step_key(keys, r, np.int64(clock[r, 3]))
     else:
         thermo[r, _LOG_SCALE] = log_scale
+
+
+_close = cuda.jit(device=True, inline="always")(_close)
 
 
 def _thermostat(value, thermo, r, k):
@@ -567,6 +586,8 @@ class _Batch:
         self.count = count
         self.n_groups = max(1, n // GROUP_SIZE)
         self.n_blocks = min(grid(n, THREADS), MAX_BLOCKS)
+        assert self.n_blocks <= THREADS  # the last block folds one block's sums a thread
+        self.done = device_zeros(count, np.int64)
         self.velocity = to_device(velocity)
         n_columns = -(-n // self.n_groups)  # G rows of m columns, the last holding the rest
         layout = [self.n_groups, n_columns, n - (n_columns - 1) * self.n_groups]
@@ -596,17 +617,15 @@ class _Batch:
         self.pending = False
 
     def step(self, sample: bool, histogram: bool) -> None:
-        """Launch one time step for every realization: 3 launches (Lie splitting) or 5
+        """Launch one time step for every realization: 2 launches (Lie splitting) or 3
         (Strang), and 2 more on a sampled step."""
         s = self.settings
         strang = s.splitting == "strang"
         field_step = 0.5 * s.half_field_step if strang else s.half_field_step
         if strang:
-            self._force_and_thermostat(field_step)
-            self._finish(end_of_step=False)
+            self._force_and_thermostat(field_step, end_of_step=False)
         self._collide_sparse()
-        self._force_and_thermostat(field_step)
-        self._finish(end_of_step=True)
+        self._force_and_thermostat(field_step, end_of_step=True)
         if sample:
             private = self.histogram_bytes if histogram else 0
             _observe[(self.n_blocks, self.count), THREADS, 0, private](
@@ -637,8 +656,10 @@ class _Batch:
             self.velocity, *self._groups(), self.keys, self.layout, self.thermo, self.pending
         )
 
-    def _force_and_thermostat(self, field_step: float) -> None:
-        """The force step and the sums of the thermostat (the pending thermostat first)."""
+    def _force_and_thermostat(self, field_step: float, end_of_step: bool) -> None:
+        """The force step, the thermostat's u and scale (applied later: ``pending``), the
+        largest |W| and, at the ``end_of_step``, the clock (the pending thermostat
+        first): one launch."""
         _force[(self.n_blocks, self.count), THREADS](
             self.velocity,
             self.partials,
@@ -647,22 +668,8 @@ class _Batch:
             self.exact,
             self.thermo,
             self.pending,
-        )
-        self.pending = False
-
-    def _finish(self, end_of_step: bool) -> None:
-        """The thermostat's u and scale (applied later: ``pending``), the largest |W| and
-        the clock, from the sums of ``_force``."""
-        _finish[grid(self.count, _SMALL), _SMALL](
-            self.partials,
-            self.n_blocks,
-            self.thermo,
-            self.clock,
-            self.status,
-            self.reals,
-            self.flags,
-            end_of_step,
-            self.keys,
+            self.done,
+            (self.clock, self.reals, self.flags, end_of_step, self.keys),
         )
         self.pending = True
 
