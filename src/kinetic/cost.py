@@ -476,28 +476,31 @@ CLONING_GPU_RESIDENT_MAX_POPULATION = 5_000
 this N_c a realization's control intervals run in one thread block, one launch per block
 of the run, without the four launches per interval."""
 
-CLONING_GPU_THREADS_PER_BLOCK = 128
+CLONING_GPU_THREADS_PER_BLOCK = 256
 """``kinetic.cloning.gpu.RESIDENT_THREADS`` on a GPU: the threads that share a resident
-realization's clones (the fit of the ``RESIDENT_*`` constants is at 128)."""
+realization's clones (the ``RESIDENT_*`` constants are fitted at this count)."""
 
-CLONING_GPU_RESIDENT_SECONDS_PER_EVENT = 7.2e-6
-"""``cuda`` backend, resident kernel: wall seconds of one collision event of the untilted
-dynamics in one thread (an exponential, a uniform, a square root and the proposal's
-Gaussian pair in float64), latency-bound at four warps per multiprocessor (one block of
-128 threads per realization). Fitted with ``CLONING_GPU_RESIDENT_SECONDS_PER_MEMBER`` to
-bench cuda's ``cloning_speed`` on an H100 (revision 2984f74): hard disks, 32 realizations,
-0.100 ms an interval at N_c = 10³ and 1.04 ms at 10⁴ with Δ = 1, 0.56 ms at 10⁴ with
-Δ = 0.137 (λ = -1)."""
+CLONING_GPU_RESIDENT_SECONDS_PER_EVENT = 4.4e-6
+"""``cuda`` backend, resident kernel, 256 threads a realization: wall seconds of one
+collision event of the untilted dynamics in one thread (an exponential, a uniform, a
+square root and the proposal's Gaussian pair in float64). With
+``CLONING_GPU_RESIDENT_SECONDS_PER_MEMBER`` and ``_PER_INTERVAL``, the three constants
+that reproduce the three shapes timed with 256 threads on the H100 (revision 5836ea7,
+bench cuda ``cloning_speed``'s ``resident_threads``, hard disks, Δ the default): 71.6 µs
+an interval at N_c = 10³ (Δ = 1, 32 realizations), 655 µs at 10⁴ (Δ = 1) and 61.1 µs for
+the grouped job's slowest realization (λ = 8, Δ = 0.406, 14 940 intervals of 10³ clones;
+the job took 0.913 s). Three constants from three numbers: a fit with nothing left over
+to check it. At 128 threads (revision 2984f74) the same model fitted 7.2 µs an event,
+6.1 µs a clone and no interval cost."""
 
-CLONING_GPU_RESIDENT_SECONDS_PER_MEMBER = 6.1e-6
+CLONING_GPU_RESIDENT_SECONDS_PER_MEMBER = 11.8e-6
 """``cuda`` backend, resident kernel: wall seconds one thread spends on each of its clones
 every control interval besides the events (the weight, the scan, the copy into the new
 population, the snapshot sums), from the same fit."""
 
-CLONING_GPU_RESIDENT_SECONDS_PER_INTERVAL = 0.0
-"""``cuda`` backend, resident kernel: the block barriers of one control interval beyond
-the per-clone costs. The fit of the three measured rates puts it at -6 µs, i.e. below
-what they resolve: zero."""
+CLONING_GPU_RESIDENT_SECONDS_PER_INTERVAL = 6.8e-6
+"""``cuda`` backend, resident kernel: the block barriers and trees of one control interval
+beyond the per-clone costs (256 threads), from the same fit."""
 
 CLONING_GPU_HOST_BYTES_PER_MEMBER = 32.0
 """``cuda`` backend, host memory (a job's ``mem_mb``): the final velocities copied back
@@ -513,14 +516,12 @@ def cloning_control_interval(lam: float) -> float:
     return min(1.0, math.log1p(0.5) / spread)
 
 
-CLONING_GPU_RESIDENT_BLOCKS = 132 * 3
+CLONING_GPU_RESIDENT_BLOCKS = 132
 """Resident-kernel thread blocks (one per realization of a point) an H100 runs at once:
-132 SMs x 3 blocks of 128 threads. ptxas (nvJitLink 13.5, sm_90, revision after 2984f74)
-gives ``_resident`` 152 registers a thread, 19 456 a block of 128, and a multiprocessor
-has 65 536: 3 blocks (its 25.6 KB of shared memory would allow 8). More blocks than this
-run in waves. From the compiled kernel, not yet from a GPU: ``bench cuda``'s
-``cloning_speed`` records ``resident_kernel`` (registers, the most threads a block) and
-times the grouped job's shape."""
+132 SMs x 1 block of 256 threads. The H100 run of revision 5836ea7 reported ``_resident``
+at 144 registers a thread (at most 384 threads a block): 36 864 a block of 256, and a
+multiprocessor has 65 536. More blocks than this run one after another as blocks finish
+(``cloning_points``)."""
 
 
 CLONING_MAX_TRANSIENT_BLOCKS = 50
@@ -595,12 +596,15 @@ def cloning_points(points) -> Estimate:
     """One ``cuda`` job of several cloning points in the same launches
     (``kinetic.cloning.simulate_points``, ``points`` its keyword arguments). Up to
     ``CLONING_GPU_RESIDENT_MAX_POPULATION`` clones every realization of every point is a
-    thread block of the same launches, so the job lasts as long as its slowest realization
-    (times the waves when there are more blocks than the GPU holds) or the events at the
-    GPU's rate, whichever is longer; above, the launches of every interval of the point
+    thread block of the same launches, so the job lasts as long as its slowest realization,
+    or all the realizations' latencies shared among the blocks the GPU holds at once, or
+    the events at the GPU's rate, whichever is longest (the grouped shape of 41 λ × 32
+    realizations of 10³ clones took 1.09 s with 128 threads at 5836ea7, its slowest
+    realization's modelled 1.08; "waves × the slowest", the model before, planned 4.3);
+    above, the launches of every interval of the point
     with the most in each block of the run plus every point's events at the GPU's rate.
     Plus one job's startup."""
-    latency, events, blocks, members = 0.0, 0.0, 0, 0.0
+    latency, total, events, members = 0.0, 0.0, 0.0, 0.0
     for point in points:
         elapsed = _cloning_elapsed(point["duration"], point["transient"], point["n_blocks"])
         one, count = _cloning_gpu(
@@ -611,12 +615,17 @@ def cloning_points(points) -> Estimate:
             point.get("control_interval"),
         )
         latency = max(latency, one)
+        total += one * point["n_realizations"]
         events += count
-        blocks += point["n_realizations"]
         members += point["population"] * point["n_realizations"]
     if points[0]["population"] <= CLONING_GPU_RESIDENT_MAX_POPULATION:
-        waves = math.ceil(blocks / CLONING_GPU_RESIDENT_BLOCKS)
-        seconds = max(waves * latency, events / CLONING_GPU_EVENTS_PER_SECOND)
+        # a block starts as soon as one ends: the longest realization, or every
+        # realization's latency shared among the blocks the GPU runs at once
+        seconds = max(
+            latency,
+            total / CLONING_GPU_RESIDENT_BLOCKS,
+            events / CLONING_GPU_EVENTS_PER_SECOND,
+        )
     else:
         seconds = (
             _launched_intervals(points) * CLONING_GPU_SECONDS_PER_INTERVAL

@@ -946,21 +946,21 @@ def job_startup(quick: bool) -> dict[str, Any]:
 SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
     "inhomogeneous_bound": inhomogeneous_bound,
     "memory_bound": memory_bound,
-    "cloning_speed": cloning_speed,
-    "inhomogeneous_speed": inhomogeneous_speed,
     "dsmc_paper_job": dsmc_paper_job,
+    "inhomogeneous_speed": inhomogeneous_speed,
+    "cloning_speed": cloning_speed,
     "cloning_physics": cloning_physics,
     "dsmc_speed": dsmc_speed,
     "dsmc_scaling": dsmc_scaling,
     "job_startup": job_startup,
 }
 """In the order a short device lease should spend its minutes: what no GPU has timed yet
-first (the inhomogeneous DSMC's phases; the homogeneous DSMC's ``sparse`` step against
-its bandwidth bound, ``memory_bound``; the cloning points of 10⁴ clones sharing the
-launched path, ``cloning_speed``'s ``grouped_launched`` against its plan; the
-inhomogeneous DSMC's speed, the montanero2007 paper job, the physics of the resident
-cloning kernel), then what the H100 run of revision 2984f74 measured (the homogeneous
-DSMC's speed, the job startup)."""
+first (the inhomogeneous DSMC's cell phase with a warp per cell; the homogeneous step
+whose force pass closes the thermostat, and the montanero2007 paper job with it; the
+inhomogeneous DSMC's speed with the new cell phase), then cloning (its rates on the
+engine's clock, and its physics section, which the run of 5836ea7 lost to a division by
+zero), then what the H100 run of 5836ea7 measured (the homogeneous DSMC through the
+front, the job startup: 170 s)."""
 
 
 PREFLIGHT_MODULES = (

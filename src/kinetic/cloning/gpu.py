@@ -455,19 +455,17 @@ _RESIDENT_MAX_THREADS = 1024
 """Most threads of a ``_resident`` block: its shared trees are this long (16 KB), whatever
 the launch uses."""
 
-RESIDENT_THREADS = BLOCK
+RESIDENT_THREADS = BLOCK if simulated() else 256
 """Threads of one realization's block in ``_resident`` (a power of two, at most
 ``_RESIDENT_MAX_THREADS``; read at each launch, so the bench can compare counts with one
-compiled kernel). 128 on a GPU, as timed on the H100 (revision 2984f74): a realization's
-clones are then run 8 (N_c = 10³) to 79 (10⁴) a thread, one after the other, at four warps
-a multiprocessor, and that serial work is the resident kernel's whole cost. More threads
-share a realization's clones among more warps, but ptxas gives the kernel 152 registers a
-thread: a multiprocessor's 65 536 hold three blocks of 128, one of 256, none of 512. So
-256 can halve a lone realization's latency and lengthen a batch of many (41 λ × 32
-realizations: 10 waves instead of 4); ``bench cuda``'s ``cloning_speed``
-(``resident_threads``) times the counts that launch. The populations and counts do not
-depend on it (the scan is exact), μ and the sums only in the last bits (another
-summation tree)."""
+compiled kernel). 256 on a GPU: the H100 run of revision 5836ea7 (``cloning_speed``,
+``resident_threads``; the kernel had 144 registers a thread, so at most 384 threads a
+block and one block of 256 a multiprocessor against two of 128) timed 256 faster than
+128 on every shape it ran: 32 realizations of 10³ clones (Δ = 1) 0.143 s against 0.221,
+of 10⁴ clones 0.131 s against 0.212, and the grouped job's shape (41 λ × 32 realizations
+of 10³ clones, 1312 blocks in 10 waves instead of 5) 0.91 s against 1.09. The
+populations and counts do not depend on it (the scan is exact), μ and the sums only in
+the last bits (another summation tree)."""
 
 
 @cuda.jit(device=True, inline="always")
