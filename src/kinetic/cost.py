@@ -202,13 +202,13 @@ def edmd_box(*, n_disks: int, duration: float, realizations: int, **_: object) -
     return Estimate(seconds, _mb(1e4 * n_disks), f"{events:.2e} events")
 
 
-GPU_JOB_STARTUP_SECONDS = 5.0
+GPU_JOB_STARTUP_SECONDS = 4.2
 """Wall seconds of a ``cuda`` job's process with its kernels loaded from numba-cuda's
 cache (``kinetic.gpu``): Python, the package's imports, the CUDA context and a tiny job.
-Measured on an H100 machine (bench cuda ``job_startup``, revision 2984f74): 4.0 s
-(cloning), 4.6 s (homogeneous DSMC), 5.6 s (inhomogeneous DSMC), the same numbers as the
-first process, which compiled into the empty cache in 44, 69 and 29 s (not in this
-constant: once per edit)."""
+Measured on an H100 machine (bench cuda ``job_startup``, revision 5836ea7): 3.8 s
+(cloning), 3.8 s (homogeneous DSMC), 4.2 s (inhomogeneous DSMC), the same numbers as the
+first process, which compiled into the empty cache in 36, 85 and 23 s (not in this
+constant: once per edit); at 2984f74, 4.0, 4.6 and 5.6 s."""
 
 
 # ------------------------------------------------------------------ costantini2010
