@@ -434,6 +434,27 @@ def dsmc_homogeneous(
     )
 
 
+def dsmc_homogeneous_points(runs, *, backend: str = "cpu", **_: object) -> Estimate:
+    """One job of several montanero2007 runs one after the other in one process
+    (``kinetic.studies.montanero2007.simulate_batches``; ``runs``: ``dsmc_homogeneous``'s
+    keyword arguments each): the runs' times with one process's startup, the largest
+    run's memory."""
+    estimates = [dsmc_homogeneous(**run, backend=backend) for run in runs]
+    startup = GPU_JOB_STARTUP_SECONDS if backend == "cuda" else 0.0
+    seconds = sum(estimate.cpu_seconds - startup for estimate in estimates) + startup
+    memory = max(estimate.memory_mb for estimate in estimates)
+    particle_steps = sum(
+        math.ceil(run["duration"] / run["time_step"] - 1e-9)
+        * run["n_particles"]
+        * run["realizations"]
+        for run in runs
+    )
+    where = " on one GPU" if backend == "cuda" else ""
+    work = f"{particle_steps:.2e} particle-steps of {len(runs)} runs{where}"
+    gpus = max(estimate.gpus for estimate in estimates)
+    return Estimate(seconds, memory, work, gpus=gpus)
+
+
 DSMC_FLIGHTS_PER_SECOND = {4e3: 6.5e6, 1e6: 1.0e6}
 """Continuous-time DSMC with free-flight recording (kinetic.dsmc.simulate_free_flights,
 d = 2): front 1.3 × 10⁷ flights/s at N = 4000, 2.0 × 10⁶ at N = 10⁶ (the bath no longer

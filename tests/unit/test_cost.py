@@ -342,8 +342,8 @@ def test_inhomogeneous_dsmc_runs_sharing_launches_pay_the_longest_runs_steps_onc
 
 def test_the_paper_gpu_layer_runs_cloning_and_the_dsmc_on_one_gpu():
     """config/paper-gpu.yaml over paper.yaml: its own results root, every cloning point,
-    montanero2007 run and costantini2010 DSMC run one GPU job, hard-disk populations up to
-    10⁶."""
+    montanero2007 family and costantini2010 DSMC run one GPU job, hard-disk populations up
+    to 10⁶."""
     from kinetic.config import load_configs
 
     config = load_configs([REPOSITORY / "config/paper.yaml", REPOSITORY / "config/paper-gpu.yaml"])
@@ -355,8 +355,13 @@ def test_the_paper_gpu_layer_runs_cloning_and_the_dsmc_on_one_gpu():
     assert grid == {
         f"costantini2010_simulate_dsmc_grid_n{n}" for n in config["costantini2010"]["particles"]
     }
-    rest = on_gpu - cloning - grid
-    assert rest == {"montanero2007_simulate_dsmc", "costantini2010_simulate_dsmc"}
+    families = {rule for rule in on_gpu if rule.startswith("montanero2007_simulate_dsmc_")}
+    assert families == {
+        f"montanero2007_simulate_dsmc_{family}"
+        for family in ("scan", "field", "bias", "hcs", "error", "extreme")
+    }
+    rest = on_gpu - cloning - grid - families
+    assert rest == {"costantini2010_simulate_dsmc"}
     assert "visco2008_simulate_cloning" in cloning  # N_c above the resident kernel's
     sizes = {
         job.arguments["population"]
@@ -364,3 +369,22 @@ def test_the_paper_gpu_layer_runs_cloning_and_the_dsmc_on_one_gpu():
         if job.rule == "visco2008_simulate_cloning" and job.arguments["kernel"] == "hard_spheres"
     }
     assert max(sizes) == 10**6
+
+
+def test_homogeneous_dsmc_runs_sharing_a_job_pay_one_startup():
+    """montanero2007's runs of one family in one cuda job (``simulate_batches``): the
+    runs' GPU time with one process's startup instead of one each, the largest run's
+    memory; on the cpu (no startup counted) the sum of the runs."""
+    runs = [
+        {"n_particles": 2000, "duration": 6.0, "time_step": 0.003, "realizations": 40},
+        {"n_particles": 200000, "duration": 6.0, "time_step": 0.003, "realizations": 100},
+        {"n_particles": 500, "duration": 3.0, "time_step": 0.03, "realizations": 800},
+    ]
+    for backend in ("cuda", "cpu"):
+        alone = [cost.dsmc_homogeneous(**run, backend=backend) for run in runs]
+        together = cost.dsmc_homogeneous_points(runs, backend=backend)
+        startup = cost.GPU_JOB_STARTUP_SECONDS if backend == "cuda" else 0.0
+        total = sum(estimate.cpu_seconds for estimate in alone)
+        assert together.cpu_seconds == pytest.approx(total - 2 * startup)
+        assert together.memory_mb == max(estimate.memory_mb for estimate in alone)
+        assert together.gpus == (1 if backend == "cuda" else 0)

@@ -122,3 +122,81 @@ def test_schema_defaults_are_the_default_config():
     defaults = {"seed": 1}
     validate_config(defaults, SCHEMA)
     assert defaults["montanero2007"] == _section("config.yaml")
+
+
+def test_runs_sharing_a_job_give_what_they_give_alone():
+    """``simulate_batches`` (a family's runs in one job with ``backend: cuda``) gives each
+    run the numbers of its own ``simulate_batch`` call and stamps the run's name, family
+    and setting, which the analyses read back (``load_runs``); a bad point is refused
+    before the first one runs. Here on the cpu: the same front for either backend."""
+    first = _run()
+    second = {**_run(), "restitution": 0.5, "reduced_field": 0.0}
+    points = [
+        {"run": first, "seed": 3, "first": 0, "count": 2, "label": "a"},
+        {"run": second, "seed": 4, "first": 1, "count": 1, "label": "b"},
+    ]
+    stamps = [
+        {"run": "alpha080", "family": "scan", "setting": ""},
+        {"run": "hcs_alpha050", "family": "hcs", "setting": ""},
+    ]
+    together = study.simulate_batches(
+        [point | {"parameters": stamp} for point, stamp in zip(points, stamps, strict=True)]
+    )
+    for point, stamp, dataset in zip(points, stamps, together, strict=True):
+        alone = study.simulate_batch(**point)
+        for name in set(alone.data_vars) - {"cpu_seconds"}:
+            np.testing.assert_array_equal(dataset[name].values, alone[name].values, err_msg=name)
+        assert dataset.attrs["steady_from_tau"] == alone.attrs["steady_from_tau"]
+        parameters = io.parameters_of(dataset)
+        assert parameters == {**io.parameters_of(alone), **stamp}
+    from kinetic.dsmc import homogeneous
+
+    runs = []
+    engine = homogeneous.simulate_homogeneous
+
+    def counted(**arguments):
+        if not arguments.get("validate_only"):
+            runs.append(arguments["label"])
+        return engine(**arguments)
+
+    bad = {**_run(), "time_step": 0.3}  # not a divisor of the sample interval
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(homogeneous, "simulate_homogeneous", counted)
+        with pytest.raises(ValueError, match="sample_interval"):
+            study.simulate_batches(
+                [
+                    points[0] | {"parameters": stamps[0]},
+                    {**points[1], "run": bad, "parameters": stamps[1]},
+                ]
+            )
+    assert runs == []  # the first point did not run either
+
+
+def test_cuda_groups_a_familys_runs_with_their_own_arguments_seeds_and_stamps():
+    """With ``backend: cuda`` every run is in exactly one family's job, in plan order, with
+    the arguments, seed and stamps its own job would have (the realizations all in one
+    batch), and the job writes each run's one batch file; on the cpu no run is grouped."""
+    config = yaml.safe_load((REPOSITORY / "config" / "paper.yaml").read_text())
+    validate_config(config, SCHEMA)
+    section = config["montanero2007"]
+    assert study.dsmc_groups(section, "cpu") == {}
+    assert study.single_runs(section, "cpu") == list(study.run_plan(section))
+    assert study.single_runs(section, "cuda") == []
+    groups = study.dsmc_groups(section, "cuda")
+    plan = study.run_plan(section)
+    assert sorted(name for names in groups.values() for name in names) == sorted(plan)
+    for group, names in groups.items():
+        assert names == [name for name, run in plan.items() if run["family"] == group]
+    cpu = {job.output: job for job in study.jobs(config | {"backend": "cpu"})}
+    cuda = study.jobs(config | {"backend": "cuda"})
+    assert [job.rule for job in cuda] == [study.group_rule(group) for group in groups]
+    for job, (group, names) in zip(cuda, groups.items(), strict=True):
+        assert job.gpus == 1
+        assert list(job.files) == study.group_files(names)
+        for name, point in zip(names, job.arguments["points"], strict=True):
+            alone = cpu[f"montanero2007/runs/{name}/batch0000.nc"]
+            assert point["seed"] == alone.arguments["seed"] and point["backend"] == "cuda"
+            assert point["run"] == alone.arguments["run"]
+            assert point["first"] == 0 and point["count"] == point["run"]["realizations"]
+            assert point["parameters"] == alone.parameters
+            assert alone.parameters["family"] == group

@@ -119,8 +119,10 @@ def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
     backend='cuda'; every other simulation job asks for none. The cloning points of a study,
     kernel and population up to ``visco2008_cloning.GROUPED_MAX_POPULATION`` (all of the ci
     config's) share one job of their group's rule, which writes each point's file; so do
-    costantini2010's grid DSMC runs of one N (every α)."""
+    costantini2010's grid DSMC runs of one N (every α) and montanero2007's runs of one
+    family."""
     from kinetic.studies import costantini2010 as costantini2010_study
+    from kinetic.studies import montanero2007 as montanero2007_study
     from kinetic.studies import visco2008_cloning as cloning_plan
 
     extra = tmp_path / "cuda.yaml"
@@ -147,10 +149,12 @@ def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
     groups = [("scan", "hard_disks"), ("scan", "maxwell"), ("error_vs_time", "hard_disks")]
     section = config["costantini2010"]
     sizes = [f"n{n}" for n in section["particles"]]
+    families = ("scan", "field", "bias", "hcs", "error", "extreme")
+    assert set(montanero2007_study.dsmc_groups(config["montanero2007"], "cuda")) == set(families)
     assert {job.rule for job in on_gpu} == {
         *(cloning_plan.group_rule(study, kernel) for study, kernel in groups),
         *(costantini2010_study.group_rule(size) for size in sizes),
-        "montanero2007_simulate_dsmc",
+        *(montanero2007_study.group_rule(family) for family in families),
         "costantini2010_simulate_dsmc",
     }
     for size in sizes:  # one job of every alpha
@@ -167,7 +171,8 @@ def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
     runs = {
         job.output.rsplit("/", 1)[0]
         for job in cpu_jobs
-        if job.rule in {"visco2008_simulate_cloning", *(j.rule for j in on_gpu)}
+        if job.rule
+        in {"visco2008_simulate_cloning", "montanero2007_simulate_dsmc", *(j.rule for j in on_gpu)}
     }
     files = [path for job in on_gpu for path in job.files]
     assert sorted(files) == sorted(f"{run}/batch0000.nc" for run in runs)  # each once

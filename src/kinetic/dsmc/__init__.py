@@ -15,7 +15,7 @@ homogeneous cooling state, with the transverse-mode observers."""
 from __future__ import annotations
 
 from kinetic.dsmc.free_flights import simulate_free_flights
-from kinetic.dsmc.homogeneous import simulate_homogeneous
+from kinetic.dsmc.homogeneous import simulate_homogeneous, simulate_homogeneous_points
 from kinetic.dsmc.inhomogeneous import (
     CoolingModesGas,
     CoolingModesSettings,
@@ -48,6 +48,7 @@ __all__ = [
     "simulate_cooling_modes_points",
     "simulate_free_flights",
     "simulate_homogeneous",
+    "simulate_homogeneous_points",
     "warmup",
 ]
 

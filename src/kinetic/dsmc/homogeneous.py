@@ -52,7 +52,7 @@ from kinetic.dsmc.state import (
 )
 from kinetic.progress import Progress, logger
 
-__all__ = ["simulate_homogeneous"]
+__all__ = ["simulate_homogeneous", "simulate_homogeneous_points"]
 
 
 def simulate_homogeneous(
@@ -79,6 +79,7 @@ def simulate_homogeneous(
     n_speed_bins: int = 120,
     label: str | None = None,
     backend: str = "cpu",
+    validate_only: bool = False,
 ):
     """Run independent realizations of the homogeneous (forced, thermostatted) gas.
 
@@ -111,6 +112,10 @@ def simulate_homogeneous(
         in random groups of particles re-drawn every step; statistically equivalent, not
         bit-identical). A ``cuda`` run on a machine without a GPU stops before any work
         (``kinetic.backends.BackendUnavailable``).
+    validate_only
+        Check every argument, and that the backend is usable, and return None without
+        any work: a job of several runs checks all of them before running the first
+        (``simulate_homogeneous_points``).
 
     Returns
     -------
@@ -166,6 +171,8 @@ def simulate_homogeneous(
         n_speed_bins=n_speed_bins,
     )
     device = backends.require(backend)  # before any work: no GPU, no run
+    if validate_only:
+        return None
 
     d = settings.dimension
     label = label or (
@@ -349,6 +356,26 @@ _CPU_SECONDS = {
     "cpu": "CPU (process) time in the kernels",
     "cuda": "wall time of the GPU run (all realizations together) per realization",
 }
+
+
+def simulate_homogeneous_points(points, *, label: str | None = None):
+    """Several runs of ``simulate_homogeneous`` in one process, one after the other
+    (``points``: its keyword arguments each): every point is checked before the first
+    runs (``validate_only``), and the kernels are compiled or loaded once, so that a job
+    of several runs pays one process's startup (on ``cuda``: one CUDA context). Returns
+    the datasets ``simulate_homogeneous`` returns for the points one at a time, the same
+    numbers; ``label`` (if given) prefixes each point's progress label."""
+    points = [dict(point) for point in points]
+    if not points:
+        raise ValueError("simulate_homogeneous_points needs at least one point")
+    for point in points:
+        simulate_homogeneous(**point, validate_only=True)
+    datasets = []
+    for k, point in enumerate(points):
+        if label:
+            point["label"] = f"{label} [{k + 1}/{len(points)}] {point.get('label') or ''}".strip()
+        datasets.append(simulate_homogeneous(**point))
+    return datasets
 
 
 def _empty_results(count: int, n_windows: int, samples: Samples) -> dict[str, np.ndarray]:

@@ -30,7 +30,7 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from kinetic.studies import Job, backend_arguments, run_jobs
+from kinetic.studies import Job, backend_arguments, points_job, run_jobs
 
 __all__ = [
     "PROTOCOL_KEYS",
@@ -41,6 +41,7 @@ __all__ = [
     "run_batches",
     "run_plan",
     "simulate_batch",
+    "simulate_batches",
 ]
 
 PROTOCOL_KEYS = (
@@ -246,6 +247,44 @@ def _check_run(name: str, run: Mapping[str, Any]) -> None:
         raise ValueError(f"montanero2007 run {name}: needs >= 2 realizations for error bars")
 
 
+def _engine_arguments(
+    run: Mapping[str, Any],
+    *,
+    seed: int,
+    first: int,
+    count: int,
+    label: str,
+    backend: str = "cpu",
+) -> dict[str, Any]:
+    """``simulate_homogeneous``'s arguments for realizations ``first .. first+count-1`` of
+    one run: the histograms of c_x start at ``steady_from`` rounded up to a window
+    boundary, the same windows the steady-state time averages use."""
+    histogram_start = (
+        math.ceil(run["steady_from"] / run["sample_interval"] - 1e-9) * run["sample_interval"]
+    )
+    return {
+        "n_particles": int(run["n_particles"]),
+        "restitution": float(run["restitution"]),
+        "duration": float(run["duration"]),
+        "time_step": float(run["time_step"]),
+        "sample_interval": float(run["sample_interval"]),
+        "seed": int(seed),
+        "n_realizations": int(count),
+        "first_realization": int(first),
+        "dimension": 3,
+        "reduced_field": float(run["reduced_field"]),
+        "force_step": str(run["force_step"]),
+        "selection": str(run["selection"]),
+        "splitting": str(run["splitting"]),
+        "sample_stride": int(run["sample_stride"]),
+        "histogram_start": float(histogram_start),
+        "cx_max": float(run["cx_max"]),
+        "n_cx_bins": int(run["cx_bins"]),
+        "label": label,
+        **({"backend": backend} if backend != "cpu" else {}),
+    }
+
+
 def simulate_batch(
     run: Mapping[str, Any],
     *,
@@ -256,43 +295,86 @@ def simulate_batch(
     backend: str = "cpu",
 ):
     """Realizations ``first .. first+count-1`` of one run (an xarray.Dataset), on the
-    ``backend`` of ``simulate_homogeneous``.
-
-    The histograms of c_x start at ``steady_from`` rounded up to a window boundary, the
-    same windows the steady-state time averages use.
-    """
+    ``backend`` of ``simulate_homogeneous`` (``_engine_arguments``)."""
     from kinetic.dsmc import simulate_homogeneous
 
-    histogram_start = (
-        math.ceil(run["steady_from"] / run["sample_interval"] - 1e-9) * run["sample_interval"]
+    arguments = _engine_arguments(
+        run, seed=seed, first=first, count=count, label=label, backend=backend
     )
-    dataset = simulate_homogeneous(
-        n_particles=int(run["n_particles"]),
-        restitution=float(run["restitution"]),
-        duration=float(run["duration"]),
-        time_step=float(run["time_step"]),
-        sample_interval=float(run["sample_interval"]),
-        seed=int(seed),
-        n_realizations=int(count),
-        first_realization=int(first),
-        dimension=3,
-        reduced_field=float(run["reduced_field"]),
-        force_step=str(run["force_step"]),
-        selection=str(run["selection"]),
-        splitting=str(run["splitting"]),
-        sample_stride=int(run["sample_stride"]),
-        histogram_start=float(histogram_start),
-        cx_max=float(run["cx_max"]),
-        n_cx_bins=int(run["cx_bins"]),
-        label=label,
-        **({"backend": backend} if backend != "cpu" else {}),
-    )
-    return dataset.assign_attrs(steady_from_tau=float(histogram_start))
+    dataset = simulate_homogeneous(**arguments)
+    return dataset.assign_attrs(steady_from_tau=arguments["histogram_start"])
 
 
 simulate_batch.engine_front = "kinetic.dsmc:simulate_homogeneous"
 """The engine function a job of this front runs: its jobs compile only that function's
 kernels (``kinetic.workflow_support.warm_engines``)."""
+
+
+def simulate_batches(points: Sequence[Mapping[str, Any]], *, label: str | None = None):
+    """Several runs' batches in one job (``cuda``: one process, one CUDA context, the runs
+    one after the other, ``kinetic.dsmc.simulate_homogeneous_points``): each point is
+    ``simulate_batch``'s keyword arguments and ``parameters``, the run's name, family
+    and setting that its own job would stamp (``jobs``); every point is checked before
+    the first runs. Returns a dataset a point, the numbers of ``simulate_batch``."""
+    import json
+
+    from kinetic.dsmc import simulate_homogeneous_points
+
+    points = [dict(point) for point in points]
+    stamps = [point.pop("parameters") for point in points]
+    arguments = [_engine_arguments(**point) for point in points]
+    datasets = simulate_homogeneous_points(arguments, label=label)
+    out = []
+    for dataset, engine, stamp in zip(datasets, arguments, stamps, strict=True):
+        parameters = {**json.loads(dataset.attrs["parameters_json"]), **stamp}
+        out.append(
+            dataset.assign_attrs(
+                steady_from_tau=engine["histogram_start"],
+                parameters_json=json.dumps(parameters, sort_keys=True),
+            )
+        )
+    return out
+
+
+simulate_batches.engine_front = "kinetic.dsmc:simulate_homogeneous"
+
+
+def dsmc_groups(section: Mapping[str, Any], backend: str) -> dict[str, list[str]]:
+    """With the ``cuda`` backend, the runs of each family share one job
+    (``simulate_batches``): {family: its run names, in plan order}; none on the cpu,
+    where a run's realizations are cut into jobs of their own. A ``cuda`` run is one
+    batch of every realization (``run_batches``), a few seconds to minutes of GPU time
+    against the 4 s a job's process takes to start (``kinetic.cost``)."""
+    if backend != "cuda":
+        return {}
+    groups: dict[str, list[str]] = {}
+    for name, run in run_plan(section).items():
+        groups.setdefault(str(run["family"]), []).append(name)
+    return groups
+
+
+def group_rule(group: str) -> str:
+    """The rule of one group's job (``montanero2007_simulate_dsmc_scan``: one job, a file
+    per run)."""
+    return f"montanero2007_simulate_dsmc_{group}"
+
+
+def group_name(group: str) -> str:
+    """The group's job under the results root's logs/ (its log and benchmark)."""
+    return f"montanero2007/dsmc/{group}"
+
+
+def group_files(names: Sequence[str]) -> list[str]:
+    """The files of a group's runs, relative to the results root: each run's one batch."""
+    from kinetic import batches
+
+    return [f"montanero2007/runs/{name}/{batches.batch_name(0)}.nc" for name in names]
+
+
+def single_runs(section: Mapping[str, Any], backend: str) -> list[str]:
+    """The runs cut into jobs of their own (every run on the cpu, none on ``cuda``)."""
+    grouped = {name for names in dsmc_groups(section, backend).values() for name in names}
+    return [name for name in run_plan(section) if name not in grouped]
 
 
 def check(config: Mapping[str, Any]) -> None:
@@ -314,23 +396,43 @@ def run_batches(run: Mapping[str, Any], backend: str = "cpu") -> list:
 def jobs(config: Mapping[str, Any]) -> list[Job]:
     """The simulation jobs of the config's montanero2007 section (``kinetic.studies``):
     every run of :func:`run_plan` cut into batches, each ``simulate_batch`` of its
-    realizations, stamped with the run's name, family and setting."""
+    realizations, stamped with the run's name, family and setting; with the ``cuda``
+    backend one job for each family (:func:`dsmc_groups`), whose runs get the arguments,
+    seeds and stamps of their own jobs."""
     from kinetic import cost
     from kinetic.seeds import derive_seed
 
     section = config.get("montanero2007")
     if not section:
         return []
+    backend = config.get("backend", "cpu")
+    groups = dsmc_groups(section, backend)
+    grouped = {name for names in groups.values() for name in names}
+    points: dict[str, dict[str, Any]] = {}  # run name -> its group job's point
     found = []
     for name, run in run_plan(section).items():
         seed = derive_seed(config["seed"], f"montanero2007/{name}")
+        parameters = {"run": name, "family": run["family"], "setting": run.get("setting", "")}
+        cut = run_batches(run, backend)
+        if name in grouped:
+            (job,) = cut
+            points[name] = {
+                "run": dict(run),
+                "seed": seed,
+                "first": job.first_realization,
+                "count": job.n_realizations,
+                "label": f"montanero2007 {name}",
+                **backend_arguments(config),
+                "parameters": parameters,
+            }
+            continue
         found += run_jobs(
             document="montanero2007",
             rule="montanero2007_simulate_dsmc",
             run=f"montanero2007/runs/{name}",
             front="kinetic.studies.montanero2007:simulate_batch",
             engines=("dsmc",),
-            cut=run_batches(run, config.get("backend", "cpu")),
+            cut=cut,
             arguments=lambda job, batch, name=name, run=run, seed=seed: {
                 "run": dict(run),
                 "seed": seed,
@@ -342,7 +444,25 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
             estimate=lambda job, run=run: cost.dsmc_homogeneous(
                 **{**run, "realizations": job.n_realizations, **backend_arguments(config)}
             ),
-            parameters={"run": name, "family": run["family"], "setting": run.get("setting", "")},
+            parameters=parameters,
+        )
+    for group, names in groups.items():
+        group_points = [points[name] for name in names]
+        found.append(
+            points_job(
+                document="montanero2007",
+                rule=group_rule(group),
+                group=group_name(group),
+                outputs=group_files(names),
+                front="kinetic.studies.montanero2007:simulate_batches",
+                points=group_points,
+                label=f"montanero2007 dsmc {group} ({len(names)} runs)",
+                estimate=cost.dsmc_homogeneous_points(
+                    [{**point["run"], "realizations": point["count"]} for point in group_points],
+                    **backend_arguments(config),
+                ),
+                engines=("dsmc",),
+            )
         )
     return found
 

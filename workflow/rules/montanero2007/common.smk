@@ -2,8 +2,10 @@
 # its rule files, which hold only rules and the targets they register.
 
 import functools
+import re
 
 from kinetic import batches
+from kinetic.studies import montanero2007 as montanero2007_study
 from kinetic.studies.montanero2007 import alpha_key, field_partner
 from kinetic.studies.montanero2007 import run_batches, run_plan
 
@@ -42,6 +44,19 @@ def montanero2007_run_batches(wildcards):
 def montanero2007_run_names():
     """Wildcard constraint: the run names of the plan, nothing else."""
     return "|".join(sorted(montanero2007_runs()))
+
+
+def montanero2007_single_run_names():
+    """Wildcard constraint of montanero2007_simulate_dsmc: the runs cut into jobs of their
+    own (every run on the cpu; with backend: cuda none, each family's runs share a job).
+    """
+    names = montanero2007_study.single_runs(config["montanero2007"], config["backend"])
+    return "|".join(re.escape(name) for name in sorted(names)) if names else "(?!)"
+
+
+def montanero2007_dsmc_groups():
+    """{family: its run names} of every grouped-runs rule (cuda only)."""
+    return montanero2007_study.dsmc_groups(config["montanero2007"], config["backend"])
 
 
 # ---------------------------------------------------------------- for the analysis rules

@@ -13,6 +13,8 @@
 #   <results>/montanero2007/runs/<run>.nc              the run's batches joined (what figures read)
 #
 # Run names come from kinetic.studies.montanero2007.run_plan(config["montanero2007"]).
+# With backend: cuda every run is one batch, and the runs of one family share a job
+# (montanero2007_simulate_dsmc_<family>, below): the same files.
 
 
 rule montanero2007_simulate_dsmc:
@@ -25,7 +27,7 @@ rule montanero2007_simulate_dsmc:
     benchmark:
         log_file("benchmarks/montanero2007/runs/{run}/{batch}.tsv")
     wildcard_constraints:
-        run=montanero2007_run_names(),
+        run=montanero2007_single_run_names(),
         batch=r"batch[0-9]{4}",
     threads: 1
     resources:
@@ -38,6 +40,36 @@ rule montanero2007_simulate_dsmc:
         parameters=job_param("montanero2007_simulate_dsmc", "parameters"),
     script:
         "../../scripts/simulate.py"
+
+
+# With backend: cuda, the runs of one family (scan, field, bias, hcs, error, extreme) share
+# one job, one process after the other on the GPU
+# (kinetic.studies.montanero2007.simulate_batches): one rule per family, the same files as
+# the per-run rule writes.
+for group, group_runs in montanero2007_dsmc_groups().items():
+
+    rule:
+        name:
+            montanero2007_study.group_rule(group)
+        input:
+            code=job_code(montanero2007_study.group_rule(group)),
+        output:
+            [results_file(path) for path in montanero2007_study.group_files(group_runs)],
+        log:
+            log_file(f"{montanero2007_study.group_name(group)}.log"),
+        benchmark:
+            log_file(f"benchmarks/{montanero2007_study.group_name(group)}.tsv")
+        threads: 1
+        resources:
+            runtime=planned_runtime,
+            mem_mb=planned_mem_mb,
+            gpu=planned_gpus,
+        params:
+            front=job_param(montanero2007_study.group_rule(group), "front"),
+            job=job_param(montanero2007_study.group_rule(group), "arguments"),
+            parameters=job_param(montanero2007_study.group_rule(group), "parameters"),
+        script:
+            "../../scripts/simulate.py"
 
 
 rule montanero2007_aggregate_run:
