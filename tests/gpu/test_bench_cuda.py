@@ -114,3 +114,22 @@ def test_cloning_case_rates_its_events_on_the_engines_clock():
     assert case["events"] > 0
     assert case["engine_events_per_second"] == case["events"] / case["engine_seconds"]
     assert case["engine_events_per_second"] >= case["events_per_second"]
+
+
+def test_paper_job_is_the_first_montanero2007_run_on_either_backend():
+    """``dsmc_paper_job`` times paper.yaml's first montanero2007 run: on ``cuda`` the first
+    point of its family's job (every realization), on the cpu its first batch; the same
+    run and seed, ``simulate_batch``'s arguments, and the plan of the run as a job of its
+    own."""
+    from kinetic import cost
+    from kinetic.studies import montanero2007
+
+    gpu, front, planned = bench._paper_job("cuda")
+    cpu, cpu_front, _ = bench._paper_job("cpu")
+    assert front is cpu_front is montanero2007.simulate_batch
+    assert gpu["run"] == cpu["run"] and gpu["seed"] == cpu["seed"]
+    assert gpu["run"]["n_particles"] == 200_000 and gpu["run"]["time_step"] == 0.003
+    assert gpu["backend"] == "cuda" and "backend" not in cpu
+    assert gpu["first"] == 0 and gpu["count"] == gpu["run"]["realizations"] > cpu["count"]
+    assert "parameters" not in gpu  # simulate_batch's arguments only
+    assert planned > cost.GPU_JOB_STARTUP_SECONDS
