@@ -285,22 +285,13 @@ def _engine_arguments(
     }
 
 
-def simulate_batch(
-    run: Mapping[str, Any],
-    *,
-    seed: int,
-    first: int,
-    count: int,
-    label: str,
-    backend: str = "cpu",
-):
+def simulate_batch(run: Mapping[str, Any], **batch: Any):
     """Realizations ``first .. first+count-1`` of one run (an xarray.Dataset), on the
-    ``backend`` of ``simulate_homogeneous`` (``_engine_arguments``)."""
+    ``backend`` of ``simulate_homogeneous``: ``batch`` is ``_engine_arguments``' keywords
+    (``seed``, ``first``, ``count``, ``label``, ``backend``)."""
     from kinetic.dsmc import simulate_homogeneous
 
-    arguments = _engine_arguments(
-        run, seed=seed, first=first, count=count, label=label, backend=backend
-    )
+    arguments = _engine_arguments(run, **batch)
     dataset = simulate_homogeneous(**arguments)
     return dataset.assign_attrs(steady_from_tau=arguments["histogram_start"])
 
@@ -316,8 +307,7 @@ def simulate_batches(points: Sequence[Mapping[str, Any]], *, label: str | None =
     ``simulate_batch``'s keyword arguments and ``parameters``, the run's name, family
     and setting that its own job would stamp (``jobs``); every point is checked before
     the first runs. Returns a dataset a point, the numbers of ``simulate_batch``."""
-    import json
-
+    from kinetic import io
     from kinetic.dsmc import simulate_homogeneous_points
 
     points = [dict(point) for point in points]
@@ -326,13 +316,10 @@ def simulate_batches(points: Sequence[Mapping[str, Any]], *, label: str | None =
     datasets = simulate_homogeneous_points(arguments, label=label)
     out = []
     for dataset, engine, stamp in zip(datasets, arguments, stamps, strict=True):
-        parameters = {**json.loads(dataset.attrs["parameters_json"]), **stamp}
-        out.append(
-            dataset.assign_attrs(
-                steady_from_tau=engine["histogram_start"],
-                parameters_json=json.dumps(parameters, sort_keys=True),
-            )
+        dataset = io.stamp(
+            dataset, parameters={**io.parameters_of(dataset), **stamp}, seed=engine["seed"]
         )
+        out.append(dataset.assign_attrs(steady_from_tau=engine["histogram_start"]))
     return out
 
 
