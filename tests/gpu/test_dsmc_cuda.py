@@ -261,16 +261,16 @@ def test_sparse_majorant_bounds_the_stored_velocities_exactly():
 
 def test_force_pass_closes_the_thermostat_in_its_last_block_whatever_the_blocks(monkeypatch):
     """The force pass's last block of a realization folds every block's sums and closes
-    the thermostat (no launch of its own): with 4 blocks a realization (the simulator's 8
-    threads fold them) the thermostat, the majorant, the clock and the velocities are
-    those of one block to rounding (the sums are taken in another order), the tickets are
+    the thermostat (no launch of its own): with 4 blocks a realization (a block's threads
+    fold them) the thermostat, the majorant, the clock and the velocities are those of
+    one block to rounding (the sums are taken in another order), the tickets are
     back at 0 after every pass, and a realization's numbers do not depend on the other's
     blocks. Strang with a field: two passes a step, the first one not closing the step."""
     from kinetic.dsmc import gpu
     from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
 
     settings = HomogeneousSettings(
-        n_particles=131,
+        n_particles=4 * gpu.THREADS + 3,  # 4 blocks and a part: 35 simulated, 515 on a GPU
         restitution=0.8,
         time_step=0.2,
         reduced_field=0.25,
