@@ -218,35 +218,38 @@ mode observer every other step): 2.6 × 10⁻⁸ s per particle-step measured at
 Λ = 10 on the busy 2-core machine before the kernel's last speed-ups; the bench gives
 0.9 × 10⁻⁸ for the step alone."""
 
-COOLING_DSMC_GPU_SECONDS_PER_STEP = 6.0e-4
-"""``cuda`` backend of simulate_cooling_modes, five launches a step (the fallback where the
-GPU cannot launch cooperatively): the fixed cost of one step, five launches through
-numba's dispatcher (about 90 µs each on an H100, as the cloning and homogeneous DSMC
-kernels measured) plus the one-block scan over the cells. A model, not yet measured:
-``python -m kinetic.bench cuda --sections inhomogeneous_speed`` (``paths``)."""
+GPU_H100_PER_H200 = 1.19
+"""How much slower an H100 is taken to be than the H200 where a constant below was
+measured on an H200: the ratio of the copy bandwidths bench cuda measured on each (2.80
+against 2.34 TB/s, ``memory_bound`` of docs/data/cuda-h200-361e2ca.json and
+cuda-h100-5836ea7.json). Both chips have 132 SMs at 1980 MHz, so work bound by latency or
+arithmetic runs about as fast on either: the factor is a ceiling on the H100's extra
+time, which the plan takes to stay on the safe side."""
 
-COOLING_DSMC_GPU_TOGETHER_SECONDS_PER_STEP = 1.5e-4
+COOLING_DSMC_GPU_TOGETHER_SECONDS_PER_STEP = 4.5e-5 * GPU_H100_PER_H200
 """``cuda`` backend of simulate_cooling_modes, the steps between two samples in one
 cooperative launch (``inhomogeneous_gpu._advance_together``): the fixed cost of one step,
-five grid-wide barriers (a few µs each) and the latency of the phases when the GPU has
-little to do, above all one thread per cell sorting, gathering and colliding its ~60
-particles one after another. A model, not yet measured (bench ``inhomogeneous_speed``,
-``paths``)."""
+five grid-wide barriers and the latency of the phases when the GPU has little to do.
+Fitted with ``COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND`` to two timings on an H200 at
+revision 5a93630 (bench cuda ``inhomogeneous_speed``, N = 3000, Λ = 10, 4000 steps with
+their samples; docs/data/cuda-h200-5a93630.json): 16 realizations in 0.174 ms a step and
+96 (``grouped``, six α) in 0.815 ms, that is 4.5 × 10⁻⁵ s a step and 3.74 × 10⁹
+particle-steps/s; times ``GPU_H100_PER_H200``."""
 
 COOLING_DSMC_GPU_SECONDS_PER_SAMPLE = 3.0e-4
 """``cuda`` backend of simulate_cooling_modes on the cooperative path: the launches of a
 sample interval (the steps' launch, the observer and its fold: three of about 90 µs). A
 model."""
 
-COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND = 1.7e9
+COOLING_DSMC_GPU_PARTICLE_STEPS_PER_SECOND = 3.74e9 / GPU_H100_PER_H200
 """``cuda`` backend of simulate_cooling_modes, every realization in the same launches:
-particle-steps per second beyond the launches. Measured at revision 5836ea7 on an H100
-(bench cuda ``inhomogeneous_speed``: N = 3000, Λ = 10, 100 realizations, 60 simulated
-particles a cell, costantini2010's shape: 1.72 × 10⁹ on the cooperative path, samples
-included; docs/data/cuda-h100-5836ea7.json), when one thread per cell sorted and gathered
-its particles (1.54 of the step's 1.72 ms). The cells' phase now runs a warp per cell
-(``inhomogeneous_gpu.CELL_THREADS``), not yet timed: refit from the next run's
-``inhomogeneous_bound``."""
+particle-steps per second beyond the fixed cost of a step (samples included). Fitted on an
+H200 at revision 5a93630 with ``COOLING_DSMC_GPU_TOGETHER_SECONDS_PER_STEP``: 3.74 × 10⁹,
+divided by ``GPU_H100_PER_H200``. The whole-step rate at costantini2010's shape (100
+realizations, 2000 steps) was 3.69 × 10⁹ on that H200, where the cells' phase runs a warp
+per cell (``inhomogeneous_gpu.CELL_THREADS``); an H100 at 5836ea7, with one thread a cell,
+did 1.72 × 10⁹ (its cells' phase 1.54 of the step's 1.72 ms; on the H200 now 0.86 of
+1.18 ms on the launched path)."""
 
 COOLING_DSMC_BYTES_PER_PARTICLE = 120.0
 """Positions, velocities, sort keys and scratch of one simulated particle."""
@@ -362,27 +365,36 @@ DSMC_BYTES_PER_PARTICLE = 100.0
 three velocity components), with histograms and scratch, rounded up."""
 
 
-DSMC_GPU_SECONDS_PER_STEP = 5.0e-4
-"""``cuda`` backend, one H100: wall seconds of one time step's launches when the GPU has
-little to do (bench cuda: 0.52 ms a step at N = 2 × 10⁵, one realization, Strang, sampled
-every step). The launches are asynchronous, so a step costs the larger of this and its
-GPU work (at 2984f74, 1.07 ms a step of 10⁷ particle-steps, where the GPU work alone
-was 1.0 ms)."""
-
-DSMC_GPU_SECONDS_PER_PARTICLE_STEP = 3.4e-11
-"""``cuda`` backend, one H100: seconds per particle-step once the launches are full, Lie
-splitting, the ``sparse`` collisions; times DSMC_STRANG_FACTOR for Strang. Measured at
-revision 5836ea7 (bench cuda ``memory_bound``, N = 2 × 10⁵ × 50 realizations,
-montanero2007's δt = 0.003 τ; docs/data/cuda-h100-5836ea7.json): a step of 10⁷
-particle-steps in 0.341 ms, 3.41 × 10⁻¹¹ s each (60 % of the copy bandwidth's bound: the
-force pass alone ran at 89 % of it, the collisions and the thermostat's fold took the
-rest), against 0.738 ms for the ``columns`` regrouping it replaced. The timed
-montanero2007 paper job (``dsmc_paper_job``) took 37.2 s where this model plans 37.5 s."""
+DSMC_GPU_SECONDS_PER_LAUNCH = 1.1e-4
+"""``cuda`` backend: host seconds of one kernel launch of a step through numba's
+dispatcher (its arguments' checks and marshalling), the floor of a step when the GPU has
+little to do: a Lie step is 2 launches, a Strang step 3, a snapshot 2 more. On an H200 at
+5a93630 the montanero2007 paper job with 25 realizations (5 × 10⁶ particles, whose GPU
+work takes 0.07 ms) ran 0.222 ms a Lie step with a snapshot every 50th (bench cuda
+``dsmc_paper_job``, docs/data/cuda-h200-5a93630.json); on an H100 at 2984f74, 0.52 ms a
+Strang step with a snapshot each (5 launches)."""
 
 DSMC_GPU_SECONDS_PER_SAMPLED_PARTICLE = 2.8e-10
 """``cuda`` backend, one H100: seconds per particle of a snapshot (moments, histograms):
 bench cuda's 1.8-2.1 × 10⁹ particle-steps/s with Strang and a snapshot every step, less
 the step itself."""
+
+DSMC_GPU_SECONDS_PER_PARTICLE_STEP = (
+    2.04e-11 * GPU_H100_PER_H200 - DSMC_GPU_SECONDS_PER_SAMPLED_PARTICLE / 50
+)
+"""``cuda`` backend: seconds per particle-step once the launches are full, Lie splitting,
+the ``sparse`` collisions; times DSMC_STRANG_FACTOR for Strang. Measured on an H200 at
+revision 361e2ca (bench cuda ``dsmc_paper_job``: montanero2007's α = 0.3 run, its 200
+realizations of 2 × 10⁵ in one batch, a tenth of its 2 × 10⁴ steps;
+docs/data/cuda-h200-361e2ca.json): 16.3 s for the whole run, the Maxwellian starts and the
+dataset included (13.2 s on the engine's clock), 2.04 × 10⁻¹¹ s a particle-step; times
+``GPU_H100_PER_H200``, less the snapshots' share (``DSMC_GPU_SECONDS_PER_SAMPLED_PARTICLE``
+at its stride of 50). A step timed alone, launch to synchronisation, takes longer (0.33-
+0.50 ms for 10⁷ particles on that H200, ``memory_bound``): the job's launches run ahead of
+the GPU, and 20 steps launched back to back took 0.20-0.33 ms a step (the
+docs/data/cuda-h200-fold-ab.jsonl A/B, where the force pass with the fused fold, 5a93630,
+and the separate fold of 5836ea7 took the same time to within the H200's drift between
+processes, ±25 %)."""
 
 DSMC_GPU_BYTES_PER_PARTICLE = 80.0
 """``cuda`` backend, a job's host memory: the velocities of every realization built on the
@@ -403,8 +415,9 @@ def dsmc_homogeneous(
     **_: object,
 ) -> Estimate:
     """``realizations`` runs of kinetic.dsmc.simulate_homogeneous (montanero2007); with
-    ``backend='cuda'`` all in the same launches: each step the larger of its launch cost
-    and its particle-steps at the GPU's rate (the launches run ahead of the GPU)."""
+    ``backend='cuda'`` all in the same launches: each step the larger of its launches'
+    host cost and its particle-steps at the GPU's rate (the launches run ahead of the
+    GPU)."""
     steps = math.ceil(duration / time_step - 1e-9)
     particle_steps = steps * n_particles
     if backend == "cuda":
@@ -413,7 +426,8 @@ def dsmc_homogeneous(
             DSMC_STRANG_FACTOR if splitting == "strang" else 1.0
         ) + DSMC_GPU_SECONDS_PER_SAMPLED_PARTICLE / max(1, sample_stride)
         step_work = realizations * n_particles * per_particle_step
-        seconds = steps * max(DSMC_GPU_SECONDS_PER_STEP, step_work)
+        launches = (3 if splitting == "strang" else 2) + 2 / max(1, sample_stride)
+        seconds = steps * max(launches * DSMC_GPU_SECONDS_PER_LAUNCH, step_work)
         memory = _mb(DSMC_GPU_BYTES_PER_PARTICLE * n_particles * realizations)
         work = f"{work:.2e} particle-steps on one GPU"
         return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, memory, work, gpus=1)
