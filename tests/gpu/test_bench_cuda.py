@@ -133,3 +133,44 @@ def test_paper_job_is_the_first_montanero2007_run_on_either_backend():
     assert gpu["first"] == 0 and gpu["count"] == gpu["run"]["realizations"] > cpu["count"]
     assert "parameters" not in gpu  # simulate_batch's arguments only
     assert planned > cost.GPU_JOB_STARTUP_SECONDS
+
+
+def test_document_section_times_each_family_job_in_a_process_of_its_own(monkeypatch):
+    """``montanero2007_document`` runs each family job of paper.yaml on cuda as Snakemake
+    would, a process a job that writes every run's file, after one process that fills the
+    cache; here two of the jobs, shrunk to a few particles and steps, under the
+    simulator, and a third that its plan puts past the deadline is skipped, not run."""
+    import dataclasses
+
+    from kinetic.studies import montanero2007
+
+    real = montanero2007.jobs
+
+    def shrunk(config):
+        assert config["backend"] == "cuda"
+        out = []
+        for job in real(config)[:3]:
+            points = []
+            for point in job.arguments["points"][:2]:
+                run = dict(point["run"]) | {"n_particles": 40, "sample_stride": 2}
+                run |= {"sample_interval": 0.012, "duration": 0.024, "steady_from": 0.012}
+                points.append({**point, "run": run, "count": 2})
+            outputs = job.outputs[: len(points)]
+            out.append(
+                dataclasses.replace(
+                    job, arguments={**job.arguments, "points": points}, outputs=outputs
+                )
+            )
+        late = dataclasses.replace(out[2].estimate, cpu_seconds=1e6)
+        return [*out[:2], dataclasses.replace(out[2], estimate=late)]
+
+    monkeypatch.setattr(montanero2007, "jobs", shrunk)
+    report = bench.montanero2007_document(quick=False)
+    assert "error" not in report["compile"], report["compile"]
+    ran, late = report["jobs"][:2], report["jobs"][2]
+    for row in ran:
+        assert "error" not in row, row["error"]
+        assert row["files"] == min(2, row["runs"]) and row["engine_seconds"] > 0
+        assert row["process_seconds"] > row["engine_seconds"]
+    assert "skipped" in late and not report["complete"]
+    assert report["timed_seconds"] == sum(row["process_seconds"] for row in ran)

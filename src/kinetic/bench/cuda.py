@@ -51,6 +51,7 @@ bandwidth bound.
 
 from __future__ import annotations
 
+import ast
 import contextlib
 import math
 import os
@@ -971,6 +972,109 @@ def job_startup(quick: bool) -> dict[str, Any]:
     return out
 
 
+_DOCUMENT_JOB = """
+import pickle, sys, time
+START = time.perf_counter()
+from kinetic import io, studies
+from kinetic.workflow_support import warm_engines
+import logging
+job = pickle.load(open(sys.argv[1], "rb"))
+front = studies.front(job["front"])
+warm_engines(logging.getLogger("kinetic"), front)
+result = front(**job["arguments"])
+datasets = result if isinstance(result, list) else [result]
+seeds = [point["seed"] for point in job["arguments"].get("points", [job["arguments"]])]
+engine = 0.0
+for k, (dataset, seed) in enumerate(zip(datasets, seeds, strict=True)):
+    engine += float(dataset["cpu_seconds"].sum())
+    parameters = {**io.parameters_of(dataset), **job["parameters"]}
+    io.write_dataset(io.stamp(dataset, parameters=parameters, seed=seed), f"{sys.argv[2]}/{k}.nc")
+print(repr({"seconds": time.perf_counter() - START, "engine_seconds": engine,
+            "files": len(datasets)}))
+"""
+
+
+def montanero2007_document(quick: bool) -> dict[str, Any]:
+    """montanero2007's simulations at paper.yaml's statistics on this GPU, as
+    ``snakemake montanero2007 --configfile config/paper.yaml --config backend=cuda`` runs
+    them: each of its 6 family jobs (``montanero2007_simulate_dsmc_<family>``) in a
+    process of its own, like a Snakemake job (imports, CUDA context, the kernels from
+    numba's cache, the runs, their netCDF files written to a scratch folder), after one
+    process that fills the cache (``compile_seconds``, once per code version). Against
+    ``kinetic.cost``'s plan of each job. The joins, analyses and figures (CPU, seconds)
+    are left out. Not in the default sections (about 8 minutes on an H200): name it with
+    ``--sections montanero2007_document``. A job that would end past
+    ``KINETIC_DOCUMENT_SECONDS`` (default 540) after the section's start, by its plan
+    times the pace of the jobs done (measured over planned), is skipped and reported so;
+    ``quick`` runs the two smallest jobs."""
+    import pickle
+    import subprocess
+    import sys
+    import tempfile
+
+    from kinetic.studies import montanero2007
+
+    deadline = float(os.environ.get("KINETIC_DOCUMENT_SECONDS", "540"))
+    jobs = montanero2007.jobs(_paper_config() | {"backend": "cuda"})
+    if quick:
+        jobs = sorted(jobs, key=lambda job: job.estimate.cpu_seconds)[:2]
+    started = time.perf_counter()
+    out: dict[str, Any] = {"jobs": [], "planned_seconds": 0.0}
+    _keep(jobs=out["jobs"])
+
+    def process(job, folder):
+        path = f"{folder}/job.pickle"
+        with open(path, "wb") as stream:
+            pickle.dump(
+                {
+                    "front": job.front,
+                    "arguments": dict(job.arguments),
+                    "parameters": dict(job.parameters),
+                },
+                stream,
+            )
+        begin = time.perf_counter()
+        done = subprocess.run(
+            [sys.executable, "-c", _DOCUMENT_JOB, path, folder],
+            capture_output=True,
+            text=True,
+            timeout=max(60.0, deadline),
+        )
+        wall = time.perf_counter() - begin
+        if done.returncode != 0:
+            return {"error": done.stderr[-2000:], "process_seconds": wall}
+        return {"process_seconds": wall, **ast.literal_eval(done.stdout.strip().splitlines()[-1])}
+
+    with tempfile.TemporaryDirectory() as folder:
+        out["compile"] = process(min(jobs, key=lambda job: job.estimate.cpu_seconds), folder)
+        begin = time.perf_counter()
+        pace, timed, timed_planned = 1.0, 0.0, 0.0  # measured against planned, so far
+        for job in jobs:
+            planned = job.estimate.cpu_seconds
+            out["planned_seconds"] += planned
+            row = {"rule": job.rule, "runs": len(job.files), "planned_seconds": planned}
+            if time.perf_counter() - started + planned * pace > deadline:
+                out["jobs"].append(row | {"skipped": "past KINETIC_DOCUMENT_SECONDS by its plan"})
+                continue
+            out["jobs"].append(row | process(job, folder))
+            if "error" not in out["jobs"][-1]:
+                timed += out["jobs"][-1]["process_seconds"]
+                timed_planned += planned
+                pace = timed / timed_planned
+        out["jobs_seconds"] = time.perf_counter() - begin
+    done = [row for row in out["jobs"] if "process_seconds" in row and "error" not in row]
+    out["complete"] = len(done) == len(jobs)
+    out["timed_seconds"] = sum(row["process_seconds"] for row in done)
+    out["timed_planned_seconds"] = sum(row["planned_seconds"] for row in done)
+    return out
+
+
+OPTIONAL_SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
+    "montanero2007_document": montanero2007_document,
+}
+"""Sections run only when named (``--sections``): too long for the default run."""
+
+
 SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
     "inhomogeneous_bound": inhomogeneous_bound,
     "memory_bound": memory_bound,
@@ -1031,14 +1135,15 @@ def run(quick: bool = False, checkpoint=None, sections=None) -> dict[str, Any]:
     """Every section in ``SECTIONS``' order, or those named in ``sections`` in the order
     named; ``checkpoint(report)`` is called after each one. A failing section records its
     traceback and what it had measured (``partial``), and the next runs."""
-    unknown = set(sections or ()) - set(SECTIONS)
+    known = SECTIONS | OPTIONAL_SECTIONS
+    unknown = set(sections or ()) - set(known)
     if unknown:
-        raise ValueError(f"unknown sections {sorted(unknown)}; known: {list(SECTIONS)}")
+        raise ValueError(f"unknown sections {sorted(unknown)}; known: {list(known)}")
     preflight()
     started = time.perf_counter()
     report: dict[str, Any] = {"gpu": _device(), "sections": {}}
     for name in sections or SECTIONS:
-        section = SECTIONS[name]
+        section = known[name]
         if time.perf_counter() - started > _BUDGET_SECONDS:
             report["sections"][name] = {"skipped": "time budget spent"}
             continue
