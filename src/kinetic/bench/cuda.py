@@ -1047,6 +1047,7 @@ def montanero2007_document(quick: bool) -> dict[str, Any]:
 
     with tempfile.TemporaryDirectory() as folder:
         out["compile"] = process(min(jobs, key=lambda job: job.estimate.cpu_seconds), folder)
+        print("montanero2007_document: compile", out["compile"], flush=True)
         begin = time.perf_counter()
         pace, timed, timed_planned = 1.0, 0.0, 0.0  # measured against planned, so far
         for job in jobs:
@@ -1057,6 +1058,7 @@ def montanero2007_document(quick: bool) -> dict[str, Any]:
                 out["jobs"].append(row | {"skipped": "past KINETIC_DOCUMENT_SECONDS by its plan"})
                 continue
             out["jobs"].append(row | process(job, folder))
+            print("montanero2007_document:", out["jobs"][-1], flush=True)  # if cut off
             if "error" not in out["jobs"][-1]:
                 timed += out["jobs"][-1]["process_seconds"]
                 timed_planned += planned
