@@ -394,7 +394,7 @@ at its stride of 50). A step timed alone, launch to synchronisation, takes longe
 the GPU, and 20 steps launched back to back took 0.20-0.33 ms a step (the
 docs/data/cuda-h200-fold-ab.jsonl A/B, where the force pass with the fused fold, 5a93630,
 and the separate fold of 5836ea7 took the same time to within the H200's drift between
-processes, ±25 %)."""
+processes, up to 50 %)."""
 
 DSMC_GPU_BYTES_PER_PARTICLE = 80.0
 """``cuda`` backend, a job's host memory: the velocities of every realization built on the
