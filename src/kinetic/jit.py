@@ -197,6 +197,10 @@ FLAGS = {"cache": True, "error_model": "numpy"}
 kernel = njit(**FLAGS)
 """Decorator: numba.njit with :data:`FLAGS`."""
 
+unlocked = njit(**FLAGS, nogil=True)
+"""Decorator: :data:`kernel` that releases the GIL while it runs, for work a thread does
+beside the main one (the next run's initial velocities while a GPU run launches)."""
+
 inline = njit(**FLAGS, inline="always")
 """Decorator: numba.njit with :data:`FLAGS`, inlined into its callers."""
 

@@ -398,3 +398,34 @@ def test_bench_memory_bound_times_every_pass_of_the_step():
         "copy_bytes_per_second",
         "sparse",
     }
+
+
+def test_points_take_the_next_runs_starts_built_beside_the_last(monkeypatch):
+    """``simulate_homogeneous_points`` on cuda builds each run's Maxwellian starts in a
+    worker thread while the run before it goes (``gpu.prefetch_starts``): the first run's
+    on the spot, the second's in the worker, none left over, and every run's numbers are
+    those it gets alone."""
+    import threading
+
+    from kinetic.dsmc import gpu, simulate_homogeneous_points
+
+    built = []
+    real = gpu.maxwellian_starts
+
+    def counted(dimension, n_particles, streams):
+        built.append((streams.shape[0], threading.current_thread().name))
+        return real(dimension, n_particles, streams)
+
+    monkeypatch.setattr(gpu, "maxwellian_starts", counted)
+    points = [
+        {**TINY, "restitution": 0.9, "seed": 5, "backend": "cuda"},
+        {**TINY, "restitution": 0.7, "seed": 6, "n_realizations": 3, "backend": "cuda"},
+    ]
+    together = simulate_homogeneous_points(points)
+    threads = dict(built)  # realizations: the thread that built the run's starts
+    assert len(built) == 2 and not gpu._PREFETCHED
+    assert threads[2] == threading.main_thread().name and threads[3].startswith("starts")
+    for point, dataset in zip(points, together, strict=True):
+        alone = simulate_homogeneous(**point)
+        for name in set(alone.data_vars) - {"cpu_seconds"}:
+            np.testing.assert_array_equal(dataset[name].values, alone[name].values, err_msg=name)

@@ -190,3 +190,23 @@ def test_beta1_weights_sum_to_the_marginal_moment():
     per_snapshot = run.moments.sel(moment="marginal_1") * run.snapshots
     expected = per_snapshot.sum("time") * 200
     np.testing.assert_allclose(total.values, expected.values, rtol=1e-9, atol=1e-9)
+
+
+@pytest.mark.parametrize("dimension", [2, 3])
+def test_batch_starts_are_new_gas_starts_bit_for_bit(dimension):
+    """``maxwellian_starts`` (the cuda backend's starts, one compiled call for a batch)
+    draws what ``new_gas`` draws for each realization: the same velocities and stream
+    states, bit for bit, and each realization's largest speed."""
+    from kinetic.dsmc.state import maxwellian_starts
+
+    settings = HomogeneousSettings(
+        n_particles=101, restitution=0.9, time_step=0.01, dimension=dimension
+    )
+    streams = realization_streams(4, 3, 5)
+    velocity, states, tops = maxwellian_starts(dimension, 101, streams)
+    for r in range(5):
+        gas = new_gas(settings, streams[r])
+        np.testing.assert_array_equal(velocity[r], gas.velocity)
+        np.testing.assert_array_equal(states[r], gas.rng)
+        assert tops[r] == np.sqrt(np.einsum("kn,kn->n", gas.velocity, gas.velocity).max())
+    assert np.array_equal(streams, realization_streams(4, 3, 5))  # the input is not advanced

@@ -29,6 +29,7 @@ from kinetic.dsmc.state import (
     HomogeneousSettings,
     Samples,
     advance_gas,
+    maxwellian_starts,
     new_gas,
     realization_streams,
 )
@@ -73,6 +74,7 @@ def _warm_homogeneous() -> None:
             )
             gas = new_gas(settings, realization_streams(0, 0, 1)[0])
             advance_gas(gas, 2, Samples(stride=1, histogram=True))
+    maxwellian_starts(3, 8, realization_streams(0, 0, 2))  # the cuda backend's starts
 
 
 def _warm_free_flights() -> None:

@@ -91,6 +91,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from typing import Any
 
 import numpy as np
 from numba.core import types
@@ -106,7 +107,7 @@ from kinetic.dsmc.state import (
     _STATUS_MESSAGES,
     HomogeneousSettings,
     Samples,
-    new_gas,
+    maxwellian_starts,
 )
 from kinetic.gpu import (
     BLOCK,
@@ -575,12 +576,9 @@ class _Batch:
     ):
         d, n = settings.dimension, settings.n_particles
         count = streams.shape[0]
-        velocity = np.empty((count, d, n))
-        group_keys = np.empty((count, 4), dtype=np.uint64)
-        for r in range(count):
-            gas = new_gas(settings, streams[r])  # the CPU engine's Maxwellian start
-            velocity[r] = gas.velocity
-            group_keys[r] = gas.rng
+        # the CPU engine's Maxwellian starts (new_gas's numbers), built beside the last
+        # run if simulate_homogeneous_points asked for them (prefetch_starts)
+        velocity, group_keys, tops = _take_starts(d, n, streams)
         self.settings = settings
         self.exact = 1 if settings.force_step == "exact" else 0
         self.count = count
@@ -603,7 +601,7 @@ class _Batch:
         self.carry = device_zeros((count, self.n_groups, 1))
         self.tally = device_zeros((count, self.n_groups, 4), np.int64)
         self.partials = device_zeros((count, self.n_blocks, N_MOMENTS))
-        self.thermo = to_device(_start_thermo(velocity))
+        self.thermo = to_device(_start_thermo(tops))
         self.clock = device_zeros((count, 5))
         self.status = device_zeros(count, np.int64)
         self.moment_sums = device_zeros((count, N_MOMENTS))
@@ -691,16 +689,45 @@ class _Batch:
             )
 
 
-def _start_thermo(velocity: np.ndarray) -> np.ndarray:
+def _start_thermo(tops: np.ndarray) -> np.ndarray:
     """``thermo`` at the start (``_N_THERMO`` columns a realization): no thermostat (u = 0,
-    scale 1) and the largest speed of each realization's ``velocity[r]`` (d, N), one
-    realization at a time (the same numbers as one ``einsum`` over the batch, 6.5 times
-    faster on 200 x 2 × 10⁵ particles: the batch's squared speeds are not built at once)."""
-    thermo = np.zeros((velocity.shape[0], _N_THERMO))
+    scale 1) and the largest speed of each realization's start, ``tops``."""
+    thermo = np.zeros((tops.shape[0], _N_THERMO))
     thermo[:, _SCALE] = 1.0
-    for r, v in enumerate(velocity):
-        thermo[r, _TOP] = math.sqrt(np.einsum("kn,kn->n", v, v).max())
+    thermo[:, _TOP] = tops
     return thermo
+
+
+_PREFETCHED: dict[tuple, Any] = {}
+_PREFETCHER: list = []  # the one worker thread, made on first use
+
+
+def prefetch_starts(dimension: int, n_particles: int, streams: np.ndarray) -> None:
+    """Build the Maxwellian starts of a run that comes next (``maxwellian_starts``) in a
+    worker thread, while this thread runs the current one: the compiled draw releases
+    the GIL, and the current run's host thread mostly waits for the GPU or launches
+    kernels. ``_Batch`` takes them when it starts that run (the same numbers as built on
+    the spot). The host then holds two runs' velocities at once (24 bytes a particle
+    each, inside ``cost.DSMC_GPU_BYTES_PER_PARTICLE``)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    key = (dimension, n_particles, np.ascontiguousarray(streams, dtype=np.uint64).tobytes())
+    if key in _PREFETCHED:
+        return
+    if not _PREFETCHER:
+        _PREFETCHER.append(ThreadPoolExecutor(max_workers=1, thread_name_prefix="starts"))
+    _PREFETCHED[key] = _PREFETCHER[0].submit(
+        maxwellian_starts, dimension, n_particles, np.array(streams, dtype=np.uint64)
+    )
+
+
+def _take_starts(dimension: int, n_particles: int, streams: np.ndarray):
+    """The starts of ``streams``: those ``prefetch_starts`` built, else built now."""
+    key = (dimension, n_particles, np.ascontiguousarray(streams, dtype=np.uint64).tobytes())
+    future = _PREFETCHED.pop(key, None)
+    if future is not None:
+        return future.result()
+    return maxwellian_starts(dimension, n_particles, streams)
 
 
 def _settings_arrays(settings: HomogeneousSettings, samples: Samples):

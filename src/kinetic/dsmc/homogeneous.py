@@ -34,6 +34,7 @@ Timing hooks: every dataset holds per realization ``cpu_seconds`` (process time)
 
 from __future__ import annotations
 
+import inspect
 import math
 
 import numpy as np
@@ -358,11 +359,20 @@ _CPU_SECONDS = {
 }
 
 
+_FRONT_DEFAULTS = {
+    name: parameter.default
+    for name, parameter in inspect.signature(simulate_homogeneous).parameters.items()
+}
+"""``simulate_homogeneous``'s keyword defaults (those a point leaves out)."""
+
+
 def simulate_homogeneous_points(points, *, label: str | None = None):
     """Several runs of ``simulate_homogeneous`` in one process, one after the other
     (``points``: its keyword arguments each): every point is checked before the first
     runs (``validate_only``), and the kernels are compiled or loaded once, so that a job
-    of several runs pays one process's startup (on ``cuda``: one CUDA context). Returns
+    of several runs pays one process's startup (on ``cuda``: one CUDA context, and each
+    run's Maxwellian starts built in a thread beside the run before it,
+    ``gpu.prefetch_starts``). Returns
     the datasets ``simulate_homogeneous`` returns for the points one at a time, the same
     numbers; ``label`` (if given) prefixes each point's progress label."""
     points = [dict(point) for point in points]
@@ -372,10 +382,25 @@ def simulate_homogeneous_points(points, *, label: str | None = None):
         simulate_homogeneous(**point, validate_only=True)
     datasets = []
     for k, point in enumerate(points):
+        if k + 1 < len(points) and points[k + 1].get("backend") == "cuda":
+            _prefetch_starts(points[k + 1])
         if label:
             point["label"] = f"{label} [{k + 1}/{len(points)}] {point.get('label') or ''}".strip()
         datasets.append(simulate_homogeneous(**point))
     return datasets
+
+
+def _prefetch_starts(point) -> None:
+    """Have the GPU engine build the Maxwellian starts of ``point`` (a checked
+    ``simulate_homogeneous`` call on ``cuda``) beside the run before it
+    (``kinetic.dsmc.gpu.prefetch_starts``)."""
+    from kinetic.dsmc import gpu
+
+    arguments = _FRONT_DEFAULTS | point
+    streams = realization_streams(
+        arguments["seed"], arguments["first_realization"], arguments["n_realizations"]
+    )
+    gpu.prefetch_starts(arguments["dimension"], arguments["n_particles"], streams)
 
 
 def _empty_results(count: int, n_windows: int, samples: Samples) -> dict[str, np.ndarray]:

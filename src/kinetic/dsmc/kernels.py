@@ -53,7 +53,7 @@ from typing import NamedTuple
 import numpy as np
 
 from kinetic.gas import HARD_SPHERES, MAXWELL, VERY_HARD
-from kinetic.jit import inline, kernel
+from kinetic.jit import inline, kernel, unlocked
 from kinetic.rng import load_state, normal_pair, store_state
 from kinetic.rng import xoshiro_exponential as _exponential
 from kinetic.rng import xoshiro_next as _next
@@ -1211,3 +1211,23 @@ def maxwellian(velocity, state, temperature):
     for k in range(d):
         for i in range(n):
             velocity[k, i] *= scale
+
+
+@unlocked
+def maxwellian_batch(velocity, states, tops):
+    """``maxwellian(velocity[r], states[r], 1.0)`` for every realization r of a batch
+    (velocity (R, d, N), states (R, 4) advanced in place), and ``tops[r]`` = the largest
+    speed of realization r, sqrt(max_i |v_i|²) with |v|² summed over the components in
+    order. Without the GIL, so that a thread can build the next run's starts while the
+    current run launches its kernels (``kinetic.dsmc.gpu.prefetch_starts``)."""
+    d = velocity.shape[1]
+    for r in range(velocity.shape[0]):
+        v = velocity[r]
+        maxwellian(v, states[r], 1.0)
+        top = 0.0
+        for i in range(velocity.shape[2]):
+            speed_sq = v[0, i] * v[0, i] + v[1, i] * v[1, i]
+            if d == 3:
+                speed_sq += v[2, i] * v[2, i]
+            top = max(top, speed_sq)
+        tops[r] = math.sqrt(top)

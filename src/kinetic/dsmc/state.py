@@ -318,6 +318,20 @@ def realization_streams(seed: int, first: int, count: int) -> np.ndarray:
     return stream_states(seed, first + count)[first:].copy()
 
 
+def maxwellian_starts(dimension: int, n_particles: int, streams: np.ndarray):
+    """The Maxwellian starts of a batch of realizations (one row of ``streams`` each), as
+    ``new_gas`` draws them one at a time, the same numbers: ``(velocity, states, tops)``,
+    the velocities (R, d, N), the streams after the draws (R, 4) and each realization's
+    largest speed (R,). One compiled call that releases the GIL
+    (``kernels.maxwellian_batch``)."""
+    streams = np.ascontiguousarray(streams, dtype=np.uint64)
+    velocity = np.empty((streams.shape[0], dimension, n_particles))
+    states = streams.copy()
+    tops = np.empty(streams.shape[0])
+    kernels.maxwellian_batch(velocity, states, tops)
+    return velocity, states, tops
+
+
 def new_gas(
     settings: HomogeneousSettings, stream: np.ndarray, velocity: np.ndarray | None = None
 ) -> HomogeneousGas:
