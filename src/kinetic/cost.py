@@ -400,8 +400,8 @@ DSMC_GPU_BYTES_PER_PARTICLE = 80.0
 """``cuda`` backend, a job's host memory: the velocities of every realization built on the
 host (24 bytes a particle) and, in a job of several runs, the next run's built beside
 them (``dsmc.gpu.prefetch_starts``: 24 more a particle of the larger run), the
-majorant's scratch (8), 56 in all, rounded up; the GPU holds the 24 bytes and about 1 a particle of per-group
-state."""
+majorant's scratch (8), 56 in all, rounded up; the GPU holds the 24 bytes and about 1 a
+particle of per-group state."""
 
 
 def dsmc_homogeneous(
