@@ -372,9 +372,9 @@ def simulate_homogeneous_points(points, *, label: str | None = None):
     runs (``validate_only``), and the kernels are compiled or loaded once, so that a job
     of several runs pays one process's startup (on ``cuda``: one CUDA context, and each
     run's Maxwellian starts built in a thread beside the run before it,
-    ``gpu.prefetch_starts``). Returns
-    the datasets ``simulate_homogeneous`` returns for the points one at a time, the same
-    numbers; ``label`` (if given) prefixes each point's progress label."""
+    ``gpu.prefetch_starts``). Returns the datasets ``simulate_homogeneous`` returns for
+    the points one at a time, the same numbers; ``label`` (if given) prefixes each
+    point's progress label."""
     points = [dict(point) for point in points]
     if not points:
         raise ValueError("simulate_homogeneous_points needs at least one point")
