@@ -167,6 +167,22 @@ def test_document_section_times_each_family_job_in_a_process_of_its_own(monkeypa
     monkeypatch.setattr(montanero2007, "jobs", shrunk)
     report = bench.montanero2007_document(quick=False)
     assert "error" not in report["compile"], report["compile"]
+    runs = [
+        point["run"]
+        for job in shrunk(bench._paper_config() | {"backend": "cuda"})
+        for point in job.arguments["points"]
+    ]
+    variants = {
+        (
+            r["force_step"],
+            r["selection"],
+            r["splitting"],
+            r["reduced_field"] == 0,
+            r["restitution"] == 1,
+        )
+        for r in runs
+    }
+    assert report["compile"]["files"] == len(variants) < len(runs)  # one run a variant
     ran, late = report["jobs"][:2], report["jobs"][2]
     for row in ran:
         assert "error" not in row, row["error"]
