@@ -100,6 +100,10 @@ def _device() -> dict[str, Any]:
     return info
 
 
+_CLONING_BLOCKS = 10
+"""Measured blocks of every bench cloning point."""
+
+
 def _cloning_arguments(kernel, lam, population, duration, realizations, backend, seed, **extra):
     """``kinetic.cloning.simulate``'s arguments for a bench point (d = 2, a transient of
     2 e^λ mean free times, at least 4, ten blocks)."""
@@ -110,7 +114,7 @@ def _cloning_arguments(kernel, lam, population, duration, realizations, backend,
         "population": population,
         "duration": duration,
         "transient": max(4.0, 2.0 * math.exp(lam)),
-        "n_blocks": 10,
+        "n_blocks": _CLONING_BLOCKS,
         "n_realizations": realizations,
         "seed": seed,
         "backend": backend,
@@ -334,20 +338,45 @@ def cloning_physics(quick: bool) -> dict[str, Any]:
     realizations of 10⁴ clones each, a seed of its own a λ (with one seed for all λ,
     neighbouring λ shared their random numbers and so their deviations: on the H200 run
     of 5a93630, 10 realizations each, λ = 3 to 4.5 all came out 0.6-1.3 × 10⁻³ high), and
-    ``maxwell_chi2``, Σz² over them against its degrees of freedom (the λ with an error)."""
+    ``maxwell_chi2``, Σz² over them against its degrees of freedom (the λ with an error):
+    ``chi2`` with each λ's error from its 32 realizations, ``chi2_expected`` with the
+    estimator's own bias and error at that N_c and Δ
+    (``theory.visco2008.poisson_cloning_estimator``: exact errors, and the bias, 10⁻⁴ to
+    7 × 10⁻⁴ at λ ≤ -1, taken out)."""
     from kinetic.cloning import extrapolate_population
+    from kinetic.theory.visco2008 import poisson_cloning_estimator
     from kinetic.theory.visco2008_exact import reference_solution
 
     out: dict[str, Any] = {}
     maxwell = []
     _keep(maxwell_mu=maxwell, results=out)
+    population, duration, realizations = 10_000, 40.0, 32
     for k, lam in enumerate(_paper_lambdas("maxwell")[:: 4 if quick else 1]):
-        r = _cloning("maxwell", lam, 10_000, 40.0, 32, seed=7 + k)
+        r = _cloning("maxwell", lam, population, duration, realizations, seed=7 + k)
         exact = math.expm1(-lam)
-        maxwell.append(r | {"exact": exact, "z": _z_score(r["mu"] - exact, r["mu_err"])})
+        block = duration / _CLONING_BLOCKS  # each cut into intervals of at most Δ
+        interval = block / math.ceil(block / r["control_interval"] - 1e-9)
+        bias, spread = poisson_cloning_estimator(lam, population, interval, duration)
+        expected = float(spread) / math.sqrt(realizations)
+        maxwell.append(
+            r
+            | {
+                "exact": exact,
+                "z": _z_score(r["mu"] - exact, r["mu_err"]),
+                "expected_bias": float(bias),
+                "expected_error": expected,
+                "z_expected": _z_score(r["mu"] - exact - float(bias), expected),
+            }
+        )
     out["maxwell_mu"] = maxwell
     scores = [r["z"] for r in maxwell if r["mu_err"] > 0 and r["z"] is not None]
-    out["maxwell_chi2"] = {"chi2": float(sum(z * z for z in scores)), "dof": len(scores)}
+    expected = [r["z_expected"] for r in maxwell if r["expected_error"] > 0]
+    out["maxwell_chi2"] = {
+        "chi2": float(sum(z * z for z in scores)),
+        "dof": len(scores),
+        "chi2_expected": float(sum(z * z for z in expected)),
+        "dof_expected": len(expected),
+    }
     points = [(1000, 64), (10_000, 16), (100_000, 8), (1_000_000, 4)]
     disks = [_cloning("hard_spheres", 1.0, n, 100.0, r, seed=11) for n, r in points]
     fit = extrapolate_population(

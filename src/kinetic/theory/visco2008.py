@@ -60,6 +60,7 @@ __all__ = [
     "maxwell_free_path_survival",
     "mean_free_path",
     "mean_speed",
+    "poisson_cloning_estimator",
     "poisson_count_ldf",
     "poisson_ldf",
     "poisson_mu",
@@ -375,6 +376,25 @@ def vhp_free_flight_time_pdf(t, d: int):
 def poisson_mu(lam, rate: float = 1.0):
     """Cumulant generating function of a Poisson process of ``rate``: rate (e^{-λ} - 1)."""
     return rate * np.expm1(-np.asarray(lam, dtype=float))
+
+
+def poisson_cloning_estimator(lam, population, interval, duration, rate: float = 1.0):
+    """Bias and standard deviation of one realization of the discrete-time cloning
+    estimator of μ(λ) (``kinetic.cloning``'s ``cuda`` backend) where a clone's count in a
+    control interval Δ is Poisson(rate Δ) whatever its state: Maxwell molecules.
+
+    A weight w = e^{-λK} then has relative variance v = exp(rate Δ (e^{-λ} - 1)²) - 1
+    (E e^{-sK} = exp(rate Δ (e^{-s} - 1)) at s = λ and 2λ), and the N_c weights of an
+    interval are independent of each other and of the other intervals, copies of one
+    clone included. ln of their mean, to first order in 1/N_c, has the mean
+    rate Δ (e^{-λ} - 1) - v/(2 N_c) and the variance v/N_c; μ is the sum over the
+    duration/Δ intervals divided by the duration. Returns (bias, standard deviation):
+    -v/(2 N_c Δ) and sqrt(v/(N_c Δ duration)). The first order overstates the spread at
+    small N_c v (at N_c = 16, Δ = 4, λ = 1: 0.088 against 0.069 measured), where the log
+    of the mean is far from linear in it; the next order is smaller by about v/N_c."""
+    lam = np.asarray(lam, dtype=float)
+    v = np.expm1(rate * interval * np.expm1(-lam) ** 2)
+    return -v / (2.0 * population * interval), np.sqrt(v / (population * interval * duration))
 
 
 def poisson_ldf(n, rate: float = 1.0):
