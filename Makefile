@@ -53,8 +53,9 @@ docs: install
 	$(BIN)/python -m kinetic.docs render
 
 # CPython 3.12 x86-64 wheels of the pins a GPU machine lacks or has in other versions: numpy
-# (numba-cuda 0.30 does not compile on numpy >= 2.5), numba-cuda, and jsonschema with its
-# dependencies (kinetic.config); attrs and the rest are on the lent machines.
+# (numba-cuda 0.30 does not compile on numpy >= 2.5), numba-cuda, jsonschema with its
+# dependencies (kinetic.config) and netCDF4 with its (kinetic.io: the H100 of b66ff5b had
+# none); attrs and the rest are on the lent machines.
 GPU_WHEELS = numpy numba-cuda jsonschema jsonschema-specifications referencing rpds-py \
 	netCDF4 cftime certifi
 GPU_PLATFORMS = manylinux_2_28_x86_64 manylinux_2_27_x86_64 manylinux_2_24_x86_64 \
