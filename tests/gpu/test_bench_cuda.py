@@ -103,6 +103,11 @@ def test_dsmc_case_rates_its_collisions_on_the_engines_clock():
         64 * 2 * steps / case["engine_seconds"]
     )
     assert case["engine_collisions_per_second"] >= case["collisions_per_second"]
+    # the rate's other side: candidate pairs per collision at the realization's majorant
+    assert 0 < case["acceptance"] <= 1 and case["splitting"] == "strang"
+    lie = bench._dsmc(64, 2, 2.0, "cuda", splitting="lie", force_step="euler")
+    assert (lie["splitting"], lie["force_step"]) == ("lie", "euler")
+    assert 0 < lie["acceptance"] <= 1
 
 
 def test_cloning_case_rates_its_events_on_the_engines_clock():

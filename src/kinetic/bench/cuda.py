@@ -445,8 +445,11 @@ def _dsmc(n, realizations, duration, backend, seed=13, **extra) -> dict[str, Any
         "regrouping": ds.attrs.get("collision_groups"),
         "reduced_field": arguments["reduced_field"],
         "sample_stride": arguments["sample_stride"],
+        "splitting": arguments["splitting"],
+        "force_step": arguments["force_step"],
         "wall_seconds": wall,
         "collisions": collisions,
+        "acceptance": collisions / float(ds.candidates.sum()),
         "engine_seconds": engine,
         "collisions_per_second": collisions / wall,
         "particle_steps_per_second": particle_steps / wall,
@@ -632,15 +635,30 @@ def dsmc_scaling(quick: bool) -> dict[str, Any]:
     2 × 10⁷ × 1, groups re-dealt every step, a snapshot every 10 steps (1 τ; the
     documents sample every 0.15-1 τ): the collision engine's rate, which a snapshot of
     every particle at every step (``dsmc_speed``; this section until revision a2a5eb2)
-    would hide."""
+    would hide. First with ``_dsmc``'s Strang splitting and exact force step (3 launches
+    and two passes over every particle a step), then at N = 2 × 10⁵ × 100 and 2 × 10⁶ ×
+    10 with montanero2007's Lie splitting and Euler force step (``lie``: 2 launches, one
+    pass; every run of paper.yaml's montanero2007 but the error study's). Each case says
+    its ``acceptance`` (collisions per candidate pair)."""
     _dsmc(2000, 2, 1.0, "cuda", restitution=1.0)  # compile (same types as every case)
+    lie = {"splitting": "lie", "force_step": "euler"}
+    _dsmc(2000, 2, 1.0, "cuda", restitution=1.0, **lie)
     sizes = [(200_000, 100), (2_000_000, 10), (20_000_000, 1)]
     cases = []
     _keep(gpu=cases)
-    for restitution in (1.0, 0.5):
-        for n, realizations in sizes[: 1 if quick else None]:
-            case = _dsmc(n, realizations, 10.0, "cuda", restitution=restitution, sample_stride=10)
-            cases.append(case | {"restitution": restitution})
+    for scheme, shapes in (({}, sizes), (lie, sizes[:2])):
+        for restitution in (1.0, 0.5):
+            for n, realizations in shapes[: 1 if quick else None]:
+                case = _dsmc(
+                    n,
+                    realizations,
+                    10.0,
+                    "cuda",
+                    restitution=restitution,
+                    sample_stride=10,
+                    **scheme,
+                )
+                cases.append(case | {"restitution": restitution})
     return {"gpu": cases}
 
 
