@@ -171,23 +171,13 @@ def test_document_section_times_each_family_job_in_a_process_of_its_own(monkeypa
 
     monkeypatch.setattr(montanero2007, "jobs", shrunk)
     report = bench.montanero2007_document(quick=False)
-    assert "error" not in report["compile"], report["compile"]
-    runs = [
-        point["run"]
-        for job in shrunk(bench._paper_config() | {"backend": "cuda"})
-        for point in job.arguments["points"]
+    (compiled,) = report["compile"]  # the one front's first run, shrunk further
+    assert "error" not in compiled, compiled["error"]
+    assert compiled["front"] == "kinetic.studies.montanero2007:simulate_batches"
+    assert compiled["files"] == 1 and compiled["engine_seconds"] > 0
+    assert report["rules"] == [
+        job.rule for job in shrunk(bench._paper_config() | {"backend": "cuda"})
     ]
-    variants = {
-        (
-            r["force_step"],
-            r["selection"],
-            r["splitting"],
-            r["reduced_field"] == 0,
-            r["restitution"] == 1,
-        )
-        for r in runs
-    }
-    assert report["compile"]["files"] == len(variants) < len(runs)  # one run a variant
     ran, late = report["jobs"][:2], report["jobs"][2]
     for row in ran:
         assert "error" not in row, row["error"]
@@ -195,3 +185,45 @@ def test_document_section_times_each_family_job_in_a_process_of_its_own(monkeypa
         assert row["process_seconds"] > row["engine_seconds"]
     assert "skipped" in late and not report["complete"]
     assert report["timed_seconds"] == sum(row["process_seconds"] for row in ran)
+
+
+def test_document_rules_name_jobs_or_are_refused_before_any_work(monkeypatch):
+    """``KINETIC_DOCUMENT_RULES`` keeps the jobs whose rule ends in one of its names; a
+    name that ends no GPU job's rule of the document stops the section before any
+    process starts (a typo would otherwise time nothing, after the compilation)."""
+    monkeypatch.setenv("KINETIC_DOCUMENT_RULES", "scan,hsc")
+    with pytest.raises(ValueError, match="hsc"):
+        bench.montanero2007_document(quick=False)
+    monkeypatch.setenv("KINETIC_DOCUMENT_RULES", "grid_n1000")
+    with pytest.raises(ValueError, match="grid_n1000"):
+        bench.visco2008_document(quick=False)
+
+
+@pytest.mark.parametrize("document", ["montanero2007", "visco2008", "costantini2010"])
+def test_compile_jobs_keep_each_fronts_types_and_shrink_the_work(document):
+    """The job that fills the cache before a document's timed jobs is, for each front,
+    its first job cut to one run with the same settings but smaller numbers (the fronts
+    cast them to the engine's types, so the same kernels): 2 realizations, and fewer
+    particles, clones, steps or samples than the run it comes from."""
+    import importlib
+
+    study = importlib.import_module(f"kinetic.studies.{document}")
+    jobs = [job for job in study.jobs(bench._paper_config() | {"backend": "cuda"}) if job.gpus]
+    firsts = {}
+    for job in jobs:
+        firsts.setdefault(job.front, job)
+
+    def flat(point):  # montanero2007's points hold the run's settings in "run"
+        return {k: v for k, v in point.items() if k != "run"} | point.get("run", {})
+
+    for job in firsts.values():
+        small = bench._compile_job(document, job)
+        before = flat(job.arguments.get("points", [job.arguments])[0])
+        (after,) = [flat(p) for p in small.arguments.get("points", [small.arguments])]
+        assert set(after) == set(before) and small.front == job.front
+        changed = [key for key in before if after[key] != before[key]]
+        for key in changed:  # only numbers change, and only downwards
+            assert isinstance(before[key], int | float) and isinstance(after[key], int | float)
+            assert after[key] < before[key], key
+        realizations = after.get("count", after.get("n_realizations"))
+        assert realizations == 2 and changed

@@ -1041,41 +1041,44 @@ print(repr({"seconds": time.perf_counter() - START, "engine_seconds": engine,
 """
 
 
-def montanero2007_document(quick: bool) -> dict[str, Any]:
-    """montanero2007's simulations at paper.yaml's statistics on this GPU, as
-    ``snakemake montanero2007 --configfile config/paper.yaml --config backend=cuda`` runs
-    them: each of its 6 family jobs (``montanero2007_simulate_dsmc_<family>``) in a
-    process of its own, like a Snakemake job (imports, CUDA context, the kernels from
-    numba's cache, the runs, their netCDF files written to a scratch folder), after one
-    process that fills the cache (``compile``, once per code version: every kernel
-    variant of the jobs, in runs shrunk to seconds, :func:`_compile_job`). Against
-    ``kinetic.cost``'s plan of each job. The joins, analyses and figures (CPU, seconds)
-    are left out. Not in the default sections (about 8 minutes on an H200): name it with
-    ``--sections montanero2007_document``. A job that would end past
+def _document(document: str, quick: bool) -> dict[str, Any]:
+    """``document``'s GPU jobs at paper.yaml's statistics on this GPU, as
+    ``snakemake <document> --configfile config/paper.yaml --config backend=cuda`` runs
+    them: each job in a process of its own, like a Snakemake job (imports, CUDA context,
+    the kernels from numba's cache, the runs, their netCDF files written to a scratch
+    folder), after a process for each of the jobs' fronts that fills the cache
+    (``compile``, once per code version: the front's first job cut to its first run,
+    shrunk to seconds by ``_SHRINK``), against ``kinetic.cost``'s plan of each job. The
+    joins, analyses and figures (CPU, seconds) and the document's CPU jobs are left out.
+
+    ``KINETIC_DOCUMENT_RULES`` (``scan,hcs``: the ends of rule names) keeps those rules'
+    jobs only, to time a document over several calls. A job that would end past
     ``KINETIC_DOCUMENT_SECONDS`` (default 540) after the section's start, by its plan
     times the pace of the jobs done (measured over planned), is skipped and reported so;
     ``quick`` runs the two smallest jobs."""
+    import importlib
     import pickle
     import subprocess
     import sys
     import tempfile
 
-    from kinetic.studies import montanero2007
-
     deadline = float(os.environ.get("KINETIC_DOCUMENT_SECONDS", "540"))
-    jobs = montanero2007.jobs(_paper_config() | {"backend": "cuda"})
-    families = os.environ.get("KINETIC_DOCUMENT_FAMILIES")
-    if families:
-        rules = {montanero2007.group_rule(family) for family in families.split(",")}
-        unknown = rules - {job.rule for job in jobs}
-        if unknown:
-            raise ValueError(f"KINETIC_DOCUMENT_FAMILIES names no job of {sorted(unknown)}")
-        jobs = [job for job in jobs if job.rule in rules]
+    study = importlib.import_module(f"kinetic.studies.{document}")
+    jobs = [job for job in study.jobs(_paper_config() | {"backend": "cuda"}) if job.gpus]
+    names = os.environ.get("KINETIC_DOCUMENT_RULES")
+    if names:
+        wanted = names.split(",")
+        unmatched = [n for n in wanted if not any(j.rule.endswith(f"_{n}") for j in jobs)]
+        if unmatched:
+            raise ValueError(
+                f"KINETIC_DOCUMENT_RULES: no {document} GPU job's rule ends in {unmatched}"
+            )
+        jobs = [job for job in jobs if any(job.rule.endswith(f"_{n}") for n in wanted)]
     if quick:
         jobs = sorted(jobs, key=lambda job: job.estimate.cpu_seconds)[:2]
     started = time.perf_counter()
     out: dict[str, Any] = {
-        "families": [job.rule.removeprefix("montanero2007_simulate_dsmc_") for job in jobs],
+        "rules": list(dict.fromkeys(job.rule for job in jobs)),
         "jobs": [],
         "planned_seconds": 0.0,
     }
@@ -1105,19 +1108,30 @@ def montanero2007_document(quick: bool) -> dict[str, Any]:
         return {"process_seconds": wall, **ast.literal_eval(done.stdout.strip().splitlines()[-1])}
 
     with tempfile.TemporaryDirectory() as folder:
-        out["compile"] = process(_compile_job(jobs), folder)
-        print("montanero2007_document: compile", out["compile"], flush=True)
+        firsts: dict[str, Any] = {}  # each front's first job
+        for job in jobs:
+            firsts.setdefault(job.front, job)
+        out["compile"] = [
+            {"front": front} | process(_compile_job(document, job), folder)
+            for front, job in firsts.items()
+        ]
+        print(f"{document}_document: compile", out["compile"], flush=True)
         begin = time.perf_counter()
         pace, timed, timed_planned = 1.0, 0.0, 0.0  # measured against planned, so far
         for job in jobs:
             planned = job.estimate.cpu_seconds
             out["planned_seconds"] += planned
-            row = {"rule": job.rule, "runs": len(job.files), "planned_seconds": planned}
+            row = {
+                "rule": job.rule,
+                "output": job.output,
+                "runs": len(job.files),
+                "planned_seconds": planned,
+            }
             if time.perf_counter() - started + planned * pace > deadline:
                 out["jobs"].append(row | {"skipped": "past KINETIC_DOCUMENT_SECONDS by its plan"})
                 continue
             out["jobs"].append(row | process(job, folder))
-            print("montanero2007_document:", out["jobs"][-1], flush=True)  # if cut off
+            print(f"{document}_document:", out["jobs"][-1], flush=True)  # if cut off
             if "error" not in out["jobs"][-1]:
                 timed += out["jobs"][-1]["process_seconds"]
                 timed_planned += planned
@@ -1130,37 +1144,72 @@ def montanero2007_document(quick: bool) -> dict[str, Any]:
     return out
 
 
-def _compile_job(jobs):
-    """One job whose runs call every kernel variant the ``jobs`` call (one point for each
-    distinct force step, selection, splitting, field or none, elastic or not), each
-    shrunk to 2 realizations of at most 2000 particles over two sample intervals: it fills
-    numba's cache in seconds beyond the compilation, where running the smallest job
-    whole (23.6 s by its plan on an H100) compiled only that family's variants."""
+def _shrink_montanero2007(point):
+    run = point["run"]
+    window = float(run["sample_interval"])
+    shrunk = {"n_particles": min(int(run["n_particles"]), 2000), "duration": 2 * window}
+    return point | {"run": {**run, **shrunk, "steady_from": window}, "count": 2}
+
+
+def _shrink_visco2008(point):  # the transient stays: it must keep collisions at its λ
+    blocks = int(point["n_blocks"])
+    return point | {
+        "population": min(int(point["population"]), 64),
+        "duration": 0.1 * blocks,
+        "n_realizations": 2,
+    }
+
+
+def _shrink_costantini2010(point):
+    return point | {"n_samples": 2, "n_realizations": 2, "equilibration": 0.0}
+
+
+_SHRINK = {
+    "montanero2007": _shrink_montanero2007,
+    "visco2008": _shrink_visco2008,
+    "costantini2010": _shrink_costantini2010,
+}
+"""A run of each document's GPU jobs cut to seconds with the same argument types (so
+the same kernels): the job that fills numba's cache before the timed ones."""
+
+
+def _compile_job(document, job):
+    """``job`` cut to its first run, shrunk by ``_SHRINK[document]`` (montanero2007's
+    smallest job whole, 23.6 s by its plan on an H100, filled the cache until d9134f3)."""
     import dataclasses
 
-    points = {}
-    for job in jobs:
-        for point in job.arguments["points"]:
-            run = point["run"]
-            variant = (
-                run["force_step"],
-                run["selection"],
-                run["splitting"],
-                run["reduced_field"] == 0,
-                run["restitution"] == 1,
-            )
-            window = float(run["sample_interval"])
-            particles = min(int(run["n_particles"]), 2000)
-            shrunk = {"n_particles": particles, "duration": 2 * window, "steady_from": window}
-            points.setdefault(variant, point | {"run": {**run, **shrunk}, "count": 2})
-    first = jobs[0]
-    return dataclasses.replace(
-        first, arguments={**first.arguments, "points": list(points.values())}
-    )
+    shrink = _SHRINK[document]
+    if "points" in job.arguments:
+        arguments = {**job.arguments, "points": [shrink(job.arguments["points"][0])]}
+        return dataclasses.replace(job, arguments=arguments, outputs=job.files[:1])
+    return dataclasses.replace(job, arguments=shrink(dict(job.arguments)))
+
+
+def montanero2007_document(quick: bool) -> dict[str, Any]:
+    """montanero2007's 6 family jobs (``montanero2007_simulate_dsmc_<family>``) of
+    paper.yaml on this GPU (``_document``): 546 s by the plan on an H100; timed over two
+    calls on the H100 of b66ff5b and the H200 of d9134f3 (docs/gpu.md)."""
+    return _document("montanero2007", quick)
+
+
+def visco2008_document(quick: bool) -> dict[str, Any]:
+    """visco2008's 13 cloning jobs of paper.yaml on this GPU (``_document``): 466 s by
+    the plan on an H100 (the three hard-disk scans of 41 λ, 317 s)."""
+    return _document("visco2008", quick)
+
+
+def costantini2010_document(quick: bool) -> dict[str, Any]:
+    """costantini2010's 17 DSMC jobs of paper.yaml on this GPU (``_document``): 1191 s by
+    the plan on an H100, so three calls of a 15-minute lease (``KINETIC_DOCUMENT_RULES``:
+    ``dsmc`` for the 12 runs of their own, 247 s; ``grid_n3000``, 446 s; the other grids,
+    498 s)."""
+    return _document("costantini2010", quick)
 
 
 OPTIONAL_SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
     "montanero2007_document": montanero2007_document,
+    "visco2008_document": visco2008_document,
+    "costantini2010_document": costantini2010_document,
 }
 """Sections run only when named (``--sections``): too long for the default run."""
 
