@@ -227,3 +227,32 @@ def test_compile_jobs_keep_each_fronts_types_and_shrink_the_work(document):
             assert after[key] < before[key], key
         realizations = after.get("count", after.get("n_realizations"))
         assert realizations == 2 and changed
+
+
+def test_visco2008_document_runs_a_cloning_job_through_the_workflows_job(monkeypatch):
+    """``visco2008_document`` runs a cloning job as the workflow does (``run_job``: the
+    job's front, its files), after the compile process of its one front; here the error
+    study's job cut to its λ = 1 point of 25 clones over a few intervals, under the
+    simulator (the resident kernel's 256 threads a realization make it 10 s a point)."""
+    import dataclasses
+
+    from kinetic.studies import visco2008
+
+    real = visco2008.jobs
+
+    def tiny(config):
+        job = next(j for j in real(config) if j.gpus and "error_vs_time" in j.rule)
+        point = job.arguments["points"][0]
+        assert point["lam"] == 1.0
+        point = point | {"duration": 1.0, "n_blocks": 2, "transient": 4.0, "n_realizations": 1}
+        arguments = {**job.arguments, "points": [point]}
+        return [dataclasses.replace(job, arguments=arguments, outputs=job.files[:1])]
+
+    monkeypatch.setattr(visco2008, "jobs", tiny)
+    report = bench.visco2008_document(quick=False)
+    (compiled,) = report["compile"]
+    assert "error" not in compiled, compiled["error"]
+    (row,) = report["jobs"]
+    assert "error" not in row, row["error"]
+    assert row["runs"] == row["files"] == 1 and report["complete"]
+    assert row["process_seconds"] > row["engine_seconds"] > 0

@@ -1022,23 +1022,21 @@ def job_startup(quick: bool) -> dict[str, Any]:
 _DOCUMENT_JOB = """
 import pickle, sys, time
 START = time.perf_counter()
-from kinetic import io, studies
-from kinetic.workflow_support import warm_engines
-import logging
+from types import SimpleNamespace
+from kinetic.workflow_support import run_job
 job = pickle.load(open(sys.argv[1], "rb"))
-front = studies.front(job["front"])
-warm_engines(logging.getLogger("kinetic"), front)
-result = front(**job["arguments"])
+params = SimpleNamespace(front=job["front"], job=job["arguments"], parameters=job["parameters"])
+snakemake = SimpleNamespace(rule=job["rule"], params=params, config=job["config"], threads=1,
+                            output=[f"{sys.argv[2]}/{k}.nc" for k in range(job["files"])], log=[])
+_, result = run_job(snakemake)
 datasets = result if isinstance(result, list) else [result]
-seeds = [point["seed"] for point in job["arguments"].get("points", [job["arguments"]])]
-engine = 0.0
-for k, (dataset, seed) in enumerate(zip(datasets, seeds, strict=True)):
-    engine += float(dataset["cpu_seconds"].sum())
-    parameters = {**io.parameters_of(dataset), **job["parameters"]}
-    io.write_dataset(io.stamp(dataset, parameters=parameters, seed=seed), f"{sys.argv[2]}/{k}.nc")
+engine = sum(float(dataset["cpu_seconds"].sum()) for dataset in datasets)
 print(repr({"seconds": time.perf_counter() - START, "engine_seconds": engine,
             "files": len(datasets)}))
 """
+"""A GPU job in a process of its own: the workflow's own ``run_job`` (its fronts, its
+writes, its logging to standard error) on the job's arguments, with a stand-in for the
+``snakemake`` object of ``workflow/scripts/simulate.py`` (one thread, as the rules run)."""
 
 
 def _document(document: str, quick: bool) -> dict[str, Any]:
@@ -1064,7 +1062,8 @@ def _document(document: str, quick: bool) -> dict[str, Any]:
 
     deadline = float(os.environ.get("KINETIC_DOCUMENT_SECONDS", "540"))
     study = importlib.import_module(f"kinetic.studies.{document}")
-    jobs = [job for job in study.jobs(_paper_config() | {"backend": "cuda"}) if job.gpus]
+    config = _paper_config() | {"backend": "cuda"}
+    jobs = [job for job in study.jobs(config) if job.gpus]
     names = os.environ.get("KINETIC_DOCUMENT_RULES")
     if names:
         wanted = names.split(",")
@@ -1089,9 +1088,12 @@ def _document(document: str, quick: bool) -> dict[str, Any]:
         with open(path, "wb") as stream:
             pickle.dump(
                 {
+                    "rule": job.rule,
                     "front": job.front,
                     "arguments": dict(job.arguments),
                     "parameters": dict(job.parameters),
+                    "files": len(job.files),
+                    "config": config,
                 },
                 stream,
             )
@@ -1151,11 +1153,13 @@ def _shrink_montanero2007(point):
     return point | {"run": {**run, **shrunk, "steady_from": window}, "count": 2}
 
 
-def _shrink_visco2008(point):  # the transient stays: it must keep collisions at its λ
-    blocks = int(point["n_blocks"])
+def _shrink_visco2008(point):
+    # the transient stays (it must keep collisions at its λ); blocks of a mean free time
+    # (shorter ones cut the transient into more blocks too, each a launch)
     return point | {
         "population": min(int(point["population"]), 64),
-        "duration": 0.1 * blocks,
+        "duration": 2.0,
+        "n_blocks": 2,
         "n_realizations": 2,
     }
 
