@@ -447,6 +447,7 @@ def _dsmc(n, realizations, duration, backend, seed=13, **extra) -> dict[str, Any
         "sample_stride": arguments["sample_stride"],
         "splitting": arguments["splitting"],
         "force_step": arguments["force_step"],
+        "time_step": arguments["time_step"],
         "wall_seconds": wall,
         "collisions": collisions,
         "acceptance": collisions / float(ds.candidates.sum()),
@@ -638,8 +639,10 @@ def dsmc_scaling(quick: bool) -> dict[str, Any]:
     would hide. First with ``_dsmc``'s Strang splitting and exact force step (3 launches
     and two passes over every particle a step), then at N = 2 × 10⁵ × 100 and 2 × 10⁶ ×
     10 with montanero2007's Lie splitting and Euler force step (``lie``: 2 launches, one
-    pass; every run of paper.yaml's montanero2007 but the error study's). Each case says
-    its ``acceptance`` (collisions per candidate pair)."""
+    pass; every run of paper.yaml's montanero2007 but the error study's), and last the
+    Lie case of 100 × 2 × 10⁵ at δt = 0.005 τ, nearly without collisions: the step's
+    floor (its force pass, snapshots and launches). Each case says its ``time_step`` and
+    ``acceptance`` (collisions per candidate pair)."""
     _dsmc(2000, 2, 1.0, "cuda", restitution=1.0)  # compile (same types as every case)
     lie = {"splitting": "lie", "force_step": "euler"}
     _dsmc(2000, 2, 1.0, "cuda", restitution=1.0, **lie)
@@ -659,6 +662,12 @@ def dsmc_scaling(quick: bool) -> dict[str, Any]:
                     **scheme,
                 )
                 cases.append(case | {"restitution": restitution})
+    # the step's floor: the same Lie steps with 20 times fewer collisions a step (δt =
+    # 0.005 τ), so that the δt = 0.1 τ case less this one is the collisions' own time
+    floor = _dsmc(
+        200_000, 100, 1.0, "cuda", restitution=1.0, sample_stride=10, time_step=0.005, **lie
+    )
+    cases.append(floor | {"restitution": 1.0})
     return {"gpu": cases}
 
 
