@@ -498,9 +498,10 @@ the parent and offspring arrays of a cloning step."""
 
 
 CLONING_GPU_SECONDS_PER_INTERVAL = 4.0e-4
-"""``cuda`` backend, one H100: wall seconds of one control interval's four launches when
-the GPU has little to do (bench cuda: 0.28-0.43 ms from 10³ to 3 × 10⁵ clones a launch,
-numba's dispatch of about 90 µs a launch)."""
+"""``cuda`` backend, one H100: wall seconds of one control interval's launches when the
+GPU has little to do (bench cuda: 0.28-0.43 ms from 10³ to 3 × 10⁵ clones a launch,
+numba's dispatch of about 90 µs a launch). Measured with four launches an interval; three
+since the interval's close moved into ``_weigh`` (after 3c49f7d), not yet timed: kept."""
 
 CLONING_GPU_EVENTS_PER_SECOND = 2.5e9
 """``cuda`` backend, one H100: collision events per second of the untilted clones beyond
@@ -510,7 +511,7 @@ wall second with the launches included)."""
 CLONING_GPU_RESIDENT_MAX_POPULATION = 5_000
 """``kinetic.cloning.gpu.RESIDENT_MAX_POPULATION`` (a unit test keeps the two equal): up to
 this N_c a realization's control intervals run in one thread block, one launch per block
-of the run, without the four launches per interval."""
+of the run, without the launches of every interval."""
 
 CLONING_GPU_THREADS_PER_BLOCK = 256
 """``kinetic.cloning.gpu.RESIDENT_THREADS`` on a GPU: the threads that share a resident
@@ -595,7 +596,7 @@ def _cloning_gpu(lam, population, elapsed, n_realizations, control_interval=None
     """``cuda`` cloning of one point: (the latency of a realization, the collision
     events). Up to ``CLONING_GPU_RESIDENT_MAX_POPULATION`` clones the latency is that of one
     thread block running every interval (its barriers plus one thread's share of the
-    events); above, the intervals' four launches."""
+    events); above, the intervals' launches."""
     interval = control_interval or cloning_control_interval(lam)
     events = n_realizations * population * elapsed
     intervals = elapsed / interval

@@ -163,7 +163,7 @@ def test_points_sharing_launches_give_what_they_give_alone(maxwell, monkeypatch,
             "control_interval": 4.0,
         },
     ]
-    if path == "launched":  # four launches an interval: two points under the simulator
+    if path == "launched":  # three launches an interval: two points under the simulator
         points = points[:2]  # 1 interval a block (point 0) against 2 (point 1)
         points[0] |= {"control_interval": 1.0}
         points[1] |= {"control_interval": 1.5}
@@ -188,15 +188,21 @@ def test_points_of_more_realizations_than_a_grid_holds_are_refused_before_any_wo
         simulate_points([point, point | {"lam": 0.5}])
 
 
-@pytest.mark.parametrize(("kernel", "dimension", "lam"), [("hard_spheres", 3, -0.5)])
+@pytest.mark.parametrize(
+    ("kernel", "dimension", "lam", "population"),
+    [("hard_spheres", 3, -0.5, 24)],
+)
 def test_resident_and_launched_intervals_make_the_same_selections(
-    monkeypatch, kernel, dimension, lam
+    monkeypatch, kernel, dimension, lam, population
 ):
+    """The same populations, counts and histograms on both paths; 24 clones make two
+    thread blocks of the launched path under the simulator (16 threads a block), so that
+    the interval is closed by whichever block of ``_weigh`` comes last."""
     arguments = {
         "kernel": kernel,
         "dimension": dimension,
         "lam": lam,
-        "population": 16,
+        "population": population,
         "n_realizations": 2,
         "duration": 3.0,
         "n_blocks": 3,

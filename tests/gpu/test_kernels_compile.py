@@ -32,8 +32,7 @@ def _signatures():
     cloning = {
         "_seed": (u3, f3, u2),
         "_advance": (f3, f3, u3, i2, i2, f3, run, plan, order, int64),
-        "_weigh": (i2, i2, i2, i2, f3, plan, order, int64),
-        "_close_interval": (i2, i2, u2, f3, a2, plan, order, int64),
+        "_weigh": (i2, i2, i2, i2, f3, u2, a2, int64[::1], plan, order, int64),
         "_select": (f3, f3, i2, i2, i2, u2, f3, observers, plan, order, int64),
         "_fold_snapshot": (f3, a2, plan),
         "_settle": (f3, f3, plan),

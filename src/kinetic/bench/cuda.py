@@ -9,7 +9,7 @@ section (a run stopped at a time limit keeps what it measured).
 Cloning (visco2008 §IV.A): collision events per second of the untilted clones (ΣK_i) at
 N_c = 10³, 10⁴, 10⁵, 10⁶ (hard disks at λ = 1 and -1, Maxwell molecules at λ = 1; N_c = 10³
 also with 100 realizations in one launch), each on the path the engine picks (``path``:
-the resident kernel up to ``RESIDENT_MAX_POPULATION`` clones, four launches per control
+the resident kernel up to ``RESIDENT_MAX_POPULATION`` clones, three launches per control
 interval above), both paths at the paper config's shape (32 realizations of 10³ and 10⁴
 clones: ``paths``), against the CPU engine on one core of the same machine; then the
 physics: Maxwell μ(λ) = e^{-λ} - 1 at every λ of the paper config's Fig. 4, hard-disk
@@ -168,7 +168,7 @@ def _cloning(
 @contextlib.contextmanager
 def _cloning_path(resident: bool):
     """Force the cuda cloning backend's resident kernel (one thread block per realization)
-    or its four launches per control interval, whatever the population."""
+    or its three launches per control interval, whatever the population."""
     from kinetic.cloning import gpu
 
     saved = gpu.RESIDENT_MAX_POPULATION
@@ -241,7 +241,7 @@ def _cloning_grouped(population: int, duration: float, realizations: int = 32) -
 
 def cloning_speed(quick: bool) -> dict[str, Any]:
     """Events per second against N_c (each population on the engine's own path), the
-    resident kernel against the four launches per interval at the paper config's
+    resident kernel against the three launches per interval at the paper config's
     populations, the resident kernel's thread count (``RESIDENT_THREADS`` = 128 to 1024:
     32 realizations of 10³ and 10⁴ clones, and a grouped paper job's shape of 41 λ × 32
     realizations of 10³ clones: ``resident_threads``), and the CPU engine on one core."""

@@ -25,9 +25,10 @@ J. Stat. Mech. P03004 (2007)):
 
 The intervals run one of two ways, chosen by N_c alone: up to ``RESIDENT_MAX_POPULATION``
 clones, ``_resident`` runs all the intervals of a block of the run in one thread block per
-realization (the phases separated by block barriers); above, four launches per interval
-(``_advance``, ``_weigh``, ``_close_interval``, ``_select``) over N_c/BLOCK thread blocks
-per realization. Both draw the same random numbers and make the same integer selections.
+realization (the phases separated by block barriers); above, three launches per interval
+(``_advance``, ``_weigh`` whose last block of a realization closes the interval,
+``_select``; four until revision 3c49f7d) over N_c/BLOCK thread blocks per realization.
+Both draw the same random numbers and make the same integer selections.
 Both read each realization's interval, count of intervals, λ and histogram flag from a
 plan array, so that several points (λ) of one population share their launches
 (``run_points``, behind ``kinetic.cloning.simulate_points``): a point's numbers are those
@@ -243,12 +244,18 @@ def _advance(first, second, states, counts, extremes, partials, run, plan, order
 
 
 @kernel
-def _weigh(counts, extremes, cumulative, block_sums, partials, plan, order, step):
+def _weigh(
+    counts, extremes, cumulative, block_sums, partials, controls, out, done, plan, order, step
+):
     """w_i = e^{-λ(K_i - K*)} <= 1: its sum per thread block (for μ), and the inclusive
     scan of q_i = round(2³² w_i) inside each thread block (exact int64), the block's
-    total in ``block_sums``."""
+    total in ``block_sums``. The last block of realization r to finish (its ticket
+    ``done[r]``, an integer atomic after a memory fence) then closes the interval
+    (``_close``) with its threads, as a launch of one block a realization did until
+    revision 3c49f7d (``_close_interval``): the same folds, the same numbers."""
     shared = cuda.shared.array(BLOCK, np.float64)
     shared_q = cuda.shared.array(BLOCK, np.int64)
+    last = cuda.shared.array(1, np.int64)
     t = cuda.threadIdx.x
     i = cuda.blockIdx.x * cuda.blockDim.x + t
     r = order[cuda.blockIdx.y]
@@ -268,6 +275,15 @@ def _weigh(counts, extremes, cumulative, block_sums, partials, plan, order, step
         cumulative[r, i] = prefix
     if t == 0:
         block_sums[r, cuda.blockIdx.x] = block_total
+        cuda.threadfence()  # this block's sums reach memory before its ticket
+        last[0] = 1 if cuda.atomic.add(done, r, 1) == cuda.gridDim.x - 1 else 0
+    cuda.syncthreads()
+    if last[0] == 0:
+        return
+    cuda.threadfence()
+    if t == 0:
+        done[r] = 0
+    _close(shared, shared_q, block_sums, extremes, controls, partials, out, plan, r, step)
 
 
 @cuda.jit(device=True, inline="always")
@@ -295,17 +311,14 @@ def _selection_uniform(controls, r):
     return float(np.uint64(u * 2.0**53)) * 2.0**-53
 
 
-@kernel
-def _close_interval(block_sums, extremes, controls, partials, out, plan, order, step):
-    """One thread block per realization: the block offsets of the integer scan, the
+@cuda.jit(device=True, inline="always")
+def _close(shared, shared_q, block_sums, extremes, controls, partials, out, plan, r, step):
+    """By every thread of one block, for realization r: the block offsets of the integer scan, the
     interval's collision and candidate counts, ln<w> into ``net_compensations``, the
     next selection uniform, and the previous selection's snapshot sums times Δ (from the
     block's second interval on: the last one's are folded by ``_fold_snapshot``).
     ``extremes[r]`` holds (K min, K max, N_c, Q); K min and max are reset for the next
     interval."""
-    shared = cuda.shared.array(BLOCK, np.float64)
-    shared_q = cuda.shared.array(BLOCK, np.int64)
-    r = order[cuda.blockIdx.x]
     interval = plan[r, 0]
     lam = plan[r, 2]
     previous = interval if step > 0 else 0.0
@@ -442,8 +455,9 @@ def _settle(first, second, plan):
 
 RESIDENT_MAX_POPULATION = 5_000
 """Largest population run by ``_resident`` (one thread block per realization for the
-whole of a block of the run); larger ones run ``_advance``/``_weigh``/``_close_interval``/
-``_select``, four launches per control interval over many thread blocks. Timed on an H100
+whole of a block of the run); larger ones run ``_advance``/``_weigh``/``_select``, three
+launches per control interval over many thread blocks (four until 3c49f7d, when these
+timings were made: the interval's close had a launch of its own). Timed on an H100
 (bench cuda ``cloning_speed``, revision 2984f74; hard disks, λ = 1, 32 realizations): the
 resident kernel took 0.100 ms an interval at N_c = 10³ against the launches' 0.371 ms,
 and 1.04 ms at 10⁴ against 0.651 ms, since its 128 threads run a realization's clones one
@@ -622,7 +636,7 @@ def run_points(points, progress):
     n_transient, rows)`` of one kernel, dimension, population and histogram (the λ, the
     control interval, the transient and the rows may differ). Every realization of every
     point shares the same launches: up to ``RESIDENT_MAX_POPULATION`` clones as one thread
-    block of ``_resident``, above as the rows of the four launches per interval. A point's
+    block of ``_resident``, above as the rows of the three launches per interval. A point's
     numbers are those it gets alone. Returns ``run``'s tuple for each point; the wall time
     is shared equally among all the realizations."""
     if not simulated():
@@ -716,7 +730,7 @@ def _run(p, durations, n_transient, rows, progress, resident=None):
 
 def _run_together(points, progress, resident):
     """The points' realizations in the same launches, block of the run after block: one
-    ``_resident`` launch per block, or (``resident`` false) the four launches of each of
+    ``_resident`` launch per block, or (``resident`` false) the three launches of each of
     the block's intervals (``_launched_intervals``). A point whose run has fewer blocks,
     or whose block has fewer intervals, idles through the rest."""
     rows = np.concatenate([point[3] for point in points])
@@ -765,8 +779,8 @@ def _run_together(points, progress, resident):
 
 
 def _launched_intervals(clones):
-    """Control intervals by four launches each over ``grid(N_c)`` thread blocks per
-    realization (``_advance``, ``_weigh``, ``_close_interval``, ``_select``): returns
+    """Control intervals by three launches each over ``grid(N_c)`` thread blocks per
+    realization (``_advance``, ``_weigh`` with ``_close``, ``_select``): returns
     ``advance(out, observers, run, plan)``, which runs the intervals of one block of the
     run (``plan``: each realization's Δ, intervals, λ and record flag) and leaves every
     population in ``clones.velocity[0]``."""
@@ -778,13 +792,14 @@ def _launched_intervals(clones):
     cumulative = cuda.device_array((count, n), dtype=np.int64)
     block_sums = cuda.device_array((count, grid(n)), dtype=np.int64)
     partials = to_device(np.zeros((count, grid(n), 6)))
+    done = to_device(np.zeros(count, dtype=np.int64))  # ``_weigh``'s tickets
     fold, settle = _fold_snapshot[count, BLOCK], _settle[launch]
 
     def kernels(rows):
-        """The four kernels configured for ``rows`` realizations (configured at each
+        """The three kernels configured for ``rows`` realizations (configured at each
         launch: the simulator's configured kernels share one launch shape)."""
         over = ((grid(n), rows), BLOCK)
-        return _advance[over], _weigh[over], _close_interval[rows, BLOCK], _select[over]
+        return _advance[over], _weigh[over], _select[over]
 
     def advance(out, observers, run, plan):
         table, table_step, histogram, half_width = observers
@@ -795,7 +810,7 @@ def _launched_intervals(clones):
         rows = count - np.searchsorted(np.sort(steps), np.arange(steps.max()), side="right")
         device_plan, device_order = to_device(plan), to_device(order.astype(np.int64))
         for step in range(int(steps.max())):
-            launch_advance, weigh, close, select = kernels(int(rows[step]))
+            launch_advance, weigh, select = kernels(int(rows[step]))
             launch_advance(
                 first,
                 second,
@@ -808,11 +823,21 @@ def _launched_intervals(clones):
                 device_order,
                 step,
             )
+            # closes the interval too, where the previous selection's snapshot is folded
+            # (the last one by ``fold``)
             weigh(
-                counts, extremes, cumulative, block_sums, partials, device_plan, device_order, step
+                counts,
+                extremes,
+                cumulative,
+                block_sums,
+                partials,
+                controls,
+                out,
+                done,
+                device_plan,
+                device_order,
+                step,
             )
-            # the previous selection's snapshot is folded here, the last one by ``fold``
-            close(block_sums, extremes, controls, partials, out, device_plan, device_order, step)
             select(
                 first,
                 second,

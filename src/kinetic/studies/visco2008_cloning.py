@@ -100,7 +100,7 @@ GROUPED_MAX_POPULATION = cost.CLONING_GPU_GROUPED_MAX_POPULATION
 """With the ``cuda`` backend, the points of a (study, kernel, N_c) with N_c up to this share
 one job and the GPU's launches (``kinetic.cloning.simulate_points``): as one thread block
 of the resident kernel each up to ``kinetic.cloning.gpu.RESIDENT_MAX_POPULATION`` clones,
-as rows of the four launches of an interval above (``kinetic.cost`` holds the limit and
+as rows of the three launches of an interval above (``kinetic.cost`` holds the limit and
 says why)."""
 
 
