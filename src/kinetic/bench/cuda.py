@@ -1254,7 +1254,7 @@ PREFLIGHT_MODULES = (
     "kinetic.dsmc.inhomogeneous_gpu",
     "kinetic.theory.costantini2010",
     "kinetic.theory.visco2008_exact",
-    "netCDF4",  # montanero2007_document writes its jobs' files (missing on the H100 of b66ff5b)
+    "netCDF4",  # the document sections write their jobs' files (missing on the H100 of b66ff5b)
 )
 """Every module a section imports. ``preflight`` imports them before the first section,
 so that a package missing on the GPU machine stops the bench in seconds instead of failing
