@@ -501,7 +501,7 @@ CLONING_GPU_SECONDS_PER_INTERVAL = 4.0e-4
 """``cuda`` backend, one H100: wall seconds of one control interval's launches when the
 GPU has little to do (bench cuda: 0.28-0.43 ms from 10³ to 3 × 10⁵ clones a launch,
 numba's dispatch of about 90 µs a launch). Measured with four launches an interval; three
-since the interval's close moved into ``_weigh`` (after 3c49f7d), not yet timed: kept."""
+since the interval's close moved into ``_weigh`` (2a3fd50), not yet timed: kept."""
 
 CLONING_GPU_EVENTS_PER_SECOND = 2.5e9
 """``cuda`` backend, one H100: collision events per second of the untilted clones beyond

@@ -27,7 +27,7 @@ The intervals run one of two ways, chosen by N_c alone: up to ``RESIDENT_MAX_POP
 clones, ``_resident`` runs all the intervals of a block of the run in one thread block per
 realization (the phases separated by block barriers); above, three launches per interval
 (``_advance``, ``_weigh`` whose last block of a realization closes the interval,
-``_select``; four until revision 3c49f7d) over N_c/BLOCK thread blocks per realization.
+``_select``; four before revision 2a3fd50) over N_c/BLOCK thread blocks per realization.
 Both draw the same random numbers and make the same integer selections.
 Both read each realization's interval, count of intervals, λ and histogram flag from a
 plan array, so that several points (λ) of one population share their launches
@@ -251,8 +251,8 @@ def _weigh(
     scan of q_i = round(2³² w_i) inside each thread block (exact int64), the block's
     total in ``block_sums``. The last block of realization r to finish (its ticket
     ``done[r]``, an integer atomic after a memory fence) then closes the interval
-    (``_close``) with its threads, as a launch of one block a realization did until
-    revision 3c49f7d (``_close_interval``): the same folds, the same numbers."""
+    (``_close``) with its threads, as a launch of one block a realization did before
+    revision 2a3fd50 (``_close_interval``): the same folds, the same numbers."""
     shared = cuda.shared.array(BLOCK, np.float64)
     shared_q = cuda.shared.array(BLOCK, np.int64)
     last = cuda.shared.array(1, np.int64)
@@ -456,7 +456,7 @@ def _settle(first, second, plan):
 RESIDENT_MAX_POPULATION = 5_000
 """Largest population run by ``_resident`` (one thread block per realization for the
 whole of a block of the run); larger ones run ``_advance``/``_weigh``/``_select``, three
-launches per control interval over many thread blocks (four until 3c49f7d, when these
+launches per control interval over many thread blocks (four before 2a3fd50, when these
 timings were made: the interval's close had a launch of its own). Timed on an H100
 (bench cuda ``cloning_speed``, revision 2984f74; hard disks, λ = 1, 32 realizations): the
 resident kernel took 0.100 ms an interval at N_c = 10³ against the launches' 0.371 ms,
