@@ -66,15 +66,13 @@ def test_poisson_cloning_estimator_bias_and_spread_match_a_direct_simulation(lam
     intervals = round(duration / interval)
     duration = intervals * interval
     rng = np.random.default_rng(5)
-    mu = np.concatenate(  # 100 realizations at a time: 23 MB of counts, not 470
-        [
-            np.log(np.exp(-lam * rng.poisson(interval, (100, intervals, population))).mean(-1)).sum(
-                axis=-1
-            )
-            / duration
-            for _ in range(realizations // 100)
-        ]
-    )
+
+    def estimates(count):  # μ of ``count`` realizations
+        weights = np.exp(-lam * rng.poisson(interval, (count, intervals, population)))
+        return np.log(weights.mean(axis=-1)).sum(axis=-1) / duration
+
+    # 100 realizations at a time: 23 MB of counts, not 470
+    mu = np.concatenate([estimates(100) for _ in range(realizations // 100)])
     bias, spread = visco2008.poisson_cloning_estimator(lam, population, interval, duration)
     measured_spread = mu.std(ddof=1)
     error = measured_spread / np.sqrt(realizations)
