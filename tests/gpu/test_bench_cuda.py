@@ -191,6 +191,13 @@ def test_document_rules_name_jobs_or_are_refused_before_any_work(monkeypatch):
     """``KINETIC_DOCUMENT_RULES`` keeps the jobs whose rule ends in one of its names; a
     name that ends no GPU job's rule of the document stops the section before any
     process starts (a typo would otherwise time nothing, after the compilation)."""
+    config = bench._paper_config() | {"backend": "cuda"}
+    every = bench._document_jobs("costantini2010", config)
+    monkeypatch.setenv("KINETIC_DOCUMENT_RULES", "dsmc,grid_n3000")
+    kept = bench._document_jobs("costantini2010", config)
+    rules = {job.rule for job in kept}
+    assert rules == {"costantini2010_simulate_dsmc", "costantini2010_simulate_dsmc_grid_n3000"}
+    assert kept == [job for job in every if job.rule in rules]  # in the plan's order
     monkeypatch.setenv("KINETIC_DOCUMENT_RULES", "scan,hsc")
     with pytest.raises(ValueError, match="hsc"):
         bench.montanero2007_document(quick=False)
@@ -233,7 +240,8 @@ def test_visco2008_document_runs_a_cloning_job_through_the_workflows_job(monkeyp
     """``visco2008_document`` runs a cloning job as the workflow does (``run_job``: the
     job's front, its files), after the compile process of its one front; here the error
     study's job cut to its λ = 1 point of 25 clones over a few intervals, under the
-    simulator (the resident kernel's 256 threads a realization make it 10 s a point)."""
+    simulator (where every thread of the resident kernel is a Python thread: 10 s a
+    point)."""
     import dataclasses
 
     from kinetic.studies import visco2008

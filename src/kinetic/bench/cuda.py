@@ -1063,25 +1063,14 @@ def _document(document: str, quick: bool) -> dict[str, Any]:
     ``KINETIC_DOCUMENT_SECONDS`` (default 540) after the section's start, by its plan
     times the pace of the jobs done (measured over planned), is skipped and reported so;
     ``quick`` runs the two smallest jobs."""
-    import importlib
     import pickle
     import subprocess
     import sys
     import tempfile
 
     deadline = float(os.environ.get("KINETIC_DOCUMENT_SECONDS", "540"))
-    study = importlib.import_module(f"kinetic.studies.{document}")
     config = _paper_config() | {"backend": "cuda"}
-    jobs = [job for job in study.jobs(config) if job.gpus]
-    names = os.environ.get("KINETIC_DOCUMENT_RULES")
-    if names:
-        wanted = names.split(",")
-        unmatched = [n for n in wanted if not any(j.rule.endswith(f"_{n}") for j in jobs)]
-        if unmatched:
-            raise ValueError(
-                f"KINETIC_DOCUMENT_RULES: no {document} GPU job's rule ends in {unmatched}"
-            )
-        jobs = [job for job in jobs if any(job.rule.endswith(f"_{n}") for n in wanted)]
+    jobs = _document_jobs(document, config)
     if quick:
         jobs = sorted(jobs, key=lambda job: job.estimate.cpu_seconds)[:2]
     started = time.perf_counter()
@@ -1153,6 +1142,26 @@ def _document(document: str, quick: bool) -> dict[str, Any]:
     out["timed_seconds"] = sum(row["process_seconds"] for row in done)
     out["timed_planned_seconds"] = sum(row["planned_seconds"] for row in done)
     return out
+
+
+def _document_jobs(document: str, config) -> list:
+    """The GPU jobs of ``document`` under ``config``, those whose rule ends in a name of
+    ``KINETIC_DOCUMENT_RULES`` (comma-separated) where it is set; a name that ends no
+    rule raises ``ValueError``."""
+    import importlib
+
+    study = importlib.import_module(f"kinetic.studies.{document}")
+    jobs = [job for job in study.jobs(config) if job.gpus]
+    names = os.environ.get("KINETIC_DOCUMENT_RULES")
+    if not names:
+        return jobs
+    wanted = names.split(",")
+    unmatched = [n for n in wanted if not any(j.rule.endswith(f"_{n}") for j in jobs)]
+    if unmatched:
+        raise ValueError(
+            f"KINETIC_DOCUMENT_RULES: no {document} GPU job's rule ends in {unmatched}"
+        )
+    return [job for job in jobs if any(job.rule.endswith(f"_{n}") for n in wanted)]
 
 
 def _shrink_montanero2007(point):
