@@ -187,6 +187,7 @@ __all__ = [
     "fold_partials",
     "grid",
     "kernel",
+    "last_block",
     "next_pair",
     "require",
     "synchronize",
@@ -413,6 +414,28 @@ def block_exclusive_scan(shared, values, count, zero):
 
 
 block_exclusive_scan = cuda.jit(device=True, inline="always")(block_exclusive_scan)
+
+
+def last_block(done, r, flag):
+    """True, in every thread of the block, for the last thread block of grid row r to
+    get here: thread 0 takes a ticket ``done[r]`` (an integer atomic after a memory
+    fence, so that what it wrote reaches memory first) and the block learns through
+    ``flag``, a shared int64 array of one. The last block sees every block's writes
+    (another fence) and resets the ticket for the next launch. A kernel then folds its
+    blocks' partial sums in that block, with no launch of its own."""
+    if cuda.threadIdx.x == 0:
+        cuda.threadfence()
+        flag[0] = 1 if cuda.atomic.add(done, r, 1) == cuda.gridDim.x - 1 else 0
+    cuda.syncthreads()
+    if flag[0] == 0:
+        return False
+    cuda.threadfence()
+    if cuda.threadIdx.x == 0:
+        done[r] = 0
+    return True
+
+
+last_block = cuda.jit(device=True, inline="always")(last_block)
 
 
 def to_device(array):

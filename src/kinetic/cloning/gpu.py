@@ -83,6 +83,7 @@ from kinetic.gpu import (
     device_function,
     grid,
     kernel,
+    last_block,
     to_device,
     warm,
 )
@@ -249,8 +250,8 @@ def _weigh(
 ):
     """w_i = e^{-λ(K_i - K*)} <= 1: its sum per thread block (for μ), and the inclusive
     scan of q_i = round(2³² w_i) inside each thread block (exact int64), the block's
-    total in ``block_sums``. The last block of realization r to finish (its ticket
-    ``done[r]``, an integer atomic after a memory fence) then closes the interval
+    total in ``block_sums``. The last block of realization r to finish
+    (``kinetic.gpu.last_block``, its ticket ``done[r]``) then closes the interval
     (``_close``) with its threads, as a launch of one block a realization did before
     revision 2a3fd50 (``_close_interval``): the same folds, the same numbers."""
     shared = cuda.shared.array(BLOCK, np.float64)
@@ -275,14 +276,8 @@ def _weigh(
         cumulative[r, i] = prefix
     if t == 0:
         block_sums[r, cuda.blockIdx.x] = block_total
-        cuda.threadfence()  # this block's sums reach memory before its ticket
-        last[0] = 1 if cuda.atomic.add(done, r, 1) == cuda.gridDim.x - 1 else 0
-    cuda.syncthreads()
-    if last[0] == 0:
+    if not last_block(done, r, last):
         return
-    cuda.threadfence()
-    if t == 0:
-        done[r] = 0
     _close(shared, shared_q, block_sums, extremes, controls, partials, out, plan, r, step)
 
 

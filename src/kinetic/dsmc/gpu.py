@@ -116,6 +116,7 @@ from kinetic.gpu import (
     device_zeros,
     grid,
     kernel,
+    last_block,
     synchronize,
     to_device,
     warm,
@@ -389,13 +390,8 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale, done,
     sums[3] = total_sq
     _block_sums(shared, sums, partials[r, b])
     _block_max(shared, top, partials[r, b, _N_FORCE_SUMS:])
-    if t == 0:
-        cuda.threadfence()  # this block's partials reach memory before its ticket
-        last[0] = 1 if cuda.atomic.add(done, r, 1) == cuda.gridDim.x - 1 else 0
-    cuda.syncthreads()
-    if last[0] == 0:
+    if not last_block(done, r, last):
         return
-    cuda.threadfence()
     n_blocks = cuda.gridDim.x  # at most THREADS (the batch checks): one block a thread
     for f in range(_N_FORCE_SUMS):
         sums[f] = partials[r, t, f] if t < n_blocks else 0.0
@@ -403,7 +399,6 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale, done,
     _block_sums(shared, sums, folded)
     _block_max(shared, top, folded[_N_FORCE_SUMS:])
     if t == 0:
-        done[r] = 0
         _close(folded, thermo, status, close, r)
 
 
