@@ -259,18 +259,22 @@ def test_sparse_majorant_bounds_the_stored_velocities_exactly():
     assert not tally[:, kernels.TALLY_EXCEEDED].any()
 
 
-def test_force_pass_closes_the_thermostat_in_its_last_block_whatever_the_blocks(monkeypatch):
+@pytest.mark.parametrize("blocks", [4, 12])
+def test_force_pass_closes_the_thermostat_in_its_last_block_whatever_the_blocks(
+    monkeypatch, blocks
+):
     """The force pass's last block of a realization folds every block's sums and closes
-    the thermostat (no launch of its own): with 4 blocks a realization (a block's threads
-    fold them) the thermostat, the majorant, the clock and the velocities are those of
-    one block to rounding (the sums are taken in another order), the tickets are
-    back at 0 after every pass, and a realization's numbers do not depend on the other's
-    blocks. Strang with a field: two passes a step, the first one not closing the step."""
+    the thermostat (no launch of its own): with 4 blocks a realization (a thread a block)
+    and 12 (more blocks than the block's threads: a thread folds several in turn) the
+    thermostat, the majorant, the clock and the velocities are those of one block to
+    rounding (the sums are taken in another order), the tickets are back at 0 after every
+    pass, and a realization's numbers do not depend on the other's blocks. Strang with a
+    field: two passes a step, the first one not closing the step."""
     from kinetic.dsmc import gpu
     from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
 
     settings = HomogeneousSettings(
-        n_particles=4 * gpu.THREADS + 3,  # 4 blocks and a part: 35 simulated, 515 on a GPU
+        n_particles=blocks * gpu.THREADS + 3,  # the blocks and a part: 35 or 99 simulated
         restitution=0.8,
         time_step=0.2,
         reduced_field=0.25,
@@ -279,10 +283,11 @@ def test_force_pass_closes_the_thermostat_in_its_last_block_whatever_the_blocks(
     )
     streams = realization_streams(5, 0, 2)
 
-    def run(blocks):
-        monkeypatch.setattr(gpu, "MAX_BLOCKS", blocks)
+    def run(count):
+        monkeypatch.setattr(gpu, "MIN_BLOCKS", count)
+        monkeypatch.setattr(gpu, "MAX_BLOCKS", count)
         batch = gpu._Batch(settings, Samples(stride=1), streams)
-        assert batch.n_blocks == blocks
+        assert batch.n_blocks == count
         for step in range(3):
             batch.step(sample=step == 1, histogram=False)
             assert not batch.done.copy_to_host().any()
@@ -290,11 +295,27 @@ def test_force_pass_closes_the_thermostat_in_its_last_block_whatever_the_blocks(
             name: getattr(batch, name).copy_to_host() for name in ("thermo", "clock", "velocity")
         }
 
-    one, four = run(1), run(4)
+    one, many = run(1), run(blocks)
     for name in one:
-        np.testing.assert_allclose(four[name], one[name], rtol=1e-12, atol=1e-14, err_msg=name)
-    assert not np.array_equal(four["thermo"], one["thermo"])  # the other order shows
+        np.testing.assert_allclose(many[name], one[name], rtol=1e-12, atol=1e-14, err_msg=name)
+    assert not np.array_equal(many["thermo"], one["thermo"])  # the other order shows
     assert np.all(one["clock"][:, 3] == 3)  # three steps closed, not six passes
+
+
+def test_blocks_per_realization_depend_on_n_only_and_fill_a_gpu_for_one_large_one(monkeypatch):
+    """On a GPU (its constants: 128 threads a block, 64 to 1024 blocks): 64 blocks up to
+    262,144 particles (montanero2007's N = 2 x 10^5 keeps the sums' order it had before
+    the rule), about 32 particles a thread above, 1024 at most, and never a block without
+    a particle."""
+    from kinetic.dsmc import gpu
+
+    for name, value in {"THREADS": 128, "MIN_BLOCKS": 64, "MAX_BLOCKS": 1024}.items():
+        monkeypatch.setattr(gpu, name, value)
+    blocks = {n: gpu.blocks_per_realization(n) for n in (100, 3000, 200_000, 262_144)}
+    assert blocks == {100: 1, 3000: 24, 200_000: 64, 262_144: 64}
+    assert gpu.blocks_per_realization(262_145) == 65
+    assert gpu.blocks_per_realization(2_000_000) == 489  # 32 particles a thread
+    assert gpu.blocks_per_realization(20_000_000) == 1024  # 153: the cap
 
 
 def test_private_histograms_count_what_global_atomics_count(monkeypatch):

@@ -144,9 +144,37 @@ THREADS = 8 if simulated() else BLOCK
 it). Under the simulator 8: a test's forced run of 6 realizations takes 22 s instead of
 29 s with 32."""
 
-MAX_BLOCKS = 1 if simulated() else 64
-"""Most thread blocks per realization of the kernels over particles, whose threads loop
-over the particles with the grid's stride (the number of blocks depends on N only)."""
+MIN_BLOCKS = 1 if simulated() else 64
+"""Thread blocks per realization of the kernels over particles (whose threads loop over
+the particles with the grid's stride) up to MIN_BLOCKS x THREADS x PARTICLES_PER_THREAD
+particles (262,144 on a GPU: montanero2007's and visco2008's N = 2 x 10^5), where a batch
+of many realizations fills the GPU; ``blocks_per_realization``."""
+
+PARTICLES_PER_THREAD = 32
+"""Particles a thread of those kernels walks through, about, above MIN_BLOCKS blocks."""
+
+MAX_BLOCKS = 1 if simulated() else 1024
+"""Most thread blocks per realization of the kernels over particles."""
+
+
+def blocks_per_realization(n: int) -> int:
+    """Thread blocks per realization of the kernels over ``n`` particles: a function of n
+    only, so that the order of a realization's sums, hence its numbers, does not depend on
+    the other realizations of its batch. MIN_BLOCKS (64) up to 262,144 particles, then
+    about PARTICLES_PER_THREAD particles a thread, at most MAX_BLOCKS (1024); never a
+    block beyond the particles' ``grid``.
+
+    Until revision b484bd2 every N had at most 64: on an H100 (b66ff5b) one realization of
+    2 x 10^7 particles then ran 2.28 x 10^8 collisions/s against 4.93 x 10^8 for 100
+    realizations of 2 x 10^5 in one launch (the same particles a step), its force passes'
+    64 blocks of 128 threads on 64 of the 132 SMs. Now 1024 blocks (152 particles a
+    thread); 10 realizations of 2 x 10^6, 640 blocks in all before, get 489 each."""
+    return min(
+        grid(n, THREADS),
+        MAX_BLOCKS,
+        max(MIN_BLOCKS, grid(n, THREADS * PARTICLES_PER_THREAD)),
+    )
+
 
 WEIGHT_UNIT = 2.0**-20
 """Resolution of the fixed-point ``cx_weights`` sums (per observation)."""
@@ -341,9 +369,10 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale, done,
     ΣV_y, ΣV_z, Σ|V|² after it and the largest |V|² in ``partials[r, b, 4]``; a failed
     step raises ``status[r]`` to its STATUS_* code. The last block of realization r to
     finish (its ticket ``done[r]``, an integer atomic after a memory fence) folds the
-    blocks' partials by a fixed tree, one block a thread (the same numbers whichever block
-    comes last), closes the thermostat (``_close``, with ``close`` = (clock, reals,
-    flags, end_of_step, keys)) and resets the ticket: no launch of its own."""
+    blocks' partials, thread t the blocks t, t + THREADS, ... in order, then a fixed tree
+    (the same numbers whichever block comes last), closes the thermostat (``_close``,
+    with ``close`` = (clock, reals, flags, end_of_step, keys)) and resets the ticket: no
+    launch of its own."""
     shared = cuda.shared.array((THREADS, _N_FORCE_SUMS), np.float64)
     folded = cuda.shared.array(_N_FOLDED, np.float64)
     last = cuda.shared.array(1, np.int64)
@@ -392,10 +421,13 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale, done,
     _block_max(shared, top, partials[r, b, _N_FORCE_SUMS:])
     if not last_block(done, r, last):
         return
-    n_blocks = cuda.gridDim.x  # at most THREADS (the batch checks): one block a thread
-    for f in range(_N_FORCE_SUMS):
-        sums[f] = partials[r, t, f] if t < n_blocks else 0.0
-    top = partials[r, t, _N_FORCE_SUMS] if t < n_blocks else 0.0
+    for f in range(_N_FORCE_SUMS):  # thread t: the blocks t, t + THREADS, ... in order
+        sums[f] = 0.0
+    top = 0.0
+    for block in range(t, cuda.gridDim.x, THREADS):
+        for f in range(_N_FORCE_SUMS):
+            sums[f] += partials[r, block, f]
+        top = max(top, partials[r, block, _N_FORCE_SUMS])
     _block_sums(shared, sums, folded)
     _block_max(shared, top, folded[_N_FORCE_SUMS:])
     if t == 0:
@@ -578,8 +610,7 @@ class _Batch:
         self.exact = 1 if settings.force_step == "exact" else 0
         self.count = count
         self.n_groups = max(1, n // GROUP_SIZE)
-        self.n_blocks = min(grid(n, THREADS), MAX_BLOCKS)
-        assert self.n_blocks <= THREADS  # the last block folds one block's sums a thread
+        self.n_blocks = blocks_per_realization(n)
         self.done = device_zeros(count, np.int64)
         self.velocity = to_device(velocity)
         n_columns = -(-n // self.n_groups)  # G rows of m columns, the last holding the rest

@@ -79,7 +79,7 @@ from numba.core.errors import NumbaPerformanceWarning
 from kinetic import rng
 from kinetic.backends import simulated
 from kinetic.dsmc import inhomogeneous_kernels as kernels
-from kinetic.dsmc.gpu import MAX_BLOCKS, THREADS, _block_sums
+from kinetic.dsmc.gpu import THREADS, _block_sums, blocks_per_realization
 from kinetic.dsmc.inhomogeneous import CoolingModesSettings, new_cooling_gas
 from kinetic.gpu import (
     BLOCK,
@@ -117,8 +117,8 @@ _N_ROW_PARAMETERS = 4
 _SPREAD_BLOCKS = 1 if simulated() else 2048
 """Most thread blocks per realization of the streaming and the scatter, which reduce no
 floats (their grid may change without changing a number): a single realization of 3 x
-10⁶ particles fills the GPU. The observer keeps ``MAX_BLOCKS`` (its partial sums need a
-grid that depends on N_sim only)."""
+10⁶ particles fills the GPU. The observer keeps the homogeneous engine's
+``blocks_per_realization`` (its partial sums need a grid that depends on N_sim only)."""
 
 CELL_THREADS = BLOCK if simulated() else 32
 """Threads that share a cell in the collision phase: a warp on a GPU (its barrier is
@@ -638,7 +638,7 @@ class _Batch:
         self.count = count
         self.n = n
         self.n_cells = n_cells
-        self.n_blocks = min(grid(n, THREADS), MAX_BLOCKS)
+        self.n_blocks = blocks_per_realization(n)
         self.spread_blocks = min(grid(n, THREADS), _SPREAD_BLOCKS)
         spare = (
             device_zeros((count, 2, n)),
