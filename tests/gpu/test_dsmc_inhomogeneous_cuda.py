@@ -267,14 +267,15 @@ def test_first_step_sorts_like_the_cpu(rule):
 
 
 ELASTIC_PARTICLES = 50
-ELASTIC_REALIZATIONS = 12
+ELASTIC_REALIZATIONS = 24
 """The elastic run's size: C(0)'s error comes from the scatter of the realizations'
 means, which is large and itself scattered (0.25, 0.67 and 0.81 for three seeds of 8
 realizations of 100 particles: a mode decorrelates over about 6 of the 12 samples), so
-many small realizations rather than a few larger ones: 24 of 50 particles scattered by
-0.35-0.43 for the same three seeds. 12 (C(0) = 0.999 ± 0.113, a band of 0.71 for seed
-31; 16 gave 0.94 ± 0.10, a band of 0.55) keep the simulator's fixture near 150 s of a
-CI worker: the warp a cell of 46ef57c made it 200 s with 16."""
+many small realizations rather than a few larger ones. 24 of 50 particles: C(0) = 0.946
+± 0.072, 1.004 ± 0.092, 0.945 ± 0.070 for seeds 31, 32, 33 (bands of 0.35, 0.45, 0.34),
+32-51 s under the simulator on the development machine since the simulator's block
+manager pauses between polls (``kinetic.gpu._pause_simulated_block_polls``); 12 took 150
+s of a CI worker before, for a band of 0.71."""
 
 
 def _elastic_run():
@@ -307,8 +308,8 @@ def test_elastic_collisions_conserve_energy_and_momentum(elastic_run):
 def test_transverse_correlation_at_lag_zero_is_one_at_alpha_one(elastic_run):
     """costantini2010's C(0) = <|w⊥|²>/<Σ w_y²> = 1 in the elastic gas (positions
     uniform and independent of the velocities), by the analysis' own block estimator.
-    Error bar: the scatter of the realizations' means, within Student's 4 sigma (6.2
-    errors for 12). Each sample's ratio is exponential (a complex Gaussian mode) and a
+    Error bar: the scatter of the realizations' means, within Student's 4 sigma (4.9
+    errors for 24). Each sample's ratio is exponential (a complex Gaussian mode) and a
     mode decorrelates over about 6 samples, so blocks of 3 samples are not independent:
     with 2 realizations and the blocks' scatter, one salted seed gave 0.53 ± 0.066. The
     band must exclude C(0) = 0, a mode that lost its phase: a run whose band is wider

@@ -1,7 +1,9 @@
 """numba's CUDA simulator as the GPU tests use it: every thread of a block gets the block's
 shared arrays. numba's ``FakeCUDAShared.array`` looks a line's array up and, when absent,
 creates it, without a lock, so two threads arriving together can each get their own;
-``kinetic.gpu`` replaces it with a locked lookup."""
+``kinetic.gpu`` replaces it with a locked lookup. And the block manager pauses between
+its polls of a block's threads (``kinetic.gpu._pause_simulated_block_polls``) with the
+simulator's barriers and errors intact."""
 
 import os
 import time
@@ -54,3 +56,51 @@ def test_every_thread_of_a_block_sees_the_blocks_shared_arrays(monkeypatch):
     expected = np.broadcast_to(np.roll(np.arange(THREADS), -1), (blocks, THREADS))
     np.testing.assert_array_equal(out[:, :, 0], expected)
     np.testing.assert_array_equal(out[:, :, 1], -expected)
+
+
+@kernel
+def _tree_sums(values, out):
+    """Each block sums its row of ``values`` by a tree: log2(THREADS) barriers, each
+    round reading what the others wrote in the one before."""
+    shared = cuda.shared.array(THREADS, np.float64)
+    t = cuda.threadIdx.x
+    shared[t] = values[cuda.blockIdx.x, t]
+    cuda.syncthreads()
+    stride = THREADS // 2
+    while stride > 0:
+        if t < stride:
+            shared[t] += shared[t + stride]
+        cuda.syncthreads()
+        stride //= 2
+    out[cuda.blockIdx.x, t] = shared[0]
+
+
+def test_the_paused_block_manager_keeps_every_barrier():
+    """Every thread of every block reads the block's total after the last barrier: a
+    thread released early from any barrier would read a partial sum."""
+    from numba.cuda.simulator.kernel import BlockManager
+
+    from kinetic import gpu
+
+    assert gpu._pause_simulated_block_polls()
+    assert BlockManager.run.__module__ == "kinetic.gpu"
+    values = np.arange(3 * THREADS, dtype=np.float64).reshape(3, THREADS) ** 2
+    out = np.zeros_like(values)
+    _tree_sums[3, THREADS](values, out)
+    np.testing.assert_array_equal(out, np.broadcast_to(values.sum(axis=1)[:, None], out.shape))
+
+
+@kernel
+def _fails_in_one_thread(out):
+    t = cuda.threadIdx.x
+    cuda.syncthreads()
+    out[t + (THREADS if t == 5 else 0)] = 1.0  # thread 5 writes past the end
+    cuda.syncthreads()
+
+
+def test_a_failing_thread_stops_its_block_with_its_error():
+    """A thread's error reaches the launch, naming the thread, while the others wait at a
+    barrier (they are aborted, not left waiting)."""
+    out = np.zeros(THREADS)
+    with pytest.raises(IndexError, match=r"tid=\[5, 0, 0\]"):
+        _fails_in_one_thread[1, THREADS](out)
