@@ -1,23 +1,14 @@
 """The GPU tests run their kernels under numba's CUDA simulator, which runs every thread
-of a block as a Python thread and polls them at each ``syncthreads``: with Python's default
-thread switch interval (5 ms) a barrier of 16 threads costs about 80 ms. A 50 µs interval
-during these tests makes them about 4 times faster (a cloning run of 64 threads: 26 s ->
-5 s). Faster switching makes the simulator's own race on shared arrays likelier, which
-``kinetic.gpu`` removes for every use of the simulator (``tests/gpu/test_simulator.py``)."""
-
-import sys
+of a block as a Python thread. ``kinetic.gpu`` makes it usable for every user of the
+simulator: a block's shared arrays are looked up under a lock, and the thread running a
+block pauses between its polls of the block's threads instead of spinning against them
+for the GIL (``tests/gpu/test_simulator.py``). A short thread switch interval, which these
+tests set until then (a cloning run of 64 threads: 26 s -> 5 s), no longer helps: the
+whole directory took 82 s on two workers with it, 74 and 85 s without."""
 
 import pytest
 
 from kinetic import backends
-
-
-@pytest.fixture(autouse=True)
-def fast_thread_switching():
-    interval = sys.getswitchinterval()
-    sys.setswitchinterval(5e-5)
-    yield
-    sys.setswitchinterval(interval)
 
 
 @pytest.fixture

@@ -13,7 +13,6 @@ import os
 
 os.environ.setdefault("NUMBA_ENABLE_CUDASIM", "1")
 
-import sys
 from math import hypot
 
 import numpy as np
@@ -54,16 +53,6 @@ def _groups_of_32():
         gpu.GROUP_SIZE = 32
     yield
     gpu.GROUP_SIZE = size
-
-
-@pytest.fixture(autouse=True, scope="module")
-def _short_switch_interval():
-    """The simulator's block manager polls its threads: with Python's default 5 ms GIL
-    switch interval every ``syncthreads`` costs tens of milliseconds."""
-    interval = sys.getswitchinterval()
-    sys.setswitchinterval(1e-4)
-    yield
-    sys.setswitchinterval(interval)
 
 
 def _run(backend, **overrides):
