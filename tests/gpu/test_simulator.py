@@ -16,7 +16,7 @@ import pytest
 pytest.importorskip("numba.cuda")
 
 from kinetic import backends
-from kinetic.gpu import cuda, kernel
+from kinetic.gpu import block_reduce_sum, cuda, kernel
 
 pytestmark = [
     pytest.mark.cuda,
@@ -60,19 +60,12 @@ def test_every_thread_of_a_block_sees_the_blocks_shared_arrays(monkeypatch):
 
 @kernel
 def _tree_sums(values, out):
-    """Each block sums its row of ``values`` by a tree: log2(THREADS) barriers, each
-    round reading what the others wrote in the one before."""
+    """Each block sums its row of ``values`` by ``block_reduce_sum``'s tree: log2(THREADS)
+    barriers, each round reading what the others wrote in the one before; every thread
+    then reads the total."""
     shared = cuda.shared.array(THREADS, np.float64)
     t = cuda.threadIdx.x
-    shared[t] = values[cuda.blockIdx.x, t]
-    cuda.syncthreads()
-    stride = THREADS // 2
-    while stride > 0:
-        if t < stride:
-            shared[t] += shared[t + stride]
-        cuda.syncthreads()
-        stride //= 2
-    out[cuda.blockIdx.x, t] = shared[0]
+    out[cuda.blockIdx.x, t] = block_reduce_sum(shared, values[cuda.blockIdx.x, t], THREADS)
 
 
 def test_the_paused_block_manager_keeps_every_barrier():
