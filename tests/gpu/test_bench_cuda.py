@@ -108,6 +108,42 @@ def test_dsmc_case_rates_its_collisions_on_the_engines_clock():
     assert (case["splitting"], case["force_step"], case["time_step"]) == ("strang", "exact", 0.1)
 
 
+def test_storage_section_times_both_storages_on_each_case_and_finds_the_same_numbers(
+    monkeypatch,
+):
+    """``dsmc_storage`` (never run on a GPU yet) runs each case with the velocities stored
+    both ways, one after the other, reports their rate ratio and that they gave the same
+    numbers, and leaves the engine's storage as it found it."""
+    from kinetic.dsmc import gpu as dsmc_gpu
+
+    monkeypatch.setattr(bench, "SCALING_SHAPES", [(64, 2), (96, 1)])
+    compiled = []
+    run = bench._dsmc
+
+    def small(n, realizations, duration, backend, **extra):
+        if n == 2000:  # the section's compile run: the same types, fewer particles
+            compiled.append(dsmc_gpu.STORAGE)
+            n = 64
+        extra.pop("sample_stride", None)  # 20 steps, a window of 2, not the section's 10
+        return run(n, realizations, min(duration, 2.0), backend, **extra)
+
+    monkeypatch.setattr(bench, "_dsmc", small)
+    report = bench.dsmc_storage(quick=False)
+    assert dsmc_gpu.STORAGE == "components"
+    assert compiled == ["components", "particles"]
+    cases = report["gpu"]
+    assert [c["storage"] for c in cases] == ["components", "particles"] * 4
+    assert [(c["n_particles"], c["splitting"]) for c in cases[::2]] == [
+        (64, "strang"),
+        (96, "strang"),
+        (64, "lie"),
+        (96, "lie"),
+    ]
+    for ratio in report["particles_over_components"]:
+        assert ratio["same_numbers"]
+        assert ratio["ratio"] > 0
+
+
 def test_cloning_case_rates_its_events_on_the_engines_clock():
     """``cloning_speed``'s cases report the event rate on the engine's clock (the launches
     and the GPU, without the host's initial populations and the final sort that counts

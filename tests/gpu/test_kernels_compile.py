@@ -76,9 +76,12 @@ def _dsmc_signatures():
     u3, u2 = uint64[:, :, ::1], uint64[:, ::1]
     return {
         "_seed_groups": (u2, u3, u2),
-        "_collide_sparse": (f3, u3, f3, f3, i3, f1, i1, u2, i1, f2, boolean),
-        "_force": (f3, f3, i1, float64, int64, f2, boolean, i1, Tuple((f2, f1, i1, boolean, u2))),
-        "_observe": (f3, f3, UniTuple(i2, 3), f1, i1, boolean, f2, boolean, boolean),
+        "_collide_sparse": (f3, u3, f3, f3, i3, f1, i1, u2, i1, f2, boolean, boolean),
+        "_force": (
+            *(f3, f3, i1, float64, int64, f2, boolean, i1),
+            *(Tuple((f2, f1, i1, boolean, u2)), boolean),
+        ),
+        "_observe": (f3, f3, UniTuple(i2, 3), f1, i1, boolean, f2, boolean, boolean, boolean),
         "_fold_moments": (f3, int64, f2, float64),
     }
 

@@ -24,10 +24,11 @@ DSMC (montanero2007): collisions per second of the homogeneous engine at N = 2 �
 with 50 realizations in one launch, against the CPU engine on one core, and the HCS
 cooling rate and a2 against the CPU engine (``dsmc_speed``); accepted collisions per
 second at α = 1 and 0.5 for N = 2 × 10⁵ × 100, 2 × 10⁶ × 10, 2 × 10⁷ × 1, a snapshot
-every 10 steps (``dsmc_scaling``); one montanero2007 job of paper.yaml (α = 0.3,
-N = 2 × 10⁵, δt = 0.003, 60 τ, 200 realizations) timed on the GPU for 25 of its
-realizations and on one CPU core for one realization over a tenth of the duration, both
-scaled to the whole job (``dsmc_paper_job``).
+every 10 steps (``dsmc_scaling``); the same shapes at α = 1 with the velocities stored
+either way (``kinetic.dsmc.gpu.STORAGE``: ``dsmc_storage``); one montanero2007 job of
+paper.yaml (α = 0.3, N = 2 × 10⁵, δt = 0.003, 60 τ, 200 realizations) timed on the GPU
+for 25 of its realizations and on one CPU core for one realization over a tenth of the
+duration, both scaled to the whole job (``dsmc_paper_job``).
 
 Memory bound (``memory_bound``): the GPU's coalesced copy bandwidth, and each pass
 of the homogeneous DSMC's step (collisions, force, thermostat) launched alone at
@@ -442,6 +443,7 @@ def _dsmc(n, realizations, duration, backend, seed=13, **extra) -> dict[str, Any
         "n_particles": n,
         "realizations": realizations,
         "backend": backend,
+        "storage": _storage() if backend == "cuda" else None,
         "regrouping": ds.attrs.get("collision_groups"),
         "reduced_field": arguments["reduced_field"],
         "sample_stride": arguments["sample_stride"],
@@ -463,6 +465,61 @@ def _dsmc(n, realizations, duration, backend, seed=13, **extra) -> dict[str, Any
         "heat_flux": float(flux.mean()),
         "heat_flux_err": float(flux.std(ddof=1) / sem) if realizations > 1 else None,
     }
+
+
+def _storage() -> str:
+    """How the homogeneous DSMC's GPU batches store their velocities now."""
+    from kinetic.dsmc import gpu as dsmc_gpu
+
+    return dsmc_gpu.STORAGE
+
+
+def dsmc_storage(quick: bool) -> dict[str, Any]:
+    """The homogeneous DSMC with its velocities stored by component ((R, d, N), the
+    default) and by particle ((R, N, d)): ``dsmc_scaling``'s shapes (2 × 10⁷
+    particle-steps a step as 100 × 2 × 10⁵, 10 × 2 × 10⁶, 1 × 2 × 10⁷) at α = 1, δt = 0.1
+    τ, a snapshot every 10 steps, with Strang splitting and the exact force step, then
+    the documents' Lie and Euler; the two storages one after the other on each case (the
+    same process, the same seed: the same collisions, which ``same_numbers`` checks).
+    ``particles_over_components``: each case's ratio of the engine-clock collision
+    rates. The storage moves a candidate pair's 6 components from 6 scattered 32-byte
+    sectors to 2-4; a pass over every particle moves the same bytes either way."""
+    from kinetic.dsmc import gpu as dsmc_gpu
+
+    saved = dsmc_gpu.STORAGE
+    lie = {"splitting": "lie", "force_step": "euler"}
+    cases: list[dict[str, Any]] = []
+    ratios: list[dict[str, Any]] = []
+    _keep(gpu=cases, particles_over_components=ratios)
+    try:
+        for storage in dsmc_gpu._STORAGES:  # compile (a flag of the same kernels)
+            dsmc_gpu.STORAGE = storage
+            _dsmc(2000, 2, 1.0, "cuda", restitution=1.0)
+        shapes = SCALING_SHAPES
+        for scheme in ({}, lie):
+            for n, realizations in shapes[: 1 if quick else None]:
+                pair = {}
+                for storage in dsmc_gpu._STORAGES:
+                    dsmc_gpu.STORAGE = storage
+                    pair[storage] = _dsmc(
+                        n, realizations, 10.0, "cuda", restitution=1.0, sample_stride=10, **scheme
+                    )
+                    cases.append(pair[storage] | {"restitution": 1.0})
+                by_component, by_particle = pair["components"], pair["particles"]
+                ratios.append(
+                    {
+                        "n_particles": n,
+                        "realizations": realizations,
+                        "splitting": by_component["splitting"],
+                        "ratio": by_particle["engine_collisions_per_second"]
+                        / by_component["engine_collisions_per_second"],
+                        "same_numbers": by_particle["collisions"] == by_component["collisions"]
+                        and by_particle["cooling_rate"] == by_component["cooling_rate"],
+                    }
+                )
+    finally:
+        dsmc_gpu.STORAGE = saved
+    return {"gpu": cases, "particles_over_components": ratios}
 
 
 def dsmc_speed(quick: bool) -> dict[str, Any]:
@@ -630,6 +687,11 @@ def inhomogeneous_speed(quick: bool) -> dict[str, Any]:
     return {"gpu": gpu, "cpu_one_core": cpu, "paths": paths, "grouped": grouped}
 
 
+SCALING_SHAPES = [(200_000, 100), (2_000_000, 10), (20_000_000, 1)]
+"""(N, realizations) of ``dsmc_scaling`` and ``dsmc_storage``: 2 × 10⁷ particles a step
+each."""
+
+
 def dsmc_scaling(quick: bool) -> dict[str, Any]:
     """Homogeneous DSMC at α = 1 and 0.5: accepted collisions per second at the same
     particle-steps (2 × 10⁹) spread as N = 2 × 10⁵ × 100 realizations, 2 × 10⁶ × 10 and
@@ -646,7 +708,7 @@ def dsmc_scaling(quick: bool) -> dict[str, Any]:
     _dsmc(2000, 2, 1.0, "cuda", restitution=1.0)  # compile (same types as every case)
     lie = {"splitting": "lie", "force_step": "euler"}
     _dsmc(2000, 2, 1.0, "cuda", restitution=1.0, **lie)
-    sizes = [(200_000, 100), (2_000_000, 10), (20_000_000, 1)]
+    sizes = SCALING_SHAPES
     cases = []
     _keep(gpu=cases)
     for scheme, shapes in (({}, sizes), (lie, sizes[:2])):
@@ -1245,6 +1307,7 @@ SECTIONS: dict[str, Callable[[bool], dict[str, Any]]] = {
     "cloning_speed": cloning_speed,
     "dsmc_speed": dsmc_speed,
     "dsmc_scaling": dsmc_scaling,
+    "dsmc_storage": dsmc_storage,
     "job_startup": job_startup,
 }
 """In the order a short device lease should spend its minutes: what no GPU has run yet

@@ -1,7 +1,8 @@
 """CUDA backend of the homogeneous DSMC engine: ``simulate_homogeneous(backend="cuda")``.
 
 All realizations of a call advance together, on one GPU: the velocities of realization r
-are row r of a ``(R, d, N)`` float64 array (each row the CPU engine's struct of arrays).
+are row r of a ``(R, d, N)`` float64 array (each row the CPU engine's struct of arrays;
+``STORAGE`` ``particles`` keeps them as ``(R, N, d)`` instead, the same numbers).
 One time step is a short sequence of launches, each covering every realization (the
 realization is the grid's y index; the kernels over particles run THREADS x blocks
 threads per realization, each looping over the particles with the grid's stride): 2
@@ -179,6 +180,21 @@ def blocks_per_realization(n: int) -> int:
 WEIGHT_UNIT = 2.0**-20
 """Resolution of the fixed-point ``cx_weights`` sums (per observation)."""
 
+STORAGE = "components"
+"""How a batch keeps its velocities on the device: ``components``, ``(R, d, N)`` (each
+component of a realization a contiguous row, the CPU engine's struct of arrays), or
+``particles``, ``(R, N, d)`` (a particle's d components side by side). The kernels see
+either as a ``(d, N)`` view of a realization (``_realization``) and compute the same
+numbers, bit for bit. What differs is the memory a candidate pair touches: its two
+particles' 6 components are 6 scattered 32-byte sectors in ``components`` and 2-4 in
+``particles`` (a particle's 24 bytes straddle two sectors half the time), while the
+passes over every particle read and write the same bytes either way. The collisions of
+the bench's Strang step (δt = 0.1 τ) are about two thirds of its time on an H200, at
+random-sector rates; ``python -m kinetic.bench cuda --sections dsmc_storage`` times both
+storages (not yet run on a GPU)."""
+
+_STORAGES = ("components", "particles")
+
 N_MOMENTS = kernels.N_MOMENTS
 _N_FORCE_SUMS = 4
 _N_FOLDED = _N_FORCE_SUMS + 1  # the sums and the largest |V|²
@@ -253,6 +269,15 @@ def _block_max(shared, value, out):
 _block_max = cuda.jit(device=True, inline="always")(_block_max)
 
 
+def _realization(velocity, r, by_particle):
+    """Realization r's velocities as a ``(d, N)`` array (a view), from a ``(R, N, d)``
+    batch if ``by_particle``, else from a ``(R, d, N)`` one (``STORAGE``)."""
+    return velocity[r].T if by_particle else velocity[r]
+
+
+_realization = cuda.jit(device=True, inline="always")(_realization)
+
+
 # ------------------------------------------------------------------------- regrouping
 
 
@@ -291,7 +316,7 @@ def _seed_groups(group_keys, states, keys):
 
 @kernel
 def _collide_sparse(
-    velocity, states, bounds, carry, tally, reals, flags, keys, layout, thermo, pending
+    velocity, states, bounds, carry, tally, reals, flags, keys, layout, thermo, pending, by_particle
 ):
     """``sparse``: one time step of collisions in group g of realization r, one thread a
     group, in place: the particles group g takes from the columns ``layout`` in this
@@ -310,7 +335,8 @@ def _collide_sparse(
     n_rows = layout[0]
     if g >= n_rows:
         return
-    d = velocity.shape[1]
+    v = _realization(velocity, r, by_particle)
+    d = v.shape[0]
     members = (n_rows, layout[1], layout[2], np.int64(g), keys[r, 4])
     scale = thermo[r, _SCALE]
     row = bounds[r, g]
@@ -346,7 +372,7 @@ def _collide_sparse(
         carry[r, g],
         tally[r, g],
     )
-    _collide_members(velocity[r], 0, size, members, state, collisions)
+    _collide_members(v, 0, size, members, state, collisions)
 
 
 # --------------------------------------------------------------- force and thermostat
@@ -363,7 +389,9 @@ _forced = cuda.jit(device=True, inline="always")(_forced)
 
 
 @kernel
-def _force(velocity, partials, status, field_step, exact, thermo, rescale, done, close):
+def _force(
+    velocity, partials, status, field_step, exact, thermo, rescale, done, close, by_particle
+):
     """Force step V -> f V of every particle (a = ``field_step``; after the pending
     thermostat if ``rescale``), and the per-block sums ``partials[r, b, :4]`` = ΣV_x,
     ΣV_y, ΣV_z, Σ|V|² after it and the largest |V|² in ``partials[r, b, 4]``; a failed
@@ -379,8 +407,9 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale, done,
     r = cuda.blockIdx.y
     b = cuda.blockIdx.x
     t = cuda.threadIdx.x
-    d = velocity.shape[1]
-    n = velocity.shape[2]
+    v = _realization(velocity, r, by_particle)
+    d = v.shape[0]
+    n = v.shape[1]
     sum0 = 0.0
     sum1 = 0.0
     sum2 = 0.0
@@ -388,9 +417,9 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale, done,
     top = 0.0
     failed = 0
     for i in range(b * THREADS + t, n, cuda.gridDim.x * THREADS):
-        v0 = velocity[r, 0, i]
-        v1 = velocity[r, 1, i]
-        v2 = velocity[r, 2, i] if d == 3 else 0.0
+        v0 = v[0, i]
+        v1 = v[1, i]
+        v2 = v[2, i] if d == 3 else 0.0
         if rescale:
             v0 = _thermostat(v0, thermo, r, 0)
             v1 = _thermostat(v1, thermo, r, 1)
@@ -400,10 +429,10 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale, done,
             if code != 0:
                 failed = code
         if rescale or field_step != 0.0:
-            velocity[r, 0, i] = v0
-            velocity[r, 1, i] = v1
+            v[0, i] = v0
+            v[1, i] = v1
             if d == 3:
-                velocity[r, 2, i] = v2
+                v[2, i] = v2
         sum0 += v0
         sum1 += v1
         sum2 += v2
@@ -482,7 +511,9 @@ _thermostat = cuda.jit(device=True, inline="always")(_thermostat)
 
 
 @kernel
-def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, rescale, private):
+def _observe(
+    velocity, partials, histograms, reals, flags, histogram, thermo, rescale, private, by_particle
+):
     """One snapshot (after the pending thermostat if ``rescale``): per-block sums of the
     N_MOMENTS particle moments in ``partials`` and, if ``histogram``, the c_x and |c|
     histograms ``histograms`` = (cx_counts, cx_weights, speed_counts) (integer atomics;
@@ -498,8 +529,9 @@ def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, re
     r = cuda.blockIdx.y
     b = cuda.blockIdx.x
     t = cuda.threadIdx.x
-    d = velocity.shape[1]
-    n = velocity.shape[2]
+    v = _realization(velocity, r, by_particle)
+    d = v.shape[0]
+    n = v.shape[1]
     n_cx = cx_counts.shape[1]
     n_bins = 2 * n_cx + speed_counts.shape[1]
     inverse_v0 = reals[_INVERSE_V0]
@@ -510,7 +542,6 @@ def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, re
         for k in range(t, n_bins, THREADS):
             local[k] = 0
         cuda.syncthreads()
-    v = velocity[r]
     for i in range(b * THREADS + t, n, cuda.gridDim.x * THREADS):
         if rescale:
             for k in range(d):
@@ -612,6 +643,11 @@ class _Batch:
         self.n_groups = max(1, n // GROUP_SIZE)
         self.n_blocks = blocks_per_realization(n)
         self.done = device_zeros(count, np.int64)
+        if STORAGE not in _STORAGES:
+            raise ValueError(f"STORAGE must be one of {_STORAGES}, got {STORAGE!r}")
+        self.by_particle = STORAGE == "particles"
+        if self.by_particle:
+            velocity = np.ascontiguousarray(velocity.transpose(0, 2, 1))
         self.velocity = to_device(velocity)
         n_columns = -(-n // self.n_groups)  # G rows of m columns, the last holding the rest
         layout = [self.n_groups, n_columns, n - (n_columns - 1) * self.n_groups]
@@ -662,6 +698,7 @@ class _Batch:
                 self.thermo,
                 self.pending,
                 private > 0,
+                self.by_particle,
             )
             self.pending = False
             _fold_moments[grid(self.count, _SMALL), _SMALL](
@@ -677,7 +714,13 @@ class _Batch:
         pending thermostat stays pending)."""
         threads = min(BLOCK, self.n_groups)
         _collide_sparse[(grid(self.n_groups, threads), self.count), threads](
-            self.velocity, *self._groups(), self.keys, self.layout, self.thermo, self.pending
+            self.velocity,
+            *self._groups(),
+            self.keys,
+            self.layout,
+            self.thermo,
+            self.pending,
+            self.by_particle,
         )
 
     def _force_and_thermostat(self, field_step: float, end_of_step: bool) -> None:
@@ -694,8 +737,15 @@ class _Batch:
             self.pending,
             self.done,
             (self.clock, self.reals, self.flags, end_of_step, self.keys),
+            self.by_particle,
         )
         self.pending = True
+
+    def velocities(self) -> np.ndarray:
+        """The stored velocities on the host, ``(R, d, N)`` whichever the ``STORAGE`` (the
+        pending thermostat not applied)."""
+        velocity = self.velocity.copy_to_host()
+        return velocity.transpose(0, 2, 1) if self.by_particle else velocity
 
     def check(self, step: int) -> None:
         """RuntimeError if a realization's force step failed or a bound was exceeded."""
