@@ -74,7 +74,7 @@ Determinism: the same call gives the same numbers twice (on one GPU model). Floa
 are folded in a fixed order: each thread sums a fixed set of particles (stride THREADS
 x blocks), a tree sums the threads of a block (``_block_sums``: the tree of
 ``kinetic.gpu.block_reduce_sum`` on several fields at once), the same tree sums the
-blocks (the force pass's last block; ``_fold_moments``, one thread, the snapshots'
+blocks (the force pass's last block; ``_fold_moments``, a thread a moment, the snapshots'
 blocks in index order); the number of blocks per realization depends on N only, so a
 realization's numbers do not depend on the other realizations of the batch. Histogram
 counts are integer atomics. The ``cx_weights`` sums (c_x (3/2 - c_x²) per bin) are
@@ -600,16 +600,18 @@ _SHARED_BYTES = 48 * 1024
 
 @kernel
 def _fold_moments(partials, n_blocks, moment_sums, inverse_n):
-    """One thread per realization: ``moment_sums[r] += inverse_n Σ_b partials[r, b]``, the
-    blocks summed in index order."""
-    r = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
-    if r >= partials.shape[0]:
+    """One thread per realization r and moment f: ``moment_sums[r, f] += inverse_n Σ_b
+    partials[r, b, f]``, the blocks summed in index order (a thread per realization
+    until 175d3e0, the same numbers: up to 1024 blocks x N_MOMENTS loads in turn)."""
+    k = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
+    if k >= partials.shape[0] * N_MOMENTS:
         return
-    for f in range(N_MOMENTS):
-        total = 0.0
-        for b in range(n_blocks):
-            total += partials[r, b, f]
-        moment_sums[r, f] += inverse_n * total
+    r = k // N_MOMENTS
+    f = k - r * N_MOMENTS
+    total = 0.0
+    for b in range(n_blocks):
+        total += partials[r, b, f]
+    moment_sums[r, f] += inverse_n * total
 
 
 def _fixed_point(weight):
@@ -701,7 +703,7 @@ class _Batch:
                 self.by_particle,
             )
             self.pending = False
-            _fold_moments[grid(self.count, _SMALL), _SMALL](
+            _fold_moments[grid(self.count * N_MOMENTS, _SMALL), _SMALL](
                 self.partials, self.n_blocks, self.moment_sums, 1.0 / s.n_particles
             )
 
