@@ -168,8 +168,8 @@ def blocks_per_realization(n: int) -> int:
     Until revision b484bd2 every N had at most 64: on an H100 (b66ff5b) one realization of
     2 x 10^7 particles then ran 2.28 x 10^8 collisions/s against 4.93 x 10^8 for 100
     realizations of 2 x 10^5 in one launch (the same particles a step), its force passes'
-    64 blocks of 128 threads on 64 of the 132 SMs. Now 1024 blocks (152 particles a
-    thread); 10 realizations of 2 x 10^6, 640 blocks in all before, get 489 each."""
+    64 blocks of 128 threads on 64 of the 132 SMs. Now 1024 blocks (about 153 particles
+    a thread); 10 realizations of 2 x 10^6, 640 blocks in all before, get 489 each."""
     return min(
         grid(n, THREADS),
         MAX_BLOCKS,
@@ -602,7 +602,7 @@ _SHARED_BYTES = 48 * 1024
 def _fold_moments(partials, n_blocks, moment_sums, inverse_n):
     """One thread per realization r and moment f: ``moment_sums[r, f] += inverse_n Σ_b
     partials[r, b, f]``, the blocks summed in index order (a thread per realization
-    until 175d3e0, the same numbers: up to 1024 blocks x N_MOMENTS loads in turn)."""
+    until 72a92ab, the same numbers: up to 1024 blocks x N_MOMENTS loads in turn)."""
     k = cuda.blockIdx.x * cuda.blockDim.x + cuda.threadIdx.x
     if k >= partials.shape[0] * N_MOMENTS:
         return
@@ -634,6 +634,8 @@ class _Batch:
         samples: Samples,
         streams: np.ndarray,
     ):
+        if STORAGE not in _STORAGES:
+            raise ValueError(f"STORAGE must be one of {_STORAGES}, got {STORAGE!r}")
         d, n = settings.dimension, settings.n_particles
         count = streams.shape[0]
         # the CPU engine's Maxwellian starts (new_gas's numbers), built beside the last
@@ -645,8 +647,6 @@ class _Batch:
         self.n_groups = max(1, n // GROUP_SIZE)
         self.n_blocks = blocks_per_realization(n)
         self.done = device_zeros(count, np.int64)
-        if STORAGE not in _STORAGES:
-            raise ValueError(f"STORAGE must be one of {_STORAGES}, got {STORAGE!r}")
         self.by_particle = STORAGE == "particles"
         if self.by_particle:
             velocity = np.ascontiguousarray(velocity.transpose(0, 2, 1))
