@@ -75,35 +75,26 @@ and the band had to be 4.5 × 0.044 = 0.2, a third of μ). Seeds 11-14: μ - exa
 estimator's 0.0110; 7 s each under the simulator."""
 
 
-def _maxwell_exact():
-    return run(**EXACT)
-
-
-@pytest.fixture(scope="module")
-def maxwell_exact(once):
-    return once("cloning_cuda.maxwell_exact", _maxwell_exact)
-
-
-def test_maxwell_molecules_have_the_exact_large_deviation_function(maxwell_exact):
+def test_maxwell_molecules_have_the_exact_large_deviation_function():
     """μ(1) = e^{-1} - 1 less the estimator's bias -v/(2 N_c Δ) (-0.0038), within Z
     errors: each the larger of the 8 realizations' and the estimator's spread over √8
     (the realizations' own error scatters, so it is not trusted alone): a band of 0.05."""
-    run_ = maxwell_exact
-    lam, n = 1.0, run_.attrs["population"]
-    interval = run_.attrs["control_interval"]
+    ds = run(**EXACT)
+    lam, n = 1.0, ds.attrs["population"]
+    interval = ds.attrs["control_interval"]
     exact = math.expm1(-lam)
     bias, spread = visco2008.poisson_cloning_estimator(lam, n, interval, 8.0)
-    realizations = run_.sizes["realization"]
-    error = max(float(run_.mu_err), spread / math.sqrt(realizations))
+    realizations = ds.sizes["realization"]
+    error = max(float(ds.mu_err), spread / math.sqrt(realizations))
     assert error < 0.015  # the band is a tenth of μ, not the third it was with 16 clones
-    assert abs(float(run_.mu) - exact - bias) < Z * error
+    assert abs(float(ds.mu) - exact - bias) < Z * error
     # T = 1 and a2 = 0 are not checked: selection at λ = 1 leaves a small population few
     # distinct velocities (16 realizations of 16 clones gave a2 = -0.23 ± 0.03; T
     # scatters by 0.4 between realizations). The CPU engine checks them with 200 clones
     # (tests/physics/test_cloning_maxwell_poisson_generating_function.py), the H100 with
     # 10^4 (docs/gpu.md)
-    assert run_.attrs["backend"] == "cuda"
-    assert ("simulator" in run_.attrs["device"]) == backends.simulated()
+    assert ds.attrs["backend"] == "cuda"
+    assert ("simulator" in ds.attrs["device"]) == backends.simulated()
 
 
 def test_same_seed_same_numbers_and_batches_repeat_realizations(maxwell):

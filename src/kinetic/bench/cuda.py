@@ -492,12 +492,11 @@ def dsmc_storage(quick: bool) -> dict[str, Any]:
     ratios: list[dict[str, Any]] = []
     _keep(gpu=cases, particles_over_components=ratios)
     try:
-        for storage in dsmc_gpu._STORAGES:  # compile (a flag of the same kernels)
-            dsmc_gpu.STORAGE = storage
+        for storage in dsmc_gpu._STORAGES:  # a tiny run of each: one compilation (the
+            dsmc_gpu.STORAGE = storage  # storage is a flag of the same kernels), two warm-ups
             _dsmc(2000, 2, 1.0, "cuda", restitution=1.0)
-        shapes = SCALING_SHAPES
         for scheme in ({}, lie):
-            for n, realizations in shapes[: 1 if quick else None]:
+            for n, realizations in SCALING_SHAPES[: 1 if quick else None]:
                 pair = {}
                 for storage in dsmc_gpu._STORAGES:
                     dsmc_gpu.STORAGE = storage
