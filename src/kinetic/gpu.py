@@ -24,6 +24,8 @@ wrapping uint64 arithmetic of the random streams, which is intended.
 from __future__ import annotations
 
 import functools
+import hashlib
+import inspect
 import math
 import time
 import types
@@ -90,6 +92,10 @@ _POLL_PAUSE = 1e-5
 """Seconds the simulator's block manager sleeps between its polls of a block's threads
 (:func:`_pause_simulated_block_polls`)."""
 
+_UPSTREAM_BLOCK_RUN = "54626c6819f55d514a598517b1467ed1cc2e7c3bf1f3b9814e13ef2a4ba3541f"
+"""SHA-256 of the source of numba-cuda 0.30.4's ``BlockManager.run``, the loop that
+:func:`_pause_simulated_block_polls` copies."""
+
 
 @functools.cache
 def _pause_simulated_block_polls() -> bool:
@@ -101,13 +107,21 @@ def _pause_simulated_block_polls() -> bool:
     ``_POLL_PAUSE`` after each poll that leaves a thread running: the same threads, the
     same barriers, the same numbers. Measured on the development machine (two cores):
     the inhomogeneous engine's elastic test run with 2 realizations took 32.7 s polling,
-    4.8 s pausing (5.9 s with ``sleep(0)``), with identical modes. Returns whether it is
-    installed (False for a numba-cuda without this layout)."""
+    4.8 s pausing (5.9 s with ``sleep(0)``), with identical modes. It replaces only the
+    loop it copies (``_UPSTREAM_BLOCK_RUN``, the digest of its source): a numba-cuda whose
+    loop differs keeps its own, and tests/gpu/test_simulator.py, which asserts the
+    pause, then fails. Returns whether it is installed."""
     try:
         from numba.cuda.simulator.kernel import BlockManager, BlockThread
     except ImportError:
         return False
     if not hasattr(BlockManager, "run") or not hasattr(BlockThread, "syncthreads"):
+        return False
+    try:
+        upstream = inspect.getsource(BlockManager.run)
+    except (OSError, TypeError):
+        return False
+    if hashlib.sha256(upstream.encode()).hexdigest() != _UPSTREAM_BLOCK_RUN:
         return False
 
     def run(self, grid_point, *args):  # numba-cuda 0.30's BlockManager.run, and the pause

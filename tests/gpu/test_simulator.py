@@ -83,6 +83,22 @@ def test_the_paused_block_manager_keeps_every_barrier():
     np.testing.assert_array_equal(out, np.broadcast_to(values.sum(axis=1)[:, None], out.shape))
 
 
+def test_the_pause_replaces_only_the_loop_it_copies(monkeypatch):
+    """A numba-cuda whose block manager runs another loop keeps it: the pause is installed
+    over numba-cuda 0.30.4's loop only (the digest of its source), never over a loop whose
+    logic it has not checked."""
+    from numba.cuda.simulator.kernel import BlockManager
+
+    from kinetic import gpu
+
+    def other_loop(self, grid_point, *args):  # pragma: no cover - never run
+        raise AssertionError("not called")
+
+    monkeypatch.setattr(BlockManager, "run", other_loop)
+    assert not gpu._pause_simulated_block_polls.__wrapped__()
+    assert BlockManager.run is other_loop
+
+
 @kernel
 def _fails_in_one_thread(out):
     t = cuda.threadIdx.x
