@@ -258,6 +258,7 @@ __all__ = [
     "block_reduce_extreme",
     "block_reduce_sum",
     "cuda",
+    "device_empty",
     "device_function",
     "device_name",
     "first_pair",
@@ -523,3 +524,9 @@ def to_device(array):
 def device_zeros(shape, dtype=np.float64):
     """A zeroed array on the GPU."""
     return cuda.to_device(np.zeros(shape, dtype=dtype))
+
+
+def device_empty(shape, dtype=np.float64):
+    """An array on the GPU that is not initialised (for one a kernel fills entirely): no
+    host array and no copy, unlike ``device_zeros``."""
+    return cuda.device_array(shape, dtype=dtype)

@@ -76,6 +76,7 @@ def _dsmc_signatures():
     u3, u2 = uint64[:, :, ::1], uint64[:, ::1]
     return {
         "_seed_groups": (u2, u3, u2),
+        "_store_by_particle": (f3, f3),
         "_collide_sparse": (f3, u3, f3, f3, i3, f1, i1, u2, i1, f2, boolean, boolean),
         "_force": (
             *(f3, f3, i1, float64, int64, f2, boolean, i1),
