@@ -1271,7 +1271,7 @@ def _compile_job(document, job):
 def montanero2007_document(quick: bool) -> dict[str, Any]:
     """montanero2007's 6 family jobs (``montanero2007_simulate_dsmc_<family>``) of
     paper.yaml on this GPU (``_document``): 546 s by the plan on an H100; timed over two
-    calls on the H100 of b66ff5b and the H200 of d9134f3 (docs/gpu.md)."""
+    calls on the H100 of b66ff5b and the H200 of d9134f3 (docs/gpu-runs.md)."""
     return _document("montanero2007", quick)
 
 
