@@ -3,10 +3,14 @@ and kinetic.gpu compile for a Hopper GPU
 (sm_90), checked without a GPU: ``numba.cuda.compile_ptx`` of every kernel with the
 argument types the engine launches it with. The simulator (``NUMBA_ENABLE_CUDASIM=1``)
 runs the kernels as Python and checks none of the typing, so this runs only outside it,
-where the CUDA toolkit (NVVM, NVRTC) is installed, e.g.::
+where the CUDA toolkit (NVVM, NVRTC) is installed. Where nvJitLink is installed too (the
+``numba-cuda[cu13]`` wheels), each kernel's PTX is also linked to sm_90 machine code, its
+registers a thread printed (``-s``) and its spills held to none (``SPILLS_TIMED``), e.g.::
 
     NUMBA_ENABLE_CUDASIM=0 python -m pytest -o addopts="" tests/gpu/test_kernels_compile.py
 """
+
+import re
 
 import pytest
 
@@ -142,3 +146,55 @@ def test_kernel_compiles_for_sm90(compile_ptx, engine, name, monkeypatch):
     signature = _signatures()[(engine, name)]
     ptx, _ = compile_ptx(getattr(module, name).py_func, signature, cc=(9, 0))
     assert ".entry" in ptx
+    resources = _machine_code_resources(ptx, name)
+    if resources is None:
+        return
+    print(f"{engine}.{name}: {resources['registers']} registers, {resources['spills']} B spilled")
+    allowed = SPILLS_TIMED.get((engine, name), 0)
+    assert resources["spills"] <= allowed, (
+        f"{name} spills {resources['spills']} bytes to local memory (timed on a GPU with {allowed})"
+    )
+
+
+SPILLS_TIMED = {("dsmc_inhomogeneous", "_advance_together"): 156}
+"""Bytes a kernel spilled (nvJitLink 13.5, sm_90) when its speed was last timed on a GPU;
+every other kernel spills none. The cooperative step holds all five phases of the
+inhomogeneous DSMC in one function: 255 registers a thread, so 2 blocks of 128 a
+multiprocessor, and it still ran its step in 0.935 ms against 1.175 for the five
+launches of 133 registers at most (the H200 of 5a93630, ``inhomogeneous_bound``)."""
+
+
+_LINE = re.compile(r"(\d+) bytes spill stores|Used (\d+) registers")
+
+
+def _machine_code_resources(ptx: str, name: str) -> dict[str, int] | None:
+    """What ptxas makes of ``ptx`` for sm_90 (nvJitLink, no GPU needed): the registers a
+    thread and the bytes spilled to local memory; None where nvJitLink (the ``cu13``
+    toolkit's wheels) is missing. A kernel that spills loads and stores its live values
+    through local memory; one that needs more registers runs fewer threads at once (the
+    homogeneous DSMC's collisions take 112 on nvJitLink 13.5: 16 of a multiprocessor's
+    64 warps; capped at 96 they would spill 128 bytes)."""
+    try:
+        from cuda.bindings import nvjitlink
+    except ImportError:
+        return None
+    from numba.cuda.cudadrv.libs import get_cudalib
+
+    options = ["-arch=sm_90", "-verbose"]
+    handle = nvjitlink.create(len(options), options)
+    try:
+        data = ptx.encode()
+        nvjitlink.add_data(handle, nvjitlink.InputType.PTX, data, len(data), name)
+        # the device runtime, for the grid-wide barrier of the cooperative kernels
+        library = get_cudalib("cudadevrt", static=True)
+        nvjitlink.add_file(handle, nvjitlink.InputType.LIBRARY, library)
+        nvjitlink.complete(handle)
+        log = bytearray(nvjitlink.get_info_log_size(handle))
+        nvjitlink.get_info_log(handle, log)
+    finally:
+        nvjitlink.destroy(handle)
+    registers, spills = 0, 0
+    for stores, used in _LINE.findall(log.decode(errors="replace")):
+        spills += int(stores or 0)
+        registers = max(registers, int(used or 0))
+    return {"registers": registers, "spills": spills}
