@@ -267,6 +267,7 @@ __all__ = [
     "kernel",
     "last_block",
     "next_pair",
+    "permuted",
     "require",
     "synchronize",
     "to_device",
@@ -524,6 +525,25 @@ def to_device(array):
 def device_zeros(shape, dtype=np.float64):
     """A zeroed array on the GPU."""
     return cuda.to_device(np.zeros(shape, dtype=dtype))
+
+
+def permuted(array, axes):
+    """A view of the device ``array`` with its axes in the order ``axes`` (as numpy's
+    ``transpose``), sharing its memory: no copy, no kernel. Typed by numba as the strided
+    array it is (layout ``A``, or ``F`` where that fits), so a kernel given it is compiled
+    for that layout. (numba-cuda's own ``transpose`` of a device array copies, and only
+    in two dimensions.)"""
+    if simulated():  # the simulator's device array wraps a numpy array
+        return type(array)(array._ary.transpose(axes), stream=array.stream)
+    from numba.cuda.cudadrv.devicearray import DeviceNDArray
+
+    return DeviceNDArray(
+        tuple(array.shape[a] for a in axes),
+        tuple(array.strides[a] for a in axes),
+        array.dtype,
+        stream=array.stream,
+        gpu_data=array.gpu_data,
+    )
 
 
 def device_empty(shape, dtype=np.float64):

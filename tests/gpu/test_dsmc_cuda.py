@@ -338,6 +338,30 @@ def test_both_velocity_storages_give_the_same_numbers(monkeypatch, options):
         _run("cuda")
 
 
+def test_the_by_particle_view_writes_the_stored_particles(monkeypatch):
+    """With ``STORAGE`` ``particles`` the kernels write through a strided (R, d, N) view
+    of the (R, N, d) array the batch stores (``kinetic.gpu.permuted``): after sampled and
+    unsampled steps with a field the stored velocities are those of ``components``, bit
+    for bit, and the view and the store are one memory."""
+    from kinetic.dsmc import gpu
+    from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
+
+    settings = HomogeneousSettings(
+        n_particles=131, restitution=0.8, time_step=0.2, reduced_field=0.25, force_step="exact"
+    )
+    stored = {}
+    for storage in ("components", "particles"):
+        monkeypatch.setattr(gpu, "STORAGE", storage)
+        batch = gpu._Batch(settings, Samples(stride=1), realization_streams(5, 0, 2))
+        for step in range(3):
+            batch.step(sample=step == 1, histogram=False)
+        stored[storage] = batch.velocities()
+        assert stored[storage].shape == (2, 3, 131)
+    assert batch.storage.shape == (2, 131, 3)
+    np.testing.assert_array_equal(stored["particles"], stored["components"])
+    assert not np.array_equal(stored["particles"][:, :, 0], stored["particles"][:, :, 1])
+
+
 def test_private_histograms_count_what_global_atomics_count(monkeypatch):
     """``_observe`` counts a block's particles into its own histograms in shared memory and
     adds them to the realization's once (``private``): the same c_x counts, fixed-point

@@ -119,6 +119,7 @@ from kinetic.gpu import (
     grid,
     kernel,
     last_block,
+    permuted,
     synchronize,
     to_device,
     warm,
@@ -184,9 +185,13 @@ WEIGHT_UNIT = 2.0**-20
 STORAGE = "components"
 """How a batch keeps its velocities on the device: ``components``, ``(R, d, N)`` (each
 component of a realization a contiguous row, the CPU engine's struct of arrays), or
-``particles``, ``(R, N, d)`` (a particle's d components side by side). The kernels see
-either as a ``(d, N)`` view of a realization (``_realization``) and compute the same
-numbers, bit for bit. What differs is the memory a candidate pair touches: its two
+``particles``, ``(R, N, d)`` (a particle's d components side by side). The kernels are
+given either as an ``(R, d, N)`` array, the second as a strided view of the stored one
+(``kinetic.gpu.permuted``), so numba compiles each kernel once for each layout (C, or
+strided), neither with a branch on it, and both compute the same numbers, bit for bit.
+(Until revision 37cb1aa a runtime flag chose the view inside the kernels: the two
+layouts met in one strided type, and NVVM left the collisions' 104 velocity loads
+generic instead of global.) What differs is the memory a candidate pair touches: its two
 particles' 6 components are 6 scattered 32-byte sectors in ``components`` and 2-4 in
 ``particles`` (a particle's 24 bytes straddle two sectors half the time), while the
 passes over every particle read and write the same bytes either way. The collisions of
@@ -270,15 +275,6 @@ def _block_max(shared, value, out):
 _block_max = cuda.jit(device=True, inline="always")(_block_max)
 
 
-def _realization(velocity, r, by_particle):
-    """Realization r's velocities as a ``(d, N)`` array (a view), from a ``(R, N, d)``
-    batch if ``by_particle``, else from a ``(R, d, N)`` one (``STORAGE``)."""
-    return velocity[r].T if by_particle else velocity[r]
-
-
-_realization = cuda.jit(device=True, inline="always")(_realization)
-
-
 @kernel
 def _store_by_particle(components, particles):
     """``particles[r, i, k] = components[r, k, i]``: a batch's starts, drawn as ``(R, d,
@@ -329,7 +325,7 @@ def _seed_groups(group_keys, states, keys):
 
 @kernel
 def _collide_sparse(
-    velocity, states, bounds, carry, tally, reals, flags, keys, layout, thermo, pending, by_particle
+    velocity, states, bounds, carry, tally, reals, flags, keys, layout, thermo, pending
 ):
     """``sparse``: one time step of collisions in group g of realization r, one thread a
     group, in place: the particles group g takes from the columns ``layout`` in this
@@ -348,7 +344,7 @@ def _collide_sparse(
     n_rows = layout[0]
     if g >= n_rows:
         return
-    v = _realization(velocity, r, by_particle)
+    v = velocity[r]
     d = v.shape[0]
     members = (n_rows, layout[1], layout[2], np.int64(g), keys[r, 4])
     scale = thermo[r, _SCALE]
@@ -402,9 +398,7 @@ _forced = cuda.jit(device=True, inline="always")(_forced)
 
 
 @kernel
-def _force(
-    velocity, partials, status, field_step, exact, thermo, rescale, done, close, by_particle
-):
+def _force(velocity, partials, status, field_step, exact, thermo, rescale, done, close):
     """Force step V -> f V of every particle (a = ``field_step``; after the pending
     thermostat if ``rescale``), and the per-block sums ``partials[r, b, :4]`` = ΣV_x,
     ΣV_y, ΣV_z, Σ|V|² after it and the largest |V|² in ``partials[r, b, 4]``; a failed
@@ -420,7 +414,7 @@ def _force(
     r = cuda.blockIdx.y
     b = cuda.blockIdx.x
     t = cuda.threadIdx.x
-    v = _realization(velocity, r, by_particle)
+    v = velocity[r]
     d = v.shape[0]
     n = v.shape[1]
     sum0 = 0.0
@@ -524,9 +518,7 @@ _thermostat = cuda.jit(device=True, inline="always")(_thermostat)
 
 
 @kernel
-def _observe(
-    velocity, partials, histograms, reals, flags, histogram, thermo, rescale, private, by_particle
-):
+def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, rescale, private):
     """One snapshot (after the pending thermostat if ``rescale``): per-block sums of the
     N_MOMENTS particle moments in ``partials`` and, if ``histogram``, the c_x and |c|
     histograms ``histograms`` = (cx_counts, cx_weights, speed_counts) (integer atomics;
@@ -542,7 +534,7 @@ def _observe(
     r = cuda.blockIdx.y
     b = cuda.blockIdx.x
     t = cuda.threadIdx.x
-    v = _realization(velocity, r, by_particle)
+    v = velocity[r]
     d = v.shape[0]
     n = v.shape[1]
     n_cx = cx_counts.shape[1]
@@ -660,12 +652,14 @@ class _Batch:
         self.n_groups = max(1, n // GROUP_SIZE)
         self.n_blocks = blocks_per_realization(n)
         self.done = device_zeros(count, np.int64)
-        self.by_particle = STORAGE == "particles"
-        self.velocity = to_device(velocity)
-        if self.by_particle:  # the starts' (R, d, N) rearranged on the device, not the host
-            by_particle = device_empty((count, n, d))
-            _store_by_particle[(grid(n, THREADS), count), THREADS](self.velocity, by_particle)
-            self.velocity = by_particle
+        # ``velocity``, (R, d, N) as the kernels index it, is the stored array itself
+        # (components) or a view of the (R, N, d) one (particles, ``storage``): the kernels
+        # are compiled for each layout, C or strided, each without a branch on it
+        self.velocity = self.storage = to_device(velocity)
+        if STORAGE == "particles":  # the starts rearranged on the device, not the host
+            self.storage = device_empty((count, n, d))
+            _store_by_particle[(grid(n, THREADS), count), THREADS](self.velocity, self.storage)
+            self.velocity = permuted(self.storage, (0, 2, 1))
         n_columns = -(-n // self.n_groups)  # G rows of m columns, the last holding the rest
         layout = [self.n_groups, n_columns, n - (n_columns - 1) * self.n_groups]
         self.layout = to_device(np.array(layout, dtype=np.int64))
@@ -715,7 +709,6 @@ class _Batch:
                 self.thermo,
                 self.pending,
                 private > 0,
-                self.by_particle,
             )
             self.pending = False
             _fold_moments[grid(self.count * N_MOMENTS, _SMALL), _SMALL](
@@ -737,7 +730,6 @@ class _Batch:
             self.layout,
             self.thermo,
             self.pending,
-            self.by_particle,
         )
 
     def _force_and_thermostat(self, field_step: float, end_of_step: bool) -> None:
@@ -754,15 +746,14 @@ class _Batch:
             self.pending,
             self.done,
             (self.clock, self.reals, self.flags, end_of_step, self.keys),
-            self.by_particle,
         )
         self.pending = True
 
     def velocities(self) -> np.ndarray:
         """The stored velocities on the host, ``(R, d, N)`` whichever the ``STORAGE`` (the
         pending thermostat not applied)."""
-        velocity = self.velocity.copy_to_host()
-        return velocity.transpose(0, 2, 1) if self.by_particle else velocity
+        stored = self.storage.copy_to_host()
+        return stored if self.storage is self.velocity else stored.transpose(0, 2, 1)
 
     def check(self, step: int) -> None:
         """RuntimeError if a realization's force step failed or a bound was exceeded."""
