@@ -217,6 +217,15 @@ kernel = cuda.jit(cache=CACHED)
 process on the development machine's CPU for each engine)."""
 
 
+def kernel_within(registers: int):
+    """``kernel`` whose machine code uses at most ``registers`` registers a thread
+    (``max_registers``: ptxas spills the rest to local memory), so that more threads fit
+    on a multiprocessor (65 536 registers); no effect under the simulator."""
+    if simulated():
+        return kernel
+    return cuda.jit(cache=CACHED, max_registers=registers)
+
+
 def warm(name: str, engine: str, compile_kernels) -> float:
     """Have this process's kernels of a GPU module ready: ``compile_kernels()`` is a tiny
     launch of each with its production types. The first process after an edit (or on a
@@ -265,6 +274,7 @@ __all__ = [
     "fold_partials",
     "grid",
     "kernel",
+    "kernel_within",
     "last_block",
     "next_pair",
     "permuted",

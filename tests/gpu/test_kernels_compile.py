@@ -153,7 +153,7 @@ def test_kernel_compiles_for_sm90(compile_ptx, engine, name, monkeypatch):
     kernel = getattr(module, name.split("[")[0])  # "name[variant]": another signature
     ptx, _ = compile_ptx(kernel.py_func, signature, cc=(9, 0))
     assert ".entry" in ptx
-    resources = _machine_code_resources(ptx, name)
+    resources = _machine_code_resources(ptx, name, kernel.targetoptions.get("max_registers"))
     if resources is None:
         return
     print(f"{engine}.{name}: {resources['registers']} registers, {resources['spills']} B spilled")
@@ -174,9 +174,10 @@ launches of 133 registers at most (the H200 of 5a93630, ``inhomogeneous_bound``)
 _LINE = re.compile(r"(\d+) bytes spill stores|Used (\d+) registers")
 
 
-def _machine_code_resources(ptx: str, name: str) -> dict[str, int] | None:
-    """What ptxas makes of ``ptx`` for sm_90 (nvJitLink, no GPU needed): the registers a
-    thread and the bytes spilled to local memory; None where nvJitLink (the ``cu13``
+def _machine_code_resources(ptx: str, name: str, limit: int | None) -> dict[str, int] | None:
+    """What ptxas makes of ``ptx`` for sm_90 (nvJitLink, no GPU needed), within the
+    kernel's ``limit`` of registers if it has one: the registers a thread and the bytes
+    spilled to local memory; None where nvJitLink (the ``cu13``
     toolkit's wheels) is missing. A kernel that spills loads and stores its live values
     through local memory; one that needs more registers runs fewer threads at once (the
     homogeneous DSMC's collisions take 124 on nvJitLink 13.5: 16 of a multiprocessor's
@@ -188,6 +189,8 @@ def _machine_code_resources(ptx: str, name: str) -> dict[str, int] | None:
     from numba.cuda.cudadrv.libs import get_cudalib
 
     options = ["-arch=sm_90", "-verbose"]
+    if limit:  # the kernel's own max_registers (``kinetic.gpu.kernel_within``)
+        options.append(f"-maxrregcount={limit}")
     handle = nvjitlink.create(len(options), options)
     try:
         data = ptx.encode()

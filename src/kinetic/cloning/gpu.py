@@ -83,6 +83,7 @@ from kinetic.gpu import (
     device_function,
     grid,
     kernel,
+    kernel_within,
     last_block,
     to_device,
     warm,
@@ -485,7 +486,18 @@ def _slot(position, n, total, u):
     return min(n, max(0, g))
 
 
-@kernel
+RESIDENT_REGISTERS = 128
+"""Registers a thread of ``_resident`` may use (``kinetic.gpu.kernel_within``). Left to
+itself ptxas gave it 144 (the H100 run of 5836ea7) to 157 (nvJitLink 13.5, sm_90), so a
+multiprocessor held one block of 256 threads (65 536 registers); at 128 it spills nothing
+(tests/gpu/test_kernels_compile.py links it so) and holds two. In paper.yaml's grouped
+jobs of 10³ and 3 × 10³ clones (41 λ × 32 realizations a block each) the blocks wait
+for a multiprocessor: ``kinetic.cost`` plans 111 and 106 s of their 115 and 110 s so.
+Not yet timed on a GPU; the plan still counts one block a multiprocessor
+(``cost.CLONING_GPU_RESIDENT_BLOCKS``)."""
+
+
+@kernel_within(RESIDENT_REGISTERS)
 def _resident(first, second, states, counts, controls, out, observers, run, plan):
     """The control intervals of a block of the run for every clone of realization
     r = blockIdx.x, in one thread block of ``RESIDENT_THREADS`` threads (a power of two up
