@@ -5,7 +5,8 @@ argument types the engine launches it with. The simulator (``NUMBA_ENABLE_CUDASI
 runs the kernels as Python and checks none of the typing, so this runs only outside it,
 where the CUDA toolkit (NVVM, NVRTC) is installed. Where nvJitLink is installed too (the
 ``numba-cuda[cu13]`` wheels), each kernel's PTX is also linked to sm_90 machine code, its
-registers a thread printed (``-s``) and its spills held to none (``SPILLS_TIMED``), e.g.::
+registers a thread printed (``-s``) and its spills held to none (``SPILLS_TIMED``); and
+``kinetic.gpu.permuted``'s device view is checked, which needs no toolkit. E.g.::
 
     NUMBA_ENABLE_CUDASIM=0 python -m pytest -o addopts="" tests/gpu/test_kernels_compile.py
 """
@@ -208,3 +209,28 @@ def _machine_code_resources(ptx: str, name: str, limit: int | None) -> dict[str,
         spills += int(stores or 0)
         registers = max(registers, int(used or 0))
     return {"registers": registers, "spills": spills}
+
+
+def test_a_permuted_device_array_is_a_strided_view_of_the_same_memory():
+    """``kinetic.gpu.permuted`` on a GPU: a ``DeviceNDArray`` over the stored array's own
+    memory (no allocation, no copy), with its shape and strides permuted, which numba
+    types as a strided 3-d array (the layout ``_collide_sparse[particles]`` and the
+    others compile for above). Built here from a stand-in array: with its memory given,
+    a ``DeviceNDArray`` needs no GPU."""
+    from types import SimpleNamespace
+
+    import numpy as np
+    from numba import float64, types
+
+    from kinetic.gpu import permuted
+
+    memory = object()  # a device allocation stands here: only its identity matters
+    stored = SimpleNamespace(
+        shape=(2, 131, 3), strides=(131 * 3 * 8, 3 * 8, 8), dtype=np.dtype(np.float64)
+    )
+    stored.stream, stored.gpu_data = 0, memory
+    view = permuted(stored, (0, 2, 1))
+    assert view.gpu_data is memory
+    assert view.shape == (2, 3, 131)
+    assert view.strides == (131 * 3 * 8, 8, 3 * 8)
+    assert view._numba_type_ == types.Array(float64, 3, "A")
