@@ -518,7 +518,27 @@ def dsmc_storage(quick: bool) -> dict[str, Any]:
                 )
     finally:
         dsmc_gpu.STORAGE = saved
-    return {"gpu": cases, "particles_over_components": ratios}
+    return {
+        "gpu": cases,
+        "particles_over_components": ratios,
+        "registers_per_thread": _registers_by_layout(dsmc_gpu),
+    }
+
+
+def _registers_by_layout(dsmc_gpu) -> dict[str, Any]:
+    """Registers a thread of the homogeneous DSMC's kernels over particles, for each layout
+    they were compiled for (C: ``components``; A, a strided view: ``particles``), as this
+    GPU's compiler made them (nvJitLink 13.5 gave 124 and 114 for the collisions)."""
+    out: dict[str, Any] = {}
+    for name in ("_collide_sparse", "_force", "_observe"):
+        kernel = getattr(dsmc_gpu, name)
+        try:
+            registers = kernel.get_regs_per_thread()
+        except Exception as error:  # the simulator has none
+            out[name] = f"unavailable: {error}"
+            continue
+        out[name] = {str(signature[0].layout): value for signature, value in registers.items()}
+    return out
 
 
 def dsmc_speed(quick: bool) -> dict[str, Any]:
