@@ -226,6 +226,30 @@ def kernel_within(registers: int):
     return cuda.jit(cache=CACHED, max_registers=registers)
 
 
+def kernel_variants(function, constant: str, values: dict[str, object]) -> dict[str, object]:
+    """``{label: kernel}``: ``function`` compiled as a ``kernel`` once for each of
+    ``values``, each copy with the module-level name ``constant`` fixed to its value. numba
+    reads a global as a constant and prunes the branches on it, so each copy is compiled
+    for one case only (its types too: a branch between two array layouts would otherwise
+    join them in a strided one). The copies read the module's other names as they are
+    when this is called (call it after everything ``function`` uses is defined; numba
+    freezes them at compilation anyway), and their qualified names carry the label, so
+    each has its own entry in the kernel cache. (``device_function`` copies functions
+    the same way.)"""
+    variants = {}
+    for label, value in values.items():
+        names = dict(function.__globals__)
+        names[constant] = value
+        copy = types.FunctionType(
+            function.__code__, names, function.__name__, function.__defaults__, function.__closure__
+        )
+        copy.__qualname__ = f"{function.__qualname__}_{label}"
+        copy.__module__ = function.__module__
+        copy.__doc__ = function.__doc__
+        variants[label] = kernel(copy)
+    return variants
+
+
 def warm(name: str, engine: str, compile_kernels) -> float:
     """Have this process's kernels of a GPU module ready: ``compile_kernels()`` is a tiny
     launch of each with its production types. The first process after an edit (or on a
@@ -274,10 +298,10 @@ __all__ = [
     "fold_partials",
     "grid",
     "kernel",
+    "kernel_variants",
     "kernel_within",
     "last_block",
     "next_pair",
-    "permuted",
     "require",
     "synchronize",
     "to_device",
@@ -535,25 +559,6 @@ def to_device(array):
 def device_zeros(shape, dtype=np.float64):
     """A zeroed array on the GPU."""
     return cuda.to_device(np.zeros(shape, dtype=dtype))
-
-
-def permuted(array, axes):
-    """A view of the device ``array`` with its axes in the order ``axes`` (as numpy's
-    ``transpose``), sharing its memory: no copy, no kernel. Typed by numba as the strided
-    array it is (layout ``A``, or ``F`` where that fits), so a kernel given it is compiled
-    for that layout. (numba-cuda's own ``transpose`` of a device array copies, and only
-    in two dimensions.)"""
-    if simulated():  # the simulator's device array wraps a numpy array
-        return type(array)(array._ary.transpose(axes), stream=array.stream)
-    from numba.cuda.cudadrv.devicearray import DeviceNDArray
-
-    return DeviceNDArray(
-        tuple(array.shape[a] for a in axes),
-        tuple(array.strides[a] for a in axes),
-        array.dtype,
-        stream=array.stream,
-        gpu_data=array.gpu_data,
-    )
 
 
 def device_empty(shape, dtype=np.float64):

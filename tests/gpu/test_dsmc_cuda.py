@@ -338,11 +338,10 @@ def test_both_velocity_storages_give_the_same_numbers(monkeypatch, options):
         _run("cuda")
 
 
-def test_the_by_particle_view_writes_the_stored_particles(monkeypatch):
-    """With ``STORAGE`` ``particles`` the kernels write through a strided (R, d, N) view
-    of the (R, N, d) array the batch stores (``kinetic.gpu.permuted``): after sampled and
-    unsampled steps with a field the stored velocities are those of ``components``, bit
-    for bit, and the view and the store are one memory."""
+def test_both_storages_hold_the_same_velocities_after_steps(monkeypatch):
+    """With ``STORAGE`` ``particles`` the kernels' copies for it (``_BY_PARTICLE``) read
+    and write the (R, N, d) store through ``velocity[r].T``: after sampled and unsampled
+    steps with a field the stored velocities are those of ``components``, bit for bit."""
     from kinetic.dsmc import gpu
     from kinetic.dsmc.state import HomogeneousSettings, Samples, realization_streams
 
@@ -357,7 +356,7 @@ def test_the_by_particle_view_writes_the_stored_particles(monkeypatch):
             batch.step(sample=step == 1, histogram=False)
         stored[storage] = batch.velocities()
         assert stored[storage].shape == (2, 3, 131)
-    assert batch.storage.shape == (2, 131, 3)
+    assert batch.velocity.shape == (2, 131, 3)  # the particles' store
     np.testing.assert_array_equal(stored["particles"], stored["components"])
     assert not np.array_equal(stored["particles"][:, :, 0], stored["particles"][:, :, 1])
 

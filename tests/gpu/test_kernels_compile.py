@@ -5,8 +5,7 @@ argument types the engine launches it with. The simulator (``NUMBA_ENABLE_CUDASI
 runs the kernels as Python and checks none of the typing, so this runs only outside it,
 where the CUDA toolkit (NVVM, NVRTC) is installed. Where nvJitLink is installed too (the
 ``numba-cuda[cu13]`` wheels), each kernel's PTX is also linked to sm_90 machine code, its
-registers a thread printed (``-s``) and its spills held to none (``SPILLS_TIMED``); and
-``kinetic.gpu.permuted``'s device view is checked, which needs no toolkit. E.g.::
+registers a thread printed (``-s``) and its spills held to none (``SPILLS_TIMED``), e.g.::
 
     NUMBA_ENABLE_CUDASIM=0 python -m pytest -o addopts="" tests/gpu/test_kernels_compile.py
 """
@@ -74,7 +73,7 @@ MODULES = {
 
 def _dsmc_signatures():
     from numba import boolean, float64, int64, uint64
-    from numba.core.types import Array, Tuple, UniTuple
+    from numba.core.types import Tuple, UniTuple
 
     f3, f2, f1 = float64[:, :, ::1], float64[:, ::1], float64[::1]
     i3, i2, i1 = int64[:, :, ::1], int64[:, ::1], int64[::1]
@@ -84,18 +83,16 @@ def _dsmc_signatures():
         "_force": (f3, i1, float64, int64, f2, boolean, i1, Tuple((f2, f1, i1, boolean, u2))),
         "_observe": (f3, UniTuple(i2, 3), f1, i1, boolean, f2, boolean, boolean),
     }
-    # the velocities (R, d, N): stored so (C), or a strided view of (R, N, d) (STORAGE
-    # "particles", kinetic.gpu.permuted): numba compiles each kernel for both
-    strided = Array(float64, 3, "A")
-    return (
-        {
-            "_seed_groups": (u2, u3, u2),
-            "_store_by_particle": (f3, f3),
-            "_fold_moments": (f3, int64, f2, float64),
-        }
-        | {name: (f3, *rest) for name, rest in over_particles.items()}
-        | {f"{name}[particles]": (strided, *rest) for name, rest in over_particles.items()}
-    )
+    # each a copy for each storage (``_BY_PARTICLE``), both given a C-layout store
+    return {
+        "_seed_groups": (u2, u3, u2),
+        "_store_by_particle": (f3, f3),
+        "_fold_moments": (f3, int64, f2, float64),
+    } | {
+        f"{name}[{storage}]": (f3, *rest)
+        for name, rest in over_particles.items()
+        for storage in ("components", "particles")
+    }
 
 
 def _inhomogeneous_signatures():
@@ -151,7 +148,9 @@ def test_kernel_compiles_for_sm90(compile_ptx, engine, name, monkeypatch):
     )
     module = importlib.import_module(MODULES[engine])
     signature = _signatures()[(engine, name)]
-    kernel = getattr(module, name.split("[")[0])  # "name[variant]": another signature
+    kernel = getattr(module, name.split("[")[0])
+    if isinstance(kernel, dict):  # "name[label]": one of the kernel's compiled copies
+        kernel = kernel[name.split("[")[1].rstrip("]")]
     ptx, _ = compile_ptx(kernel.py_func, signature, cc=(9, 0))
     assert ".entry" in ptx
     resources = _machine_code_resources(ptx, name, kernel.targetoptions.get("max_registers"))
@@ -209,28 +208,3 @@ def _machine_code_resources(ptx: str, name: str, limit: int | None) -> dict[str,
         spills += int(stores or 0)
         registers = max(registers, int(used or 0))
     return {"registers": registers, "spills": spills}
-
-
-def test_a_permuted_device_array_is_a_strided_view_of_the_same_memory():
-    """``kinetic.gpu.permuted`` on a GPU: a ``DeviceNDArray`` over the stored array's own
-    memory (no allocation, no copy), with its shape and strides permuted, which numba
-    types as a strided 3-d array (the layout ``_collide_sparse[particles]`` and the
-    others compile for above). Built here from a stand-in array: with its memory given,
-    a ``DeviceNDArray`` needs no GPU."""
-    from types import SimpleNamespace
-
-    import numpy as np
-    from numba import float64, types
-
-    from kinetic.gpu import permuted
-
-    memory = object()  # a device allocation stands here: only its identity matters
-    stored = SimpleNamespace(
-        shape=(2, 131, 3), strides=(131 * 3 * 8, 3 * 8, 8), dtype=np.dtype(np.float64)
-    )
-    stored.stream, stored.gpu_data = 0, memory
-    view = permuted(stored, (0, 2, 1))
-    assert view.gpu_data is memory
-    assert view.shape == (2, 3, 131)
-    assert view.strides == (131 * 3 * 8, 8, 3 * 8)
-    assert view._numba_type_ == types.Array(float64, 3, "A")

@@ -526,18 +526,19 @@ def dsmc_storage(quick: bool) -> dict[str, Any]:
 
 
 def _registers_by_layout(dsmc_gpu) -> dict[str, Any]:
-    """Registers a thread of the homogeneous DSMC's kernels over particles, for each layout
-    they were compiled for (C: ``components``; A, a strided view: ``particles``), as this
-    GPU's compiler made them (nvJitLink 13.5 gave 124 and 114 for the collisions)."""
+    """Registers a thread of the homogeneous DSMC's kernels over particles, the copy for
+    each storage (``_BY_PARTICLE``), as this GPU's compiler made them."""
     out: dict[str, Any] = {}
     for name in ("_collide_sparse", "_force", "_observe"):
-        kernel = getattr(dsmc_gpu, name)
-        try:
-            registers = kernel.get_regs_per_thread()
-        except Exception as error:  # the simulator has none
-            out[name] = f"unavailable: {error}"
-            continue
-        out[name] = {str(signature[0].layout): value for signature, value in registers.items()}
+        out[name] = {}
+        for storage, kernel in getattr(dsmc_gpu, name).items():
+            try:
+                registers = kernel.get_regs_per_thread()
+            except Exception as error:  # the simulator has none
+                registers = f"unavailable: {error}"
+            if isinstance(registers, dict):  # one compiled signature: its count
+                registers = next(iter(registers.values()), None)
+            out[name][storage] = registers
     return out
 
 

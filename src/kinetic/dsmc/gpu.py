@@ -118,8 +118,8 @@ from kinetic.gpu import (
     device_zeros,
     grid,
     kernel,
+    kernel_variants,
     last_block,
-    permuted,
     synchronize,
     to_device,
     warm,
@@ -185,13 +185,10 @@ WEIGHT_UNIT = 2.0**-20
 STORAGE = "components"
 """How a batch keeps its velocities on the device: ``components``, ``(R, d, N)`` (each
 component of a realization a contiguous row, the CPU engine's struct of arrays), or
-``particles``, ``(R, N, d)`` (a particle's d components side by side). The kernels are
-given either as an ``(R, d, N)`` array, the second as a strided view of the stored one
-(``kinetic.gpu.permuted``), so numba compiles each kernel once for each layout (C, or
-strided), neither with a branch on it, and both compute the same numbers, bit for bit.
-(Until revision 37cb1aa a runtime flag chose the view inside the kernels: the two
-layouts met in one strided type, and NVVM left the collisions' 104 velocity loads
-generic instead of global.) What differs is the memory a candidate pair touches: its two
+``particles``, ``(R, N, d)`` (a particle's d components side by side). The kernels over
+particles are compiled once for each (``_BY_PARTICLE``) and see a realization as a
+``(d, N)`` array, ``velocity[r]`` or ``velocity[r].T``; both compute the same numbers,
+bit for bit. What differs is the memory a candidate pair touches: its two
 particles' 6 components are 6 scattered 32-byte sectors in ``components`` and 2-4 in
 ``particles`` (a particle's 24 bytes straddle two sectors half the time), while the
 passes over every particle read and write the same bytes either way. The collisions of
@@ -200,6 +197,17 @@ random-sector rates; ``python -m kinetic.bench cuda --sections dsmc_storage`` ti
 storages (not yet run on a GPU)."""
 
 _STORAGES = ("components", "particles")
+_STORAGE_IS_PARTICLES = {storage: storage == "particles" for storage in _STORAGES}
+
+_BY_PARTICLE = False
+"""Fixed in each compiled copy of the kernels over particles (``kinetic.gpu.kernel_variants``:
+one for each of ``_STORAGES``): whether their velocities come as the ``(R, N, d)`` store,
+read through ``velocity[r].T``, else as ``(R, d, N)``. numba prunes the branch on a
+constant, so each copy indexes one contiguous layout (C, or F for the transposed rows)
+and its loads are global. (A runtime flag, 175d3e0 to 37cb1aa, met both layouts in one
+strided type and left every velocity load generic in the PTX, the default's too; a
+strided ``(R, d, N)`` view of the store, 8f2b33d, fixed the default's but left the
+view's generic.)"""
 
 N_MOMENTS = kernels.N_MOMENTS
 _N_FORCE_SUMS = 4
@@ -323,7 +331,6 @@ def _seed_groups(group_keys, states, keys):
     states[r, g, 3] = s3
 
 
-@kernel
 def _collide_sparse(
     velocity, states, bounds, carry, tally, reals, flags, keys, layout, thermo, pending
 ):
@@ -344,7 +351,7 @@ def _collide_sparse(
     n_rows = layout[0]
     if g >= n_rows:
         return
-    v = velocity[r]
+    v = velocity[r].T if _BY_PARTICLE else velocity[r]
     d = v.shape[0]
     members = (n_rows, layout[1], layout[2], np.int64(g), keys[r, 4])
     scale = thermo[r, _SCALE]
@@ -397,7 +404,6 @@ def _forced(v0, v1, v2, field_step, exact):
 _forced = cuda.jit(device=True, inline="always")(_forced)
 
 
-@kernel
 def _force(velocity, partials, status, field_step, exact, thermo, rescale, done, close):
     """Force step V -> f V of every particle (a = ``field_step``; after the pending
     thermostat if ``rescale``), and the per-block sums ``partials[r, b, :4]`` = ΣV_x,
@@ -414,7 +420,7 @@ def _force(velocity, partials, status, field_step, exact, thermo, rescale, done,
     r = cuda.blockIdx.y
     b = cuda.blockIdx.x
     t = cuda.threadIdx.x
-    v = velocity[r]
+    v = velocity[r].T if _BY_PARTICLE else velocity[r]
     d = v.shape[0]
     n = v.shape[1]
     sum0 = 0.0
@@ -517,7 +523,6 @@ _thermostat = cuda.jit(device=True, inline="always")(_thermostat)
 # -------------------------------------------------------------------------- observers
 
 
-@kernel
 def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, rescale, private):
     """One snapshot (after the pending thermostat if ``rescale``): per-block sums of the
     N_MOMENTS particle moments in ``partials`` and, if ``histogram``, the c_x and |c|
@@ -534,7 +539,7 @@ def _observe(velocity, partials, histograms, reals, flags, histogram, thermo, re
     r = cuda.blockIdx.y
     b = cuda.blockIdx.x
     t = cuda.threadIdx.x
-    v = velocity[r]
+    v = velocity[r].T if _BY_PARTICLE else velocity[r]
     d = v.shape[0]
     n = v.shape[1]
     n_cx = cx_counts.shape[1]
@@ -652,14 +657,12 @@ class _Batch:
         self.n_groups = max(1, n // GROUP_SIZE)
         self.n_blocks = blocks_per_realization(n)
         self.done = device_zeros(count, np.int64)
-        # ``velocity``, (R, d, N) as the kernels index it, is the stored array itself
-        # (components) or a view of the (R, N, d) one (particles, ``storage``): the kernels
-        # are compiled for each layout, C or strided, each without a branch on it
-        self.velocity = self.storage = to_device(velocity)
+        self.storage = STORAGE  # the kernels over particles: their copy for it
+        self.velocity = to_device(velocity)
         if STORAGE == "particles":  # the starts rearranged on the device, not the host
-            self.storage = device_empty((count, n, d))
-            _store_by_particle[(grid(n, THREADS), count), THREADS](self.velocity, self.storage)
-            self.velocity = permuted(self.storage, (0, 2, 1))
+            by_particle = device_empty((count, n, d))
+            _store_by_particle[(grid(n, THREADS), count), THREADS](self.velocity, by_particle)
+            self.velocity = by_particle
         n_columns = -(-n // self.n_groups)  # G rows of m columns, the last holding the rest
         layout = [self.n_groups, n_columns, n - (n_columns - 1) * self.n_groups]
         self.layout = to_device(np.array(layout, dtype=np.int64))
@@ -699,7 +702,7 @@ class _Batch:
         self._force_and_thermostat(field_step, end_of_step=True)
         if sample:
             private = self.histogram_bytes if histogram else 0
-            _observe[(self.n_blocks, self.count), THREADS, 0, private](
+            _observe[self.storage][(self.n_blocks, self.count), THREADS, 0, private](
                 self.velocity,
                 self.partials,
                 self.histograms,
@@ -723,7 +726,7 @@ class _Batch:
         """``sparse``: the collision stage of every group, in place (one launch; the
         pending thermostat stays pending)."""
         threads = min(BLOCK, self.n_groups)
-        _collide_sparse[(grid(self.n_groups, threads), self.count), threads](
+        _collide_sparse[self.storage][(grid(self.n_groups, threads), self.count), threads](
             self.velocity,
             *self._groups(),
             self.keys,
@@ -736,7 +739,7 @@ class _Batch:
         """The force step, the thermostat's u and scale (applied later: ``pending``), the
         largest |W| and, at the ``end_of_step``, the clock (the pending thermostat
         first): one launch."""
-        _force[(self.n_blocks, self.count), THREADS](
+        _force[self.storage][(self.n_blocks, self.count), THREADS](
             self.velocity,
             self.partials,
             self.status,
@@ -752,8 +755,8 @@ class _Batch:
     def velocities(self) -> np.ndarray:
         """The stored velocities on the host, ``(R, d, N)`` whichever the ``STORAGE`` (the
         pending thermostat not applied)."""
-        stored = self.storage.copy_to_host()
-        return stored if self.storage is self.velocity else stored.transpose(0, 2, 1)
+        stored = self.velocity.copy_to_host()
+        return stored.transpose(0, 2, 1) if self.storage == "particles" else stored
 
     def check(self, step: int) -> None:
         """RuntimeError if a realization's force step failed or a bound was exceeded."""
@@ -928,3 +931,10 @@ def _compile_outside_the_timer(settings: HomogeneousSettings, samples: Samples) 
             synchronize()
 
     warm("cuda_dsmc", "dsmc", compile_kernels)
+
+
+# the kernels over particles, compiled once for each storage (``_BY_PARTICLE``), after
+# every function they call is defined (a copy reads the module's names as they are here)
+_collide_sparse = kernel_variants(_collide_sparse, "_BY_PARTICLE", _STORAGE_IS_PARTICLES)
+_force = kernel_variants(_force, "_BY_PARTICLE", _STORAGE_IS_PARTICLES)
+_observe = kernel_variants(_observe, "_BY_PARTICLE", _STORAGE_IS_PARTICLES)
