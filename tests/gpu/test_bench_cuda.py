@@ -142,7 +142,7 @@ def test_storage_section_times_both_storages_on_each_case_and_finds_the_same_num
     for ratio in report["particles_over_components"]:
         assert ratio["same_numbers"]
         assert ratio["ratio"] > 0
-    # each kernel's registers by layout on a GPU; the simulator compiles none
+    # each kernel's registers for each storage on a GPU; the simulator compiles none
     assert set(report["registers_per_thread"]) == {"_collide_sparse", "_force", "_observe"}
 
 

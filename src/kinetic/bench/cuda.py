@@ -492,8 +492,8 @@ def dsmc_storage(quick: bool) -> dict[str, Any]:
     ratios: list[dict[str, Any]] = []
     _keep(gpu=cases, particles_over_components=ratios)
     try:
-        for storage in dsmc_gpu._STORAGES:  # a tiny run of each: one compilation (the
-            dsmc_gpu.STORAGE = storage  # storage is a flag of the same kernels), two warm-ups
+        for storage in dsmc_gpu._STORAGES:  # a tiny run of each: each storage has its
+            dsmc_gpu.STORAGE = storage  # own compiled copy of the kernels over particles
             _dsmc(2000, 2, 1.0, "cuda", restitution=1.0)
         for scheme in ({}, lie):
             for n, realizations in SCALING_SHAPES[: 1 if quick else None]:
@@ -521,11 +521,11 @@ def dsmc_storage(quick: bool) -> dict[str, Any]:
     return {
         "gpu": cases,
         "particles_over_components": ratios,
-        "registers_per_thread": _registers_by_layout(dsmc_gpu),
+        "registers_per_thread": _registers_by_storage(dsmc_gpu),
     }
 
 
-def _registers_by_layout(dsmc_gpu) -> dict[str, Any]:
+def _registers_by_storage(dsmc_gpu) -> dict[str, Any]:
     """Registers a thread of the homogeneous DSMC's kernels over particles, the copy for
     each storage (``_BY_PARTICLE``), as this GPU's compiler made them."""
     out: dict[str, Any] = {}
