@@ -80,3 +80,42 @@ def test_timed_records_the_command_and_passes_its_exit_code_on(tmp_path):
     record = json.loads(out.read_text())
     assert record["exit_code"] == 3 and record["wall_seconds"] > 0
     assert record["machine"]["git_revision"]
+
+
+@pytest.mark.parametrize("report", sorted((REPOSITORY / "docs" / "data").glob("cuda-*.json")))
+def test_each_gpu_case_has_a_row_of_its_own(report):
+    """Every GPU run kept in docs/data gives rows with distinct cases: the homogeneous DSMC
+    labelled by α, shape, splitting and δt, the runs of one shape that differ only in their
+    seed folded into one row."""
+    from kinetic.bench.summary import rows
+
+    cases = [row["case"] for row in rows(json.loads(report.read_text()))]
+    assert len(cases) == len(set(cases))
+
+
+def test_a_gpu_dsmc_row_is_the_engine_rate_or_the_median_of_the_seeds():
+    from kinetic.bench.summary import rows
+
+    machine = {"cpu": "x", "load_average_1min": 0.0, "git_revision": "abc", "date": "d"}
+    shape = {"n_particles": 200_000, "realizations": 50, "restitution": 0.9}
+    scaling = {"n_particles": 200_000, "realizations": 100, "restitution": 1.0}
+    report = {
+        "engine": "cuda",
+        "machine": machine,
+        "gpu": {"device": "GPU"},
+        "sections": {
+            "dsmc_speed": {"gpu": [shape | {"collisions_per_second": r} for r in (1, 2, 9)]},
+            "dsmc_scaling": {
+                "gpu": [
+                    scaling | {"engine_collisions_per_second": 5.0, "collisions_per_second": 1.0}
+                ]
+            },
+        },
+    }
+    made = {row["case"]: (row["rate"], row["unit"]) for row in rows(report)}
+    assert made == {
+        "homogeneous DSMC on GPU, alpha = 1, N = 2e+05 x 100 realizations, strang splitting, "
+        "dt = 0.1 tau": (5.0, "accepted collisions per engine-s"),
+        "homogeneous DSMC on GPU, alpha = 0.9, N = 2e+05 x 50 realizations, "
+        "a snapshot every step": (2.0, "collisions per wall-s"),
+    }

@@ -442,6 +442,7 @@ def _dsmc(n, realizations, duration, backend, seed=13, **extra) -> dict[str, Any
     return {
         "n_particles": n,
         "realizations": realizations,
+        "restitution": arguments["restitution"],
         "backend": backend,
         "storage": _storage() if backend == "cuda" else None,
         "regrouping": ds.attrs.get("collision_groups"),
@@ -503,7 +504,7 @@ def dsmc_storage(quick: bool) -> dict[str, Any]:
                     pair[storage] = _dsmc(
                         n, realizations, 10.0, "cuda", restitution=1.0, sample_stride=10, **scheme
                     )
-                    cases.append(pair[storage] | {"restitution": 1.0})
+                    cases.append(pair[storage])
                 by_component, by_particle = pair["components"], pair["particles"]
                 ratios.append(
                     {
@@ -734,22 +735,22 @@ def dsmc_scaling(quick: bool) -> dict[str, Any]:
     for scheme, shapes in (({}, sizes), (lie, sizes[:2])):
         for restitution in (1.0, 0.5):
             for n, realizations in shapes[: 1 if quick else None]:
-                case = _dsmc(
-                    n,
-                    realizations,
-                    10.0,
-                    "cuda",
-                    restitution=restitution,
-                    sample_stride=10,
-                    **scheme,
+                cases.append(
+                    _dsmc(
+                        n,
+                        realizations,
+                        10.0,
+                        "cuda",
+                        restitution=restitution,
+                        sample_stride=10,
+                        **scheme,
+                    )
                 )
-                cases.append(case | {"restitution": restitution})
     # the step's floor: the same Lie steps with 20 times fewer collisions a step (δt =
     # 0.005 τ), so that the δt = 0.1 τ case less this one is the collisions' own time
-    floor = _dsmc(
-        200_000, 100, 1.0, "cuda", restitution=1.0, sample_stride=10, time_step=0.005, **lie
+    cases.append(
+        _dsmc(200_000, 100, 1.0, "cuda", restitution=1.0, sample_stride=10, time_step=0.005, **lie)
     )
-    cases.append(floor | {"restitution": 1.0})
     return {"gpu": cases}
 
 

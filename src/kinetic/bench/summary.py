@@ -7,6 +7,7 @@ where and when it was measured (date, CPU, 1-minute load average, git revision).
 
 from __future__ import annotations
 
+import statistics
 from typing import Any
 
 __all__ = ["rows"]
@@ -85,8 +86,10 @@ def _samplers(report: dict[str, Any]):
 
 
 def _cuda(report: dict[str, Any]):
-    """The GPU cases of ``python -m kinetic.bench cuda`` (rates per wall second through the
-    fronts, on the report's GPU); a section that failed or did not run gives no row."""
+    """The GPU cases of ``python -m kinetic.bench cuda``, on the report's GPU: the cloning
+    per wall second through the front, the DSMC per second of the engine's clock (its
+    launches and the GPU, without the host's initial states and the dataset) unless a
+    case says wall; a section that failed or did not run gives no row."""
     device = report.get("gpu", {}).get("device", "GPU")
     cloning = report["sections"].get("cloning_speed", {})
     for case in cloning.get("gpu", []):
@@ -98,26 +101,53 @@ def _cuda(report: dict[str, Any]):
             "collision events per wall-s",
             kernel == "hard disks" and case["lambda"] == 1.0 and case["population"] == 10**6,
         )
-    dsmc = report["sections"].get("dsmc_speed", {})
-    for case in dsmc.get("gpu", []):
-        yield (
-            f"homogeneous DSMC on {device}, N = {case['n_particles']:.0e} x "
-            f"{case['realizations']} realizations"
-            + (f", {case['regrouping']} regrouping" if case.get("regrouping") else ""),
-            case["collisions_per_second"],
-            "collisions per wall-s",
-            case["n_particles"] == 200_000 and case["realizations"] == 50,
-        )
+    yield from _homogeneous_dsmc(report["sections"], device)
     inhomogeneous = report["sections"].get("inhomogeneous_speed", {})
     for case in inhomogeneous.get("gpu", []):
         yield (
             f"inhomogeneous DSMC on {device}, {case['collision_rule']} rule, "
             f"N = {case['n_particles']:.0e} x Lambda = {case['fictive_factor']} x "
             f"{case['realizations']} realizations",
-            case["particle_steps_per_second"],
-            "particle-steps per wall-s",
+            case["particle_steps_per_second"],  # the kernels' time: launches and GPU
+            "particle-steps per engine-s",
             False,
         )
+
+
+def _homogeneous_dsmc(sections: dict[str, Any], device: str):
+    """The homogeneous DSMC's cases: ``dsmc_scaling``'s (issue 27's target: accepted
+    collisions per second of the engine's clock, the steps' launches and the GPU, a
+    snapshot every 10 steps), then ``dsmc_speed``'s (per wall second through the front, a
+    snapshot every step, the host's Maxwellian starts and the dataset included; the
+    median of the runs of one shape, which differ only in their seed)."""
+    for case in sections.get("dsmc_scaling", {}).get("gpu", []):
+        n, realizations = case["n_particles"], case["realizations"]
+        splitting = case.get("splitting", "strang")  # reports before 97c94b5 ran only Strang
+        label = (
+            f"homogeneous DSMC on {device}, alpha = {case['restitution']:g}, "
+            f"N = {n:.0e} x {realizations} realizations, {splitting} splitting, "
+            f"dt = {case.get('time_step', 0.1):g} tau"
+        )
+        target = (n, realizations) in {(200_000, 100), (2_000_000, 10)}
+        if "engine_collisions_per_second" in case:
+            yield (
+                label,
+                case["engine_collisions_per_second"],
+                "accepted collisions per engine-s",
+                target,
+            )
+        else:  # reports before the engine's clock, every step sampled
+            yield label, case["collisions_per_second"], "collisions per wall-s", target
+    shapes: dict[str, list[float]] = {}
+    for case in sections.get("dsmc_speed", {}).get("gpu", []):
+        label = (
+            f"homogeneous DSMC on {device}, alpha = {case.get('restitution', 0.9):g}, "
+            f"N = {case['n_particles']:.0e} x {case['realizations']} realizations, "
+            "a snapshot every step"
+        )
+        shapes.setdefault(label, []).append(case["collisions_per_second"])
+    for label, rates in shapes.items():
+        yield label, statistics.median(rates), "collisions per wall-s", False
 
 
 EXTRACTORS = {

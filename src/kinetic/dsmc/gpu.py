@@ -196,8 +196,9 @@ the bench's Strang step (δt = 0.1 τ) are about two thirds of its time on an H2
 random-sector rates; ``python -m kinetic.bench cuda --sections dsmc_storage`` times both
 storages (not yet run on a GPU)."""
 
-_STORAGES = ("components", "particles")
-_STORAGE_IS_PARTICLES = {storage: storage == "particles" for storage in _STORAGES}
+_STORAGE_IS_PARTICLES = {"components": False, "particles": True}
+"""Each ``STORAGE`` and its compiled copies' ``_BY_PARTICLE``."""
+_STORAGES = tuple(_STORAGE_IS_PARTICLES)
 
 _BY_PARTICLE = False
 """Fixed in each compiled copy of the kernels over particles (``kinetic.gpu.kernel_variants``:
