@@ -178,6 +178,31 @@ def test_same_seed_gives_identical_datasets(tiny_runs, short_elastic_run):
     assert not np.array_equal(other.mode_real.values[0, 0], first.mode_real.values[0, 0])
 
 
+def test_steps_of_one_cooperative_launch_alternate_their_buffers():
+    """Two steps of equilibration, then three between samples, each in one cooperative
+    launch (a step reads the buffers the step before wrote: first to second, back, and
+    again) give the numbers of five launches a step. ``tiny_runs`` launches one step at
+    a time, so no step there reads what another step of its launch wrote."""
+    from kinetic.dsmc import inhomogeneous_gpu
+
+    saved = inhomogeneous_gpu.TOGETHER
+    runs = []
+    try:
+        for together in (True, False):
+            inhomogeneous_gpu.TOGETHER = together
+            runs.append(_run("cuda", sample_interval=1.5, n_samples=2))
+    finally:
+        inhomogeneous_gpu.TOGETHER = saved
+    together, launched = runs
+    # 80 simulated particles: 2 steps of equilibration in one launch, then 3 in another
+    assert int(together.particle_steps.values[0]) == 5 * 80
+    for name in together.data_vars:
+        if name != "cpu_seconds":
+            np.testing.assert_array_equal(
+                together[name].values, launched[name].values, err_msg=name
+            )
+
+
 def test_runs_sharing_launches_give_what_they_give_alone(tiny_runs, short_elastic_run):
     """``simulate_cooling_modes_points``: a run of α = 1 and two samples and one of α =
     0.8 with drag and four samples (three realizations in one batch, the shorter run

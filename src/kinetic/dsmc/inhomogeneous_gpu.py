@@ -439,6 +439,59 @@ def _collide(source, target, order, cell_start, cells, rows, step):
 # ----------------------------------------------------- every phase in one launch
 
 
+def _step_together(source, target, work, cells, u, rows, stream, step, inverse_n, count, shared):
+    """One step of ``_advance_together`` from the ``source`` buffers to the ``target``
+    ones (inlined once for each direction, so that neither the buffers nor their shapes
+    are chosen at run time: the kernel's arrays stay its parameters)."""
+    cell_of, order, cell_start, fill = work
+    sums, counts, keys, cell_sums = shared
+    grid_group = cuda.cg.this_grid()
+    group = cuda.threadIdx.x // CELL_THREADS
+    block = cuda.blockIdx.x
+    blocks = cuda.gridDim.x
+    thread = block * BLOCK + cuda.threadIdx.x
+    threads = blocks * BLOCK
+    n = cell_of.shape[1]
+    n_cells = fill.shape[1]
+    for r in range(block, count, blocks):
+        _centre_row(cells[0], u, cell_start, inverse_n, sums, r)
+    grid_group.sync()
+    r, i, dr, di = first_pair(thread, n, threads)  # k = r n + i, no division a step
+    while r < count:
+        _stream_particle(source[0], source[1], cell_of, cell_start, u, rows, stream, r, i)
+        r, i = next_pair(r, i, dr, di, n)
+    grid_group.sync()
+    for r in range(block, count, blocks):
+        _scan_row(cell_start, fill, counts, r)
+    grid_group.sync()
+    r, i, dr, di = first_pair(thread, n, threads)
+    while r < count:
+        _scatter_particle(cell_of, fill, order, r, i)
+        r, i = next_pair(r, i, dr, di, n)
+    grid_group.sync()
+    worker = block * _CELLS_PER_BLOCK + group  # a group of CELL_THREADS per cell
+    r, c, dr, dc = first_pair(worker, n_cells, blocks * _CELLS_PER_BLOCK)
+    while r < count:
+        _collide_in_cell(
+            source,
+            target,
+            order,
+            cell_start,
+            cells,
+            rows,
+            step,
+            r,
+            c,
+            keys[group],
+            cell_sums[group],
+        )
+        r, c = next_pair(r, c, dr, dc, n_cells)
+    grid_group.sync()
+
+
+_step_together = cuda.jit(device=True, inline="always")(_step_together)
+
+
 @kernel
 def _advance_together(first, second, work, cells, u, rows, stream, step, inverse_n, plan):
     """``plan`` = (steps, rows) whole steps of the first ``rows`` realizations in one
@@ -448,56 +501,22 @@ def _advance_together(first, second, work, cells, u, rows, stream, step, inverse
     ``first`` buffers and writes the ``second`` when s is even, the other way round when
     odd. ``work`` is (cell_of, order, cell_start, fill). The phases are the launched
     kernels' own functions, so the numbers are theirs bit for bit."""
-    cell_of, order, cell_start, fill = work
-    grid_group = cuda.cg.this_grid()
-    sums = cuda.shared.array(BLOCK, np.float64)
-    counts = cuda.shared.array(BLOCK, np.int64)
-    keys = cuda.shared.array((_CELLS_PER_BLOCK, CELL_THREADS), np.int64)
-    cell_sums = cuda.shared.array((_CELLS_PER_BLOCK, CELL_THREADS, 5), np.float64)
-    group = cuda.threadIdx.x // CELL_THREADS
-    block = cuda.blockIdx.x
-    blocks = cuda.gridDim.x
-    thread = block * BLOCK + cuda.threadIdx.x
-    threads = blocks * BLOCK
+    shared = (
+        cuda.shared.array(BLOCK, np.float64),
+        cuda.shared.array(BLOCK, np.int64),
+        cuda.shared.array((_CELLS_PER_BLOCK, CELL_THREADS), np.int64),
+        cuda.shared.array((_CELLS_PER_BLOCK, CELL_THREADS, 5), np.float64),
+    )
     n_steps, count = plan
-    n = cell_of.shape[1]
-    n_cells = fill.shape[1]
     for s in range(n_steps):
-        source, target = (first, second) if s % 2 == 0 else (second, first)
-        for r in range(block, count, blocks):
-            _centre_row(cells[0], u, cell_start, inverse_n, sums, r)
-        grid_group.sync()
-        r, i, dr, di = first_pair(thread, n, threads)  # k = r n + i, no division a step
-        while r < count:
-            _stream_particle(source[0], source[1], cell_of, cell_start, u, rows, stream, r, i)
-            r, i = next_pair(r, i, dr, di, n)
-        grid_group.sync()
-        for r in range(block, count, blocks):
-            _scan_row(cell_start, fill, counts, r)
-        grid_group.sync()
-        r, i, dr, di = first_pair(thread, n, threads)
-        while r < count:
-            _scatter_particle(cell_of, fill, order, r, i)
-            r, i = next_pair(r, i, dr, di, n)
-        grid_group.sync()
-        worker = block * _CELLS_PER_BLOCK + group  # a group of CELL_THREADS per cell
-        r, c, dr, dc = first_pair(worker, n_cells, blocks * _CELLS_PER_BLOCK)
-        while r < count:
-            _collide_in_cell(
-                source,
-                target,
-                order,
-                cell_start,
-                cells,
-                rows,
-                step,
-                r,
-                c,
-                keys[group],
-                cell_sums[group],
+        if s % 2 == 0:
+            _step_together(
+                first, second, work, cells, u, rows, stream, step, inverse_n, count, shared
             )
-            r, c = next_pair(r, c, dr, dc, n_cells)
-        grid_group.sync()
+        else:
+            _step_together(
+                second, first, work, cells, u, rows, stream, step, inverse_n, count, shared
+            )
 
 
 @kernel
