@@ -89,6 +89,31 @@ def test_scaling_every_velocity_only_changes_the_time_scale():
         )
 
 
+def test_scaling_in_the_rebase_is_scaling_after_the_run():
+    """``run(until=..., scale=f)``, the cooling front's segment (the velocities scaled in
+    the pass that rebases the clock, one calendar rebuild), gives the state of
+    ``run(until=...)`` then ``scale_velocities(f)`` bit for bit, segment after segment:
+    the same collisions, phase rows, last collision times and calendar. Also where the
+    run stops on a collision count (scaled after the run) and for a zero-length run."""
+    stream = rng.stream_states(11, 1)[0]
+    fused = HardSphereSystem(n_particles=80, density=0.01, restitution=0.8, stream=stream)
+    apart = HardSphereSystem(n_particles=80, density=0.01, restitution=0.8, stream=stream)
+    factor = math.exp(0.003 * 2.0)
+    for until in (20.0, 40.0, 40.0, 65.0, 90.0):
+        fused.run(until=until, scale=factor)
+        apart.run(until=until)
+        apart.scale_velocities(factor)
+    fused.run(collisions=7, scale=1.5)
+    apart.run(collisions=7)
+    apart.scale_velocities(1.5)
+    assert fused.collisions == apart.collisions > 40
+    for name in ("phase", "last_collision", "heads", "links", "heap_time", "calendar"):
+        np.testing.assert_array_equal(getattr(fused, name), getattr(apart, name), err_msg=name)
+    assert fused.time == apart.time
+    with pytest.raises(ValueError, match="scale"):
+        fused.run(until=100.0, scale=0.0)
+
+
 def test_mode_observer_and_batching():
     both = simulate_cooling_modes(**(BASE | {"n_realizations": 3}))
     last = simulate_cooling_modes(**(BASE | {"n_realizations": 1, "first_realization": 2}))

@@ -53,6 +53,9 @@ def __dir__():
 def warmup() -> None:
     """Compile every kernel with the argument types production uses (numba cache=True:
     later processes load the machine code instead of compiling)."""
+    import numpy as np
+
+    from kinetic.edmd import cooling
     from kinetic.edmd.observers import Observers
     from kinetic.edmd.system import HardSphereSystem
 
@@ -79,6 +82,9 @@ def warmup() -> None:
         observers.start(system)
         system.run(collisions=20, observers=observers)
         system.sort_particles(observers)
-        system.run(until=system.time + 1.0)
+        system.run(until=system.time + 1.0, scale=1.01)
         system.min_distance()
         system.kinetic_temperature()
+        if dimension == 2 and not walls:  # the cooling gas's observers
+            cooling._observe(system.phase, 0.0, 8.0, np.empty(len(cooling._OBSERVED)))
+            cooling._kinetic_energy(system.phase)

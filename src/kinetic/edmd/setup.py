@@ -8,6 +8,7 @@ import numpy as np
 
 from kinetic.edmd.calendar import calendar_build
 from kinetic.edmd.cells import cell_insert, predict
+from kinetic.edmd.events import rescale_velocities, temperature
 from kinetic.edmd.layout import (
     CELL,
     G_L,
@@ -223,11 +224,17 @@ def predict_all(t, state, calendar):
 
 
 @kernel
-def rebase(t, state, calendar, observers):
+def rebase(t, factor, dim, state, calendar, observers):
     """Move the time origin to t (every stored time −= t, x0 += v t), to keep round-off
     small in long runs, and rebuild the calendar on the new clock. Positions and the order
     of events are unchanged. ``observers`` (a ``layout.ObserverBuffers``): the window ends,
-    sample times and record times shift with the clock."""
+    sample times and record times shift with the clock.
+
+    Unless ``factor`` is 1, every velocity is then multiplied by ``factor`` at the new
+    origin before the one rebuild, the numbers of ``HardSphereSystem.scale_velocities``
+    called after a rebase (``rescale_velocities`` to factor² times the temperature of the
+    ``dim`` components, the last collisions' times divided by ``factor``) without its
+    second rebuild."""
     phase = state.phase
     last_collision = state.last_collision
     n = phase.shape[0]
@@ -237,6 +244,13 @@ def rebase(t, state, calendar, observers):
         phase[i, T_PAIR] -= t
         phase[i, T_CELL] -= t
         last_collision[i] -= t
+    if factor != 1.0:
+        current = temperature(phase, dim)
+        if current > 0.0:
+            rescale_velocities(0.0, factor * factor * current, phase, dim)
+            for i in range(n):
+                if np.isfinite(last_collision[i]):
+                    last_collision[i] = last_collision[i] / factor
     _rebuild(phase, calendar)
     window_end = observers.window_end
     sample_times = observers.sample_times
