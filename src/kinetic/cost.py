@@ -257,13 +257,17 @@ COOLING_DSMC_BYTES_PER_PARTICLE = 120.0
 COOLING_MD_SECONDS_PER_COLLISION = 2.5e-6
 """kinetic.edmd.simulate_cooling_modes: collisions of N = 10³ disks at nσ² = 0.005."""
 
-COOLING_MD_SECONDS_PER_PARTICLE_SEGMENT = 1.2e-7
+COOLING_MD_SECONDS_PER_PARTICLE_SEGMENT = 6e-8
 """Per particle and segment of rescaled time: clock rebase, velocity scaling and calendar
-rebuild (one pass), and the observers (one compiled pass). Was 2.5e-7 (profiled at N =
-10³: about 230 µs per segment) while the scaling rebuilt the calendar a second time and
-the observers were numpy's; the two changes took it to 0.49 and 0.45 of that at N = 10³,
-α = 1 and N = 3 × 10³, α = 0.7 (CPU time over the segments, the same collisions with
-8 times fewer segments subtracted, medians of 3, old and new on one machine)."""
+rebuild (one pass, without reference counting), and the observers (one compiled pass).
+Was 2.5e-7 (profiled at N = 10³: about 230 µs per segment) while the scaling rebuilt the
+calendar a second time, the rebuild paid an atomic increment and decrement of six
+arrays' counts for every particle (``kinetic.jit.refcount_free``) and the observers were
+numpy's; the three changes took it to 0.22 and 0.25 of that at N = 10³, α = 1 and N =
+3 × 10³, α = 0.7 (CPU time over the segments, the same collisions with 8 times fewer
+segments subtracted, medians of 3, old and new on one machine). paper.yaml's job of N =
+3000, α = 0.7 (98 841 segments, 1.49 × 10⁷ collisions): 144 s before, 56 s after, the
+same collisions; this model with 2.5e-6 s a collision plans 55 s."""
 
 
 def _cooling_dsmc_gpu(steps, n_samples, particle_steps, particles, runs=1) -> Estimate:

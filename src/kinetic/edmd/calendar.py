@@ -29,7 +29,7 @@ from kinetic.edmd.layout import (
     cell_flat,
     smaller,
 )
-from kinetic.jit import inline, kernel, prefetch_row
+from kinetic.jit import inline, prefetch_row, refcount_free
 
 # ----------------------------------------------------------------------------- calendar
 
@@ -160,7 +160,7 @@ def calendar_reschedule(i, key, links, heads, heap_time, heap_index, calendar, c
     calendar_insert(i, key, links, heads, heap_time, heap_index, calendar, cursor)
 
 
-@kernel
+@refcount_free
 def calendar_build(phase, links, heads, heap_time, heap_index, calendar, cursor):
     """(Re)build the calendar from every particle's event time ``event_key``.
 

@@ -24,7 +24,7 @@ from kinetic.edmd.layout import (
     V,
     cell_flat,
 )
-from kinetic.jit import kernel
+from kinetic.jit import kernel, refcount_free
 from kinetic.rng import normal_pair, uniform
 
 # ----------------------------------------------------------------------------- set-up
@@ -186,7 +186,7 @@ def relink_cells(ints, members, occupancy, grid):
     return True
 
 
-@kernel
+@refcount_free
 def _rebuild(phase, calendar):
     """``calendar_build`` on the arrays of a ``layout.Calendar``."""
     calendar_build(
@@ -200,7 +200,7 @@ def _rebuild(phase, calendar):
     )
 
 
-@kernel
+@refcount_free
 def predict_all(t, state, calendar):
     """Predict every particle's events from time t and rebuild the calendar (``state`` a
     ``layout.State``, ``calendar`` a ``layout.Calendar``)."""
@@ -223,7 +223,7 @@ def predict_all(t, state, calendar):
     _rebuild(phase, calendar)
 
 
-@kernel
+@refcount_free
 def rebase(t, factor, dim, state, calendar, observers):
     """Move the time origin to t (every stored time −= t, x0 += v t), to keep round-off
     small in long runs, and rebuild the calendar on the new clock. Positions and the order
