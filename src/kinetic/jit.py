@@ -208,7 +208,19 @@ refcount_free = njit(**FLAGS, _nrt=False)
 """Decorator: :data:`kernel` compiled without numba's reference counting, for event loops
 that allocate nothing. With it, every ``inline`` helper that takes an array and sits in
 a branch of the loop (a random draw from a state row, say) costs an atomic increment and
-decrement of the array's count: about a tenth of the cloning kernel's time."""
+decrement of the array's count: about a tenth of the cloning kernel's time, 15 times
+the work of the EDMD calendar's rebuild.
+
+Numba (0.68) compiles the ``kernel`` functions such a function calls without reference
+counting too, and caches them so, under the signature a reference-counted caller would
+use: which one a process gets depends on which caller compiled first. Call from it only
+``inline`` helpers, other ``refcount_free`` functions and kernels that take arrays and
+return numbers (``kinetic.edmd``'s ``temperature``, ``rescale_velocities``), so that no
+reference-counted caller meets a callee compiled without the counts: a copy of the
+homogeneous DSMC's ``advance`` with reference counting, run after the engine's own
+``advance`` had been made ``refcount_free`` and had filled the cache with its callees,
+corrupted the heap ("malloc(): unaligned tcache chunk detected"), and ran clean with
+callees compiled for a counting caller (that change was not kept)."""
 
 
 @intrinsic
