@@ -214,13 +214,13 @@ the work of the EDMD calendar's rebuild.
 Numba (0.68) compiles the ``kernel`` functions such a function calls without reference
 counting too, and caches them so, under the signature a reference-counted caller would
 use: which one a process gets depends on which caller compiled first. Call from it only
-``inline`` helpers, other ``refcount_free`` functions and kernels that take arrays and
-return numbers (``kinetic.edmd``'s ``temperature``, ``rescale_velocities``), so that no
-reference-counted caller meets a callee compiled without the counts: a copy of the
-homogeneous DSMC's ``advance`` with reference counting, run after the engine's own
-``advance`` had been made ``refcount_free`` and had filled the cache with its callees,
-corrupted the heap ("malloc(): unaligned tcache chunk detected"), and ran clean with
-callees compiled for a counting caller (that change was not kept)."""
+``inline`` helpers, other ``refcount_free`` functions and kernels that return no array
+(numbers, tuples of numbers, nothing): a callee compiled without the counts hands back
+an array it holds no reference to, which a counting caller (or Python) then releases.
+Found by a crash: the homogeneous DSMC's ``advance`` made ``refcount_free``, then a
+counting copy of it run on the callees it had cached, corrupted the heap ("malloc():
+unaligned tcache chunk detected", 3 runs of 3) through ``_deferred``, a kernel that
+returned the ``Collisions`` arrays; inlined, it runs clean."""
 
 
 @intrinsic

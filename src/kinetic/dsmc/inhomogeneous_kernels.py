@@ -90,7 +90,7 @@ from kinetic.dsmc.kernels import (
     _two_largest,
     maxwellian,
 )
-from kinetic.jit import inline, kernel
+from kinetic.jit import inline, kernel, refcount_free
 from kinetic.rng import load_state, store_state
 from kinetic.rng import xoshiro_uniform as _uniform
 
@@ -482,7 +482,7 @@ def collide_cells(velocity, labels, cells, state, step, tally, energy):
     store_state(state, s0, s1, s2, s3)
 
 
-@kernel
+@refcount_free
 def advance(gas, cells, step, n_steps):
     """``n_steps`` steps of the inhomogeneous DSMC (see the module docstring) of ``gas``
     (a :class:`Gas`, updated) with the :class:`Step` settings ``step``; ``cells``: the
@@ -651,7 +651,7 @@ def observe(position, velocity, parity, wavenumber, out):
     _observables(n, px, py, re_y, im_y, re_x, im_x, sum_xx, sum_yy, out)
 
 
-@kernel
+@refcount_free
 def run_samples(gas, cells, step, steps_first, stride, wavenumber, observables, dissipated):
     """Advance and sample ``observables.shape[0]`` times: ``steps_first`` steps before
     the first sample, ``stride`` steps before each later one.

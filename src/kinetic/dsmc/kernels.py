@@ -53,7 +53,7 @@ from typing import NamedTuple
 import numpy as np
 
 from kinetic.gas import HARD_SPHERES, MAXWELL, VERY_HARD
-from kinetic.jit import inline, kernel, unlocked
+from kinetic.jit import inline, kernel, refcount_free, unlocked
 from kinetic.rng import load_state, normal_pair, store_state
 from kinetic.rng import xoshiro_exponential as _exponential
 from kinetic.rng import xoshiro_next as _next
@@ -1074,7 +1074,7 @@ def _advance_clock(clock, time_step, rate_exponent, log_scale):
         clock[4] += 2.0 * log_scale
 
 
-@kernel
+@inline
 def _deferred(collisions, scale, rate_exponent):
     """``collisions`` for velocities W whose thermostatted values are scale (W - u): the
     relative velocities are scale (W_i - W_j), so the same pairs collide in the same way
@@ -1091,7 +1091,7 @@ def _deferred(collisions, scale, rate_exponent):
     )
 
 
-@kernel
+@refcount_free
 def advance(velocity, state, collisions, forcing, sampling, clock, n_steps):
     """``n_steps`` DSMC steps: collisions (:class:`Collisions`, whose ``duration`` is the
     time step), force and thermostat (:class:`Forcing`), observers (:class:`Sampling`).
