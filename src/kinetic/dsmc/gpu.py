@@ -660,7 +660,7 @@ class _Batch:
         self.done = device_zeros(count, np.int64)
         self.storage = STORAGE  # the kernels over particles: their copy for it
         self.velocity = to_device(velocity)
-        if STORAGE == "particles":  # the starts rearranged on the device, not the host
+        if _STORAGE_IS_PARTICLES[STORAGE]:  # the starts rearranged on the device, not the host
             by_particle = device_empty((count, n, d))
             _store_by_particle[(grid(n, THREADS), count), THREADS](self.velocity, by_particle)
             self.velocity = by_particle
@@ -757,7 +757,7 @@ class _Batch:
         """The stored velocities on the host, ``(R, d, N)`` whichever the ``STORAGE`` (the
         pending thermostat not applied)."""
         stored = self.velocity.copy_to_host()
-        return stored.transpose(0, 2, 1) if self.storage == "particles" else stored
+        return stored.transpose(0, 2, 1) if _STORAGE_IS_PARTICLES[self.storage] else stored
 
     def check(self, step: int) -> None:
         """RuntimeError if a realization's force step failed or a bound was exceeded."""

@@ -87,4 +87,3 @@ def warmup() -> None:
         system.kinetic_temperature()
         if dimension == 2 and not walls:  # the cooling gas's observers
             cooling._observe(system.phase, 0.0, 8.0, np.empty(len(cooling._OBSERVED)))
-            cooling._kinetic_energy(system.phase)

@@ -113,27 +113,19 @@ def _observe(phase, t, box_side, row):
     row[8] = norm_x
 
 
-@kernel
-def _kinetic_energy(phase):
-    """Σ v²/2 of the disks ``phase``."""
-    total = 0.0
-    for i in range(phase.shape[0]):
-        total += phase[i, V] * phase[i, V] + phase[i, V + 1] * phase[i, V + 1]
-    return 0.5 * total
-
-
 def _advance(system: HardSphereSystem, duration: float, drag_rate: float) -> float:
     """Advance τ by ``duration`` (one segment); return the energy dissipated per particle
     in w units (see the module docstring). The velocities are scaled by e^{ω0Δτ} in the
     pass that rebases the clock (``HardSphereSystem.run``'s ``scale``), and the energy at
     the segment's end is read after it, divided by the factor squared (a relative
-    rounding of 10⁻¹⁶ on a loss of about 10⁻³ of the energy a segment)."""
+    rounding of 10⁻¹⁶ on a loss of about 10⁻³ of the energy a segment). In d = 2 the
+    energy per particle Σv²/(2N) is the kinetic temperature."""
     factor = math.exp(drag_rate * duration)
     engine_time = math.expm1(drag_rate * duration) / drag_rate if drag_rate else duration
-    before = _kinetic_energy(system.phase)
+    before = system.kinetic_temperature()
     system.run(until=system.time + engine_time, scale=factor)
-    after = _kinetic_energy(system.phase) / (factor * factor)
-    return (before - after) * factor / system.n_particles
+    after = system.kinetic_temperature() / (factor * factor)
+    return (before - after) * factor
 
 
 def simulate_cooling_modes(
