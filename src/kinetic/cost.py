@@ -214,9 +214,11 @@ constant: once per edit); at 2984f74, 4.0, 4.6 and 5.6 s."""
 # ------------------------------------------------------------------ costantini2010
 COOLING_DSMC_SECONDS_PER_PARTICLE_STEP = 1.5e-8
 """kinetic.dsmc.simulate_cooling_modes, whole steps (streaming, sort, collisions, the
-mode observer every other step): 2.6 × 10⁻⁸ s per particle-step measured at N = 3000,
-Λ = 10 on the busy 2-core machine before the kernel's last speed-ups; the bench gives
-0.9 × 10⁻⁸ for the step alone."""
+mode observer every fourth step at paper.yaml's Δτ): paper.yaml's job of N = 3000,
+Λ = 10, α = 0.7 (1.19 × 10¹⁰ particle-steps) took 172.8 CPU-s, 1.45 × 10⁻⁸ a
+particle-step (Intel Xeon, 2-core machine, nothing else running); 231.4 s, 1.94 × 10⁻⁸,
+the same day before its observer's Fourier factors became a vectorized loop
+(``kinetic.fourier``), when the observer took a third of the job."""
 
 GPU_H100_PER_H200 = 1.19
 """How much slower an H100 is taken to be than the H200 where a constant below was
@@ -254,20 +256,22 @@ did 1.72 × 10⁹ (its cells' phase 1.54 of the step's 1.72 ms; on the H200 now 
 COOLING_DSMC_BYTES_PER_PARTICLE = 120.0
 """Positions, velocities, sort keys and scratch of one simulated particle."""
 
-COOLING_MD_SECONDS_PER_COLLISION = 2.5e-6
-"""kinetic.edmd.simulate_cooling_modes: collisions of N = 10³ disks at nσ² = 0.005."""
+COOLING_MD_SECONDS_PER_COLLISION = 1.9e-6
+"""kinetic.edmd.simulate_cooling_modes: a collision of 10³–3 × 10³ disks at nσ² = 0.005
+(with ``COOLING_MD_SECONDS_PER_PARTICLE_SEGMENT``, fitted to four paper.yaml jobs; the
+two are nearly collinear there, since a segment's collisions grow with N)."""
 
 COOLING_MD_SECONDS_PER_PARTICLE_SEGMENT = 6e-8
 """Per particle and segment of rescaled time: clock rebase, velocity scaling and calendar
-rebuild (one pass, without reference counting), and the observers (one compiled pass).
-Was 2.5e-7 (profiled at N = 10³: about 230 µs per segment) while the scaling rebuilt the
-calendar a second time, the rebuild paid an atomic increment and decrement of six
-arrays' counts for every particle (``kinetic.jit.refcount_free``) and the observers were
-numpy's; the three changes took it to 0.22 and 0.25 of that at N = 10³, α = 1 and N =
-3 × 10³, α = 0.7 (CPU time over the segments, the same collisions with 8 times fewer
-segments subtracted, medians of 3, old and new on one machine). paper.yaml's job of N =
-3000, α = 0.7 (98 841 segments, 1.49 × 10⁷ collisions): 144 s before, 56 s after, the
-same collisions; this model with 2.5e-6 s a collision plans 55 s."""
+rebuild (one pass, without reference counting), and the observers (one compiled pass,
+the Fourier factors a vectorized loop, ``kinetic.fourier``). Measured as the CPU time of
+4000 segments less that of 500 over the same duration, medians of 3: 6.0 × 10⁻⁸ at
+N = 3000, α = 0.7 and 5.4 × 10⁻⁸ at N = 10³, α = 1 (8.8 and 9.9 × 10⁻⁸ the same day with
+libm's cos and sin in the observer; 2.5 × 10⁻⁷ before the rebase scaled the velocities
+and the rebuild went without reference counting). paper.yaml's jobs, CPU-s measured
+(planned): N = 10³, α = 0.7: 3.16 (2.85); N = 2000, α = 0.5: 16.6 (17.0); N = 3000,
+α = 1: 19.7 (22.5); N = 3000, α = 0.7: 42.6 (46.1; 144 s three changes ago, the same
+14 885 730 collisions)."""
 
 
 def _cooling_dsmc_gpu(steps, n_samples, particle_steps, particles, runs=1) -> Estimate:

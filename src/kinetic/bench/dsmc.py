@@ -31,11 +31,12 @@ gas first relaxed for 200 steps. Reported: whole steps (streaming with drag, cou
 sort, collisions, centre-of-mass removal) as particle steps and collisions per
 CPU-second, the collision stage alone (``inhomogeneous_kernels.collide_cells`` on the
 sorted particles) as collisions and candidates per CPU-second, and the acceptance
-(collisions/candidates). Targets (SPARTA's serial numbers): 2·10⁷ particle steps and
-3·10⁶ collisions per CPU-second. At Δτ = 0.05 mean free times a step holds 0.025
-collisions per particle, so whole steps cannot reach 3·10⁶ collisions per second below
-1.2·10⁸ particle steps per second: the collision target is checked on the collision
-stage, the whole-step collision rate is reported beside it.
+(collisions/candidates), and the observer (``inhomogeneous_kernels.observe``: the
+modes, T and momentum) as particles per CPU-second. Targets (SPARTA's serial numbers):
+2·10⁷ particle steps and 3·10⁶ collisions per CPU-second. At Δτ = 0.05 mean free times
+a step holds 0.025 collisions per particle, so whole steps cannot reach 3·10⁶ collisions
+per second below 1.2·10⁸ particle steps per second: the collision target is checked on
+the collision stage, the whole-step collision rate is reported beside it.
 """
 
 from __future__ import annotations
@@ -355,7 +356,7 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
         if rule == "paper"
         else (inhomogeneous_kernels.RULE_MAJORANT)
     )
-    cells = inhomogeneous_kernels.Cells(gas.cell_of, gas.cell_start, gas.cell_fill, carry, moments)
+    cells = gas.cells()._replace(carry=carry, moments=moments)
     step = settings.step()._replace(rule=rule_id)
 
     def stage(count: int) -> None:
@@ -375,6 +376,17 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
         done = stage_tally - before
         stage_rates.append(done[inhomogeneous_kernels.TALLY_COLLISIONS] / cpu)
         stage_candidates.append(done[inhomogeneous_kernels.TALLY_CANDIDATES] / cpu)
+    # the sample of the modes, T and momentum (inhomogeneous_kernels.observe), which the
+    # production runs take every few steps
+    out = np.empty(inhomogeneous_kernels.N_OBSERVABLES)
+    observer_rates = []
+    for _ in range(repeats):
+        start = time.process_time()
+        for _ in range(steps):
+            inhomogeneous_kernels.observe(
+                gas.position, gas.velocity, gas.parity, settings.wavenumber, gas.mode_terms, out
+            )
+        observer_rates.append(steps * settings.n_simulated / (time.process_time() - start))
     total = tally[inhomogeneous_kernels.TALLY_COLLISIONS]
     candidates = tally[inhomogeneous_kernels.TALLY_CANDIDATES]
     particle_steps = float(np.median(step_rates))
@@ -398,6 +410,7 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
             / stage_tally[inhomogeneous_kernels.TALLY_CANDIDATES]
         ),
         "recollision_fraction": float(tally[inhomogeneous_kernels.TALLY_REPEATED] / total),
+        "observer_particles_per_cpu_second": float(np.median(observer_rates)),
         "temperature": float(gas.observables()["temperature"]),
         "repeats_particle_steps_per_cpu_second": step_rates,
         "repeats_collisions_per_cpu_second_whole_steps": collision_rates,

@@ -244,8 +244,8 @@ class CoolingModesGas:
     position, velocity: (2, 2, N_sim) float64 and labels: (2, 2, N_sim) int64, double
     buffered (layout in :mod:`kinetic.dsmc.inhomogeneous_kernels`); cell_of (N_sim,),
     cell_start (M² + 1,), cell_fill (M²,) int64 and cell_moments (M², 5) float64 work
-    arrays; carry: (M²,) float64;
-    rng: (4,) uint64 stream; tally: (TALLY_SIZE,) int64; energy: (1,) float64 energy
+    arrays; carry: (M²,) float64; mode_terms: (4, N_sim) float64 work array of the
+    observer; rng: (4,) uint64 stream; tally: (TALLY_SIZE,) int64; energy: (1,) float64 energy
     lost since it was last reset (sum over simulated particles).
     """
 
@@ -258,6 +258,7 @@ class CoolingModesGas:
     cell_fill: np.ndarray
     carry: np.ndarray
     cell_moments: np.ndarray
+    mode_terms: np.ndarray
     rng: np.ndarray
     tally: np.ndarray
     energy: np.ndarray
@@ -300,7 +301,12 @@ class CoolingModesGas:
     def cells(self) -> kernels.Cells:
         """The per-cell arrays as the kernels take them (views, not copies)."""
         return kernels.Cells(
-            self.cell_of, self.cell_start, self.cell_fill, self.carry, self.cell_moments
+            self.cell_of,
+            self.cell_start,
+            self.cell_fill,
+            self.carry,
+            self.cell_moments,
+            self.mode_terms,
         )
 
     def advance(self, n_steps: int) -> None:
@@ -333,7 +339,14 @@ class CoolingModesGas:
         """The kernel's observer on the current state: ``temperature``, ``mode`` (complex
         (2,): wy_kx, wx_ky), ``mode_norm`` (2,), ``momentum`` (2,) = Σ w/(N_sim √T)."""
         out = np.zeros(kernels.N_OBSERVABLES)
-        kernels.observe(self.position, self.velocity, self.parity, self.settings.wavenumber, out)
+        kernels.observe(
+            self.position,
+            self.velocity,
+            self.parity,
+            self.settings.wavenumber,
+            self.mode_terms,
+            out,
+        )
         return {
             "temperature": out[0],
             "mode": np.array([out[1] + 1j * out[2], out[3] + 1j * out[4]]),
@@ -365,6 +378,7 @@ def new_cooling_gas(settings: CoolingModesSettings, stream: np.ndarray) -> Cooli
         cell_fill=np.zeros(n_cells, dtype=np.int64),
         carry=np.zeros(n_cells),
         cell_moments=np.zeros((n_cells, 5)),
+        mode_terms=np.zeros((4, n)),
         rng=rng,
         tally=np.zeros(kernels.TALLY_SIZE, dtype=np.int64),
         energy=np.zeros(1),

@@ -90,6 +90,7 @@ from kinetic.dsmc.kernels import (
     _two_largest,
     maxwellian,
 )
+from kinetic.fourier import mode_sums, mode_terms
 from kinetic.jit import inline, kernel, refcount_free
 from kinetic.rng import load_state, store_state
 from kinetic.rng import xoshiro_uniform as _uniform
@@ -186,13 +187,15 @@ class Cells(NamedTuple):
     RULE_MAJORANT, a collision for RULE_PAPER); ``moments`` (M², 5) float64, each cell's
     Σw_x, Σw_y, Σ|w|² and two largest |w|² after the sort (its temperature and
     relative-speed bound; zeros for a new state, then kept between calls: it holds the
-    momentum to remove)."""
+    momentum to remove); ``terms`` (4, n) float64, the observer's work array (the mode
+    terms of ``observe``)."""
 
     cell_of: np.ndarray
     cell_start: np.ndarray
     cell_fill: np.ndarray
     carry: np.ndarray
     moments: np.ndarray
+    terms: np.ndarray
 
 
 class Gas(NamedTuple):
@@ -616,38 +619,34 @@ def _observables(n, px, py, re_y, im_y, re_x, im_x, sum_xx, sum_yy, out):
 
 
 @kernel
-def observe(position, velocity, parity, wavenumber, out):
+def observe(position, velocity, parity, wavenumber, terms, out):
     """Observables of the current buffer ``parity`` into ``out`` (N_OBSERVABLES,).
 
     out = [T, Re Σ w_y e^{ik x}, Im Σ w_y e^{ik x}, Re Σ w_x e^{ik y}, Im Σ w_x e^{ik y},
     Σ w_y², Σ w_x², Σ w_x/(n √T), Σ w_y/(n √T)] with T = Σ|w - u|²/(2n) about the mean
-    velocity u (which the step has already removed, to round-off).
+    velocity u (which the step has already removed, to round-off). ``terms`` (4, ≥ n)
+    float64 is a work array (``kinetic.fourier.mode_terms``).
     """
     r = position[parity]
     w = velocity[parity]
     n = r.shape[1]
     px = 0.0
     py = 0.0
-    for i in range(n):
-        px += w[0, i]
-        py += w[1, i]
-    re_y = 0.0
-    im_y = 0.0
-    re_x = 0.0
-    im_x = 0.0
     sum_yy = 0.0
     sum_xx = 0.0
     for i in range(n):
         wx = w[0, i]
         wy = w[1, i]
-        ax = wavenumber * r[0, i]
-        ay = wavenumber * r[1, i]
-        re_y += wy * np.cos(ax)
-        im_y += wy * np.sin(ax)
-        re_x += wx * np.cos(ay)
-        im_x += wx * np.sin(ay)
+        px += wx
+        py += wy
         sum_xx += wx * wx
         sum_yy += wy * wy
+    turns = wavenumber / (2.0 * math.pi)  # k x in turns: x / L
+    for i in range(n):
+        terms[0, i], terms[1, i], terms[2, i], terms[3, i] = mode_terms(
+            turns * r[0, i], turns * r[1, i], w[0, i], w[1, i]
+        )
+    re_y, im_y, re_x, im_x = mode_sums(terms, n)
     _observables(n, px, py, re_y, im_y, re_x, im_x, sum_xx, sum_yy, out)
 
 
@@ -666,6 +665,13 @@ def run_samples(gas, cells, step, steps_first, stride, wavenumber, observables, 
     for s in range(observables.shape[0]):
         steps = steps_first if s == 0 else stride
         advance(gas, cells, step, steps)
-        observe(gas.position, gas.velocity, gas.tally[TALLY_PARITY], wavenumber, observables[s])
+        observe(
+            gas.position,
+            gas.velocity,
+            gas.tally[TALLY_PARITY],
+            wavenumber,
+            cells.terms,
+            observables[s],
+        )
         dissipated[s] = energy[0] / n
         energy[0] = 0.0

@@ -86,4 +86,5 @@ def warmup() -> None:
         system.min_distance()
         system.kinetic_temperature()
         if dimension == 2 and not walls:  # the cooling gas's observers
-            cooling._observe(system.phase, 0.0, 8.0, np.empty(len(cooling._OBSERVED)))
+            terms = np.empty((4, system.n_particles))
+            cooling._observe(system.phase, 0.0, 8.0, terms, np.empty(len(cooling._OBSERVED)))

@@ -36,6 +36,7 @@ import numpy as np
 from kinetic import io, rng
 from kinetic.edmd.layout import X0, V
 from kinetic.edmd.system import HardSphereSystem
+from kinetic.fourier import mode_sums, mode_terms
 from kinetic.jit import kernel
 from kinetic.progress import Progress
 from kinetic.validate import integer, real
@@ -69,12 +70,12 @@ _OBSERVED = ("temperature", "px", "py", "re_y", "im_y", "re_x", "im_x", "norm_y"
 
 
 @kernel
-def _observe(phase, t, box_side, row):
+def _observe(phase, t, box_side, terms, row):
     """The sample of :data:`_OBSERVED` of the disks ``phase`` at engine time ``t``
-    (positions x0 + v t), in one pass after the mean velocity (slot order: the same sums
-    as :func:`transverse_modes` of the positions and velocities but for their rounding)."""
+    (positions x0 + v t), after the mean velocity; ``terms`` (4, n) is a work array
+    (``kinetic.fourier.mode_terms``). Sums in slot order: those of
+    :func:`transverse_modes` of the positions and velocities but for their rounding."""
     n = phase.shape[0]
-    k = 2.0 * math.pi / box_side
     sum_x = 0.0
     sum_y = 0.0
     for i in range(n):
@@ -83,24 +84,25 @@ def _observe(phase, t, box_side, row):
     mean_x = sum_x / n
     mean_y = sum_y / n
     spread = 0.0
-    re_y = 0.0
-    im_y = 0.0
-    re_x = 0.0
-    im_x = 0.0
     norm_y = 0.0
     norm_x = 0.0
+    inverse_side = 1.0 / box_side  # k x in turns: x / L
     for i in range(n):
         wx = phase[i, V]
         wy = phase[i, V + 1]
         spread += (wx - mean_x) ** 2 + (wy - mean_y) ** 2
-        ax = k * (phase[i, X0] + wx * t)
-        ay = k * (phase[i, X0 + 1] + wy * t)
-        re_y += wy * math.cos(ax)
-        im_y += wy * math.sin(ax)
-        re_x += wx * math.cos(ay)
-        im_x += wx * math.sin(ay)
         norm_y += wy * wy
         norm_x += wx * wx
+        # the rows of phase are strided: gather the columns for the vectorized pass
+        terms[0, i] = inverse_side * (phase[i, X0] + wx * t)
+        terms[1, i] = inverse_side * (phase[i, X0 + 1] + wy * t)
+        terms[2, i] = wx
+        terms[3, i] = wy
+    for i in range(n):
+        terms[0, i], terms[1, i], terms[2, i], terms[3, i] = mode_terms(
+            terms[0, i], terms[1, i], terms[2, i], terms[3, i]
+        )
+    re_y, im_y, re_x, im_x = mode_sums(terms, n)
     temperature = spread / (2.0 * n)
     row[0] = temperature
     row[1] = sum_x / (n * math.sqrt(temperature))
@@ -181,6 +183,7 @@ def simulate_cooling_modes(
     collisions = np.zeros(n_realizations, dtype=np.int64)
     cpu_seconds = np.zeros(n_realizations)
     row = np.empty(len(_OBSERVED))
+    terms = np.empty((4, n_particles))
     progress = Progress(
         n_realizations * (n_samples + equilibration / sample_interval),
         label=label or f"md cooling modes N={n_particles} alpha={restitution:g}",
@@ -207,7 +210,7 @@ def simulate_cooling_modes(
                 lost = _advance(system, sample_times[j] - tau, drag_rate)
                 tau = sample_times[j]
                 dissipated[r, j] = lost if (j > 0 or equilibration >= sample_interval) else np.nan
-            _observe(system.phase, float(system.clock[0]), box_side, row)
+            _observe(system.phase, float(system.clock[0]), box_side, terms, row)
             temperature[r, j] = row[0]
             momentum[r, j] = row[1:3]
             if np.abs(row[1:3]).max() > DRIFT_LIMIT:
