@@ -291,6 +291,37 @@ def test_first_step_sorts_like_the_cpu(rule):
         assert np.all(gas.cell_moments[:, 2] > 0)  # every cell holds particles
 
 
+def test_the_observer_gives_the_cpu_observer_numbers():
+    """On the same particles (a batch's buffer after two steps), the GPU's observables
+    (``_observe``'s block sums folded by ``_finish``) are the CPU observer's up to the
+    order of the sums: T, both modes' real and imaginary parts (which the statistical
+    comparison's |w⊥|² cannot tell from a swap of cos and sin, or a sign), their norms
+    and the momentum."""
+    from kinetic.dsmc import inhomogeneous_gpu
+    from kinetic.dsmc import inhomogeneous_kernels as kernels
+
+    settings = CoolingModesSettings(
+        **{key: TINY[key] for key in ("n_particles", "density", "restitution", "drag_rate")},
+        fictive_factor=3,
+        cells_per_side=2,
+        time_step=0.5,
+        collision_rule="paper",
+    )
+    batch = inhomogeneous_gpu._Batch([(settings, realization_streams(9, 0, 2))], 1)
+    batch.advance(2, 2)
+    batch.observe(0, 2)
+    observables = batch.observables.copy_to_host()
+    position, velocity, _labels = (array.copy_to_host() for array in batch.buffers[0])
+    terms = np.empty((4, settings.n_simulated))
+    for r in range(2):
+        expected = np.empty(kernels.N_OBSERVABLES)
+        kernels.observe(
+            position[r][None], velocity[r][None], 0, settings.wavenumber, terms, expected
+        )
+        assert np.linalg.norm(expected[1:5]) > 1.0  # modes of order √N_sim
+        np.testing.assert_allclose(observables[r, 0], expected, rtol=1e-12, atol=1e-12)
+
+
 ELASTIC_PARTICLES = 50
 ELASTIC_REALIZATIONS = 24
 """The elastic run's size: C(0)'s error comes from the scatter of the realizations'

@@ -81,6 +81,7 @@ from kinetic.backends import simulated
 from kinetic.dsmc import inhomogeneous_kernels as kernels
 from kinetic.dsmc.gpu import THREADS, _block_sums, blocks_per_realization
 from kinetic.dsmc.inhomogeneous import CoolingModesSettings, new_cooling_gas
+from kinetic.fourier import mode_terms
 from kinetic.gpu import (
     BLOCK,
     block_exclusive_scan,
@@ -523,25 +524,26 @@ def _advance_together(first, second, work, cells, u, rows, stream, step, inverse
 def _observe(position, velocity, partials, wavenumber):
     """Per-block sums ``partials[r, b]`` of Σw_x, Σw_y, Σw_y cos(kx), Σw_y sin(kx),
     Σw_x cos(ky), Σw_x sin(ky), Σw_x², Σw_y² (each thread a fixed strided set of
-    particles, then a fixed tree)."""
+    particles, then a fixed tree); the Fourier factors are the CPU observer's
+    (``kinetic.fourier.mode_terms``)."""
     shared = cuda.shared.array((THREADS, N_SUMS), np.float64)
     sums = cuda.local.array(N_SUMS, np.float64)
     r = cuda.blockIdx.y
     b = cuda.blockIdx.x
     n = position.shape[2]
+    turns = wavenumber / (2.0 * np.pi)  # k x in turns: x / L
     for f in range(N_SUMS):
         sums[f] = 0.0
     for i in range(b * THREADS + cuda.threadIdx.x, n, cuda.gridDim.x * THREADS):
         wx = velocity[r, 0, i]
         wy = velocity[r, 1, i]
-        ax = wavenumber * position[r, 0, i]
-        ay = wavenumber * position[r, 1, i]
+        terms = mode_terms(turns * position[r, 0, i], turns * position[r, 1, i], wx, wy)
         sums[0] += wx
         sums[1] += wy
-        sums[2] += wy * np.cos(ax)
-        sums[3] += wy * np.sin(ax)
-        sums[4] += wx * np.cos(ay)
-        sums[5] += wx * np.sin(ay)
+        sums[2] += terms[0]
+        sums[3] += terms[1]
+        sums[4] += terms[2]
+        sums[5] += terms[3]
         sums[6] += wx * wx
         sums[7] += wy * wy
     _block_sums(shared, sums, partials[r, b])
