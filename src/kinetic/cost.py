@@ -499,10 +499,20 @@ def dsmc_free_flights(
 
 
 # ------------------------------------------------------------------ cloning
-CLONING_EVENTS_PER_SECOND = {1e3: 7.1e6, 1e5: 5.3e6, 1e6: 2.0e6}
-"""Collision events per CPU-second of kinetic.cloning against N_c. README: 7.1 × 10⁶ at
-N_c = 10³, 5.3 × 10⁶ at 10⁵. Front at N_c = 10⁶: 4 × 10⁶, halved (the 10³ -> 10⁵ slope
-extended would give an optimistic 4.3 × 10⁶)."""
+CLONING_EVENTS_PER_SECOND = {1e3: 1.1e7, 1e4: 1.0e7, 1e5: 8.0e6, 1e6: 2.0e6}
+"""Collision events of hard disks per CPU-second of kinetic.cloning against N_c. Three
+paper.yaml scan jobs of 8.4 × 10⁸ planned events (Intel Xeon, one job at a time):
+N_c = 10³, λ = 1.25: 68.4 CPU-s (1.23 × 10⁷ planned events a second); 3000, λ = −1.125:
+83.4 s (1.01 × 10⁷); 10⁴, λ = 1: 75.1 s (1.12 × 10⁷). Until then 7.1 × 10⁶ at 10³ and
+5.3 × 10⁶ at 10⁵, measured before the event loop went without reference counting: the
+plan asked 1.6-1.8 times those jobs' time. At 10⁵ the bench's 9.1 × 10⁶ (kernel only,
+AMD EPYC), less a tenth; at 10⁶ the front's 4 × 10⁶, halved."""
+
+CLONING_MAXWELL_SPEEDUP = 3.5
+"""Maxwell molecules collide every candidate (no acceptance test, no speed bound): events
+per CPU-second over the hard disks' at the same N_c. Bench: 3.5 at N_c = 10³, 3.6 at 10⁵;
+paper.yaml's Maxwell scan job of N_c = 10⁴, λ = 1.5: 21.2 CPU-s for 8.4 × 10⁸ events
+(3.97 × 10⁷ a second, 3.9 times the hard disks' job of that N_c)."""
 
 CLONING_BYTES_PER_MEMBER = 200.0
 """Front: peak RSS 262 MB at N_c = 10⁶ against 223 MB at 10³ (40 B per member), x5 for
@@ -696,6 +706,7 @@ def cloning_batch(
     histogram_bins: int = 120,
     backend: str = "cpu",
     control_interval: float | None = None,
+    kernel: str = "hard_spheres",
     **_: object,
 ) -> Estimate:
     """``n_realizations`` realizations of kinetic.cloning.simulate: N_c c_λ events per unit
@@ -706,7 +717,9 @@ def cloning_batch(
     Up to ``CLONING_GPU_RESIDENT_MAX_POPULATION`` clones, one thread block per realization
     runs all its intervals (the blocks in parallel): each interval costs its barriers plus
     the events of one thread's share of the clones, one after the other; larger
-    populations cost the intervals' launches plus the events at the GPU's rate."""
+    populations cost the intervals' launches plus the events at the GPU's rate. On the
+    CPU, ``kernel`` = "maxwell" runs ``CLONING_MAXWELL_SPEEDUP`` times the hard spheres'
+    events a second."""
     rate_factor = 1.0 if lam >= 0 else 2.0 * math.exp(-lam) - 1.0
     elapsed = _cloning_elapsed(duration, transient, n_blocks)
     if backend == "cuda":
@@ -720,7 +733,10 @@ def cloning_batch(
         work = f"{events:.2e} collision events on one GPU"
         return Estimate(seconds + GPU_JOB_STARTUP_SECONDS, memory, work, gpus=1)
     events = n_realizations * population * rate_factor * elapsed
-    seconds = events / _interpolate(population, CLONING_EVENTS_PER_SECOND)
+    rate = _interpolate(population, CLONING_EVENTS_PER_SECOND)
+    if kernel == "maxwell":
+        rate *= CLONING_MAXWELL_SPEEDUP
+    seconds = events / rate
     memory = _mb(CLONING_BYTES_PER_MEMBER * population + 8.0 * histogram_bins * n_blocks * 4)
     return Estimate(seconds, memory, f"{events:.2e} collision events")
 
