@@ -349,13 +349,16 @@ DSMC_COLLISIONS_PER_SECOND = {1e4: 1.39e7, 2e5: 9.8e6}
 """README: accepted NTC collisions per CPU-second of kinetic.dsmc (d = 3, α = 1;
 8.7 × 10⁶ at α = 0.5, N = 2 × 10⁵, which the safety factor covers)."""
 
-DSMC_SECONDS_PER_PARTICLE_STEP = 3e-9
+DSMC_SECONDS_PER_PARTICLE_STEP = 2.2e-9
 """Force, thermostat and moments per particle and time step (montanero2007's protocol):
 bench dsmc's paper step 1.55 ns at N = 2 × 10⁵ (exact force, collisions included; 3.4 ns
 before the thermostat was deferred into the next force update, 2026-11-27), the front
-2.0-2.6 ns with its snapshot every 50 steps; about twice the bench, like the other
-constants. Cross-check: the paper config's comment, ~3000 CPU-s per run of 200
-realizations of 60 τ at N = 2 × 10⁵, δt = 0.003 τ; this model gives 2700 s."""
+2.0-2.6 ns with its snapshot every 50 steps. paper.yaml's job montanero2007/runs/alpha050
+batch0001 (2 × 10¹⁰ particle-steps) took 50.7 CPU-s on the Intel Xeon (2026-11-28), 2.1 ns
+a particle-step beside the model's other terms (8.6 s); this constant plans it at 52.7 s
+(3e-9, twice the bench, planned 68.7 s until then). Three other shapes, measured
+(planned): extreme_field100_alpha100 37.9 (39.5), error_exact030n2000_alpha050 3.8 (4.7),
+error_strang030_alpha050 5.0 (4.3) CPU-s."""
 
 DSMC_SECONDS_PER_STEP = 4e-6
 """Fixed cost of a time step (front: 4.7 ns per particle-step at N = 2000, 2.4 at 2 × 10⁴),
