@@ -113,13 +113,9 @@ def _pause_simulated_block_polls() -> bool:
     pause, then fails. Returns whether it is installed."""
     try:
         from numba.cuda.simulator.kernel import BlockManager, BlockThread
-    except ImportError:
-        return False
-    if not hasattr(BlockManager, "run") or not hasattr(BlockThread, "syncthreads"):
-        return False
-    try:
+
         upstream = inspect.getsource(BlockManager.run)
-    except (OSError, TypeError):
+    except (ImportError, AttributeError, OSError, TypeError):
         return False
     if hashlib.sha256(upstream.encode()).hexdigest() != _UPSTREAM_BLOCK_RUN:
         return False

@@ -815,7 +815,6 @@ def dsmc_paper_job(quick: bool) -> dict[str, Any]:
         "duration": run["duration"],
         "steps": steps,
         "job_realizations": count,
-        "gpu_realizations_timed": count,
         "gpu_fraction_of_duration_timed": 1 / fraction,
         "gpu_wall_seconds": gpu_wall,
         "gpu_job_seconds": gpu_job,
