@@ -152,6 +152,15 @@ def test_error_against_cpu_time_falls_with_more_blocks():
     assert errors[-1] > 1.5 * errors[0]
 
 
+def test_error_against_cpu_time_keeps_each_number_of_blocks_once():
+    # 10 blocks a realization: k = 1..6 keep 10, 5, 3, 2, 2, 1 blocks; k = 4 and 5 are
+    # one point, not two
+    result = analyse(synthetic_run(3, samples=10000), blocks_per_realization=10)
+    assert result.subset.values.tolist() == [1.0, 0.5, 0.3, 0.2, 0.1]
+    cpu = result.error_cpu_seconds.values
+    assert np.all(np.diff(cpu) < 0)
+
+
 def test_too_short_blocks_are_refused_with_advice():
     with pytest.raises(ValueError, match="too short"):
         analyse(synthetic_run(4, samples=40))

@@ -11,5 +11,5 @@ study = snakemake.params.study
 results = [io.read_dataset(path) for path in snakemake.input.runs]
 table = analysis.convergence_table(results, study["density"])
 figures.convergence_figure(table, study, snakemake.output.pdf)
-io.write_table(table, snakemake.output.csv)
+io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".4g")
 log.info("%s", table.to_string())

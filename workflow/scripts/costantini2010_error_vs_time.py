@@ -52,4 +52,4 @@ for path in snakemake.input.runs:
     log.info("%s: CPU seconds for a 1 %% error on nu*: %.3g", method, seconds_for_1pc)
 plotting.figure_legend(fig)
 plotting.save(fig, snakemake.output.pdf)
-io.write_table(pd.DataFrame(records), snakemake.output.csv)
+io.write_table(pd.DataFrame(records), snakemake.output.csv, snakemake.output.md, float_format=".4g")

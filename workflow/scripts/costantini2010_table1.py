@@ -29,11 +29,15 @@ table = table.sort_values(
 for column in ("n_particles", "fictive_factor"):  # integers, empty where they do not apply
     table[column] = [None if pd.isna(value) else int(value) for value in table[column]]
 io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".4g")
-io.write_table(pd.DataFrame(fits), snakemake.output.fits)
+io.write_table(
+    pd.DataFrame(fits), snakemake.output.fits, snakemake.output.fits_md, float_format=".4g"
+)
 amplitudes = pd.DataFrame(
     [analysis.amplitude_row(result) for result in results], columns=analysis.AMPLITUDE_COLUMNS
 )
-io.write_table(amplitudes, snakemake.output.amplitudes)
+io.write_table(
+    amplitudes, snakemake.output.amplitudes, snakemake.output.amplitudes_md, float_format=".4g"
+)
 for fit in fits:
     log.info(
         "%s alpha=%g Lambda=%s %s(1/N -> 0) = %.4f +- %.4f, chi2 = %.3g (dof %d)",

@@ -287,16 +287,16 @@ def analyse_run(
     ]
     estimate, error = jackknife(samples, statistic)
 
-    # error against CPU time: the first 1/k of every realization's blocks
+    # error against CPU time: the first 1/k of every realization's blocks, each number of
+    # blocks once (10 blocks give 10, 5, 3, 2, 1 for k = 1..6: k = 4 and 5 both keep 2)
     cpu_total = float(dataset.cpu_seconds.sum())
     n_realizations = steady.sizes["realization"]
+    kept_counts = sorted(
+        {blocks_per_realization // k for k in range(1, error_subsets + 1)} - {0}, reverse=True
+    )
 
-    def kept_blocks(k):
-        return blocks_per_realization // k
-
-    def subset_errors(k):
-        kept = kept_blocks(k)
-        if kept < 1 or kept * n_realizations < 2:
+    def subset_errors(kept):
+        if kept * n_realizations < 2:
             return None
         rows = np.concatenate(
             [
@@ -311,12 +311,10 @@ def analyse_run(
         return subset_estimate[2:4], subset_error[2:4]
 
     curve = error_against_cpu(
-        range(1, error_subsets + 1),
-        subset_errors,
-        lambda k: cpu_total * (kept_blocks(k) / blocks_per_realization),
+        kept_counts, subset_errors, lambda kept: cpu_total * kept / blocks_per_realization
     )
     cpu = curve.cpu_seconds
-    fractions = [kept_blocks(k) / blocks_per_realization for k in curve.part]
+    fractions = [kept / blocks_per_realization for kept in curve.part]
     nu_err, nu_bar_err = curve.error_of(0), curve.error_of(1)
 
     time_reduced = dataset.time.values * density * math.sqrt(2.0 * temperature_s)

@@ -123,21 +123,21 @@ for name in ("error_vs_time", "convergence"):
     provide(
         f"costantini2010/{name}",
         *figure_files("costantini2010", name),
-        results_file(f"costantini2010/{name}.csv"),
+        *table_files("costantini2010", name),
     )
 
 
 provide(
     "costantini2010/table1",
     *table_files("costantini2010", "table1"),
-    results_file("costantini2010/extrapolation.csv"),
+    *table_files("costantini2010", "extrapolation"),
 )
 
 
 provide(
     "costantini2010/checks",
     *table_files("costantini2010", "checks"),
-    results_file("costantini2010/amplitudes.csv"),
+    *table_files("costantini2010", "amplitudes"),
 )
 
 
@@ -223,6 +223,7 @@ rule costantini2010_table1:
         csv=results_file("costantini2010/table1.csv"),
         md=results_file("costantini2010/table1.md"),
         fits=results_file("costantini2010/extrapolation.csv"),
+        fits_md=results_file("costantini2010/extrapolation.md"),
         checks=report(
             results_file("costantini2010/checks.csv"),
             caption="../../report/checks.rst",
@@ -231,6 +232,7 @@ rule costantini2010_table1:
         ),
         checks_md=results_file("costantini2010/checks.md"),
         amplitudes=results_file("costantini2010/amplitudes.csv"),
+        amplitudes_md=results_file("costantini2010/amplitudes.md"),
     log:
         log_file("costantini2010/table1.log"),
     params:
@@ -336,6 +338,7 @@ rule costantini2010_error_vs_time:
             category="costantini2010",
         ),
         csv=results_file("costantini2010/error_vs_time.csv"),
+        md=results_file("costantini2010/error_vs_time.md"),
     log:
         log_file("costantini2010/error_vs_time.log"),
     params:
@@ -356,6 +359,7 @@ rule costantini2010_convergence:
             category="costantini2010",
         ),
         csv=results_file("costantini2010/convergence.csv"),
+        md=results_file("costantini2010/convergence.md"),
     log:
         log_file("costantini2010/convergence.log"),
     params:
