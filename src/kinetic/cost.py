@@ -212,13 +212,26 @@ constant: once per edit); at 2984f74, 4.0, 4.6 and 5.6 s."""
 
 
 # ------------------------------------------------------------------ costantini2010
-COOLING_DSMC_SECONDS_PER_PARTICLE_STEP = 1.5e-8
-"""kinetic.dsmc.simulate_cooling_modes, whole steps (streaming, sort, collisions, the
-mode observer every fourth step at paper.yaml's Δτ): paper.yaml's job of N = 3000,
-Λ = 10, α = 0.7 (1.19 × 10¹⁰ particle-steps) took 172.8 CPU-s, 1.45 × 10⁻⁸ a
-particle-step (Intel Xeon, 2-core machine, nothing else running); 231.4 s, 1.94 × 10⁻⁸,
-the same day before its observer's Fourier factors became a vectorized loop
-(``kinetic.fourier``), when the observer took a third of the job."""
+COOLING_DSMC_SECONDS_PER_PARTICLE_STEP = 1.08e-8
+"""kinetic.dsmc.simulate_cooling_modes on the CPU, a particle-step of the step itself
+(streaming, sort, collisions at paper.yaml's Δτ); with the two constants below, fitted to
+paper.yaml's costantini2010 DSMC jobs timed on the Intel Xeon (2 cores): the job of N =
+3000, Λ = 10, α = 0.7 alone (1.19 × 10¹⁰ particle-steps, 172.8 CPU-s: this constant makes
+it central), and 196 jobs of N = 1000, two at a time (12 runs: Λ = 1, 10, 100, one cell,
+cell sides 0.125-1 and Δτ 0.025-0.1 mean free times; each run's CPU time 0.87-1.12 times
+the estimate). Until then a single 1.5 × 10⁻⁸ a particle-step, the observer and the
+cells included, which put those runs at 0.79-1.56: the cost of the cells and of the
+samples does not scale with the particle-steps."""
+
+COOLING_DSMC_SECONDS_PER_CELL_STEP = 5.1e-8
+"""The same, a collision cell and step: the per-cell loops (the counts, the prefix sum, the
+centre-of-mass sum, the collision stage's set-up). The cell side of 0.125 mean free paths
+has 16 times the cells of the production 0.5."""
+
+COOLING_DSMC_SECONDS_PER_PARTICLE_SAMPLE = 1.16e-8
+"""The same, a simulated particle and sample: the observer (``inhomogeneous_kernels.observe``:
+the modes, T and the momentum; 8.9 ns a particle alone, 268 µs a sample of 3 × 10⁴), every
+fourth step at the production Δτ, every step at Δτ = 0.1 mean free times."""
 
 GPU_H100_PER_H200 = 1.19
 """How much slower an H100 is taken to be than the H200 where a constant below was
@@ -314,6 +327,7 @@ def cooling_modes(
     density: float,
     n_realizations: int,
     fictive_factor: int = 1,
+    cells_per_side: int = 1,
     time_step: float | None = None,
     backend: str = "cpu",
     **_: object,
@@ -331,7 +345,12 @@ def cooling_modes(
             return _cooling_dsmc_gpu(
                 duration / time_step, n_samples, particle_steps, simulated * n_realizations
             )
-        seconds = COOLING_DSMC_SECONDS_PER_PARTICLE_STEP * particle_steps
+        steps = n_realizations * duration / time_step
+        seconds = (
+            COOLING_DSMC_SECONDS_PER_PARTICLE_STEP * particle_steps
+            + COOLING_DSMC_SECONDS_PER_CELL_STEP * cells_per_side**2 * steps
+            + COOLING_DSMC_SECONDS_PER_PARTICLE_SAMPLE * simulated * n_samples * n_realizations
+        )
         memory = _mb(COOLING_DSMC_BYTES_PER_PARTICLE * simulated + samples_bytes)
         return Estimate(seconds, memory, f"{particle_steps:.2e} particle-steps")
     collision_frequency = 2.0 * density * math.sqrt(math.pi)  # at T0 = 1
@@ -485,19 +504,30 @@ def dsmc_homogeneous_points(runs, *, backend: str = "cpu", **_: object) -> Estim
     return Estimate(seconds, memory, work, gpus=gpus)
 
 
-DSMC_FLIGHTS_PER_SECOND = {4e3: 6.5e6, 1e6: 1.0e6}
+DSMC_FLIGHTS_PER_SECOND = {4e3: 1.0e7, 1e4: 8.7e6, 1e6: 2.0e6}
 """Continuous-time DSMC with free-flight recording (kinetic.dsmc.simulate_free_flights,
-d = 2): front 1.3 × 10⁷ flights/s at N = 4000, 2.0 × 10⁶ at N = 10⁶ (the bath no longer
-fits in the cache), halved."""
+d = 2, hard disks) against N: paper.yaml's free_flight_times run of N = 10⁴ (16 jobs of
+16 realizations, 2.56 × 10⁹ flights in 292 CPU-s, two jobs at a time on the Intel Xeon:
+8.76 × 10⁶ a second); the front's 1.3 × 10⁷ at N = 4000 and 2.0 × 10⁶ at N = 10⁶ (the
+bath no longer fits in the cache), less a quarter at 4000. Until then the front's rates
+halved, which planned that run at 1.8 times its time."""
+
+DSMC_FLIGHTS_MAXWELL_SPEEDUP = 1.4
+"""Maxwell molecules: flights per CPU-second over the hard disks' at the same N (every
+candidate collides). paper.yaml's maxwell_free_paths run: 2.56 × 10⁹ flights in 205 CPU-s,
+1.25 × 10⁷ a second, 1.43 times free_flight_times' rate."""
 
 
 def dsmc_free_flights(
-    *, n_particles: int, duration: float, n_realizations: int, **_: object
+    *, n_particles: int, duration: float, n_realizations: int, kernel: str, **_: object
 ) -> Estimate:
     """``n_realizations`` runs of kinetic.dsmc.simulate_free_flights: one flight per
     particle per mean free time."""
     flights = n_realizations * n_particles * duration
-    seconds = flights / _interpolate(n_particles, DSMC_FLIGHTS_PER_SECOND)
+    rate = _interpolate(n_particles, DSMC_FLIGHTS_PER_SECOND)
+    if kernel == "maxwell":
+        rate *= DSMC_FLIGHTS_MAXWELL_SPEEDUP
+    seconds = flights / rate
     return Estimate(seconds, _mb(DSMC_BYTES_PER_PARTICLE * n_particles), f"{flights:.2e} flights")
 
 

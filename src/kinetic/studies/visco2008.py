@@ -166,6 +166,7 @@ def dsmc_jobs(config: Mapping[str, Any]) -> list[Job]:
                 n_particles=settings["n_particles"],
                 duration=settings["duration"],
                 n_realizations=job.n_realizations,
+                kernel=settings["kernel"],
             ),
         )
     return found
