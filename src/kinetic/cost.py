@@ -217,7 +217,7 @@ COOLING_DSMC_SECONDS_PER_PARTICLE_STEP = 1.08e-8
 (streaming, sort, collisions at paper.yaml's Δτ); with the two constants below, fitted to
 paper.yaml's costantini2010 DSMC jobs timed on the Intel Xeon (2 cores): the job of N =
 3000, Λ = 10, α = 0.7 alone (1.19 × 10¹⁰ particle-steps, 172.8 CPU-s: this constant makes
-it central), and 196 jobs of N = 1000, two at a time (12 runs: Λ = 1, 10, 100, one cell,
+it central), and 192 jobs of N = 1000, two at a time (12 runs: Λ = 1, 10, 100, one cell,
 cell sides 0.125-1 and Δτ 0.025-0.1 mean free times; each run's CPU time 0.87-1.12 times
 the estimate). Until then a single 1.5 × 10⁻⁸ a particle-step, the observer and the
 cells included, which put those runs at 0.79-1.56: the cost of the cells and of the
