@@ -14,7 +14,11 @@ live in buffer ``tally[TALLY_PARITY]``; every step sorts them by cell into the o
 buffer (a counting sort) and flips the parity, so the particles of cell c are the
 contiguous range ``cell_start[c]..cell_start[c + 1] - 1`` during the collision stage.
 The identities follow the particles through the sort (they number the particles of
-the initial state, 0..n-1).
+the initial state, 0..n-1). Moving all six arrays every step is not what the step costs:
+a variant that left the particles in place and sorted only their indices (velocities
+and moments read through them) took 10.3-13.1 ns a particle-step against this layout's
+10.0-11.6, streaming and sort without the collisions, 3 x 10³ to 3 x 10⁵ particles
+(Intel Xeon, 2026-11-28).
 
 One step (``advance``)
 ----------------------
