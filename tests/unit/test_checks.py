@@ -155,6 +155,19 @@ def test_table1_scores_our_rows_against_the_printed_ones_and_finds_their_density
     assert list(table.columns[:9]) == visco2008.TABLE1_COLUMNS
     numbers = visco2008.table1_caption_numbers(table, [10, 50])
     assert numbers["rho_doc"] == 0.001 and numbers["dk2_10"] == pytest.approx(-0.0105)
+    # the line through (0.001, 1.1233) and (0.01, 1.1128) at rho = 0: 1.1233 + 0.0105/9,
+    # its error sqrt((10/9)^2 + (1/9)^2) x 0.001
+    dilute = table[table["kind"] == "dilute"].set_index("t")
+    assert list(dilute["rho"]) == [0.0, 0.0]
+    assert dilute.loc[10.0, "k2"] == pytest.approx(1.1233 + 0.0105 / 9)
+    assert dilute.loc[10.0, "k2_err"] == pytest.approx(0.001 * math.hypot(10 / 9, 1 / 9))
+    error = 0.001 * math.hypot(10 / 9, 1 / 9)
+    assert dilute.loc[10.0, "z_k2"] == pytest.approx((1.1233 + 0.0105 / 9 - 1.1228) / error)
+    assert numbers["k2_dilute_10"] == pytest.approx(dilute.loc[10.0, "k2"])
+    # the dilute rows are neither a density of the caption nor a checked row
+    assert len(visco2008.checks(table, _cloning(math.expm1(-1.0)), REFERENCE)) == len(
+        visco2008.checks(table[table["kind"] != "dilute"], _cloning(math.expm1(-1.0)), REFERENCE)
+    )
 
 
 def test_largest_z_tolerance_holds_its_family_wise_false_alarm_rate():

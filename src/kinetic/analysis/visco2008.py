@@ -3,8 +3,11 @@ the built tables (``checks``, rule visco2008_checks).
 
 ``table1`` builds the rows of Table I from the MD runs' scaled cumulants and the closures:
 the MD rows per density and window, their 1/t extrapolation, the Poisson, Gaussian and
-Sonine rows, the document's printed row beside ours with z-scores, and the density whose
-rows the document's MD rows match best (the smallest sum of squared z-scores).
+Sonine rows, the document's printed row beside ours with z-scores, the density whose
+rows the document's MD rows match best (the smallest sum of squared z-scores), and the
+MD rows carried to ρ → 0 by a line through the two lowest densities (``dilute``: at
+paper.yaml's statistics the ρσ² = 10⁻³ rows sit 3-4 errors below the printed ones, the
+line's value within one).
 
 The checks:
 
@@ -72,14 +75,16 @@ def md_cumulants(runs, table_windows, extrapolation_windows):
 
 def table1(md_runs, closures, extrapolation_windows):
     """Table I as a DataFrame, the columns of table1.csv: source,rho,t,k1,k2,k3,k1_err,
-    k2_err,k3_err (the original contract), then kind (md | extrapolated | theory),
+    k2_err,k3_err (the original contract), then kind (md | extrapolated | dilute | theory),
     paper_k1..3 (the document's printed row; empty where it has none), z_k2, z_k3 (ours
     minus printed, over our standard error), z_gaussian_k2..z_sonine_k3 (ours against the
     Gaussian and Sonine closures), k1_exact (1: k1 = 1 holds by construction, not as a
     measurement), paper_row_density (1 on the MD rows at the density whose rows the
     document's MD rows match best), note. MD rows carry the density, the window length t
     (mean free times) and standard errors; extrapolated rows (t = inf) the 1/t fit over
-    several windows; theory rows leave rho, t and the errors empty.
+    several windows; dilute rows (rho = 0) the line in ρ through the MD rows of the two
+    lowest densities at each t, at ρ = 0 (errors propagated from both; two densities
+    cannot test the line itself); theory rows leave rho, t and the errors empty.
 
     ``md_runs``: the MD cumulant datasets (``scaled_cumulant`` and its ``_sem`` over window
     and order, the ``density`` attribute, optionally ``extrapolated_cumulant``);
@@ -115,6 +120,7 @@ def table1(md_runs, closures, extrapolation_windows):
                     theory,
                 )
             )
+    rows += _dilute_rows([row for row in rows if row["kind"] == "md"], theory)
     for source, values in theory.items():
         rows.append(
             _row(
@@ -141,11 +147,36 @@ def table1(md_runs, closures, extrapolation_windows):
         "extrapolated": "fit k(t) = k(inf) + c/t per realization over t = {}".format(
             ", ".join(f"{w:g}" for w in extrapolation_windows)
         ),
+        "dilute": "line in rho through the two lowest densities' rows, at rho = 0",
         "theory": "k1 = 1 by construction (omega = 1)",
     }
     table["note"] = table["kind"].map(notes)
     table.loc[table["paper_row_density"] == 1, "note"] += "; density of the document's MD rows"
     return table
+
+
+def _dilute_rows(md_rows, theory) -> list[dict]:
+    """The MD rows at ρ = 0 by a line through the two lowest densities, one per t: k(0) =
+    k(a) - a (k(b) - k(a))/(b - a); the two densities' runs are independent."""
+    from kinetic.theory.visco2008 import TABLE_I_DOCUMENT
+
+    densities = sorted({row["rho"] for row in md_rows})
+    if len(densities) < 2:
+        return []
+    low, high = densities[:2]
+    lever = low / (high - low)
+    found = []
+    for window in sorted({row["t"] for row in md_rows}):
+        a, b = (
+            next(r for r in md_rows if r["rho"] == rho and r["t"] == window) for rho in (low, high)
+        )
+        values = [a[f"k{p}"] - lever * (b[f"k{p}"] - a[f"k{p}"]) for p in (1, 2, 3)]
+        errors = [
+            math.hypot((1 + lever) * a[f"k{p}_err"], lever * b[f"k{p}_err"]) for p in (1, 2, 3)
+        ]
+        paper = TABLE_I_DOCUMENT.get(f"MD t={window:g}")
+        found.append(_row("MD", 0.0, window, values, errors, "dilute", paper, theory))
+    return found
 
 
 def table1_caption_numbers(table, extrapolation_windows) -> dict:
@@ -154,7 +185,9 @@ def table1_caption_numbers(table, extrapolation_windows) -> dict:
     their errors and z-scores, and the difference of k2 between the densities."""
     paper_density = float(table.loc[table["paper_row_density"] == 1, "rho"].iloc[0])
     numbers = {}
-    densities = sorted(table["rho"].dropna().unique(), key=lambda rho: rho != paper_density)
+    densities = sorted(
+        table.loc[table["kind"] == "md", "rho"].unique(), key=lambda rho: rho != paper_density
+    )
     for density, tag in zip(densities, ("doc", "other"), strict=False):
         numbers[f"rho_{tag}"] = density
         for kind_row in table[(table["rho"] == density)].itertuples():
@@ -173,6 +206,9 @@ def table1_caption_numbers(table, extrapolation_windows) -> dict:
         error = np.hypot(numbers[f"k2_err_other_{key}"], numbers[f"k2_err_doc_{key}"])
         numbers[f"dk2_{key}"], numbers[f"dk2_err_{key}"] = difference, error
         numbers[f"dz_{key}"] = difference / error
+    for row in table[table["kind"] == "dilute"].itertuples():
+        for column in ("k2", "k2_err", "z_k2", "k3", "k3_err", "z_k3"):
+            numbers[f"{column}_dilute_{row.t:g}"] = getattr(row, column)
     numbers["windows"] = ", ".join(f"{w:g}" for w in extrapolation_windows)
     return numbers
 
