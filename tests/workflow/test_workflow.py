@@ -230,7 +230,8 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
     ]
     assert {"Poisson", "Gaussian", "Sonine"} <= set(table["source"])
     assert {"paper_k2", "z_k2", "z_sonine_k2", "paper_row_density"} <= set(table.columns)
-    assert set(table["kind"]) == {"md", "extrapolated", "theory"}
+    assert set(table["kind"]) == {"md", "extrapolated", "dilute", "theory"}
+    assert set(table.loc[table["kind"] == "dilute", "rho"]) == {0.0}
     assert (results / "visco2008" / "table1.caption.rst").stat().st_size > 100
     costantini = pd.read_csv(results / "costantini2010" / "table1.csv")
     assert list(costantini.columns) == [
