@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 import pytest
+import xarray as xr
 
 from kinetic import io
 from kinetic.analysis import costantini2010 as analysis
@@ -176,3 +177,38 @@ def test_extrapolation_in_inverse_n_is_exact_on_a_line_and_reports_chi2():
     shifted = analysis.extrapolate_inverse_n(n, 0.2 + 50.0 / n + [0, 0.002, 0], [0.001] * 3)
     assert shifted["chi2"] > 1.0
     assert math.isnan(analysis.extrapolate_inverse_n([1000], [0.2], [0.01])["intercept"])
+
+
+def test_convergence_table_removes_the_paper_rules_collision_excess():
+    # 1000 real disks, Lambda = 10, 51 x 51 cells: the paper's rule collides
+    # 1 + (51^2 - 1)/10^4 = 1.26 times too often, the majorant rule exactly
+    def run(rule):
+        return xr.Dataset(
+            {
+                name: ((), value)
+                for name, value in [
+                    ("tau_c", 0.9),
+                    ("tau_c_err", 0.02),
+                    ("nu_star", 0.14),
+                    ("nu_star_err", 0.003),
+                    ("temperature_s", 1.0),
+                ]
+            },
+            attrs={
+                "n_particles": 1000,
+                "fictive_factor": 10,
+                "cells_per_side": 51,
+                "time_step": 1.4,
+                "collision_rule": rule,
+            },
+        )
+
+    density = 0.005
+    paper = analysis.convergence_table([run("paper")], density).iloc[0]
+    assert paper["particles_per_cell"] == pytest.approx(1e4 / 51**2)
+    assert paper["collision_excess"] == pytest.approx(1.26)
+    assert paper["nu_star_excess_removed"] == pytest.approx(0.14 * 1.26)
+    assert paper["nu_star_excess_removed_err"] == pytest.approx(0.003 * 1.26)
+    majorant = analysis.convergence_table([run("majorant")], density).iloc[0]
+    assert majorant["collision_excess"] == 1.0
+    assert majorant["nu_star_excess_removed"] == pytest.approx(0.14)

@@ -663,7 +663,12 @@ def elastic_checks(
 def convergence_table(results: Sequence[xr.Dataset], density: float):
     """DSMC's systematic errors at α = 1: one row per run of the convergence study (cell side
     in mean free paths λ, time step in mean free times 1/ω_c, τ_c, ν*, T_s), duplicates of
-    a (cell side, time step) pair dropped."""
+    a (cell side, time step) pair dropped. Then the simulated particles per cell and the
+    collision excess of the run's rule: the paper's rule makes each particle collide
+    1 + (M² - 1)/N_sim times too often (its n_c counts the colliding particle itself;
+    ``kinetic.dsmc.inhomogeneous_kernels``), the majorant rule 1 times; ν* times the
+    excess (``nu_star_excess_removed``) is what the viscosity would be at the exact rate,
+    as ν* scales as one over the collision rate."""
     import pandas as pd
 
     from kinetic.studies.costantini2010 import mean_free_path, mean_free_time
@@ -671,6 +676,10 @@ def convergence_table(results: Sequence[xr.Dataset], density: float):
     records = []
     for result in results:
         side = (float(result.attrs["n_particles"]) / density) ** 0.5
+        cells = int(result.attrs["cells_per_side"]) ** 2
+        simulated = int(result.attrs["n_particles"]) * int(result.attrs["fictive_factor"])
+        paper_rule = result.attrs["collision_rule"] == "paper"
+        excess = 1.0 + (cells - 1) / simulated if paper_rule else 1.0
         records.append(
             {
                 "n_particles": int(result.attrs["n_particles"]),
@@ -682,6 +691,10 @@ def convergence_table(results: Sequence[xr.Dataset], density: float):
                 "nu_star": float(result.nu_star),
                 "nu_star_err": float(result.nu_star_err),
                 "temperature_s": float(result.temperature_s),
+                "particles_per_cell": simulated / cells,
+                "collision_excess": excess,
+                "nu_star_excess_removed": float(result.nu_star) * excess,
+                "nu_star_excess_removed_err": float(result.nu_star_err) * excess,
             }
         )
     return pd.DataFrame(records).drop_duplicates(["cell_side", "time_step"])
