@@ -18,12 +18,20 @@ imports (``script_sources``), read from the import statements without importing 
 A simulation job depends on its engines' sources and on the other package files its front
 runs (``front_sources``: the theory a sampler starts from, the statistics a front stores),
 except the bookkeeping modules that name, write and log results.
+
+The rules do not take those files themselves as inputs but their stamps (``code_stamps``):
+one small file per source whose modification time moves only when the source's code
+changes, not its comments, docstrings or layout. An edit of a docstring thus reruns
+nothing, while an edit of one statement reruns what runs it.
 """
 
 from __future__ import annotations
 
 import ast
+import hashlib
+import os
 import re
+import time
 from functools import cache
 from pathlib import Path
 
@@ -32,6 +40,8 @@ __all__ = [
     "ENGINES",
     "PACKAGE",
     "SHARED",
+    "code_fingerprint",
+    "code_stamps",
     "engine_sources",
     "front_sources",
     "kernel_sources",
@@ -187,3 +197,92 @@ def front_sources(front: str, engines) -> list[Path]:
             todo += _imported_files(path)
     files.update(path for path in seen if path not in bookkeeping)
     return sorted(files)
+
+
+def _drop_inert_strings(tree: ast.Module) -> ast.Module:
+    """Remove, from every statement list of ``tree``, the statements that are a constant
+    alone: docstrings, the attribute docstrings under assignments, a stray ``...``."""
+    for node in ast.walk(tree):
+        for field in ("body", "orelse", "finalbody"):
+            statements = getattr(node, field, None)
+            if isinstance(statements, list):
+                statements[:] = [
+                    statement
+                    for statement in statements
+                    if not (
+                        isinstance(statement, ast.Expr)
+                        and isinstance(statement.value, ast.Constant)
+                    )
+                ]
+    return tree
+
+
+def code_fingerprint(path: str | Path) -> str:
+    """SHA-256 of what ``path`` (a Python file) computes: its syntax tree without comments,
+    docstrings, line numbers or layout. A file that does not parse is fingerprinted by its
+    bytes (the job that imports it fails with the syntax error)."""
+    data = Path(path).read_bytes()
+    try:
+        tree = _drop_inert_strings(ast.parse(data, filename=str(path)))
+    except (SyntaxError, ValueError):
+        return "bytes:" + hashlib.sha256(data).hexdigest()
+    return hashlib.sha256(ast.dump(tree).encode()).hexdigest()
+
+
+def _refresh_stamp(source: Path, stamp: Path) -> None:
+    """Bring ``stamp`` up to date with ``source``. The stamp holds the source's fingerprint
+    and the (modification time, size) it was read at, which spare the parse while the
+    file is untouched. Its own modification time is the source's when the stamp is new
+    (a build from before the stamps reruns only what the sources' times would rerun), is
+    kept when the fingerprint is unchanged, and is now when it changed (also for a source
+    that an older version replaced with its own, older time)."""
+    status = source.stat()
+    seen = f"{status.st_mtime_ns} {status.st_size}"
+    try:
+        fingerprint, recorded = stamp.read_text().splitlines()[:2]
+    except (FileNotFoundError, ValueError):
+        fingerprint = recorded = None
+    if recorded == seen:
+        return
+    new = code_fingerprint(source)
+    if fingerprint is None:
+        times = (status.st_atime_ns, status.st_mtime_ns)
+    elif new == fingerprint:
+        old = stamp.stat()
+        times = (old.st_atime_ns, old.st_mtime_ns)
+    else:
+        now = time.time_ns()
+        times = (now, now)
+    stamp.parent.mkdir(parents=True, exist_ok=True)
+    partial = stamp.with_name(f".{stamp.name}.{os.getpid()}.tmp")
+    partial.write_text(f"{new}\n{seen}\n")
+    os.utime(partial, ns=times)
+    os.replace(partial, stamp)  # atomic: jobs that parse the workflow at once agree
+
+
+_STAMPED: dict[Path, str] = {}
+"""{stamp: the source's (modification time, size)} of the stamps this process brought up
+to date: every rule of the workflow names some of the same files."""
+
+
+def code_stamps(paths, root: str | Path, directory: str | Path) -> list[str]:
+    """The stamp of each file of ``paths``, brought up to date: the code inputs of the
+    workflow's rules. A file under ``root`` (the workflow's directory) has its stamp at the
+    same relative path under ``directory``; another (an installed package) under
+    ``directory``/external by its absolute path."""
+    root, directory = Path(root).resolve(), Path(directory)
+    stamps = []
+    for path in paths:
+        source = Path(path).resolve()
+        try:
+            name = source.relative_to(root).as_posix()
+        except ValueError:
+            name = "external" + source.as_posix()
+        stamp = directory / f"{name}.stamp"
+        status = source.stat()
+        seen = f"{status.st_mtime_ns} {status.st_size}"
+        if _STAMPED.get(stamp) != seen or not stamp.is_file():
+            _refresh_stamp(source, stamp)
+            _STAMPED[stamp] = seen
+        stamps.append(str(stamp))
+    return stamps

@@ -7,7 +7,7 @@ from snakemake.exceptions import WorkflowError
 
 from kinetic.config import ROOT_MARKER, ConfigError, results_root, validate_config
 from kinetic.seeds import derive_seed
-from kinetic.sources import front_sources, script_sources
+from kinetic.sources import code_stamps, front_sources, script_sources
 
 from kinetic import studies
 
@@ -126,12 +126,25 @@ def job_seed(key):
     return derive_seed(config["seed"], key)
 
 
+CODE_STAMPS = ".snakemake/kinetic/code"
+"""Where the stamps of the code inputs live (``kinetic.sources.code_stamps``), under the
+working directory: one file per source, whose modification time moves when the source's
+code changes but not for an edit of its comments or docstrings. Deleting them is safe:
+they come back with their sources' modification times."""
+
+
+def code_inputs(paths):
+    """The stamps of ``paths`` (source files), as rule inputs."""
+    return code_stamps(paths, workflow.basedir, CODE_STAMPS)
+
+
 def script_code(name):
     """workflow/scripts/<name>.py and every package file it runs (``kinetic.sources``,
-    read from its imports): inputs of the rules that join, analyse and plot results, so an
-    edit of a script or of the code it calls reruns exactly the rules that run it."""
+    read from its imports), as stamps: inputs of the rules that join, analyse and plot
+    results, so an edit of the code of a script or of what it calls reruns exactly the
+    rules that run it."""
     script = Path(workflow.basedir) / "workflow" / "scripts" / f"{name}.py"
-    return [str(script), *map(str, script_sources(script))]
+    return code_inputs([script, *script_sources(script)])
 
 
 def caption_template(name):
@@ -184,8 +197,9 @@ def planned_job(wildcards, rulename):
 
 
 def job_code(rulename):
-    """Inputs of a simulation rule: every package file whose edit changes the numbers of
-    one of its jobs (``kinetic.sources.front_sources`` of each job's front and engines).
+    """Inputs of a simulation rule: the stamps of every package file whose edit changes the
+    numbers of one of its jobs (``kinetic.sources.front_sources`` of each job's front and
+    engines).
     The simulate script itself only calls the front, with ``params``, which Snakemake
     checks on its own."""
     fronts = {
@@ -193,12 +207,14 @@ def job_code(rulename):
         for job in planned_jobs().values()
         if job.rule == rulename
     }
-    return sorted(
-        {
-            str(path)
-            for front, engines in fronts
-            for path in front_sources(front, engines)
-        }
+    return code_inputs(
+        sorted(
+            {
+                path
+                for front, engines in fronts
+                for path in front_sources(front, engines)
+            }
+        )
     )
 
 

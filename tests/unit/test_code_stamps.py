@@ -1,0 +1,121 @@
+"""kinetic.sources.code_stamps: the code inputs of the workflow's rules move their
+modification time when a source's code changes, and only then; an edit of comments,
+docstrings or layout reruns nothing."""
+
+import os
+from pathlib import Path
+
+import pytest
+
+from kinetic.sources import PACKAGE, code_fingerprint, code_stamps
+
+MODULE = '''"""A module."""
+
+import math
+
+SCALE = 2.0
+"""The scale (an attribute docstring)."""
+
+
+def area(radius):
+    """The area."""
+    return math.pi * radius**2 * SCALE  # a comment
+
+
+class Disk:
+    """A disk."""
+
+    def __init__(self, radius):
+        self.radius = radius
+'''
+
+SAME_CODE = {
+    "a comment": MODULE + "# an edit\n",
+    "a module docstring": MODULE.replace('"""A module."""', '"""A module, described."""'),
+    "a function docstring": MODULE.replace('"""The area."""', '"""The area of a disk."""'),
+    "a class docstring": MODULE.replace('"""A disk."""', "'''A round disk.'''"),
+    "an attribute docstring": MODULE.replace("(an attribute docstring)", "(its docstring)"),
+    "the layout": MODULE.replace(
+        "math.pi * radius**2 * SCALE", "(math.pi\n    * radius ** 2 * SCALE)"
+    ),
+    "a removed docstring": MODULE.replace('    """The area."""\n', ""),
+}
+
+OTHER_CODE = {
+    "a constant": MODULE.replace("SCALE = 2.0", "SCALE = 2.5"),
+    "an operator": MODULE.replace("radius**2", "radius**3"),
+    "a statement": MODULE + "\nSCALE = 1.0\n",
+    "a string that is used": MODULE.replace("SCALE = 2.0", 'SCALE = float("2.0")'),
+    "a name": MODULE.replace("self.radius = radius", "self.size = radius"),
+}
+
+
+@pytest.mark.parametrize("edit", sorted(SAME_CODE))
+def test_comments_docstrings_and_layout_keep_the_fingerprint(tmp_path, edit):
+    before, after = tmp_path / "before.py", tmp_path / "after.py"
+    before.write_text(MODULE)
+    after.write_text(SAME_CODE[edit])
+    assert code_fingerprint(after) == code_fingerprint(before)
+
+
+@pytest.mark.parametrize("edit", sorted(OTHER_CODE))
+def test_a_code_edit_changes_the_fingerprint(tmp_path, edit):
+    before, after = tmp_path / "before.py", tmp_path / "after.py"
+    before.write_text(MODULE)
+    after.write_text(OTHER_CODE[edit])
+    assert code_fingerprint(after) != code_fingerprint(before)
+
+
+def test_a_file_that_does_not_parse_is_fingerprinted_by_its_bytes(tmp_path):
+    source = tmp_path / "broken.py"
+    source.write_text("def f(:\n    pass\n")
+    first = code_fingerprint(source)
+    source.write_text("def f(:\n    pass\n# a comment\n")
+    assert first.startswith("bytes:") and code_fingerprint(source) != first
+
+
+def test_every_package_file_parses():
+    """No stamp of the package falls back to the bytes (which a comment would change)."""
+    for path in sorted(PACKAGE.rglob("*.py")):
+        assert not code_fingerprint(path).startswith("bytes:"), path
+
+
+def _set_mtime(path, seconds):
+    os.utime(path, (seconds, seconds))
+
+
+def test_a_stamp_moves_only_when_the_code_changes(tmp_path):
+    root, stamps = tmp_path / "tree", tmp_path / "stamps"
+    source = root / "src" / "module.py"
+    source.parent.mkdir(parents=True)
+    source.write_text(MODULE)
+    _set_mtime(source, 1_000_000)
+    (stamp,) = map(Path, code_stamps([source], root, stamps))
+    assert stamp == stamps / "src" / "module.py.stamp"
+    # a new stamp takes the source's time: a build from before the stamps reruns nothing
+    assert stamp.stat().st_mtime == 1_000_000
+
+    built = 2_000_000  # an output built after that
+    source.write_text(SAME_CODE["a function docstring"] + "# and a comment\n")
+    _set_mtime(source, 3_000_000)
+    code_stamps([source], root, stamps)
+    assert stamp.stat().st_mtime == 1_000_000 < built
+
+    source.write_text(OTHER_CODE["a constant"])
+    _set_mtime(source, 1_500_000)  # even a restored older file with its own, older time
+    code_stamps([source], root, stamps)
+    assert stamp.stat().st_mtime > built
+
+    # a deleted stamp comes back with the source's time
+    stamp.unlink()
+    code_stamps([source], root, stamps)
+    assert stamp.stat().st_mtime == 1_500_000
+
+
+def test_a_source_outside_the_root_is_stamped_by_its_absolute_path(tmp_path):
+    source = tmp_path / "installed" / "module.py"
+    source.parent.mkdir()
+    source.write_text(MODULE)
+    (stamp,) = code_stamps([source], tmp_path / "tree", tmp_path / "stamps")
+    assert Path(stamp) == tmp_path / "stamps" / f"external{source.resolve()}.stamp"
+    assert Path(stamp).is_file()
