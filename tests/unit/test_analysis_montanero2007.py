@@ -239,3 +239,38 @@ def test_checks_pass_agreeing_rows_and_fail_each_kind_of_disagreement():
     assert len(failed) == 3
     assert "two routes to b'_2" in failed[0]
     assert "HCS a2" in failed[1] and "holds the momentum" in failed[2]
+
+
+def test_linear_response_claims_are_checked_at_zero_field_where_a_partner_run_exists():
+    """A bias of c eps*^2 in kappa' and in the route differences, resolved at the run's
+    field (the paper's statistics: 5 errors and more at eps* = 0.025), fails the checks
+    alone and passes once a partner run at twice the field extrapolates it away."""
+    kappa, c, error = theory.KAPPA_ELASTIC_HIGHER_SONINE, 12.0, 0.001
+
+    def biased(family, field, realizations):
+        shift = c * field**2
+        return _summary(
+            1.0,
+            family,
+            reduced_field=field,
+            realizations=realizations,
+            kappa_ratio=kappa + shift,
+            kappa_ratio_err=error,
+            b3_route_difference=-shift,
+            b3_route_difference_err=error,
+        )
+
+    scan = biased("scan", 0.025, 200)
+    claims = ("kappa'/kappa0 at alpha = 1", "two routes to b'_3")
+    alone = {c.claim: c for c in analysis.checks([scan], TOLERANCES)}
+    for words in claims:
+        (found,) = [check for claim, check in alone.items() if words in claim]
+        assert found.passed is False and abs(found.z) == pytest.approx(7.5)
+    for family in ("bias", "field"):
+        paired = analysis.checks([scan, biased(family, 0.05, 100)], TOLERANCES)
+        for words in claims:
+            (found,) = [check for check in paired if words in check.claim]
+            assert found.passed is True and found.z == pytest.approx(0.0, abs=1e-9)
+            assert "(eps* -> 0 from 0.025 and 0.05)" in found.claim
+            # the error of (4/3) X(0.025) - (1/3) X(0.05)
+            assert found.error == pytest.approx(error * np.hypot(4 / 3, 1 / 3))

@@ -643,6 +643,37 @@ def linear_response_fit(fields, kappa, kappa_err, max_field: float):
 
 
 # ------------------------------------------------------------------- checks
+def _field_partner(row, rows):
+    """The run at ``row``'s restitution and a larger field that extrapolates it to
+    eps* -> 0: the ``bias`` run, else the ``field`` run there; None without one."""
+    for family in ("bias", "field"):
+        for other in rows:
+            if (
+                other["family"] == family
+                and other["alpha"] == row["alpha"]
+                and other["reduced_field"] > row["reduced_field"]
+            ):
+                return other
+    return None
+
+
+def _linear_response(row, rows, key, claim):
+    """(claim, value, error, degrees of freedom) of a claim of linear response about the
+    estimate ``key`` of scan ``row``: at eps* -> 0 from ``row`` and its field partner
+    (:func:`field_extrapolation`), or at ``row``'s field where it has none."""
+    partner = _field_partner(row, rows)
+    if partner is None:
+        return claim, row[key], row[f"{key}_err"], row["realizations"] - 1
+    limit = field_extrapolation(row, partner, keys=(key,))
+    fields = f"{row['reduced_field']:g} and {partner['reduced_field']:g}"
+    return (
+        f"{claim} (eps* -> 0 from {fields})",
+        limit[f"{key}_extrapolated"],
+        limit[f"{key}_extrapolated_err"],
+        min(row["realizations"], partner["realizations"]) - 1,
+    )
+
+
 def checks(rows, tolerances) -> list[Check]:
     """The checks of the study on its ``summary_row`` rows (``kinetic.analysis.checks``).
 
@@ -650,6 +681,12 @@ def checks(rows, tolerances) -> list[Check]:
     Student's t for the number of realizations behind each error (:func:`tolerance_factor`):
     1. κ'/κ0 at α = 1 agrees with 1.025218 (Ref. [37]);
     2. the two routes to b'_k (Eqs. 3.10 and 3.12) agree (paired differences);
+    Both are claims of linear response, which the finite field misses at O(eps*^2): at the
+    paper's statistics and eps* = 0.025, κ'/κ0 at α = 1 is 1.0307 +- 0.0010 and the routes to
+    b'_2 and b'_3 differ by 5 to 11 errors, and the differences grow as eps*^2
+    (docs/reproduced.md). Where the run has a partner at a larger field (family ``bias``,
+    or the ``field`` run at its restitution), both are checked at eps* -> 0
+    (:func:`field_extrapolation`); otherwise at the run's field.
     3. linear response: the larger field of field_check gives the same κ' as the scan;
     4. the HCS a2 (zero field) agrees with Eq. (2.16) for α >= ``a2_alpha_min`` within
        ``a2_relative_tolerance`` |a2| + ``a2_absolute_floor`` + sigmas errors (reported
@@ -666,26 +703,25 @@ def checks(rows, tolerances) -> list[Check]:
 
     scan = {row["alpha"]: row for row in rows if row["family"] == "scan"}
     if 1.0 in scan:
-        row = scan[1.0]
+        claim, value, error, dof = _linear_response(
+            scan[1.0], rows, "kappa_ratio", "kappa'/kappa0 at alpha = 1 equals 1.025218 (Ref. [37])"
+        )
         found.append(
             check.agrees(
-                label(row, "kappa'/kappa0 at alpha = 1 equals 1.025218 (Ref. [37])"),
-                row["kappa_ratio"],
-                row["kappa_ratio_err"],
+                label(scan[1.0], claim),
+                value,
+                error,
                 theory.KAPPA_ELASTIC_HIGHER_SONINE,
-                tolerance_factor(sigmas, row["realizations"] - 1),
+                tolerance_factor(sigmas, dof),
             )
         )
     for row in scan.values():
         for k in (1, 2, 3):
+            claim, value, error, dof = _linear_response(
+                row, rows, f"b{k}_route_difference", f"two routes to b'_{k} agree: (3.10) - (3.12)"
+            )
             found.append(
-                check.agrees(
-                    label(row, f"two routes to b'_{k} agree: (3.10) - (3.12)"),
-                    row[f"b{k}_route_difference"],
-                    row[f"b{k}_route_difference_err"],
-                    0.0,
-                    tolerance_factor(sigmas, row["realizations"] - 1),
-                )
+                check.agrees(label(row, claim), value, error, 0.0, tolerance_factor(sigmas, dof))
             )
     for row in rows:
         if row["family"] == "field":
