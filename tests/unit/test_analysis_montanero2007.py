@@ -274,3 +274,18 @@ def test_linear_response_claims_are_checked_at_zero_field_where_a_partner_run_ex
             assert "(eps* -> 0 from 0.025 and 0.05)" in found.claim
             # the error of (4/3) X(0.025) - (1/3) X(0.05)
             assert found.error == pytest.approx(error * np.hypot(4 / 3, 1 / 3))
+
+
+def test_the_zero_field_limit_counts_the_degrees_of_freedom_of_both_runs():
+    """The limit (4/3) X1 - (1/3) X2 takes its error mostly from the run at the smaller
+    field: a partner of 4 realizations does not widen the check to Student's t at 3
+    degrees of freedom (Welch-Satterthwaite)."""
+    from kinetic.analysis.checks import tolerance_factor
+
+    scan = _summary(1.0, realizations=48, b2_route_difference_err=0.01)
+    partner = _summary(1.0, "bias", reduced_field=0.05, realizations=4)
+    (found,) = [c for c in analysis.checks([scan, partner], TOLERANCES) if "b'_2" in c.claim]
+    # (4/3 0.01)^2 and (1/3 0.01)^2 at 47 and 3 degrees of freedom: 49.998, counted as 49
+    factor = float(found.rule.split("<=")[1])
+    assert tolerance_factor(4, 49) == pytest.approx(factor, abs=0.005)
+    assert factor < tolerance_factor(4, 3) / 4

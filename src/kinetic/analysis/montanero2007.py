@@ -666,11 +666,17 @@ def _linear_response(row, rows, key, claim):
         return claim, row[key], row[f"{key}_err"], row["realizations"] - 1
     limit = field_extrapolation(row, partner, keys=(key,))
     fields = f"{row['reduced_field']:g} and {partner['reduced_field']:g}"
+    # the error's degrees of freedom (Welch-Satterthwaite): (1 + w) s1 and w s2 combine,
+    # and the partner's, weighted by w = 1/3 at twice the field, counts for little
+    w = limit["field_low"] ** 2 / (limit["field_high"] ** 2 - limit["field_low"] ** 2)
+    parts = np.array([(1 + w) * row[f"{key}_err"], w * partner[f"{key}_err"]]) ** 2
+    dofs = np.array([row["realizations"], partner["realizations"]]) - 1.0
+    dof = int(parts.sum() ** 2 / np.sum(parts**2 / dofs)) if parts.sum() > 0 else 1
     return (
         f"{claim} (eps* -> 0 from {fields})",
         limit[f"{key}_extrapolated"],
         limit[f"{key}_extrapolated_err"],
-        min(row["realizations"], partner["realizations"]) - 1,
+        max(dof, int(dofs.min())),
     )
 
 

@@ -126,10 +126,12 @@ def montanero2007_extreme_inputs(wildcards):
 
 
 def montanero2007_check_inputs(wildcards):
-    """Checks: every scan run, the field partner and the HCS runs."""
+    """Checks: every scan run, the larger-field runs (field and bias: the claims of linear
+    response are checked at eps* -> 0) and the HCS runs."""
     return (
         montanero2007_runs_of("scan")
         + montanero2007_runs_of("field")
+        + montanero2007_runs_of("bias")
         + montanero2007_runs_of("hcs")
     )
 
