@@ -687,12 +687,6 @@ def checks(rows, tolerances) -> list[Check]:
     Student's t for the number of realizations behind each error (:func:`tolerance_factor`):
     1. κ'/κ0 at α = 1 agrees with 1.025218 (Ref. [37]);
     2. the two routes to b'_k (Eqs. 3.10 and 3.12) agree (paired differences);
-    Both are claims of linear response, which the finite field misses at O(eps*^2): at the
-    paper's statistics and eps* = 0.025, κ'/κ0 at α = 1 is 1.0307 +- 0.0010 and the routes to
-    b'_2 and b'_3 differ by 5 to 11 errors, and the differences grow as eps*^2
-    (docs/reproduced.md). Where the run has a partner at a larger field (family ``bias``,
-    or the ``field`` run at its restitution), both are checked at eps* -> 0
-    (:func:`field_extrapolation`); otherwise at the run's field.
     3. linear response: the larger field of field_check gives the same κ' as the scan;
     4. the HCS a2 (zero field) agrees with Eq. (2.16) for α >= ``a2_alpha_min`` within
        ``a2_relative_tolerance`` |a2| + ``a2_absolute_floor`` + sigmas errors (reported
@@ -700,6 +694,13 @@ def checks(rows, tolerances) -> list[Check]:
     5. the thermostat holds momentum and energy: |<c_x>|, |<c²> - 3/2| <=
        ``thermostat_tolerance``.
     Reported with no verdict: the HCS cooling rate against Eq. (2.14).
+
+    Checks 1 and 2 are claims of linear response, which a finite field misses at
+    O(eps*^2): at the paper's statistics and eps* = 0.025, κ'/κ0 at α = 1 is 1.0307 +-
+    0.0010 and the routes to b'_2 and b'_3 differ by 5 to 11 errors (docs/reproduced.md).
+    Where the run has a partner at a larger field (family ``bias``, or the ``field`` run at
+    its restitution), both are checked at eps* -> 0 (:func:`field_extrapolation`, with
+    Welch-Satterthwaite degrees of freedom); otherwise at the run's field.
     """
     sigmas = tolerances["sigmas"]
     found = []
