@@ -229,15 +229,14 @@ def code_fingerprint(path: str | Path) -> str:
     return hashlib.sha256(ast.dump(tree).encode()).hexdigest()
 
 
-def _refresh_stamp(source: Path, stamp: Path) -> None:
-    """Bring ``stamp`` up to date with ``source``. The stamp holds the source's fingerprint
-    and the (modification time, size) it was read at, which spare the parse while the
-    file is untouched. Its own modification time is the source's when the stamp is new
-    (a build from before the stamps reruns only what the sources' times would rerun), is
-    kept when the fingerprint is unchanged, and is now when it changed (also for a source
-    that an older version replaced with its own, older time)."""
-    status = source.stat()
-    seen = f"{status.st_mtime_ns} {status.st_size}"
+def _refresh_stamp(source: Path, status: os.stat_result, seen: str, stamp: Path) -> None:
+    """Bring ``stamp`` up to date with ``source`` (its ``status``, and ``seen``: its
+    modification time and size). The stamp holds the source's fingerprint and ``seen``,
+    which spare the parse while the file is untouched. Its own modification time is the
+    source's when the stamp is new (a build from before the stamps reruns only what the
+    sources' times would rerun), is kept when the fingerprint is unchanged, and is now
+    when it changed (also for a source that an older version replaced with its own, older
+    time)."""
     try:
         fingerprint, recorded = stamp.read_text().splitlines()[:2]
     except (FileNotFoundError, ValueError):
@@ -282,7 +281,7 @@ def code_stamps(paths, root: str | Path, directory: str | Path) -> list[str]:
         status = source.stat()
         seen = f"{status.st_mtime_ns} {status.st_size}"
         if _STAMPED.get(stamp) != seen or not stamp.is_file():
-            _refresh_stamp(source, stamp)
+            _refresh_stamp(source, status, seen, stamp)
             _STAMPED[stamp] = seen
         stamps.append(str(stamp))
     return stamps

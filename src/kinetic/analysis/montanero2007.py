@@ -671,12 +671,12 @@ def _linear_response(row, rows, key, claim):
     w = limit["field_low"] ** 2 / (limit["field_high"] ** 2 - limit["field_low"] ** 2)
     parts = np.array([(1 + w) * row[f"{key}_err"], w * partner[f"{key}_err"]]) ** 2
     dofs = np.array([row["realizations"], partner["realizations"]]) - 1.0
-    dof = int(parts.sum() ** 2 / np.sum(parts**2 / dofs)) if parts.sum() > 0 else 1
+    welch = parts.sum() ** 2 / np.sum(parts**2 / dofs) if parts.sum() > 0 else 0.0
     return (
         f"{claim} (eps* -> 0 from {fields})",
         limit[f"{key}_extrapolated"],
         limit[f"{key}_extrapolated_err"],
-        max(dof, int(dofs.min())),
+        max(int(welch), int(dofs.min())),
     )
 
 
