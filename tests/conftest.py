@@ -58,14 +58,15 @@ def _salt_the_seeds(salt: int) -> None:
 if os.environ.get("KINETIC_TEST_SEED_SALT"):
     _salt_the_seeds(int(os.environ["KINETIC_TEST_SEED_SALT"]))
 
-SEEDS = (("edmd", "event_disks", "samplers"), ("dsmc", "cloning", "experimental"))
-"""Engines compiled by the controller before the workers start, in two processes of about equal
-compile times (66 and 82 s side by side on 2 cores; the experimental variants call the DSMC
-kernels, which their process then compiles once) and two caches of their own, which every
-worker's cache then starts from: each engine compiles once per test run instead of once per
-worker and once more in the first Snakemake build of each worker. ``kinetic.jit.warm``'s
-markers come with the copies, so the builds' jobs load the kernels instead of compiling
-them. The experimental variants, which the tests compare with the engines, are compiled
+SEEDS = (("edmd", "event_disks", "samplers", "cloning"), ("dsmc", "experimental"))
+"""Engines compiled by the controller before the workers start, in two processes (48 and 68 s
+side by side on 2 cores: the DSMC engine and the experimental variants, which call its
+kernels and so compile after it in one process, take the longest; the cloning engine, 9 s
+alone, goes with the others) and two caches of their own, which every worker's cache then
+starts from: each engine compiles once per test run instead of once per worker and once
+more in the first Snakemake build of each worker. ``kinetic.jit.warm``'s markers come with
+the copies, so the builds' jobs load the kernels instead of compiling them. The
+experimental variants, which the tests compare with the engines, are compiled
 along (numba's own stamps keep them fresh; no marker)."""
 
 

@@ -13,13 +13,17 @@ the event loops and the random-number generator).
     @kernel
     def step(...): ...
 
-Cached machine code is keyed on every file the kernel depends on
+Cached machine code is keyed on the code of every file the kernel depends on
 (``kinetic.sources.kernel_sources``: its engine's package and the shared modules). Numba
 checks only the file that defines the compiled function, so a kernel whose inlined
 helpers live in other files (the EDMD event loop and ``kinetic.edmd.cells``, every engine
 and ``kinetic.rng``) would otherwise keep running the old helpers after they are edited,
 or after a checkout that changed only those files. Here such a change invalidates the
-cached kernels, which recompile on their next use.
+cached kernels, which recompile on their next use. The key is each file's syntax tree
+without comments, docstrings and layout (``kinetic.sources.code_fingerprint``, as for the
+workflow's code stamps), not numba's modification time and size: an edit of a docstring
+recompiles nothing, as it reruns nothing. (A traceback through a kernel compiled before
+such an edit may name the line numbers the file had then.)
 
 Several processes compiling into one cache at once can corrupt it (numba issue 4807).
 Every simulation job therefore starts with :func:`warm` for each engine it runs: the first
@@ -42,7 +46,13 @@ from numba import njit, types
 from numba.core import caching, cgutils
 from numba.extending import intrinsic
 
-from kinetic.sources import PACKAGE, engine_sources, kernel_sources
+from kinetic.sources import (
+    PACKAGE,
+    code_fingerprint,
+    engine_sources,
+    kernel_sources,
+    remembered_fingerprint,
+)
 
 __all__ = [
     "FLAGS",
@@ -59,17 +69,24 @@ __all__ = [
 
 @functools.cache
 def _digest(files: tuple[Path, ...]) -> str:
+    memo = _fingerprint_memo()
     digest = hashlib.sha256()
     for path in files:
-        digest.update(path.relative_to(PACKAGE).as_posix().encode())
+        relative = path.relative_to(PACKAGE).as_posix()
+        digest.update(relative.encode())
         digest.update(b"\0")
-        digest.update(path.read_bytes())
+        if memo is None:
+            digest.update(code_fingerprint(path).encode())
+        else:
+            digest.update(remembered_fingerprint(path, memo / f"{relative}.fingerprint").encode())
     return digest.hexdigest()
 
 
 def source_stamp(py_file: str | Path, extra: tuple[Path, ...] = ()) -> str:
-    """SHA-256 over the relative paths and the bytes of ``kernel_sources(py_file)`` and the
-    ``extra`` package files (read once per process and set of files)."""
+    """SHA-256 over the relative paths and the code of ``kernel_sources(py_file)`` and the
+    ``extra`` package files (``kinetic.sources.code_fingerprint``: the syntax tree without
+    comments, docstrings or layout; computed once per process and set of files, and read
+    from memos beside the cache while a file is untouched)."""
     return _digest(tuple(sorted({*kernel_sources(py_file), *extra})))
 
 
@@ -109,17 +126,31 @@ _LOCATORS[:] = [
 ]
 
 
-def cache_directory(engine: str) -> Path:
-    """The directory where numba caches the kernels of ``engine``'s package: the locator
-    numba would choose (``NUMBA_CACHE_DIR``, the package's ``__pycache__`` if writable, the
-    user's cache directory otherwise)."""
-    py_file = str(PACKAGE / engine / "__init__.py")
+def _cache_directory_of(py_file: Path) -> Path:
+    """Where numba caches the functions of ``py_file`` (a file of the package): the
+    locator numba would choose (``NUMBA_CACHE_DIR``, the ``__pycache__`` beside it if
+    writable, the user's cache directory otherwise)."""
     for locator_class in _LOCATORS[:3]:
-        locator = locator_class.from_function(cache_directory, py_file)
+        locator = locator_class.from_function(cache_directory, str(py_file))
         if locator is not None:
             locator.ensure_cache_path()
             return Path(locator.get_cache_path())
-    raise OSError(f"no writable cache directory for the kernels of kinetic.{engine}")
+    raise OSError(f"no writable cache directory for the kernels of {py_file}")
+
+
+def cache_directory(engine: str) -> Path:
+    """The directory where numba caches the kernels of ``engine``'s package."""
+    return _cache_directory_of(PACKAGE / engine / "__init__.py")
+
+
+@functools.cache
+def _fingerprint_memo() -> Path | None:
+    """The directory of the source fingerprints' memos (``kinetic-fingerprints`` in the
+    package's cache directory), or None where none can be written."""
+    try:
+        return _cache_directory_of(PACKAGE / "__init__.py") / "kinetic-fingerprints"
+    except OSError:
+        return None
 
 
 def _warm_key(engine: str) -> str:

@@ -1,13 +1,14 @@
 """kinetic.sources.code_stamps: the code inputs of the workflow's rules move their
 modification time when a source's code changes, and only then; an edit of comments,
-docstrings or layout reruns nothing."""
+docstrings or layout reruns nothing. ``remembered_fingerprint`` (numba's cache stamps)
+reads a file's fingerprint from its memo while the file is untouched."""
 
 import os
 from pathlib import Path
 
 import pytest
 
-from kinetic.sources import PACKAGE, code_fingerprint, code_stamps
+from kinetic.sources import PACKAGE, code_fingerprint, code_stamps, remembered_fingerprint
 
 MODULE = '''"""A module."""
 
@@ -119,3 +120,27 @@ def test_a_source_outside_the_root_is_stamped_by_its_absolute_path(tmp_path):
     (stamp,) = code_stamps([source], tmp_path / "tree", tmp_path / "stamps")
     assert Path(stamp) == tmp_path / "stamps" / f"external{source.resolve()}.stamp"
     assert Path(stamp).is_file()
+
+
+def test_a_memo_stands_for_the_fingerprint_while_its_file_is_untouched(tmp_path):
+    source, memo = tmp_path / "module.py", tmp_path / "memos" / "module.py.fingerprint"
+    source.write_text(MODULE)
+    assert remembered_fingerprint(source, memo) == code_fingerprint(source)
+    fingerprint, seen = memo.read_text().splitlines()
+    # the memo is read, not the file: a memo of the same time and size is believed
+    memo.write_text(f"{'0' * 64}\n{seen}\n")
+    assert remembered_fingerprint(source, memo) == "0" * 64
+    # an edit changes the size (or the time): the file is parsed again, the memo renewed
+    source.write_text(MODULE + "RADIUS = 1.0\n")
+    assert remembered_fingerprint(source, memo) == code_fingerprint(source) != fingerprint
+    assert memo.read_text().splitlines()[0] == code_fingerprint(source)
+
+
+def test_an_unwritable_memo_only_costs_the_parse(tmp_path):
+    source = tmp_path / "module.py"
+    source.write_text(MODULE)
+    blocked = tmp_path / "a file"
+    blocked.write_text("")  # a file where the memo's directory should be
+    memo = blocked / "module.py.fingerprint"
+    assert remembered_fingerprint(source, memo) == code_fingerprint(source)
+    assert remembered_fingerprint(source, memo) == code_fingerprint(source)

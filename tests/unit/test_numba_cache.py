@@ -4,7 +4,8 @@ numba stamps a cached function with the source of the file that defines it. The
 population draw of the cloning engine (``kinetic.cloning.kernels.draw_population``)
 calls ``kinetic.rng.xoshiro_normal_pair`` from another file; after an edit of that file alone,
 the next process must run the edited helper, not the machine code cached before. An edit
-of a file the kernel does not depend on (the plotting helpers) keeps the cache."""
+of a file the kernel does not depend on (the plotting helpers), and an edit of the
+comments and docstrings of one it does depend on, keep the cache."""
 
 import os
 import shutil
@@ -40,6 +41,14 @@ def _refuse_in_tree(self):
     return _ensure(self)
 caching._CacheLocator.ensure_cache_path = _refuse_in_tree
 """
+
+
+def _annotate(path):
+    """Edit the docstring that opens ``path`` and append a comment and a bare string: the
+    same code."""
+    text = path.read_text()
+    assert text.startswith('"""')
+    path.write_text('"""Edited. ' + text[3:] + '\n# a comment\n"""A note."""\n')
 
 
 def _run(package_root, cache, read_only):
@@ -87,6 +96,11 @@ def test_an_edited_helper_in_another_file_invalidates_the_cached_kernel(
     unrelated, loaded = _run(tmp_path, cache, read_only)
     assert loaded, "an edit the kernel does not depend on recompiled it"
     assert unrelated == drawn
+
+    _annotate(tmp_path / "kinetic" / "rng.py")
+    annotated, loaded = _run(tmp_path, cache, read_only)
+    assert loaded, "an edit of the helper's comments and docstrings recompiled the kernel"
+    assert annotated == drawn
 
     with open(tmp_path / "kinetic" / "rng.py", "a") as source:
         source.write(EDIT)
@@ -142,7 +156,8 @@ def test_parallel_jobs_compile_a_front_once_and_an_edit_warms_again(repository, 
     """kinetic.jit.warm: of jobs of one front starting together, one compiles that front's
     kernels (and no other's) into the cache while the others wait for it; a job of
     another front compiles the rest; with the cache filled for these sources, jobs do
-    nothing; after an edit of a file the kernels depend on, the next job compiles again."""
+    nothing, also after an edit of the comments and docstrings of a file the kernels
+    depend on; after an edit of its code, the next job compiles again."""
     shutil.copytree(
         repository / "src" / "kinetic",
         tmp_path / "kinetic",
@@ -164,8 +179,12 @@ def test_parallel_jobs_compile_a_front_once_and_an_edit_warms_again(repository, 
         (again,) = _warm_processes(tmp_path, cache, 1, *front)
         assert "warm 0.0 skipped" in again and "data" not in again  # the marker: nothing to do
 
+    _annotate(tmp_path / "kinetic" / "rng.py")  # the same code: still nothing to do
+    (annotated,) = _warm_processes(tmp_path, cache, 1)
+    assert "warm 0.0 skipped" in annotated and "data" not in annotated
+
     with open(tmp_path / "kinetic" / "rng.py", "a") as source:
-        source.write("\n# an edit of a helper every engine inlines\n")
+        source.write("\n_EDITED = True  # an edit of a helper every engine inlines\n")
     (edited,) = _warm_processes(tmp_path, cache, 1)
     assert "data saved" in edited, "the kernels were not compiled again after the edit"
     assert len(list(cache.rglob("kinetic-warm-samplers-*.done"))) == 1  # the old marker went
