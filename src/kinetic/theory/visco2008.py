@@ -27,12 +27,11 @@ tails of the distributions do not underflow before their logarithm is needed.
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Callable
 from functools import lru_cache
 
 import numpy as np
-from scipy import integrate, optimize, special
+from scipy import optimize, special
 
 from kinetic.gas import mean_speed
 
@@ -143,67 +142,47 @@ def _log_speed_density(v, d: int):
     return log_surface + (d - 1) * np.log(v) - 0.5 * d * np.log(2 * np.pi) - 0.5 * v * v
 
 
-def _log_speed_integral(log_integrand: Callable[[np.ndarray], np.ndarray]) -> float:
-    """log ∫_0^∞ exp(log_integrand(v)) dv, robust to underflow of the integrand.
+@lru_cache(maxsize=8)
+def _log_speed_rule(d: int, points: int = 6000):
+    """The speed integrals' quadrature: the trapezoid rule in ln v on [1e-15, 40].
 
-    The maximum of the log-integrand is located on a log-spaced grid and factored out;
-    ``quad`` then integrates an O(1) function with a break point at the peak.
-    """
-    grid = np.geomspace(1e-6, 1e3, 2000)
-    values = log_integrand(grid)
-    peak = int(np.nanargmax(values))
-    top = values[peak]
-    v_peak = grid[peak]
-
-    def scaled(v):
-        return np.exp(log_integrand(np.asarray(v)) - top) if v > 0 else 0.0
-
-    # integrate on both sides of the peak; the width is found from the grid
-    inside = np.flatnonzero(values > top - 40.0)
-    lower, upper = grid[max(inside[0] - 1, 0)], grid[min(inside[-1] + 1, grid.size - 1)]
-    pieces = [(0.0, lower), (lower, v_peak), (v_peak, upper), (upper, np.inf)]
-    total = 0.0
-    with warnings.catch_warnings():
-        # quad flags round-off on pieces where the scaled integrand is ~1e-17 of its peak;
-        # the normalisation tests check the accuracy actually reached (~1e-12)
-        warnings.simplefilter("ignore", integrate.IntegrationWarning)
-        for a, b in pieces:
-            if b > a:
-                total += integrate.quad(scaled, a, b, epsabs=0.0, epsrel=1e-11, limit=200)[0]
-    return top + np.log(total)
+    Returns the speeds v, the logs of their weights times the Maxwell speed density
+    (ln(h v φ(v)), halved at both ends) and r(v)/ω there. In ln v every integrand of this
+    module is smooth and decays at both ends (as v^d, or v^(d-1) for the densities of a
+    free path at x = 0, at v -> 0; as e^{-v²/2} at v -> ∞), where the trapezoid rule
+    converges exponentially: it gives the values of the adaptive quadrature it replaced to
+    within 8e-12 (t and x from 0 to 2000, z from -0.707 to 100, d = 2 and 3) in 20-100 µs
+    a point instead of 5-12 ms. The log grid resolves the near-singular
+    integrands of the Laplace transform close to z = -1/√2 (width √(z + 1/√2) in v)."""
+    log_v = np.linspace(np.log(1e-15), np.log(40.0), points)
+    v = np.exp(log_v)
+    log_weights = _log_speed_density(v, d) + log_v + np.log(log_v[1] - log_v[0])
+    log_weights[[0, -1]] += np.log(0.5)
+    return v, log_weights, collision_rate(v, d)
 
 
-def _vectorize_log_integral(make_log_integrand, points) -> np.ndarray:
+def _log_speed_integrals(log_terms: Callable, points, d: int) -> np.ndarray:
+    """log ∫ dv φ(v) exp(log_terms(v, r, point)) for each of ``points`` (φ the Maxwell
+    speed density, r = r(v)/ω of Eq. 6), in log space: the tails of the distributions do
+    not underflow before their logarithm is taken."""
+    v, log_weights, rate = _log_speed_rule(d)
     points = np.asarray(points, dtype=float)
     out = np.empty(points.shape)
     for index, point in np.ndenumerate(points):
-        out[index] = _log_speed_integral(make_log_integrand(point))
+        out[index] = special.logsumexp(log_weights + log_terms(v, rate, point))
     return out
 
 
 def rate_moment(power: int, d: int) -> float:
     """<(r/ω)^power> over the Maxwellian; (A6) is rate_moment(2, 2) = 1.06354."""
-    return float(
-        np.exp(
-            _log_speed_integral(
-                lambda v: _log_speed_density(v, d) + power * np.log(collision_rate(v, d))
-            )
-        )
-    )
+    return float(np.exp(_log_speed_integrals(lambda v, r, _: power * np.log(r), 0.0, d)))
 
 
 # --------------------------------------------------------------------------- free flights
 def log_free_flight_time_pdf(t, d: int):
     """log P_FFT(t) of Eq. (9): log ∫ dv φ(v) r(v)² e^{-r(v) t} / ω (t in 1/ω)."""
 
-    def make(time):
-        return lambda v: (
-            _log_speed_density(v, d)
-            + 2 * np.log(collision_rate(v, d))
-            - collision_rate(v, d) * time
-        )
-
-    return _vectorize_log_integral(make, t)
+    return _log_speed_integrals(lambda v, r, time: 2 * np.log(r) - r * time, t, d)
 
 
 def free_flight_time_pdf(t, d: int):
@@ -224,12 +203,7 @@ def free_flight_time_pdf_asymptotic(t, d: int):
 def weighted_free_flight_time_pdf(t, d: int):
     """P_FFT^W(t) of (A1): the erroneous Gaussian weighting ∫ dv φ(v) r e^{-r t}."""
 
-    def make(time):
-        return lambda v: (
-            _log_speed_density(v, d) + np.log(collision_rate(v, d)) - collision_rate(v, d) * time
-        )
-
-    return np.exp(_vectorize_log_integral(make, t))
+    return np.exp(_log_speed_integrals(lambda v, r, time: np.log(r) - r * time, t, d))
 
 
 def free_flight_time_survival(t, d: int):
@@ -242,10 +216,7 @@ def free_flight_time_survival(t, d: int):
 def weighted_free_flight_time_survival(t, d: int):
     """∫_t^∞ P_FFT^W = ∫ dv φ(v) e^{-r t} (bin averages of (A1), as for P_FFT)."""
 
-    def make(time):
-        return lambda v: _log_speed_density(v, d) - collision_rate(v, d) * time
-
-    return np.exp(_vectorize_log_integral(make, t))
+    return np.exp(_log_speed_integrals(lambda v, r, time: -r * time, t, d))
 
 
 def weighted_free_flight_time_pdf_asymptotic(t, d: int):
@@ -265,14 +236,7 @@ def free_flight_time_laplace(z, d: int):
     if np.any(z <= -1 / SQRT2):
         raise ValueError(f"the Laplace transform of P_FFT exists for z > -1/sqrt(2), got {z}")
 
-    def make(shift):
-        return lambda v: (
-            _log_speed_density(v, d)
-            + 2 * np.log(collision_rate(v, d))
-            - np.log(collision_rate(v, d) + shift)
-        )
-
-    return np.exp(_vectorize_log_integral(make, z))
+    return np.exp(_log_speed_integrals(lambda v, r, shift: 2 * np.log(r) - np.log(r + shift), z, d))
 
 
 # --------------------------------------------------------------------------- free paths
@@ -286,42 +250,27 @@ def free_path_pdf(x, d: int):
     """P_FPL(x), Eq. (14), x in units of the mean free path l = <v>/ω (per unit of l)."""
     scale = mean_free_path(d)
 
-    def make(length):
-        path = length * scale
-        return lambda v: (
-            _log_speed_density(v, d)
-            + 2 * np.log(collision_rate(v, d))
-            - np.log(v)
-            - collision_rate(v, d) * path / v
-        )
+    def log_terms(v, r, length):
+        return 2 * np.log(r) - np.log(v) - r * length * scale / v
 
-    return scale * np.exp(_vectorize_log_integral(make, x))
+    return scale * np.exp(_log_speed_integrals(log_terms, x, d))
 
 
 def free_path_survival(x, d: int):
     """Probability that a free path is longer than x (units of l): ∫ dv φ r e^{-r x l/v}."""
     scale = mean_free_path(d)
 
-    def make(length):
-        path = length * scale
-        return lambda v: (
-            _log_speed_density(v, d)
-            + np.log(collision_rate(v, d))
-            - collision_rate(v, d) * path / v
-        )
+    def log_terms(v, r, length):
+        return np.log(r) - r * length * scale / v
 
-    return np.exp(_vectorize_log_integral(make, x))
+    return np.exp(_log_speed_integrals(log_terms, x, d))
 
 
 def maxwell_free_path_survival(x, d: int):
     """Maxwell molecules: probability that a free path exceeds x, ∫ dv φ(v) e^{-x l/v}."""
     scale = mean_free_path(d)
 
-    def make(length):
-        path = length * scale
-        return lambda v: _log_speed_density(v, d) - path / v
-
-    return np.exp(_vectorize_log_integral(make, x))
+    return np.exp(_log_speed_integrals(lambda v, r, length: -length * scale / v, x, d))
 
 
 def free_path_pdf_tail(x, d: int, amplitude: float = 1.0):
@@ -333,11 +282,10 @@ def maxwell_free_path_pdf(x, d: int):
     """Maxwell molecules' P_FPL, Eq. (D3): ∫ dv φ(v) (ω/v) e^{-ω x / v}; x in units of l."""
     scale = mean_free_path(d)
 
-    def make(length):
-        path = length * scale
-        return lambda v: _log_speed_density(v, d) - np.log(v) - path / v
+    def log_terms(v, r, length):
+        return -np.log(v) - length * scale / v
 
-    return scale * np.exp(_vectorize_log_integral(make, x))
+    return scale * np.exp(_log_speed_integrals(log_terms, x, d))
 
 
 def maxwell_free_path_pdf_asymptotic(x, d: int):
@@ -796,19 +744,11 @@ def gaussian_count_ldf(t: float, counts):
     return saddle_point_count_ldf(gaussian_mu, _gaussian_mu_slope, t, counts)
 
 
-@lru_cache(maxsize=8)
-def _speed_table(d: int, points: int = 6000):
-    """Speeds on a log grid (1e-9 to 40) with trapezoid weights of the Maxwell speed density.
-
-    In ln v every integrand of this module is smooth and decays at both ends, where the
-    trapezoid rule converges exponentially; the log grid resolves the near-singular
-    integrands of the Laplace transform close to z = -1/√2 (width √(z + 1/√2) in v).
-    """
-    log_v = np.linspace(np.log(1e-9), np.log(40.0), points)
-    v = np.exp(log_v)
-    weights = np.exp(_log_speed_density(v, d)) * v * (log_v[1] - log_v[0])
-    weights[[0, -1]] *= 0.5
-    return v, weights, collision_rate(v, d)
+def _speed_table(d: int):
+    """Speeds, weights (of the Maxwell speed density, with dv) and r(v)/ω of the speed
+    integrals' quadrature (``_log_speed_rule``), out of log space."""
+    v, log_weights, rate = _log_speed_rule(d)
+    return v, np.exp(log_weights), rate
 
 
 def _log_laplace_and_slope(z: float, d: int) -> tuple[float, float]:
