@@ -46,13 +46,7 @@ from numba import njit, types
 from numba.core import caching, cgutils
 from numba.extending import intrinsic
 
-from kinetic.sources import (
-    PACKAGE,
-    code_fingerprint,
-    engine_sources,
-    kernel_sources,
-    remembered_fingerprint,
-)
+from kinetic.sources import PACKAGE, engine_sources, kernel_sources, remembered_fingerprint
 
 __all__ = [
     "FLAGS",
@@ -75,10 +69,8 @@ def _digest(files: tuple[Path, ...]) -> str:
         relative = path.relative_to(PACKAGE).as_posix()
         digest.update(relative.encode())
         digest.update(b"\0")
-        if memo is None:
-            digest.update(code_fingerprint(path).encode())
-        else:
-            digest.update(remembered_fingerprint(path, memo / f"{relative}.fingerprint").encode())
+        place = None if memo is None else memo / f"{relative}.fingerprint"
+        digest.update(remembered_fingerprint(path, place).encode())
     return digest.hexdigest()
 
 

@@ -252,21 +252,30 @@ def _write_atomically(path: Path, text: str, times: tuple[int, int] | None = Non
     os.replace(partial, path)
 
 
-def remembered_fingerprint(source: str | Path, memo: str | Path) -> str:
+def _read_record(path: Path) -> tuple[str | None, str | None]:
+    """The fingerprint and the source's ``_seen`` that a memo or a stamp holds; (None,
+    None) for a missing or unreadable one."""
+    try:
+        fingerprint, seen = path.read_text().splitlines()[:2]
+    except (OSError, ValueError):
+        return None, None
+    return fingerprint, seen
+
+
+def remembered_fingerprint(source: str | Path, memo: str | Path | None) -> str:
     """``code_fingerprint(source)``, kept in the file ``memo`` with the source's modification
     time and size: read from there while they are unchanged, so that a process parses
     only the files edited since (numba's cache stamps of ``kinetic.jit``: the 14 files
-    of the DSMC engine took 0.15-0.3 s to parse, their memos a few ms to read). Where
-    ``memo`` cannot be written (a read-only installation) the fingerprint is computed
-    each time."""
+    of the DSMC engine took 0.15-0.3 s to parse, their memos a few ms to read). Without
+    a ``memo``, or where it cannot be written (a read-only installation), the fingerprint
+    is computed each time."""
+    if memo is None:
+        return code_fingerprint(source)
     source, memo = Path(source), Path(memo)
     seen = _seen(source.stat())
-    try:
-        fingerprint, recorded = memo.read_text().splitlines()[:2]
-        if recorded == seen:
-            return fingerprint
-    except (OSError, ValueError):
-        pass
+    fingerprint, recorded = _read_record(memo)
+    if recorded == seen:
+        return fingerprint
     fingerprint = code_fingerprint(source)
     with contextlib.suppress(OSError):
         _write_atomically(memo, f"{fingerprint}\n{seen}\n")
@@ -281,10 +290,7 @@ def _refresh_stamp(source: Path, status: os.stat_result, seen: str, stamp: Path)
     sources' times would rerun), is kept when the fingerprint is unchanged, and is now
     when it changed (also for a source that an older version replaced with its own, older
     time)."""
-    try:
-        fingerprint, recorded = stamp.read_text().splitlines()[:2]
-    except (FileNotFoundError, ValueError):
-        fingerprint = recorded = None
+    fingerprint, recorded = _read_record(stamp)
     if recorded == seen:
         return
     new = code_fingerprint(source)

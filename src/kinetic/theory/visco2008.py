@@ -744,9 +744,11 @@ def gaussian_count_ldf(t: float, counts):
     return saddle_point_count_ldf(gaussian_mu, _gaussian_mu_slope, t, counts)
 
 
+@lru_cache(maxsize=8)
 def _speed_table(d: int):
     """Speeds, weights (of the Maxwell speed density, with dv) and r(v)/ω of the speed
-    integrals' quadrature (``_log_speed_rule``), out of log space."""
+    integrals' quadrature (``_log_speed_rule``), out of log space (once per dimension:
+    the minimisations of ``uncorrelated_ldf`` read it at every step)."""
     v, log_weights, rate = _log_speed_rule(d)
     return v, np.exp(log_weights), rate
 
