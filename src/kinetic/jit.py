@@ -63,14 +63,11 @@ __all__ = [
 
 @functools.cache
 def _digest(files: tuple[Path, ...]) -> str:
-    memo = _fingerprint_memo()
     digest = hashlib.sha256()
     for path in files:
-        relative = path.relative_to(PACKAGE).as_posix()
-        digest.update(relative.encode())
+        digest.update(path.relative_to(PACKAGE).as_posix().encode())
         digest.update(b"\0")
-        place = None if memo is None else memo / f"{relative}.fingerprint"
-        digest.update(remembered_fingerprint(path, place).encode())
+        digest.update(remembered_fingerprint(path).encode())
     return digest.hexdigest()
 
 
@@ -78,7 +75,7 @@ def source_stamp(py_file: str | Path, extra: tuple[Path, ...] = ()) -> str:
     """SHA-256 over the relative paths and the code of ``kernel_sources(py_file)`` and the
     ``extra`` package files (``kinetic.sources.code_fingerprint``: the syntax tree without
     comments, docstrings or layout; computed once per process and set of files, and read
-    from memos beside the cache while a file is untouched)."""
+    from memos beside the sources while a file is untouched: ``kinetic.sources.fingerprint_memo``)."""
     return _digest(tuple(sorted({*kernel_sources(py_file), *extra})))
 
 
@@ -133,16 +130,6 @@ def _cache_directory_of(py_file: Path) -> Path:
 def cache_directory(engine: str) -> Path:
     """The directory where numba caches the kernels of ``engine``'s package."""
     return _cache_directory_of(PACKAGE / engine / "__init__.py")
-
-
-@functools.cache
-def _fingerprint_memo() -> Path | None:
-    """The directory of the source fingerprints' memos (``kinetic-fingerprints`` in the
-    package's cache directory), or None where none can be written."""
-    try:
-        return _cache_directory_of(PACKAGE / "__init__.py") / "kinetic-fingerprints"
-    except OSError:
-        return None
 
 
 def _warm_key(engine: str) -> str:

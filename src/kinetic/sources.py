@@ -48,6 +48,7 @@ __all__ = [
     "code_fingerprint",
     "code_stamps",
     "engine_sources",
+    "fingerprint_memo",
     "front_sources",
     "kernel_sources",
     "remembered_fingerprint",
@@ -262,16 +263,25 @@ def _read_record(path: Path) -> tuple[str | None, str | None]:
     return fingerprint, seen
 
 
-def remembered_fingerprint(source: str | Path, memo: str | Path | None) -> str:
-    """``code_fingerprint(source)``, kept in the file ``memo`` with the source's modification
-    time and size: read from there while they are unchanged, so that a process parses
-    only the files edited since (numba's cache stamps of ``kinetic.jit``: the 14 files
-    of the DSMC engine took 0.15-0.3 s to parse, their memos a few ms to read). Without
-    a ``memo``, or where it cannot be written (a read-only installation), the fingerprint
-    is computed each time."""
-    if memo is None:
-        return code_fingerprint(source)
-    source, memo = Path(source), Path(memo)
+def fingerprint_memo(source: str | Path) -> Path:
+    """Where ``remembered_fingerprint`` keeps the fingerprint of ``source``:
+    ``__pycache__/<name>.fingerprint`` beside it, as Python keeps a module's bytecode."""
+    source = Path(source)
+    return source.parent / "__pycache__" / f"{source.name}.fingerprint"
+
+
+def remembered_fingerprint(source: str | Path, memo: str | Path | None = None) -> str:
+    """``code_fingerprint(source)``, kept in the file ``memo`` (default
+    :func:`fingerprint_memo`) with the source's modification time and size: read from
+    there while they are unchanged, so that a process parses only the files edited since.
+    Every reader shares the memos: numba's cache stamps (``kinetic.jit``; the 14 files of
+    the DSMC engine take 0.15-0.3 s to parse, their memos a few ms to read) and the
+    workflow's code stamps, which a build in a new working directory would otherwise
+    compute by parsing every script and package file (1.3-1.7 s of each Snakemake start).
+    Where the memo cannot be written (a read-only installation), the fingerprint is
+    computed each time."""
+    source = Path(source)
+    memo = fingerprint_memo(source) if memo is None else Path(memo)
     seen = _seen(source.stat())
     fingerprint, recorded = _read_record(memo)
     if recorded == seen:
@@ -293,7 +303,7 @@ def _refresh_stamp(source: Path, status: os.stat_result, seen: str, stamp: Path)
     fingerprint, recorded = _read_record(stamp)
     if recorded == seen:
         return
-    new = code_fingerprint(source)
+    new = remembered_fingerprint(source)
     if fingerprint is None:
         times = (status.st_atime_ns, status.st_mtime_ns)
     elif new == fingerprint:

@@ -1,6 +1,6 @@
 """kinetic.sources.code_stamps: the code inputs of the workflow's rules move their
 modification time when a source's code changes, and only then; an edit of comments,
-docstrings or layout reruns nothing. ``remembered_fingerprint`` (numba's cache stamps)
+docstrings or layout reruns nothing. ``remembered_fingerprint`` (numba's cache stamps, and the code stamps of a new build)
 reads a file's fingerprint from its memo while the file is untouched."""
 
 import os
@@ -8,7 +8,13 @@ from pathlib import Path
 
 import pytest
 
-from kinetic.sources import PACKAGE, code_fingerprint, code_stamps, remembered_fingerprint
+from kinetic.sources import (
+    PACKAGE,
+    code_fingerprint,
+    code_stamps,
+    fingerprint_memo,
+    remembered_fingerprint,
+)
 
 MODULE = '''"""A module."""
 
@@ -134,6 +140,21 @@ def test_a_memo_stands_for_the_fingerprint_while_its_file_is_untouched(tmp_path)
     source.write_text(MODULE + "RADIUS = 1.0\n")
     assert remembered_fingerprint(source, memo) == code_fingerprint(source) != fingerprint
     assert memo.read_text().splitlines()[0] == code_fingerprint(source)
+
+
+def test_the_memo_lies_beside_its_source_and_serves_the_stamps_too(tmp_path):
+    """Without a memo named, the fingerprint is kept in ``__pycache__`` beside the file, and
+    a stamp written in a new directory reads it there instead of parsing the file."""
+    source = tmp_path / "tree" / "module.py"
+    source.parent.mkdir()
+    source.write_text(MODULE)
+    assert remembered_fingerprint(source) == code_fingerprint(source)
+    memo = fingerprint_memo(source)
+    assert memo == tmp_path / "tree" / "__pycache__" / "module.py.fingerprint"
+    seen = memo.read_text().splitlines()[1]
+    memo.write_text(f"{'1' * 64}\n{seen}\n")  # what only the memo can have told
+    (stamp,) = code_stamps([source], tmp_path / "tree", tmp_path / "another build")
+    assert Path(stamp).read_text().splitlines()[0] == "1" * 64
 
 
 def test_an_unwritable_memo_only_costs_the_parse(tmp_path):
