@@ -107,7 +107,8 @@ LONGEST = ("test_ci_config_builds_every_target_with_provenance",)
 def pytest_collection_modifyitems(config, items):
     """The whole ci build first, then the other end-to-end builds, then the other slow
     tests: with two workers the longest test starts at once, and the short ones fill the
-    end instead of one long build running alone."""
+    end instead of one long build running alone. Last, the tests that read a value which
+    an earlier test has ``once`` compute."""
 
     def rank(item):
         if item.originalname in LONGEST:
@@ -117,6 +118,38 @@ def pytest_collection_modifyitems(config, items):
         return 0 if slow and workflow else 1 if slow else 2
 
     items.sort(key=rank)
+    # The first test of each fixture that ``once`` computes keeps its place; the others
+    # go to the end, when that value is stored. In their place they would go to the other
+    # worker at the same time and wait for the lock while the first computes (31 s for
+    # the elastic GPU run, about 50 worker-seconds in all).
+    first, later, claimed = [], [], set()
+    for item in items:
+        shared = _once_fixtures(item)
+        (later if shared and shared <= claimed else first).append(item)
+        claimed |= shared
+    items[:] = first + later
+
+
+def _once_fixtures(item) -> set[tuple]:
+    """The fixtures of ``item`` that request ``once`` themselves, each with the parameters
+    it depends on (a parametrized fixture computes a value per parameter)."""
+    definitions = getattr(getattr(item, "_fixtureinfo", None), "name2fixturedefs", {})
+    params = getattr(getattr(item, "callspec", None), "params", {})
+
+    def closure(name, seen):
+        if name not in seen:
+            seen.add(name)
+            for fixture in definitions.get(name, ()):
+                for argument in fixture.argnames:
+                    closure(argument, seen)
+        return seen
+
+    keys = set()
+    for name, fixtures in definitions.items():
+        if any("once" in fixture.argnames for fixture in fixtures):
+            needed = closure(name, set())
+            keys.add((name, tuple(sorted(repr(p) for p in params.items() if p[0] in needed))))
+    return keys
 
 
 @pytest.fixture(scope="session")

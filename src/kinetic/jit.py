@@ -75,7 +75,8 @@ def source_stamp(py_file: str | Path, extra: tuple[Path, ...] = ()) -> str:
     """SHA-256 over the relative paths and the code of ``kernel_sources(py_file)`` and the
     ``extra`` package files (``kinetic.sources.code_fingerprint``: the syntax tree without
     comments, docstrings or layout; computed once per process and set of files, and read
-    from memos beside the sources while a file is untouched: ``kinetic.sources.fingerprint_memo``)."""
+    from memos beside the sources while a file is untouched:
+    ``kinetic.sources.fingerprint_memo``)."""
     return _digest(tuple(sorted({*kernel_sources(py_file), *extra})))
 
 

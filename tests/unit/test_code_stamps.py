@@ -1,7 +1,8 @@
 """kinetic.sources.code_stamps: the code inputs of the workflow's rules move their
 modification time when a source's code changes, and only then; an edit of comments,
-docstrings or layout reruns nothing. ``remembered_fingerprint`` (numba's cache stamps, and the code stamps of a new build)
-reads a file's fingerprint from its memo while the file is untouched."""
+docstrings or layout reruns nothing. ``remembered_fingerprint`` (numba's cache stamps, and
+the code stamps of a new build) reads a file's fingerprint from its memo while the file is
+untouched."""
 
 import os
 from pathlib import Path
