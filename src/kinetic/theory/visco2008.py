@@ -31,7 +31,7 @@ from collections.abc import Callable
 from functools import lru_cache
 
 import numpy as np
-from scipy import optimize, special
+from scipy import special
 
 from kinetic.gas import mean_speed
 
@@ -505,6 +505,8 @@ def _solve_branch(lams: np.ndarray, d: int, moments, gaussian: bool) -> np.ndarr
     Returns rows (μ, T, a2); NaN from the first λ the branch cannot reach (the fold:
     the Jacobian vanishes and no real root continues the branch).
     """
+    from scipy import optimize  # here: 0.4 s of import that most jobs of this module never use
+
     out = np.full((lams.size, 3), np.nan)
     state = np.array([1.0, 0.0])
     current = 0.0
@@ -635,6 +637,8 @@ def legendre_transform(
     An approximate μ need not be monotone: the Gaussian closure (43) has μ' > 0 beyond
     λ ≈ 5 (its approach to -1/√2 from below, Eq. 44), so its π(0) = min μ < -1/√2.
     """
+    from scipy import optimize
+
     n = np.asarray(n, dtype=float)
     if np.any(n < 0):
         raise ValueError("the collision rate n must be >= 0")
@@ -718,6 +722,8 @@ def saddle_point_count_ldf(
     describe an integer count (Stirling's formula fails there too), and where μ' = -n has no
     root in ``bracket``.
     """
+    from scipy import optimize
+
     counts = np.asarray(counts, dtype=float)
     if t <= 0 or np.any(counts < 0):
         raise ValueError(f"need t > 0 and counts >= 0, got t = {t}")
@@ -767,6 +773,8 @@ def uncorrelated_ldf(n, d: int = 2):
     z + n ln P̃(z) is convex (ln P̃ is the log of a Laplace transform); its minimiser
     solves 1 + n d ln P̃/dz = 0. At n = 0 the infimum -1/√2 is approached as z -> -1/√2.
     """
+    from scipy import optimize
+
     n = np.asarray(n, dtype=float)
     if np.any(n < 0):
         raise ValueError("the collision rate n must be >= 0")
