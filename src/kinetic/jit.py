@@ -116,21 +116,17 @@ _LOCATORS[:] = [
 ]
 
 
-def _cache_directory_of(py_file: Path) -> Path:
-    """Where numba caches the functions of ``py_file`` (a file of the package): the
-    locator numba would choose (``NUMBA_CACHE_DIR``, the ``__pycache__`` beside it if
-    writable, the user's cache directory otherwise)."""
+def cache_directory(engine: str) -> Path:
+    """The directory where numba caches the kernels of ``engine``'s package: the locator
+    numba would choose (``NUMBA_CACHE_DIR``, the package's ``__pycache__`` if writable, the
+    user's cache directory otherwise)."""
+    py_file = str(PACKAGE / engine / "__init__.py")
     for locator_class in _LOCATORS[:3]:
-        locator = locator_class.from_function(cache_directory, str(py_file))
+        locator = locator_class.from_function(cache_directory, py_file)
         if locator is not None:
             locator.ensure_cache_path()
             return Path(locator.get_cache_path())
-    raise OSError(f"no writable cache directory for the kernels of {py_file}")
-
-
-def cache_directory(engine: str) -> Path:
-    """The directory where numba caches the kernels of ``engine``'s package."""
-    return _cache_directory_of(PACKAGE / engine / "__init__.py")
+    raise OSError(f"no writable cache directory for the kernels of kinetic.{engine}")
 
 
 def _warm_key(engine: str) -> str:

@@ -270,10 +270,10 @@ def fingerprint_memo(source: str | Path) -> Path:
     return source.parent / "__pycache__" / f"{source.name}.fingerprint"
 
 
-def remembered_fingerprint(source: str | Path, memo: str | Path | None = None) -> str:
-    """``code_fingerprint(source)``, kept in the file ``memo`` (default
-    :func:`fingerprint_memo`) with the source's modification time and size: read from
-    there while they are unchanged, so that a process parses only the files edited since.
+def remembered_fingerprint(source: str | Path) -> str:
+    """``code_fingerprint(source)``, kept in its memo (:func:`fingerprint_memo`) with the
+    source's modification time and size: read from there while they are unchanged, so
+    that a process parses only the files edited since.
     Every reader shares the memos: numba's cache stamps (``kinetic.jit``; the 14 files of
     the DSMC engine take 0.15-0.3 s to parse, their memos a few ms to read) and the
     workflow's code stamps, which a build in a new working directory would otherwise
@@ -281,7 +281,7 @@ def remembered_fingerprint(source: str | Path, memo: str | Path | None = None) -
     Where the memo cannot be written (a read-only installation), the fingerprint is
     computed each time."""
     source = Path(source)
-    memo = fingerprint_memo(source) if memo is None else Path(memo)
+    memo = fingerprint_memo(source)
     seen = _seen(source.stat())
     fingerprint, recorded = _read_record(memo)
     if recorded == seen:

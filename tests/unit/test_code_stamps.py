@@ -130,22 +130,23 @@ def test_a_source_outside_the_root_is_stamped_by_its_absolute_path(tmp_path):
 
 
 def test_a_memo_stands_for_the_fingerprint_while_its_file_is_untouched(tmp_path):
-    source, memo = tmp_path / "module.py", tmp_path / "memos" / "module.py.fingerprint"
+    source = tmp_path / "module.py"
     source.write_text(MODULE)
-    assert remembered_fingerprint(source, memo) == code_fingerprint(source)
+    memo = fingerprint_memo(source)
+    assert remembered_fingerprint(source) == code_fingerprint(source)
     fingerprint, seen = memo.read_text().splitlines()
     # the memo is read, not the file: a memo of the same time and size is believed
     memo.write_text(f"{'0' * 64}\n{seen}\n")
-    assert remembered_fingerprint(source, memo) == "0" * 64
+    assert remembered_fingerprint(source) == "0" * 64
     # an edit changes the size (or the time): the file is parsed again, the memo renewed
     source.write_text(MODULE + "RADIUS = 1.0\n")
-    assert remembered_fingerprint(source, memo) == code_fingerprint(source) != fingerprint
+    assert remembered_fingerprint(source) == code_fingerprint(source) != fingerprint
     assert memo.read_text().splitlines()[0] == code_fingerprint(source)
 
 
 def test_the_memo_lies_beside_its_source_and_serves_the_stamps_too(tmp_path):
-    """Without a memo named, the fingerprint is kept in ``__pycache__`` beside the file, and
-    a stamp written in a new directory reads it there instead of parsing the file."""
+    """The fingerprint is kept in ``__pycache__`` beside the file, and a stamp written in a
+    new directory reads it there instead of parsing the file."""
     source = tmp_path / "tree" / "module.py"
     source.parent.mkdir()
     source.write_text(MODULE)
@@ -161,8 +162,6 @@ def test_the_memo_lies_beside_its_source_and_serves_the_stamps_too(tmp_path):
 def test_an_unwritable_memo_only_costs_the_parse(tmp_path):
     source = tmp_path / "module.py"
     source.write_text(MODULE)
-    blocked = tmp_path / "a file"
-    blocked.write_text("")  # a file where the memo's directory should be
-    memo = blocked / "module.py.fingerprint"
-    assert remembered_fingerprint(source, memo) == code_fingerprint(source)
-    assert remembered_fingerprint(source, memo) == code_fingerprint(source)
+    (tmp_path / "__pycache__").write_text("")  # a file where the memo's directory should be
+    assert remembered_fingerprint(source) == code_fingerprint(source)
+    assert remembered_fingerprint(source) == code_fingerprint(source)
