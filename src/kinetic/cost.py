@@ -29,6 +29,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from kinetic.gas import cell_changing_fraction
+
 __all__ = [
     "BASE_MEMORY_MB",
     "JOB_OVERHEAD_SECONDS",
@@ -212,16 +214,26 @@ constant: once per edit); at 2984f74, 4.0, 4.6 and 5.6 s."""
 
 
 # ------------------------------------------------------------------ costantini2010
-COOLING_DSMC_SECONDS_PER_PARTICLE_STEP = 1.08e-8
+COOLING_DSMC_SECONDS_PER_PARTICLE_STEP = 4.6e-9
 """kinetic.dsmc.simulate_cooling_modes on the CPU, a particle-step of the step itself
-(streaming, sort, collisions at paper.yaml's Δτ); with the two constants below, fitted to
-paper.yaml's costantini2010 DSMC jobs timed on the Intel Xeon (2 cores): the job of N =
-3000, Λ = 10, α = 0.7 alone (1.19 × 10¹⁰ particle-steps, 172.8 CPU-s: this constant makes
-it central), and 192 jobs of N = 1000, two at a time (12 runs: Λ = 1, 10, 100, one cell,
-cell sides 0.125-1 and Δτ 0.025-0.1 mean free times; each run's CPU time 0.87-1.12 times
-the estimate). Until then a single 1.5 × 10⁻⁸ a particle-step, the observer and the
-cells included, which put those runs at 0.79-1.56: the cost of the cells and of the
-samples does not scale with the particle-steps."""
+(streaming, the cells brought up to date, collisions at paper.yaml's Δτ), with
+``COOLING_DSMC_SECONDS_PER_CHANGED_CELL`` times the fraction of the particles expected to
+change cell a step (``kinetic.gas.cell_changing_fraction``: the particles moved one by
+one, or the sort where more than 15 % move) and the two constants below. Until revision
+654b818, which sorted every particle every step, a single 1.08 × 10⁻⁸, fitted with the
+two constants below to paper.yaml's costantini2010 DSMC jobs timed on the Intel Xeon (2
+cores): the job of N = 3000, Λ = 10, α = 0.7 alone (1.19 × 10¹⁰ particle-steps, 172.8
+CPU-s), and 192 jobs of N = 1000, two at a time (12 runs: Λ = 1, 10, 100, one cell, cell
+sides 0.125-1 and Δτ 0.025-0.1 mean free times; each run's CPU time 0.87-1.12 times the
+estimate). The two constants of the particle-step were refitted to those 13 run types
+timed with both engines in one process on the AMD EPYC (2026-11-29, each shortened to
+about 2 s; the old engine's estimates scaled by the new engine's time over the old
+one's): the estimates are 0.78-1.29 times those times, 1.08 for the production run (cells
+of 0.5 mean free paths, Δτ = 0.025)."""
+
+COOLING_DSMC_SECONDS_PER_CHANGED_CELL = 3.2e-8
+"""The same, a particle-step times the fraction of the particles that change cell: moving
+one costs about seven plain particle-steps."""
 
 COOLING_DSMC_SECONDS_PER_CELL_STEP = 5.1e-8
 """The same, a collision cell and step: the per-cell loops (the counts, the prefix sum, the
@@ -267,7 +279,16 @@ did 1.72 × 10⁹ (its cells' phase 1.54 of the step's 1.72 ms; on the H200 now 
 1.18 ms on the launched path)."""
 
 COOLING_DSMC_BYTES_PER_PARTICLE = 120.0
-"""Positions, velocities, sort keys and scratch of one simulated particle."""
+"""Positions, velocities, sort keys and scratch of one simulated particle (``cuda``)."""
+
+COOLING_DSMC_CPU_BYTES_PER_PARTICLE = 216.0
+"""The CPU engine's bound: 80 bytes a slot (positions, velocities, identities, mode terms)
+for at most 2 N_sim + 5 M² slots (``slack_per_cell``), and the 56-byte buffer of the
+particles that change cell."""
+
+COOLING_DSMC_CPU_BYTES_PER_CELL = 472.0
+"""The same, a cell: its at most 5 free slots of the bound above and its ranges, carried
+fraction and moments."""
 
 COOLING_MD_SECONDS_PER_COLLISION = 1.9e-6
 """kinetic.edmd.simulate_cooling_modes: a collision of 10³–3 × 10³ disks at nσ² = 0.005
@@ -346,12 +367,24 @@ def cooling_modes(
                 duration / time_step, n_samples, particle_steps, simulated * n_realizations
             )
         steps = n_realizations * duration / time_step
+        changing = 0.0
+        if cells_per_side > 1:
+            cell_side = math.sqrt(n_particles / density) / cells_per_side
+            changing = cell_changing_fraction(2, time_step, cell_side)
         seconds = (
-            COOLING_DSMC_SECONDS_PER_PARTICLE_STEP * particle_steps
+            (
+                COOLING_DSMC_SECONDS_PER_PARTICLE_STEP
+                + COOLING_DSMC_SECONDS_PER_CHANGED_CELL * changing
+            )
+            * particle_steps
             + COOLING_DSMC_SECONDS_PER_CELL_STEP * cells_per_side**2 * steps
             + COOLING_DSMC_SECONDS_PER_PARTICLE_SAMPLE * simulated * n_samples * n_realizations
         )
-        memory = _mb(COOLING_DSMC_BYTES_PER_PARTICLE * simulated + samples_bytes)
+        memory = _mb(
+            COOLING_DSMC_CPU_BYTES_PER_PARTICLE * simulated
+            + COOLING_DSMC_CPU_BYTES_PER_CELL * cells_per_side**2
+            + samples_bytes
+        )
         return Estimate(seconds, memory, f"{particle_steps:.2e} particle-steps")
     collision_frequency = 2.0 * density * math.sqrt(math.pi)  # at T0 = 1
     collisions = n_realizations * n_particles / 2.0 * collision_frequency * duration

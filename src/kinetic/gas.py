@@ -27,6 +27,7 @@ __all__ = [
     "MAXWELL",
     "VERY_HARD",
     "candidate_coefficient",
+    "cell_changing_fraction",
     "cross_section",
     "equilibrium_collision_frequency",
     "mean_free_path",
@@ -131,6 +132,15 @@ def candidate_coefficient(
     if kernel == "maxwell":
         return per_pair * cross_section(d) * mean_relative_speed(d, reference_temperature)
     return per_pair * solid_angle(d) / 2.0 / math.sqrt(reference_temperature)
+
+
+def cell_changing_fraction(
+    d: int, time_step: float, cell_side: float, temperature: float = 1.0
+) -> float:
+    """Fraction of the particles of a gas at rest (m = 1) that fly into another square or
+    cubic cell of side a in a time Δt: ⟨Σ_k |v_k|⟩ Δt/a = d √(2T/π) Δt/a (for Δt ⟨|v|⟩
+    small against a; each crossing of a face counted once)."""
+    return d * math.sqrt(2.0 * temperature / math.pi) * time_step / cell_side
 
 
 def mean_free_path(d: int, density: float) -> float:

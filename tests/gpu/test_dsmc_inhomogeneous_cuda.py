@@ -244,14 +244,15 @@ def test_momentum_stays_zero_with_drag(tiny_runs):
 
 @pytest.mark.parametrize("rule", ["paper", "majorant"])
 def test_first_step_sorts_like_the_cpu(rule):
-    """After one step the GPU's positions and their order in the buffer (the identities)
-    are the CPU engine's bit for bit: the same initial state and streaming, and the
-    per-cell rank sort gives back the CPU's stable counting-sort order whatever order the
-    atomics landed in (only the collisions, with other random streams, differ); so are
-    the cells' two largest |w|². Their sums Σw, Σ|w|² agree to rounding: the cell's
-    threads fold them by a tree where the CPU runs one loop. On a GPU the positions agree
-    to a few units in the last place: NVVM fuses a·b + c into one rounding where the CPU
-    rounds twice (an H100 left 10 of 240 coordinates 1 ulp off, revision 2984f74)."""
+    """After one step the GPU's positions are the CPU engine's bit for bit, particle by
+    particle (the identities): the same initial state and streaming (only the
+    collisions, with other random streams, differ); the GPU's cells hold the CPU's
+    particles, in a stable counting sort's order (by index in the initial state)
+    whatever order the atomics landed in; so are the cells' two largest |w|². Their sums
+    Σw, Σ|w|² agree to rounding: the cell's threads fold them by a tree where the CPU
+    runs one loop. On a GPU the positions agree to a few units in the last place: NVVM
+    fuses a·b + c into one rounding where the CPU rounds twice (an H100 left 10 of 240
+    coordinates 1 ulp off, revision 2984f74)."""
     from kinetic.dsmc import inhomogeneous_gpu
 
     settings = CoolingModesSettings(
@@ -265,17 +266,25 @@ def test_first_step_sorts_like_the_cpu(rule):
     batch = inhomogeneous_gpu._Batch([(settings, streams)], 1)
     batch.advance(1, 2)
     # cells of more particles than a group has threads: the sort takes several rounds
-    counts = np.diff(batch.cell_start.copy_to_host(), axis=1)
+    ranges = batch.cell_start.copy_to_host()
+    counts = np.diff(ranges, axis=1)
     assert counts.max() > inhomogeneous_gpu.CELL_THREADS
     position, _velocity, labels = (array.copy_to_host() for array in batch.buffers[0])
     moments = batch.moments.copy_to_host()
     for r in range(2):
         gas = new_cooling_gas(settings, streams[r])
         gas.advance(1)
-        np.testing.assert_array_equal(labels[r, 0], gas.identities())
+        np.testing.assert_array_equal(counts[r], gas.count)
+        for c in range(counts.shape[1]):
+            cell = labels[r, 0, ranges[r, c] : ranges[r, c + 1]]
+            assert np.all(np.diff(cell) > 0), "not a stable sort"
+            assert set(cell) == set(gas.labels[0, gas.start[c] : gas.start[c] + gas.count[c]])
+        # both engines' positions, particle by particle
+        cpu = gas.positions()[np.argsort(gas.identities())]
+        gpu = position[r].T[np.argsort(labels[r, 0])]
         ulps = 4 * np.finfo(np.float64).eps
         if backends.simulated():
-            np.testing.assert_array_equal(position[r].T, gas.positions())
+            np.testing.assert_array_equal(gpu, cpu)
             np.testing.assert_array_equal(moments[r][:, 3:], gas.cell_moments[:, 3:])
             # the same terms summed in another order: |difference| <= (n - 1) eps Σ|term|
             # for a cell of n, with Σ|w_k| <= sqrt(n Σ|w|²)
@@ -286,7 +295,7 @@ def test_first_step_sorts_like_the_cpu(rule):
             )
             assert np.all(slack[:, 2] <= (n - 1) * np.finfo(float).eps * squares)
         else:
-            np.testing.assert_allclose(position[r].T, gas.positions(), rtol=ulps, atol=0)
+            np.testing.assert_allclose(gpu, cpu, rtol=ulps, atol=0)
         np.testing.assert_allclose(moments[r], gas.cell_moments, rtol=64 * ulps, atol=64 * ulps)
         assert np.all(gas.cell_moments[:, 2] > 0)  # every cell holds particles
 
@@ -320,9 +329,8 @@ def test_the_observer_gives_the_cpu_observer_numbers():
     terms = np.empty((4, n))
     for r in range(2):
         expected = np.empty(kernels.N_OBSERVABLES)
-        kernels.observe(
-            position[r][None], velocity[r][None], 0, settings.wavenumber, terms, expected
-        )
+        one_range = np.array([0, n]), np.array([n])  # the buffer as one cell's slots
+        kernels.observe(position[r], velocity[r], *one_range, settings.wavenumber, terms, expected)
         assert np.linalg.norm(expected[1:5]) > 1.0  # modes of order √N_sim
         speeds = np.abs(velocity[r]).sum()  # Σ |w_x| + |w_y|
         energy = np.square(velocity[r]).sum()  # Σ |w|²

@@ -2,13 +2,32 @@
 (``kinetic.cloning.simulate_points`` on the GPU) writes each point's dataset to its own rule
 output, stamped with that point's seed."""
 
+import os
 import sys
 from pathlib import Path
 from types import SimpleNamespace
 
+import pytest
 import xarray as xr
 
 from kinetic import io, studies, workflow_support
+
+
+@pytest.fixture(autouse=True)
+def _job_threads_left_behind():
+    """A job caps numba's threads to its own (``workflow_support.start``: the variable and
+    the pool); the test worker gets its own back, or the CUDA simulator of a later test
+    in it stops on NUMBA_NUM_THREADS changed after its threads were launched."""
+    before = os.environ.get("NUMBA_NUM_THREADS")
+    yield
+    if before is None:
+        os.environ.pop("NUMBA_NUM_THREADS", None)
+    else:
+        os.environ["NUMBA_NUM_THREADS"] = before
+    if "numba" in sys.modules:
+        import numba
+
+        numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
 
 
 def test_a_job_of_several_points_writes_each_to_its_output(tmp_path, monkeypatch):

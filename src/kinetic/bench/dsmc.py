@@ -27,10 +27,12 @@ N = 2·10⁶ (α = 1), beyond the cache.
 Inhomogeneous engine (``kinetic.dsmc.simulate_cooling_modes``, costantini2010): N = 3000
 real disks, Λ = 10 (3·10⁴ simulated), α = 0.8, nσ² = 0.005, drag ω0 = ζ(T0)/2, M x M
 cells of side about λ/2 (M = 22), Δτ = 0.05 mean free times, both collision rules, the
-gas first relaxed for 200 steps. Reported: whole steps (streaming with drag, counting
-sort, collisions, centre-of-mass removal) as particle steps and collisions per
-CPU-second, the collision stage alone (``inhomogeneous_kernels.collide_cells`` on the
-sorted particles) as collisions and candidates per CPU-second, and the acceptance
+gas first relaxed for 200 steps. Reported: whole steps (streaming with drag, the cells
+brought up to date, collisions, centre-of-mass removal) as particle steps and collisions
+per CPU-second, with the fraction of the particles that change cell a step and the
+steps that laid every particle out afresh, the collision stage alone
+(``inhomogeneous_kernels.collide_cells`` on the particles in their cells) as collisions
+and candidates per CPU-second, and the acceptance
 (collisions/candidates), and the observer (``inhomogeneous_kernels.observe``: the
 modes, T and momentum) as particles per CPU-second. Targets (SPARTA's serial numbers):
 2·10⁷ particle steps and 3·10⁶ collisions per CPU-second. At Δτ = 0.05 mean free times
@@ -330,6 +332,7 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
     gas.advance(200)  # compiles (a no-op once cached) and relaxes the gas
     tally = gas.tally
     step_rates, collision_rates, stage_rates, stage_candidates = [], [], [], []
+    timed = tally.copy()
     for _ in range(repeats):
         before = tally.copy()
         start = time.process_time()
@@ -338,14 +341,14 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
         done = tally - before
         step_rates.append(done[inhomogeneous_kernels.TALLY_PARTICLE_STEPS] / cpu)
         collision_rates.append(done[inhomogeneous_kernels.TALLY_COLLISIONS] / cpu)
-    # the collision stage alone, on a copy of the sorted particles of the last step; the
+    timed = tally - timed
+    # the collision stage alone, on a copy of the particles of the last step; the
     # velocities are restored every RESTORE_EVERY stages (without drag the repeated
     # stages cool the copy, which would lower the collisions per stage), the copy
     # included in the timed work
-    now = gas.parity
-    saved = gas.velocity[now].copy()
+    saved = gas.velocity.copy()
     velocity = saved.copy()
-    labels = gas.labels[now].copy()
+    labels = gas.labels.copy()
     carry = gas.carry.copy()
     moments = gas.cell_moments.copy()
     rng = gas.rng.copy()
@@ -384,7 +387,13 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
         start = time.process_time()
         for _ in range(steps):
             inhomogeneous_kernels.observe(
-                gas.position, gas.velocity, gas.parity, settings.wavenumber, gas.mode_terms, out
+                gas.position,
+                gas.velocity,
+                gas.start,
+                gas.count,
+                settings.wavenumber,
+                gas.mode_terms,
+                out,
             )
         observer_rates.append(steps * settings.n_simulated / (time.process_time() - start))
     total = tally[inhomogeneous_kernels.TALLY_COLLISIONS]
@@ -404,6 +413,13 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
         "collisions_per_cpu_second_whole_steps": float(np.median(collision_rates)),
         "collision_stage_collisions_per_cpu_second": stage_collisions,
         "collision_stage_candidates_per_cpu_second": float(np.median(stage_candidates)),
+        "changed_cell_per_particle_step": float(
+            timed[inhomogeneous_kernels.TALLY_MOVED]
+            / timed[inhomogeneous_kernels.TALLY_PARTICLE_STEPS]
+        ),
+        "layouts_per_step": float(
+            timed[inhomogeneous_kernels.TALLY_LAYOUTS] / timed[inhomogeneous_kernels.TALLY_STEPS]
+        ),
         "acceptance_ratio": float(total / candidates),
         "collision_stage_acceptance_ratio": float(
             stage_tally[inhomogeneous_kernels.TALLY_COLLISIONS]

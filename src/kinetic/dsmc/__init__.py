@@ -135,10 +135,9 @@ def warmup() -> None:
     gas = new_cooling_gas(settings, realization_streams(0, 0, 1)[0])
     gas.advance(1)
     gas.observables()
-    now = gas.parity
     inhomogeneous_kernels.collide_cells(
-        gas.velocity[now],
-        gas.labels[now],
+        gas.velocity,
+        gas.labels,
         gas.cells(),
         gas.rng,
         settings.step(),

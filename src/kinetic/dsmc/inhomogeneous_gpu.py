@@ -2,8 +2,8 @@
 ``simulate_cooling_modes(backend="cuda")``.
 
 All realizations of a call advance together on one GPU: realization r is row r of
-``(R, 2, N_sim)`` arrays (each row the CPU engine's struct of arrays, double-buffered by
-swapping two device arrays) and of ``(R, M², ·)`` per-cell arrays; every kernel covers
+``(R, 2, N_sim)`` arrays (each row a struct of arrays, double-buffered by swapping two
+device arrays) and of ``(R, M², ·)`` per-cell arrays; every kernel covers
 all realizations. The realizations may belong to several runs that share N, density, Λ,
 cells, time step and rule (``inhomogeneous.SHARED_SETTINGS``; ``run_points``, behind
 ``simulate_cooling_modes_points``: the runs of several α): what depends on α (the drag's
@@ -28,14 +28,14 @@ it, ``TOGETHER``) or by one launch per phase (the realization is the grid's y in
    in place; each particle adds one to its cell's count (an integer atomic).
 3. ``_scan`` (one block per realization): the exclusive prefix sum of the counts over
    the cells in index order (``kinetic.gpu.block_exclusive_scan``, exact in integers):
-   ``cell_start``, the cells' ranges as on the CPU.
+   ``cell_start``, the cells' ranges.
 4. ``_scatter`` (threads over particles): each particle takes a slot of its cell's range
    by an integer atomic on the cell's fill pointer and writes its index there
    (``order``). The slots a cell's particles get depend on the order in which the
    atomics land, which the GPU does not fix.
 5. ``_collide`` (a group of ``CELL_THREADS`` threads per cell: a warp on a GPU): the
    group ranks its cell's slice of ``order`` by particle index (each index compared with
-   every other: the slice's sorted order is then exactly the CPU's stable counting sort,
+   every other: the slice's sorted order is then exactly a stable counting sort's,
    whatever order the atomics landed in), copies its particles into the other buffer in
    that order, folds the cell's moments (``kernels._accumulated``: Σw, Σ|w|², two largest
    |w|², a fixed tree over the group) and its first thread runs
@@ -65,7 +65,7 @@ on the other realizations of the batch (the number of blocks over particles depe
 N_sim only). Not bit-identical with the CPU engine, which draws every cell's collisions
 from one stream per realization: the two agree statistically
 (tests/gpu/test_dsmc_inhomogeneous_cuda.py). The initial states are the CPU engine's
-(``new_cooling_gas`` of each realization's stream row).
+(``initial_particles`` of each realization's stream row).
 """
 
 from __future__ import annotations
@@ -80,7 +80,7 @@ from kinetic import rng
 from kinetic.backends import simulated
 from kinetic.dsmc import inhomogeneous_kernels as kernels
 from kinetic.dsmc.gpu import THREADS, _block_sums, blocks_per_realization
-from kinetic.dsmc.inhomogeneous import CoolingModesSettings, new_cooling_gas
+from kinetic.dsmc.inhomogeneous import CoolingModesSettings, initial_particles
 from kinetic.fourier import mode_terms
 from kinetic.gpu import (
     BLOCK,
@@ -648,11 +648,8 @@ class _Batch:
         r = 0
         for own, streams in points:
             for stream in streams:
-                gas = new_cooling_gas(own, stream)  # the CPU engine's initial state
-                position[r] = gas.position[0]
-                velocity[r] = gas.velocity[0]
-                labels[r] = gas.labels[0]
-                keys[r] = gas.rng
+                # the CPU engine's initial state
+                position[r], velocity[r], labels[r], keys[r] = initial_particles(own, stream)
                 rows[r] = _row_parameters(own)
                 r += 1
         self.settings = settings

@@ -4,31 +4,42 @@ The gas is the stationary representation of the homogeneous cooling state
 (costantini2010): between collisions dr/dτ = w and dw/dτ = ω0 w (ω0 = ``drag_rate``).
 Units: m = σ = 1, initial temperature T0 = 1.
 
-Data layout (struct of arrays, double-buffered)
------------------------------------------------
-``position`` and ``velocity`` are C-contiguous float64 arrays of shape ``(2, 2, n)`` and
-``labels`` an int64 array of shape ``(2, 2, n)``: index 0 is the buffer, index 1 the
-component (x, y) or, for ``labels``, (identity of the particle, identity of its last
-collision partner, -1 before its first collision), index 2 the particle. The particles
-live in buffer ``tally[TALLY_PARITY]``; every step sorts them by cell into the other
-buffer (a counting sort) and flips the parity, so the particles of cell c are the
-contiguous range ``cell_start[c]..cell_start[c + 1] - 1`` during the collision stage.
-The identities follow the particles through the sort (they number the particles of
-the initial state, 0..n-1). Moving all six arrays every step is not what the step costs:
-a variant that left the particles in place and sorted only their indices (velocities
-and moments read through them) took 10.3-13.1 ns a particle-step against this layout's
-10.0-11.6, streaming and sort without the collisions, 3 x 10³ to 3 x 10⁵ particles
-(Intel Xeon, 2026-11-28).
+Data layout (struct of arrays, cells with room to spare)
+-------------------------------------------------------
+``position`` and ``velocity`` are C-contiguous float64 arrays of shape ``(2, S)`` and
+``labels`` an int64 array of shape ``(2, S)``: index 0 is the component (x, y) or, for
+``labels``, (identity of the particle, identity of its last collision partner, -1 before
+its first collision), index 1 the slot. Cell c owns the slots
+``start[c]..start[c + 1] - 1`` and its particles fill the first ``count[c]`` of them
+(S = N_sim + M² x slack: every layout gives each cell ``slack`` free slots beyond its
+particles). A step moves only the particles that leave their cell: 3-12 % of them
+at the documents' time steps and cells of 1-0.25 mean free paths, where a counting sort
+of all of them into a second buffer (until revision 654b818) moved six arrays for every
+particle. At 3 x 10⁴ particles (AMD EPYC, 2026-11-29, the old and new engines in one
+process) a step took 1.3-1.6 times less time with cells of 0.5 mean free paths at the
+paper's Δτ = 0.025 mean free times, 1.5-2.0 times less at 1, 1.1-1.2 at 0.25, and
+0.9 times as much at 0.125 and 0.1 (where it sorts). The identities follow the particles (they
+number the particles of the initial state, 0..n-1); the order inside a cell is
+whatever the moves left, which the collisions (pairs drawn at random in the cell) do not
+see.
 
 One step (``advance``)
 ----------------------
 1. free streaming with drag, exact: r += w (e^{ω0 Δτ} - 1)/ω0 (w Δτ at ω0 = 0),
    w *= e^{ω0 Δτ}, periodic wrap into [0, L);
-2. counting sort into the M x M cells (cell (ix, iy) = iy M + ix, ix = floor(x M/L)),
-   accumulating each cell's Σw, Σ|w|² and its two largest speeds |w| on the way: the
-   cell's temperature and its rigorous relative-speed bound B = top1 + top2 (speeds
-   about the origin, the gas being at rest; raised after any collision that creates
-   a faster particle, so an acceptance probability never exceeds 1);
+2. the cells brought up to date (cell (ix, iy) = iy M + ix, ix = floor(x M/L)), with
+   each cell's Σw, Σ|w|² and its two largest speeds |w| on the way: the cell's
+   temperature and its rigorous relative-speed bound B = top1 + top2 (speeds about the
+   origin, the gas being at rest; raised after any collision that creates a faster
+   particle, so an acceptance probability never exceeds 1). Cell by cell, a particle
+   that stays is written back in its slot; one that leaves goes to the ``moving``
+   buffer, and the cell's last particle fills its slot. The movers then join the end of
+   their new cells. Where a cell has no free slot left, every particle is laid out
+   afresh (``_lay_out``: a counting sort, each cell ``slack`` free slots again). A step
+   after one in which more than ``RESORT_FRACTION`` of the particles changed cell sorts
+   them all instead (``_sort_packed``: the cells packed without room, at one end of the
+   slots and at the other in turn; the small cells of the convergence study, where
+   moving that many one by one costs more than the sort);
 3. collisions in every cell holding at least 2 particles (cells with fewer do nothing
    and leave their carried fraction as it is), with the real density of the cell
    n_c = count/(Λ A_c), A_c = (L/M)²:
@@ -101,12 +112,15 @@ from kinetic.rng import xoshiro_uniform as _uniform
 
 __all__ = [
     "CROSS_SECTION",
+    "RESORT_FRACTION",
     "RULE_MAJORANT",
     "RULE_PAPER",
     "TALLY_CANDIDATES",
     "TALLY_COLLISIONS",
     "TALLY_EXCEEDED",
-    "TALLY_PARITY",
+    "TALLY_LAST_MOVED",
+    "TALLY_LAYOUTS",
+    "TALLY_MOVED",
     "TALLY_PARTICLE_STEPS",
     "TALLY_REPEATED",
     "TALLY_SIZE",
@@ -117,6 +131,7 @@ __all__ = [
     "advance",
     "collide_cells",
     "initial_state",
+    "lay_out_initial",
     "observe",
     "run_samples",
 ]
@@ -132,9 +147,21 @@ TALLY_COLLISIONS = 1
 TALLY_REPEATED = 2
 TALLY_PARTICLE_STEPS = 3
 TALLY_STEPS = 4
-TALLY_PARITY = 5
+TALLY_LAST_MOVED = 5
+"""Not a sum: the particles that changed cell in the last step (it chooses the route of
+the next one, ``RESORT_FRACTION``)."""
 TALLY_EXCEEDED = 6
-TALLY_SIZE = 7
+TALLY_MOVED = 7
+TALLY_LAYOUTS = 8
+"""Steps that laid every particle out afresh (the sorting route, or a cell without room)."""
+TALLY_SIZE = 9
+
+RESORT_FRACTION = 0.15
+"""A step sorts every particle (``_lay_out``) when more than this fraction changed cell in
+the step before; fewer are moved one by one. Measured at 3 x 10⁴ particles (AMD EPYC,
+2026-11-29), against the sort of every step: 12 % of the particles changing cell (cells of
+0.25 mean free paths) still ran faster one by one (22 against 26 ns a particle-step), 21 %
+(0.125) twice as slow (46-61 against 32)."""
 
 MAX_ATTEMPTS = 1_000_000
 """Rule "paper": draws of a pair before a cell gives up a collision. Only a cell whose
@@ -151,20 +178,21 @@ def initial_state(position, velocity, labels, state, box_side):
     """Uniform positions in [0, L)², Gaussian velocities with zero total momentum and
     Σ|w|² = 2 n exactly (T0 = 1), identities 0..n-1, no previous partner.
 
-    position, velocity: (2, 2, n) float64, labels: (2, 2, n) int64, filled in buffer 0.
+    position, velocity: (2, n) float64, labels: (2, n) int64, filled (particle i in
+    column i: ``lay_out_initial`` puts them in their cells).
     state: (4,) uint64 stream, advanced (positions first, then velocities).
     """
-    n = position.shape[2]
+    n = position.shape[1]
     s0, s1, s2, s3 = load_state(state)
     for i in range(n):
         u, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
         v, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
-        position[0, 0, i] = u * box_side
-        position[0, 1, i] = v * box_side
-        labels[0, 0, i] = i
-        labels[0, 1, i] = -1
+        position[0, i] = u * box_side
+        position[1, i] = v * box_side
+        labels[0, i] = i
+        labels[1, i] = -1
     store_state(state, s0, s1, s2, s3)
-    maxwellian(velocity[0], state, 1.0)
+    maxwellian(velocity, state, 1.0)
 
 
 class Step(NamedTuple):
@@ -185,28 +213,36 @@ class Step(NamedTuple):
 
 
 class Cells(NamedTuple):
-    """Per-cell arrays: work arrays ``cell_of`` (n,) int64, ``cell_start`` (M² + 1,) int64
-    (left holding the cell ranges of the last sort), ``cell_fill`` (M²,) int64;
-    ``carry`` (M²,) float64, the carried fraction of each cell (a candidate for
-    RULE_MAJORANT, a collision for RULE_PAPER); ``moments`` (M², 5) float64, each cell's
-    Σw_x, Σw_y, Σ|w|² and two largest |w|² after the sort (its temperature and
-    relative-speed bound; zeros for a new state, then kept between calls: it holds the
-    momentum to remove); ``terms`` (4, n) float64, the observer's work array (the mode
-    terms of ``observe``)."""
+    """Per-cell arrays and the buffer of the particles that change cell. ``start`` (M² +
+    1,) int64: cell c owns the slots start[c]..start[c + 1] - 1 (start[M²] = S);
+    ``count`` (M²,) int64: its particles, in the first count[c] of them; ``carry`` (M²,)
+    float64, the carried fraction of each cell (a candidate for RULE_MAJORANT, a
+    collision for RULE_PAPER); ``moments`` (M², 5) float64, each cell's Σw_x, Σw_y,
+    Σ|w|² and two largest |w|² after the streaming (its temperature and relative-speed
+    bound; zeros for a new state, then kept between calls: it holds the momentum to
+    remove); ``terms`` (4, n) float64, the observer's work array (the mode terms of
+    ``observe``); ``moving_position``, ``moving_velocity`` (2, n) float64,
+    ``moving_labels`` (2, n) int64 and ``moving_cell`` (n,) int64, the particles on their
+    way to another cell (n = N_sim: its length is the number of particles); ``fill``
+    (M²,) int64, the work array of a sort."""
 
-    cell_of: np.ndarray
-    cell_start: np.ndarray
-    cell_fill: np.ndarray
+    start: np.ndarray
+    count: np.ndarray
     carry: np.ndarray
     moments: np.ndarray
     terms: np.ndarray
+    moving_position: np.ndarray
+    moving_velocity: np.ndarray
+    moving_labels: np.ndarray
+    moving_cell: np.ndarray
+    fill: np.ndarray
 
 
 class Gas(NamedTuple):
-    """One realization: ``position``, ``velocity`` (2, 2, n) float64 and ``labels`` (2, 2,
-    n) int64 (layout above; the current buffer is ``tally[TALLY_PARITY]``), ``state``
-    (4,) uint64 stream, ``tally`` (TALLY_SIZE,) int64 += candidates, collisions,
-    repeated collisions, particle steps, steps (and the parity, flipped each step),
+    """One realization: ``position``, ``velocity`` (2, S) float64 and ``labels`` (2, S)
+    int64 by slot (layout above), ``state`` (4,) uint64 stream, ``tally`` (TALLY_SIZE,)
+    int64 += candidates, collisions, repeated collisions, particle steps, steps,
+    particles that changed cell and whole layouts (and the last step's movers),
     ``energy`` (1,) float64 += energy lost in collisions (sum over simulated particles,
     m = 1)."""
 
@@ -277,15 +313,15 @@ def _accumulated(m0, m1, m2, m3, m4, wx, wy):
 
 
 @inline
-def _cell_moments(velocity, cell_start, moments):
-    """Fill ``moments`` (M², 5) from particles sorted by cell (as the sort does)."""
+def _cell_moments(velocity, start, count, moments):
+    """Fill ``moments`` (M², 5) from the particles of each cell's slots."""
     for c in range(moments.shape[0]):
         m0 = 0.0
         m1 = 0.0
         m2 = 0.0
         m3 = 0.0
         m4 = 0.0
-        for i in range(cell_start[c], cell_start[c + 1]):
+        for i in range(start[c], start[c] + count[c]):
             m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, velocity[0, i], velocity[1, i])
         moments[c, 0] = m0
         moments[c, 1] = m1
@@ -427,11 +463,10 @@ def _collide_cell(
 
 @inline
 def _collide_cells(velocity, labels, cells, step, tally, energy, s0, s1, s2, s3):
-    """Collision stage of every cell (particles sorted by cell, ``moments`` filled by
-    ``_cell_moments`` or the sort), the cells in order with one stream. Returns the
-    stream."""
-    cell_start = cells.cell_start
-    n_cells = cell_start.shape[0] - 1
+    """Collision stage of every cell (``moments`` filled by the streaming or by
+    ``_cell_moments``), the cells in order with one stream. Returns the stream."""
+    start = cells.start
+    count = cells.count
     half = 0.5 * (1.0 + step.restitution)
     loss = 0.25 * (1.0 - step.restitution * step.restitution)
     ident = labels[0]
@@ -441,13 +476,13 @@ def _collide_cells(velocity, labels, cells, step, tally, energy, s0, s1, s2, s3)
     repeated = 0
     exceeded = 0
     lost = 0.0
-    for c in range(n_cells):
+    for c in range(count.shape[0]):
         candidates, collisions, repeated, exceeded, lost, s0, s1, s2, s3 = _collide_cell(
             velocity,
             ident,
             partner,
-            cell_start[c],
-            cell_start[c + 1],
+            start[c],
+            start[c] + count[c],
             cells.moments,
             c,
             cells.carry,
@@ -476,53 +511,320 @@ def _collide_cells(velocity, labels, cells, step, tally, energy, s0, s1, s2, s3)
 
 @kernel
 def collide_cells(velocity, labels, cells, state, step, tally, energy):
-    """The collision stage of one step alone (step 3), for particles already sorted.
+    """The collision stage of one step alone (step 3), for particles in their cells.
 
-    velocity: (2, n) float64 and labels: (2, n) int64 of one buffer (particles of cell
-    c at cells.cell_start[c]..cell_start[c + 1] - 1). ``cells.moments`` is filled here
-    from the velocities. state: (4,) uint64 stream. Other arguments as in ``advance``.
+    velocity: (2, S) float64 and labels: (2, S) int64 by slot (cell c's particles in
+    slots cells.start[c]..cells.start[c] + cells.count[c] - 1). ``cells.moments`` is
+    filled here from the velocities. state: (4,) uint64 stream. Other arguments as in
+    ``advance``.
     """
-    _cell_moments(velocity, cells.cell_start, cells.moments)
+    _cell_moments(velocity, cells.start, cells.count, cells.moments)
     s0, s1, s2, s3 = _collide_cells(
         velocity, labels, cells, step, tally, energy, state[0], state[1], state[2], state[3]
     )
     store_state(state, s0, s1, s2, s3)
 
 
+@inline
+def _copy_slot(position, velocity, labels, source, target):
+    """The particle of slot ``source`` into slot ``target`` (all three arrays)."""
+    position[0, target] = position[0, source]
+    position[1, target] = position[1, source]
+    velocity[0, target] = velocity[0, source]
+    velocity[1, target] = velocity[1, source]
+    labels[0, target] = labels[0, source]
+    labels[1, target] = labels[1, source]
+
+
+@inline
+def _to_buffer(cells, k, x, y, wx, wy, ident, partner, d):
+    """Row k of the moving buffer: a particle at (x, y), velocity (wx, wy), labels
+    (ident, partner), bound for cell d."""
+    cells.moving_position[0, k] = x
+    cells.moving_position[1, k] = y
+    cells.moving_velocity[0, k] = wx
+    cells.moving_velocity[1, k] = wy
+    cells.moving_labels[0, k] = ident
+    cells.moving_labels[1, k] = partner
+    cells.moving_cell[k] = d
+
+
+@inline
+def _from_buffer(cells, k, position, velocity, labels, p):
+    """Row k of the moving buffer into slot p."""
+    position[0, p] = cells.moving_position[0, k]
+    position[1, p] = cells.moving_position[1, k]
+    velocity[0, p] = cells.moving_velocity[0, k]
+    velocity[1, p] = cells.moving_velocity[1, k]
+    labels[0, p] = cells.moving_labels[0, k]
+    labels[1, p] = cells.moving_labels[1, k]
+
+
+@inline
+def _lay_out(position, velocity, labels, cells, moving, slack):
+    """Every particle laid out afresh: the first ``moving`` rows of the moving buffer
+    (bound for ``moving_cell``) and the particles still in the cells (gathered into the
+    buffer behind them), counting-sorted back into ranges of count + ``slack`` slots
+    (the room every cell gets: (S - n)/M² at most); the moments recomputed on the way."""
+    start = cells.start
+    count = cells.count
+    moments = cells.moments
+    bound = cells.moving_cell
+    n_cells = count.shape[0]
+    k = moving
+    for c in range(n_cells):
+        for p in range(start[c], start[c] + count[c]):
+            _to_buffer(
+                cells,
+                k,
+                position[0, p],
+                position[1, p],
+                velocity[0, p],
+                velocity[1, p],
+                labels[0, p],
+                labels[1, p],
+                c,
+            )
+            k += 1
+        count[c] = 0
+    for i in range(k):
+        count[bound[i]] += 1
+    first = 0
+    for c in range(n_cells):
+        start[c] = first
+        first += count[c] + slack
+        count[c] = 0
+        for m in range(5):
+            moments[c, m] = 0.0
+    start[n_cells] = first
+    for i in range(k):
+        c = bound[i]
+        p = start[c] + count[c]
+        count[c] += 1
+        _from_buffer(cells, i, position, velocity, labels, p)
+        _accumulate(moments, c, velocity[0, p], velocity[1, p])
+
+
+@inline
+def _room(gas, cells):
+    """The free slots of every cell when the particles spread over all S slots."""
+    return (gas.position.shape[1] - cells.moving_cell.shape[0]) // cells.count.shape[0]
+
+
+@kernel
+def lay_out_initial(gas, cells, step):
+    """The particles of ``initial_state`` (in the moving buffer, particle i in row i)
+    into their cells; the moments zeroed (no momentum to remove before the first step)."""
+    n = cells.moving_cell.shape[0]
+    m = step.cells_per_side
+    inverse_cell = m / step.box_side
+    for i in range(n):
+        ix = min(int(cells.moving_position[0, i] * inverse_cell), m - 1)
+        iy = min(int(cells.moving_position[1, i] * inverse_cell), m - 1)
+        cells.moving_cell[i] = iy * m + ix
+    cells.count[:] = 0
+    cells.start[:] = 0
+    _lay_out(gas.position, gas.velocity, gas.labels, cells, n, _room(gas, cells))
+    cells.moments[:] = 0.0
+
+
+@inline
+def _stream_in_place(gas, cells, u0, u1, growth, shift, box_side, inverse_cell, m):
+    """Steps 1-2 for the particles that stay: streamed and written back in their slots,
+    the cells' moments summed; those that leave go to the moving buffer (the cell's last
+    particle fills the slot). Returns how many left."""
+    position = gas.position
+    velocity = gas.velocity
+    labels = gas.labels
+    start = cells.start
+    count = cells.count
+    moments = cells.moments
+    moving = 0
+    for c in range(count.shape[0]):
+        last = start[c] + count[c]
+        m0 = 0.0
+        m1 = 0.0
+        m2 = 0.0
+        m3 = 0.0
+        m4 = 0.0
+        p = start[c]
+        while p < last:
+            wx = velocity[0, p] - u0
+            wy = velocity[1, p] - u1
+            x, y, d = _streamed(
+                position[0, p], position[1, p], wx, wy, shift, box_side, inverse_cell, m
+            )
+            wx *= growth
+            wy *= growth
+            if d == c:
+                position[0, p] = x
+                position[1, p] = y
+                velocity[0, p] = wx
+                velocity[1, p] = wy
+                m0, m1, m2, m3, m4 = _accumulated(m0, m1, m2, m3, m4, wx, wy)
+                p += 1
+            else:
+                _to_buffer(cells, moving, x, y, wx, wy, labels[0, p], labels[1, p], d)
+                moving += 1
+                last -= 1
+                if p < last:  # the last particle, not streamed yet, takes the slot
+                    _copy_slot(position, velocity, labels, last, p)
+        count[c] = last - start[c]
+        moments[c, 0] = m0
+        moments[c, 1] = m1
+        moments[c, 2] = m2
+        moments[c, 3] = m3
+        moments[c, 4] = m4
+    return moving
+
+
+@inline
+def _join_cells(gas, cells, moving):
+    """The first ``moving`` rows of the moving buffer onto the ends of their cells, their
+    moments added. Those whose cell has no free slot left stay in the buffer, moved to
+    its front; returns how many."""
+    position = gas.position
+    velocity = gas.velocity
+    labels = gas.labels
+    start = cells.start
+    count = cells.count
+    bound = cells.moving_cell
+    left = 0
+    for k in range(moving):
+        d = bound[k]
+        p = start[d] + count[d]
+        if p < start[d + 1]:
+            count[d] += 1
+            _from_buffer(cells, k, position, velocity, labels, p)
+            _accumulate(cells.moments, d, velocity[0, p], velocity[1, p])
+        else:
+            if left < k:
+                _to_buffer(
+                    cells,
+                    left,
+                    cells.moving_position[0, k],
+                    cells.moving_position[1, k],
+                    cells.moving_velocity[0, k],
+                    cells.moving_velocity[1, k],
+                    cells.moving_labels[0, k],
+                    cells.moving_labels[1, k],
+                    d,
+                )
+            left += 1
+    return left
+
+
+@inline
+def _stream_all(gas, cells, u0, u1, growth, shift, box_side, inverse_cell, m):
+    """Step 1 for every particle, each into row i of the moving buffer (the cells left
+    empty for ``_lay_out``); returns how many changed cell."""
+    position = gas.position
+    velocity = gas.velocity
+    labels = gas.labels
+    start = cells.start
+    count = cells.count
+    k = 0
+    moved = 0
+    for c in range(count.shape[0]):
+        for p in range(start[c], start[c] + count[c]):
+            wx = velocity[0, p] - u0
+            wy = velocity[1, p] - u1
+            x, y, d = _streamed(
+                position[0, p], position[1, p], wx, wy, shift, box_side, inverse_cell, m
+            )
+            _to_buffer(cells, k, x, y, wx * growth, wy * growth, labels[0, p], labels[1, p], d)
+            moved += d != c
+            k += 1
+        count[c] = 0
+    return moved
+
+
+@inline
+def _sort_packed(gas, cells, u0, u1, growth, shift, box_side, inverse_cell, m, base):
+    """Steps 1-2 for every particle as a counting sort, from a layout without room (the
+    last step's sort: slots start[0]..start[0] + n - 1) to slots base..base + n - 1
+    (which must not overlap them: S >= 2n leaves room at one end or the other, so sorts
+    alternate between the two ends): the positions streamed in place, then every
+    particle copied to its cell's next slot, the drag applied to its velocity and the
+    moments summed on the way (the old sort's two passes: a pass more, or the velocities
+    written twice, made a step 10 % slower). Returns how many changed cell (the cell
+    before the flight recomputed from the position: the slot's cell would take a search
+    of the ranges)."""
+    position = gas.position
+    velocity = gas.velocity
+    labels = gas.labels
+    start = cells.start
+    moments = cells.moments
+    bound = cells.moving_cell
+    fill = cells.fill
+    n_cells = fill.shape[0]
+    first = start[0]
+    n = bound.shape[0]
+    for c in range(n_cells):
+        fill[c] = 0
+    moved = 0
+    for k in range(n):
+        p = first + k
+        x = position[0, p]
+        y = position[1, p]
+        c = min(int(y * inverse_cell), m - 1) * m + min(int(x * inverse_cell), m - 1)
+        x, y, d = _streamed(
+            x, y, velocity[0, p] - u0, velocity[1, p] - u1, shift, box_side, inverse_cell, m
+        )
+        position[0, p] = x
+        position[1, p] = y
+        bound[k] = d
+        fill[d] += 1
+        moved += d != c
+    target = base
+    for c in range(n_cells):
+        size = fill[c]
+        fill[c] = target
+        target += size
+        for j in range(5):
+            moments[c, j] = 0.0
+    for k in range(n):
+        d = bound[k]
+        q = fill[d]
+        fill[d] = q + 1
+        p = first + k
+        wx = (velocity[0, p] - u0) * growth
+        wy = (velocity[1, p] - u1) * growth
+        position[0, q] = position[0, p]
+        position[1, q] = position[1, p]
+        velocity[0, q] = wx
+        velocity[1, q] = wy
+        labels[0, q] = labels[0, p]
+        labels[1, q] = labels[1, p]
+        _accumulate(moments, d, wx, wy)
+    target = base
+    for c in range(n_cells):  # fill[c] is where cell c now ends
+        start[c] = target
+        cells.count[c] = fill[c] - target
+        target = fill[c]
+    start[n_cells] = target
+    return moved
+
+
 @refcount_free
 def advance(gas, cells, step, n_steps):
     """``n_steps`` steps of the inhomogeneous DSMC (see the module docstring) of ``gas``
     (a :class:`Gas`, updated) with the :class:`Step` settings ``step``; ``cells``: the
-    :class:`Cells` arrays (zeros for a new state, then kept between calls)."""
-    position = gas.position
-    velocity = gas.velocity
-    labels = gas.labels
-    state = gas.state
+    :class:`Cells` arrays (laid out by ``lay_out_initial`` for a new state, then kept
+    between calls)."""
     tally = gas.tally
-    energy = gas.energy
-    cell_of = cells.cell_of
-    cell_start = cells.cell_start
-    cell_fill = cells.cell_fill
     moments = cells.moments
-    box_side = step.box_side
-    cells_per_side = step.cells_per_side
-    time_step = step.time_step
-    drag_rate = step.drag_rate
-    n = position.shape[2]
-    m = cells_per_side
+    n = cells.moving_cell.shape[0]
+    slots = gas.position.shape[1]
+    m = step.cells_per_side
     n_cells = m * m
+    box_side = step.box_side
     inverse_cell = m / box_side
-    growth = np.exp(drag_rate * time_step)
-    shift = time_step if drag_rate == 0.0 else np.expm1(drag_rate * time_step) / drag_rate
-    s0, s1, s2, s3 = load_state(state)
+    rate = step.drag_rate
+    growth = np.exp(rate * step.time_step)
+    shift = step.time_step if rate == 0.0 else np.expm1(rate * step.time_step) / rate
+    s0, s1, s2, s3 = load_state(gas.state)
     for _ in range(n_steps):
-        now = tally[TALLY_PARITY]
-        r_src = position[now]
-        w_src = velocity[now]
-        l_src = labels[now]
-        r_dst = position[1 - now]
-        w_dst = velocity[1 - now]
-        l_dst = labels[1 - now]
         # 4 of the previous step: its centre-of-mass velocity, from its cell sums
         # (before its collisions, which conserve momentum: what is left over is their
         # round-off, removed one step later)
@@ -533,50 +835,35 @@ def advance(gas, cells, step, n_steps):
             u1 += moments[c, 1]
         u0 /= n
         u1 /= n
-        # 1: stream the positions (in place) and count the particles of each cell
-        for c in range(n_cells + 1):
-            cell_start[c] = 0
-        for i in range(n):
-            x, y, c = _streamed(
-                r_src[0, i],
-                r_src[1, i],
-                w_src[0, i] - u0,
-                w_src[1, i] - u1,
-                shift,
-                box_side,
-                inverse_cell,
-                m,
-            )
-            r_src[0, i] = x
-            r_src[1, i] = y
-            cell_of[i] = c
-            cell_start[c + 1] += 1
-        for c in range(n_cells):
-            cell_start[c + 1] += cell_start[c]
-            cell_fill[c] = cell_start[c]
-            for k in range(5):
-                moments[c, k] = 0.0
-        # 2: counting sort into the other buffer, with the drag on the velocities and
-        # the cells' velocity moments
-        for i in range(n):
-            c = cell_of[i]
-            p = cell_fill[c]
-            cell_fill[c] = p + 1
-            wx = (w_src[0, i] - u0) * growth
-            wy = (w_src[1, i] - u1) * growth
-            r_dst[0, p] = r_src[0, i]
-            r_dst[1, p] = r_src[1, i]
-            w_dst[0, p] = wx
-            w_dst[1, p] = wy
-            l_dst[0, p] = l_src[0, i]
-            l_dst[1, p] = l_src[1, i]
-            _accumulate(moments, c, wx, wy)
+        # 1-2: streaming, the cells brought up to date
+        if tally[TALLY_LAST_MOVED] > RESORT_FRACTION * n:
+            if cells.start[0] >= n:
+                moved = _sort_packed(
+                    gas, cells, u0, u1, growth, shift, box_side, inverse_cell, m, 0
+                )
+            elif cells.start[n_cells] <= slots - n:
+                moved = _sort_packed(
+                    gas, cells, u0, u1, growth, shift, box_side, inverse_cell, m, slots - n
+                )
+            else:  # the particles spread over every slot (room in each cell): via the buffer
+                moved = _stream_all(gas, cells, u0, u1, growth, shift, box_side, inverse_cell, m)
+                _lay_out(gas.position, gas.velocity, gas.labels, cells, n, 0)
+            tally[TALLY_LAYOUTS] += 1
+        else:
+            moved = _stream_in_place(gas, cells, u0, u1, growth, shift, box_side, inverse_cell, m)
+            left = _join_cells(gas, cells, moved)
+            if left > 0:
+                _lay_out(gas.position, gas.velocity, gas.labels, cells, left, _room(gas, cells))
+                tally[TALLY_LAYOUTS] += 1
+        tally[TALLY_LAST_MOVED] = moved
+        tally[TALLY_MOVED] += moved
         # 3: collisions
-        s0, s1, s2, s3 = _collide_cells(w_dst, l_dst, cells, step, tally, energy, s0, s1, s2, s3)
-        tally[TALLY_PARITY] = 1 - now
+        s0, s1, s2, s3 = _collide_cells(
+            gas.velocity, gas.labels, cells, step, tally, gas.energy, s0, s1, s2, s3
+        )
         tally[TALLY_STEPS] += 1
         tally[TALLY_PARTICLE_STEPS] += n
-    store_state(state, s0, s1, s2, s3)
+    store_state(gas.state, s0, s1, s2, s3)
 
 
 @inline
@@ -584,23 +871,40 @@ def _streamed(x, y, wx, wy, shift, box_side, inverse_cell, m):
     """Free flight of a particle at (x, y) with velocity (wx, wy) (the centre-of-mass
     velocity already removed) over a step (``shift`` = (e^{ω0 Δτ} - 1)/ω0), wrapped into
     [0, L)²; returns ``(x, y, c)``, c = iy M + ix its cell (``inverse_cell`` = M/L)."""
-    x = x + wx * shift
-    y = y + wy * shift
-    if x >= box_side or x < 0.0:
-        x -= box_side * math.floor(x / box_side)
-        if x >= box_side:  # rounding of a tiny negative x + L
-            x = 0.0
-    if y >= box_side or y < 0.0:
-        y -= box_side * math.floor(y / box_side)
-        if y >= box_side:
-            y = 0.0
-    ix = int(x * inverse_cell)
-    iy = int(y * inverse_cell)
-    if ix >= m:
-        ix = m - 1
-    if iy >= m:
-        iy = m - 1
+    x = _wrapped(x + wx * shift, box_side)
+    y = _wrapped(y + wy * shift, box_side)
+    ix = min(int(x * inverse_cell), m - 1)
+    iy = min(int(y * inverse_cell), m - 1)
     return x, y, iy * m + ix
+
+
+@inline
+def _wrapped(x, box_side):
+    """x in [0, L): one period added or taken away (a flight is far shorter than the box),
+    the general reduction only behind that (a test LLVM would otherwise hoist: the
+    division it needs for every particle took half of the streaming's time)."""
+    if x >= box_side:
+        x -= box_side  # exact for x < 2L
+        if x >= box_side:
+            x = _reduced(x, box_side)
+    elif x < 0.0:
+        x += box_side
+        if x < 0.0:
+            x = _reduced(x, box_side)
+        elif x >= box_side:  # rounding of a tiny negative x + L
+            x = 0.0
+    return x
+
+
+@inline
+def _reduced(x, box_side):
+    """x - L floor(x/L), kept in [0, L) where the quotient rounds across an integer."""
+    x -= box_side * math.floor(x / box_side)
+    if x < 0.0:
+        x += box_side
+    if x >= box_side:
+        x = 0.0
+    return x
 
 
 @inline
@@ -623,33 +927,44 @@ def _observables(n, px, py, re_y, im_y, re_x, im_x, sum_xx, sum_yy, out):
 
 
 @kernel
-def observe(position, velocity, parity, wavenumber, terms, out):
-    """Observables of the current buffer ``parity`` into ``out`` (N_OBSERVABLES,).
+def observe(position, velocity, start, count, wavenumber, terms, out):
+    """Observables of the particles in the cells' slots into ``out`` (N_OBSERVABLES,).
 
     out = [T, Re Σ w_y e^{ik x}, Im Σ w_y e^{ik x}, Re Σ w_x e^{ik y}, Im Σ w_x e^{ik y},
     Σ w_y², Σ w_x², Σ w_x/(n √T), Σ w_y/(n √T)] with T = Σ|w - u|²/(2n) about the mean
-    velocity u (which the step has already removed, to round-off). ``terms`` (4, ≥ n)
-    float64 is a work array (``kinetic.fourier.mode_terms``).
+    velocity u (which the step has already removed, to round-off). ``start``, ``count``:
+    the cells' slots (``Cells``; one range [0, n) for particles side by side);
+    ``terms`` (4, ≥ n) float64 is a work array (``kinetic.fourier.mode_terms``), filled
+    cell after cell without the gaps between the cells. Its indices are unsigned: numba
+    then adds no check for negative ones, which would stop the loop's vectorization
+    (12.6 ns a particle; gathering the particles into one array first took 14, the
+    terms in the slots' own places 26, at 59 particles a cell).
     """
-    r = position[parity]
-    w = velocity[parity]
-    n = r.shape[1]
     px = 0.0
     py = 0.0
     sum_yy = 0.0
     sum_xx = 0.0
-    for i in range(n):
-        wx = w[0, i]
-        wy = w[1, i]
-        px += wx
-        py += wy
-        sum_xx += wx * wx
-        sum_yy += wy * wy
     turns = wavenumber / (2.0 * math.pi)  # k x in turns: x / L
-    for i in range(n):
-        terms[0, i], terms[1, i], terms[2, i], terms[3, i] = mode_terms(
-            turns * r[0, i], turns * r[1, i], w[0, i], w[1, i]
-        )
+    n = 0
+    for c in range(count.shape[0]):
+        first = start[c]
+        size = count[c]
+        for i in range(first, first + size):
+            wx = velocity[0, i]
+            wy = velocity[1, i]
+            px += wx
+            py += wy
+            sum_xx += wx * wx
+            sum_yy += wy * wy
+        to = np.uint64(n)
+        origin = np.uint64(first)
+        for k in range(np.uint64(size)):
+            i = origin + k
+            j = to + k
+            terms[0, j], terms[1, j], terms[2, j], terms[3, j] = mode_terms(
+                turns * position[0, i], turns * position[1, i], velocity[0, i], velocity[1, i]
+            )
+        n += size
     re_y, im_y, re_x, im_x = mode_sums(terms, n)
     _observables(n, px, py, re_y, im_y, re_x, im_x, sum_xx, sum_yy, out)
 
@@ -664,7 +979,7 @@ def run_samples(gas, cells, step, steps_first, stride, wavenumber, observables, 
     (``gas.energy[0]`` is reset at each sample; the caller resets it where the first
     interval starts). Other arguments as in ``advance``.
     """
-    n = gas.position.shape[2]
+    n = cells.moving_cell.shape[0]
     energy = gas.energy
     for s in range(observables.shape[0]):
         steps = steps_first if s == 0 else stride
@@ -672,7 +987,8 @@ def run_samples(gas, cells, step, steps_first, stride, wavenumber, observables, 
         observe(
             gas.position,
             gas.velocity,
-            gas.tally[TALLY_PARITY],
+            cells.start,
+            cells.count,
             wavenumber,
             cells.terms,
             observables[s],
