@@ -281,12 +281,12 @@ did 1.72 × 10⁹ (its cells' phase 1.54 of the step's 1.72 ms; on the H200 now 
 COOLING_DSMC_BYTES_PER_PARTICLE = 120.0
 """Positions, velocities, sort keys and scratch of one simulated particle (``cuda``)."""
 
-COOLING_DSMC_CPU_BYTES_PER_PARTICLE = 216.0
-"""The CPU engine's bound: 80 bytes a slot (positions, velocities, identities, mode terms)
-for at most 2 N_sim + 5 M² slots (``slack_per_cell``), and the 56-byte buffer of the
-particles that change cell."""
+COOLING_DSMC_CPU_BYTES_PER_PARTICLE = 184.0
+"""The CPU engine's bound: 48 bytes a slot (positions, velocities, identities) for at most
+2 N_sim + 5 M² slots (``slack_per_cell``), the 56-byte buffer of the particles that change
+cell and the observer's 32 bytes of mode terms."""
 
-COOLING_DSMC_CPU_BYTES_PER_CELL = 472.0
+COOLING_DSMC_CPU_BYTES_PER_CELL = 312.0
 """The same, a cell: its at most 5 free slots of the bound above and its ranges, carried
 fraction and moments."""
 
