@@ -121,6 +121,7 @@ def inverse_n_figure(table, fits, amplitudes, study, quantity, symbol):
     theory_color = METHOD_STYLE["theory"]["color"]
     fig, axes = plotting.figure(1, len(alphas), figsize=(2.4 * len(alphas), 2.6), squeeze=False)
     for ax, alpha in zip(axes[0], alphas, strict=True):
+        goodness = []  # each fit's χ², written in its panel (the legend is the figure's)
         for method in ("dsmc", "md"):
             rows = finite[(finite.method == method) & (finite.alpha == alpha)]
             if rows.empty:
@@ -141,9 +142,10 @@ def inverse_n_figure(table, fits, amplitudes, study, quantity, symbol):
             ]
             if not fit.empty:
                 fit = fit.iloc[0]
-                line = np.linspace(0.0, x.max() * 1.05, 50)
-                chi2 = "" if np.isnan(fit.chi2) else rf", $\chi^2$={fit.chi2:.2g}/{int(fit.dof)}"
-                ax.plot(line, fit.intercept + fit.slope * line, color=style["color"], lw=0.7)
+                line = np.linspace(0.0, x.max() * 1.05, 50)  # 10³/N
+                # the fit is a + b/N: b/N = b x/1000 on this axis
+                fitted = fit.intercept + fit.slope * line / 1000.0
+                ax.plot(line, fitted, color=style["color"], lw=0.7)
                 plotting.errorbar(
                     ax,
                     [0.0],
@@ -151,8 +153,13 @@ def inverse_n_figure(table, fits, amplitudes, study, quantity, symbol):
                     [fit.intercept_err],
                     marker=style["marker"],
                     color=style["color"],
-                    label=rf"$1/N\to 0${chi2}",
+                    mfc=style["color"],
+                    label=rf"{METHOD_LABELS[method]}, $1/N\to 0$",
                 )
+                if not np.isnan(fit.chi2):
+                    goodness.append(
+                        rf"{METHOD_LABELS[method]} $\chi^2$ = {fit.chi2:.2g}/{int(fit.dof)}"
+                    )
         if quantity == "nu_bar_star":  # the other amplitude: ν̄* from the measured C(0)
             for method in ("dsmc", "md"):
                 other = amplitudes[(amplitudes.method == method) & (amplitudes.alpha == alpha)]
@@ -177,6 +184,8 @@ def inverse_n_figure(table, fits, amplitudes, study, quantity, symbol):
         ax.set_title(rf"$\alpha = {alpha:g}$", fontsize=8)
         ax.set_xlabel(r"$10^3/N$")
         ax.set_xlim(left=-0.05)
+        if goodness:
+            ax.text(0.03, 0.03, "\n".join(goodness), transform=ax.transAxes, fontsize=6)
     axes[0][0].set_ylabel(symbol)
     plotting.figure_legend(fig)
     return fig

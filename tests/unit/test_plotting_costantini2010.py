@@ -1,0 +1,55 @@
+"""costantini2010's figures against 1/N (Figs 4 and 5): the 1/N fits drawn through the
+points they were fitted to. The axis is 10³/N and the fits are a + b/N, so a line drawn
+as a + b x would be a thousand times too steep (as Figs 4 and 5 were until this test)."""
+
+import numpy as np
+import pandas as pd
+
+from kinetic.plotting import costantini2010 as figures
+
+SIZES = (1000, 2000, 3000)
+FITS = {("dsmc", 0.8): (0.21, -30.0), ("md", 0.8): (0.20, 45.0)}  # a, b of a + b/N
+
+
+def _tables():
+    rows, fits = [], []
+    for (method, alpha), (a, b) in FITS.items():
+        for n in SIZES:
+            rows.append(
+                dict(
+                    method=method,
+                    alpha=alpha,
+                    fictive_factor=10 if method == "dsmc" else np.nan,
+                    n_particles=n,
+                    nu_star=a + b / n,
+                    nu_star_err=0.002,
+                )
+            )
+        fits.append(
+            dict(
+                method=method,
+                alpha=alpha,
+                quantity="nu_star",
+                intercept=a,
+                intercept_err=0.003,
+                slope=b,
+                slope_err=5.0,
+                chi2=0.0,
+                dof=1,
+            )
+        )
+    return pd.DataFrame(rows), pd.DataFrame(fits)
+
+
+def test_the_fit_lines_pass_through_the_points_they_fit():
+    table, fits = _tables()
+    study = {"dsmc": {"fictive_factor": 10}}
+    fig = figures.inverse_n_figure(table, fits, None, study, "nu_star", r"$\nu^*$")
+    (ax,) = fig.axes[:1]
+    lines = [line for line in ax.get_lines() if len(line.get_xdata()) == 50]
+    assert len(lines) == len(FITS)
+    for line, (a, b) in zip(lines, FITS.values(), strict=True):
+        x, y = (np.asarray(values, float) for values in line.get_data())
+        drawn = np.interp([1000.0 / n for n in SIZES], x, y)
+        np.testing.assert_allclose(drawn, [a + b / n for n in SIZES], rtol=0, atol=1e-9)
+        assert y[0] == a  # at 1/N = 0 the line starts from the intercept
