@@ -206,6 +206,7 @@ def transport_figure(table, study):
     grid = _alpha_grid(alphas)
     theory_color = METHOD_STYLE["theory"]["color"]
     fig, axes = plotting.figure(1, 2, figsize=(6.0, 2.6))
+    fig.subplots_adjust(wspace=0.3)  # the right panel's label clear of the left's ticks
     for ax, quantity, symbol, curve in (
         (axes[0], "nu_star", r"$\nu^*$", theory.nu_star),
         (axes[1], "nu_bar_star", r"$\bar\nu^*$", theory.nu_bar_star_white),
