@@ -332,7 +332,7 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
     gas.advance(200)  # compiles (a no-op once cached) and relaxes the gas
     tally = gas.tally
     step_rates, collision_rates, stage_rates, stage_candidates = [], [], [], []
-    timed = tally.copy()
+    before_repeats = tally.copy()
     for _ in range(repeats):
         before = tally.copy()
         start = time.process_time()
@@ -341,7 +341,7 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
         done = tally - before
         step_rates.append(done[inhomogeneous_kernels.TALLY_PARTICLE_STEPS] / cpu)
         collision_rates.append(done[inhomogeneous_kernels.TALLY_COLLISIONS] / cpu)
-    timed = tally - timed
+    timed = tally - before_repeats  # the repeats' steps
     # the collision stage alone, on a copy of the particles of the last step; the
     # velocities are restored every RESTORE_EVERY stages (without drag the repeated
     # stages cool the copy, which would lower the collisions per stage), the copy

@@ -18,8 +18,8 @@ of all of them into a second buffer (until revision 654b818) moved six arrays fo
 particle. At 3 x 10⁴ particles (AMD EPYC, 2026-11-29, the old and new engines in one
 process) a step took 1.3-1.6 times less time with cells of 0.5 mean free paths at the
 paper's Δτ = 0.025 mean free times, 1.5-2.0 times less at 1, 1.1-1.2 at 0.25, and
-0.9 times as much at 0.125 and 0.1 (where it sorts). The identities follow the particles (they
-number the particles of the initial state, 0..n-1); the order inside a cell is
+1.1 times more at 0.125 and 0.1 (where it sorts). The identities follow the particles
+(they number the particles of the initial state, 0..n-1); the order inside a cell is
 whatever the moves left, which the collisions (pairs drawn at random in the cell) do not
 see.
 
@@ -157,8 +157,8 @@ TALLY_LAYOUTS = 8
 TALLY_SIZE = 9
 
 RESORT_FRACTION = 0.15
-"""A step sorts every particle (``_lay_out``) when more than this fraction changed cell in
-the step before; fewer are moved one by one. Measured at 3 x 10⁴ particles (AMD EPYC,
+"""A step sorts every particle (``_sort_packed``) when more than this fraction changed cell
+in the step before; fewer are moved one by one. Measured at 3 x 10⁴ particles (AMD EPYC,
 2026-11-29), against the sort of every step: 12 % of the particles changing cell (cells of
 0.25 mean free paths) still ran faster one by one (22 against 26 ns a particle-step), 21 %
 (0.125) twice as slow (46-61 against 32)."""
@@ -619,9 +619,9 @@ def lay_out_initial(gas, cells, step):
     m = step.cells_per_side
     inverse_cell = m / step.box_side
     for i in range(n):
-        ix = min(int(cells.moving_position[0, i] * inverse_cell), m - 1)
-        iy = min(int(cells.moving_position[1, i] * inverse_cell), m - 1)
-        cells.moving_cell[i] = iy * m + ix
+        cells.moving_cell[i] = _cell_index(
+            cells.moving_position[0, i], cells.moving_position[1, i], inverse_cell, m
+        )
     cells.count[:] = 0
     cells.start[:] = 0
     _lay_out(gas.position, gas.velocity, gas.labels, cells, n, _room(gas, cells))
@@ -767,7 +767,7 @@ def _sort_packed(gas, cells, u0, u1, growth, shift, box_side, inverse_cell, m, b
         p = first + k
         x = position[0, p]
         y = position[1, p]
-        c = min(int(y * inverse_cell), m - 1) * m + min(int(x * inverse_cell), m - 1)
+        c = _cell_index(x, y, inverse_cell, m)
         x, y, d = _streamed(
             x, y, velocity[0, p] - u0, velocity[1, p] - u1, shift, box_side, inverse_cell, m
         )
@@ -873,9 +873,14 @@ def _streamed(x, y, wx, wy, shift, box_side, inverse_cell, m):
     [0, L)²; returns ``(x, y, c)``, c = iy M + ix its cell (``inverse_cell`` = M/L)."""
     x = _wrapped(x + wx * shift, box_side)
     y = _wrapped(y + wy * shift, box_side)
-    ix = min(int(x * inverse_cell), m - 1)
-    iy = min(int(y * inverse_cell), m - 1)
-    return x, y, iy * m + ix
+    return x, y, _cell_index(x, y, inverse_cell, m)
+
+
+@inline
+def _cell_index(x, y, inverse_cell, m):
+    """Cell iy M + ix of a point (x, y) in [0, L)² (``inverse_cell`` = M/L; a coordinate
+    that rounds up to M lands in the last cell)."""
+    return min(int(y * inverse_cell), m - 1) * m + min(int(x * inverse_cell), m - 1)
 
 
 @inline
