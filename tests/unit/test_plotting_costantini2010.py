@@ -1,6 +1,7 @@
 """costantini2010's figures against 1/N (Figs 4 and 5): the 1/N fits drawn through the
 points they were fitted to. The axis is 10³/N and the fits are a + b/N, so a line drawn
-as a + b x would be a thousand times too steep (as Figs 4 and 5 were until this test)."""
+as a + b x would be a thousand times too steep (as Figs 4 and 5 were until this test).
+And the run labels, from which Fig. 3's legend once listed the same DSMC run twice."""
 
 import numpy as np
 import pandas as pd
@@ -53,3 +54,25 @@ def test_the_fit_lines_pass_through_the_points_they_fit():
         drawn = np.interp([1000.0 / n for n in SIZES], x, y)
         np.testing.assert_allclose(drawn, [a + b / n for n in SIZES], rtol=0, atol=1e-9)
         assert y[0] == a  # at 1/N = 0 the line starts from the intercept
+
+
+def test_run_labels_give_the_real_particles_per_cell_only_when_asked():
+    """Fig. 3's panels differ only in the real particles per cell (whole cells per side:
+    1000/13² = 5.9, 2000/18² = 6.2): without it in the label the legend lists DSMC once."""
+    import xarray as xr
+
+    labels = {
+        figures.run_label(
+            xr.Dataset(
+                attrs=dict(engine="dsmc", cells_per_side=cells, fictive_factor=10, n_particles=n)
+            ),
+            per_cell=per_cell,
+        )
+        for n, cells in ((1000, 13), (2000, 18))
+        for per_cell in (True, False)
+    }
+    assert labels == {
+        r"DSMC, $\Lambda=10$, 5.9 real/cell",
+        r"DSMC, $\Lambda=10$, 6.2 real/cell",
+        r"DSMC, $\Lambda=10$",
+    }

@@ -2,7 +2,7 @@
 cell side, and MD), with the first-Sonine prediction (Eq. 9) for each N."""
 
 from kinetic import io, plotting
-from kinetic.plotting.costantini2010 import correlation_panel
+from kinetic.plotting.costantini2010 import correlation_panel, real_per_cell
 from kinetic.workflow_support import start
 
 log = start(snakemake)
@@ -11,9 +11,12 @@ results = [io.read_dataset(path) for path in snakemake.input.runs]
 sizes = sorted({int(result.attrs["n_particles"]) for result in results})
 fig, axes = plotting.figure(1, len(sizes), figsize=(2.6 * len(sizes), 2.6), sharey=True)
 for ax, n in zip(axes if len(sizes) > 1 else [axes], sizes, strict=True):
-    correlation_panel(
-        ax, [r for r in results if int(r.attrs["n_particles"]) == n], study["density"], log
-    )
-    ax.set_title(f"N = {n}", fontsize=8)
+    runs = [r for r in results if int(r.attrs["n_particles"]) == n]
+    correlation_panel(ax, runs, study["density"], log, per_cell=False)
+    # the cells are whole numbers per side, so the real particles per cell differ a little
+    # between the panels: their titles say it, the legend lists DSMC once
+    dsmc = [r for r in runs if r.attrs["engine"] != "md" and int(r.attrs["cells_per_side"]) > 1]
+    title = f"N = {n}" + (f", {real_per_cell(dsmc[0]):.2g} real/cell" if dsmc else "")
+    ax.set_title(title, fontsize=8)
 plotting.figure_legend(fig)
 plotting.save(fig, snakemake.output.pdf)

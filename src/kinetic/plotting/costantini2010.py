@@ -19,6 +19,7 @@ __all__ = [
     "fig07",
     "inverse_n_figure",
     "ratio_figure",
+    "real_per_cell",
     "run_label",
     "transport_figure",
     "transport_rows",
@@ -31,21 +32,30 @@ METHOD_LABELS = plotting.METHOD_LABELS | {"theory": "theory (first Sonine)"}
 """The project's legend text of each method; costantini2010's theory is first Sonine."""
 
 
-def run_label(result: xr.Dataset) -> str:
-    """Legend text of one run aggregate: method, Λ and real particles per cell."""
+def run_label(result: xr.Dataset, per_cell: bool = True) -> str:
+    """Legend text of one run aggregate: method, Λ and (``per_cell``) real particles per
+    cell."""
     if result.attrs["engine"] == "md":
         return "MD"
     cells = int(result.attrs["cells_per_side"])
     factor = int(result.attrs["fictive_factor"])
     if cells == 1:
         return rf"homogeneous DSMC, $\Lambda={factor}$"
-    per_cell = int(result.attrs["n_particles"]) / cells**2
-    return rf"DSMC, $\Lambda={factor}$, {per_cell:.2g} real/cell"
+    if not per_cell:
+        return rf"DSMC, $\Lambda={factor}$"
+    return rf"DSMC, $\Lambda={factor}$, {real_per_cell(result):.2g} real/cell"
 
 
-def correlation_panel(ax, results, density: float, log=None) -> None:
+def real_per_cell(result: xr.Dataset) -> float:
+    """Real particles per cell of an inhomogeneous DSMC run aggregate."""
+    return int(result.attrs["n_particles"]) / int(result.attrs["cells_per_side"]) ** 2
+
+
+def correlation_panel(ax, results, density: float, log=None, per_cell: bool = True) -> None:
     """C(τ) of several runs of one (N, α) on a log scale, each method in its style (DSMC
-    runs shaded by Λ), with the first-Sonine prediction A e^{-τ/τ_c} (Eq. 9)."""
+    runs shaded by Λ), with the first-Sonine prediction A e^{-τ/τ_c} (Eq. 9). The DSMC
+    labels give the real particles per cell unless ``per_cell`` is false (a figure whose
+    panels differ only in that number says it in their titles, and lists DSMC once)."""
     import numpy as np
 
     from kinetic.analysis.costantini2010 import method_of
@@ -71,7 +81,7 @@ def correlation_panel(ax, results, density: float, log=None) -> None:
             ms=3,
             elinewidth=0.6,
             color=color,
-            label=run_label(result),
+            label=run_label(result, per_cell),
         )
         if log is not None:
             log.info(
