@@ -158,6 +158,19 @@ def repository() -> Path:
 
 
 @pytest.fixture(scope="session")
+def annotate():
+    """``annotate(path)`` edits the docstring that opens the module at ``path`` and appends
+    a comment and a bare string: the same code, other text (what must rebuild nothing)."""
+
+    def edit(path: Path) -> None:
+        text = path.read_text()
+        assert text.startswith('"""'), path
+        path.write_text('"""Edited. ' + text[3:] + '\n# a comment\n"""A note."""\n')
+
+    return edit
+
+
+@pytest.fixture(scope="session")
 def once(tmp_path_factory):
     """``once(key, compute)`` is ``compute()``, computed by one pytest-xdist worker and read
     by the others. The workers share a module's tests, so a costly module fixture would

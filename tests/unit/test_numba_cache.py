@@ -43,14 +43,6 @@ caching._CacheLocator.ensure_cache_path = _refuse_in_tree
 """
 
 
-def _annotate(path):
-    """Edit the docstring that opens ``path`` and append a comment and a bare string: the
-    same code."""
-    text = path.read_text()
-    assert text.startswith('"""')
-    path.write_text('"""Edited. ' + text[3:] + '\n# a comment\n"""A note."""\n')
-
-
 def _run(package_root, cache, read_only):
     environment = {key: value for key, value in os.environ.items() if key != "NUMBA_CACHE_DIR"}
     environment |= {"PYTHONPATH": str(package_root), "NUMBA_DEBUG_CACHE": "1"}
@@ -73,7 +65,7 @@ def _run(package_root, cache, read_only):
 @pytest.mark.slow
 @pytest.mark.parametrize("read_only", [False, True], ids=["NUMBA_CACHE_DIR", "read-only tree"])
 def test_an_edited_helper_in_another_file_invalidates_the_cached_kernel(
-    repository, tmp_path, read_only
+    repository, tmp_path, read_only, annotate
 ):
     shutil.copytree(
         repository / "src" / "kinetic",
@@ -97,7 +89,7 @@ def test_an_edited_helper_in_another_file_invalidates_the_cached_kernel(
     assert loaded, "an edit the kernel does not depend on recompiled it"
     assert unrelated == drawn
 
-    _annotate(tmp_path / "kinetic" / "rng.py")
+    annotate(tmp_path / "kinetic" / "rng.py")
     annotated, loaded = _run(tmp_path, cache, read_only)
     assert loaded, "an edit of the helper's comments and docstrings recompiled the kernel"
     assert annotated == drawn
@@ -152,7 +144,7 @@ def _warm_processes(package_root, cache, count, *front):
 
 
 @pytest.mark.slow
-def test_parallel_jobs_compile_a_front_once_and_an_edit_warms_again(repository, tmp_path):
+def test_parallel_jobs_compile_a_front_once_and_an_edit_warms_again(repository, tmp_path, annotate):
     """kinetic.jit.warm: of jobs of one front starting together, one compiles that front's
     kernels (and no other's) into the cache while the others wait for it; a job of
     another front compiles the rest; with the cache filled for these sources, jobs do
@@ -179,7 +171,7 @@ def test_parallel_jobs_compile_a_front_once_and_an_edit_warms_again(repository, 
         (again,) = _warm_processes(tmp_path, cache, 1, *front)
         assert "warm 0.0 skipped" in again and "data" not in again  # the marker: nothing to do
 
-    _annotate(tmp_path / "kinetic" / "rng.py")  # the same code: still nothing to do
+    annotate(tmp_path / "kinetic" / "rng.py")  # the same code: still nothing to do
     (annotated,) = _warm_processes(tmp_path, cache, 1)
     assert "warm 0.0 skipped" in annotated and "data" not in annotated
 

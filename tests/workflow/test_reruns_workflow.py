@@ -138,20 +138,6 @@ def _append_statement(tree, module):
     return edit
 
 
-def _annotate(tree, modules):
-    """Edit the docstring that opens each module and append a comment and an attribute
-    docstring: the code is the same."""
-
-    def edit():
-        for module in modules:
-            path = tree / "src" / "kinetic" / module
-            text = path.read_text()
-            assert text.startswith('"""'), module
-            path.write_text('"""Edited. ' + text[3:] + '\n# a comment\n"""A note."""\n')
-
-    return edit
-
-
 def _more_sweeps(tree):
     def edit():
         path = tree / "config" / "ci.yaml"
@@ -178,16 +164,20 @@ EDITS = [
 ]
 
 
-def test_one_invocation_after_an_edit_rebuilds_exactly_what_depends_on_it(tree):
+def test_one_invocation_after_an_edit_rebuilds_exactly_what_depends_on_it(tree, annotate):
     """The edits one after another on one tree (one test, so that one worker builds it).
     A stage that one invocation left stale would be rebuilt by the next and show up in
     the next edit's rebuilt set; after the last, a dry run must plan nothing."""
+
     # comments and docstrings, of an engine kernel and of what every kernel inlines, and
     # the code of an engine variant no document runs: nothing (one invocation for the
     # edits that rebuild nothing)
-    annotate = _annotate(tree, ["samplers/kernels.py", "rng.py"])
+    def comments():
+        for module in ("samplers/kernels.py", "rng.py"):
+            annotate(tree / "src" / "kinetic" / module)
+
     variant = _append_statement(tree, "experimental/speed_classes.py")
-    assert _rebuilt_after(tree, lambda: (annotate(), variant())) == set()
+    assert _rebuilt_after(tree, lambda: (comments(), variant())) == set()
     for module, expected in EDITS:
         rebuilt = _rebuilt_after(tree, _append_statement(tree, module))
         assert rebuilt == expected, f"after an edit of {module}"
