@@ -367,10 +367,8 @@ def cooling_modes(
                 duration / time_step, n_samples, particle_steps, simulated * n_realizations
             )
         steps = n_realizations * duration / time_step
-        changing = 0.0
-        if cells_per_side > 1:
-            cell_side = math.sqrt(n_particles / density) / cells_per_side
-            changing = cell_changing_fraction(2, time_step, cell_side)
+        box_side = math.sqrt(n_particles / density)
+        changing = cell_changing_fraction(2, time_step, box_side, cells_per_side)
         seconds = (
             (
                 COOLING_DSMC_SECONDS_PER_PARTICLE_STEP

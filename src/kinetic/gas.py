@@ -135,11 +135,16 @@ def candidate_coefficient(
 
 
 def cell_changing_fraction(
-    d: int, time_step: float, cell_side: float, temperature: float = 1.0
+    d: int, time_step: float, box_side: float, cells_per_side: int, temperature: float = 1.0
 ) -> float:
-    """Fraction of the particles of a gas at rest (m = 1) that fly into another square or
-    cubic cell of side a in a time Δt: ⟨Σ_k |v_k|⟩ Δt/a = d √(2T/π) Δt/a (for Δt ⟨|v|⟩
-    small against a; each crossing of a face counted once)."""
+    """Fraction of the particles of a gas at rest (m = 1) in a periodic box of side L cut
+    into ``cells_per_side``^d square or cubic cells of side a = L/cells_per_side that fly
+    into another cell in a time Δt: ⟨Σ_k |v_k|⟩ Δt/a = d √(2T/π) Δt/a (for Δt ⟨|v|⟩
+    small against a; each crossing of a face counted once); 0 in one cell, which a
+    particle leaving through a face re-enters."""
+    if cells_per_side == 1:
+        return 0.0
+    cell_side = box_side / cells_per_side
     return d * math.sqrt(2.0 * temperature / math.pi) * time_step / cell_side
 
 

@@ -205,9 +205,7 @@ class CoolingModesSettings:
     def changing_fraction(self) -> float:
         """The fraction of the particles expected to change cell a step at T0
         (``kinetic.gas.cell_changing_fraction``; 0 in one cell)."""
-        if self.cells_per_side == 1:
-            return 0.0
-        return cell_changing_fraction(2, self.time_step, self.cell_side)
+        return cell_changing_fraction(2, self.time_step, self.box_side, self.cells_per_side)
 
     @property
     def density_per_count(self) -> float:
