@@ -186,3 +186,25 @@ def test_largest_z_tolerance_holds_its_family_wise_false_alarm_rate():
     assert checks.largest_z_tolerance(20, 7) > checks.largest_z_tolerance(20, 15)
     with pytest.raises(ValueError, match="degree of freedom"):
         checks.largest_z_tolerance(20, 0)
+
+
+def test_band_exceedance_is_nominal_for_a_gaussian_scatter_and_larger_for_a_skewed_one():
+    """Runs of 48 realizations, each standardised on its own: a Gaussian scatter (of any
+    mean and width) fails a 2-error band of 16 realizations at the nominal rate within 4
+    binomial errors of the draws; an exponential one (skewed, as b'_3 of montanero2007 is
+    a little) far more often, since the mean and its error then move together."""
+    from scipy import stats
+
+    rng = np.random.default_rng(5)
+    gaussian = [rng.normal(3.0, 2.0, size=48) for _ in range(100)]
+    skewed = [rng.exponential(size=48) for _ in range(100)]
+    draws = 400_000
+    nominal = 2 * stats.norm.sf(2.0)
+    got = checks.band_exceedance(gaussian, 16, 2.0, draws=draws)
+    assert abs(got - nominal) < 4 * math.sqrt(nominal * (1 - nominal) / draws)
+    assert checks.band_exceedance(skewed, 16, 2.0, draws=draws) > 1.5 * nominal
+    assert checks.band_exceedance(gaussian, 16, 2.0, draws=1000, seed=3) == (
+        checks.band_exceedance(gaussian, 16, 2.0, draws=1000, seed=3)
+    )
+    with pytest.raises(ValueError, match=">= 2 realizations"):
+        checks.band_exceedance(gaussian, 1, 2.0)
