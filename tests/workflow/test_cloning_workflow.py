@@ -1,17 +1,9 @@
 """Cloning rules of the workflow: target selection, early config rejection, a tiny real
 run that writes cloning.csv with the columns other tools read, and resumption."""
 
-import os
-import subprocess
-import sys
-from pathlib import Path
-
 import pandas as pd
 import pytest
-
-REPOSITORY = Path(__file__).resolve().parents[2]
-SNAKEMAKE = [sys.executable, "-m", "snakemake", "--snakefile", str(REPOSITORY / "Snakefile")]
-CI = str(REPOSITORY / "config" / "ci.yaml")
+from _snakemake import CI_CONFIG, snakemake
 
 # populations well above the diversity-collapse threshold (10 distinct velocities): at
 # N_c = 20 and λ = 1 the fewest distinct velocities left is 9-11 depending on the stream,
@@ -31,21 +23,14 @@ visco2008:
 
 
 def run(workdir, *args, check=True):
-    result = subprocess.run(
-        [*SNAKEMAKE, "--directory", str(workdir), *args],
-        capture_output=True,
-        text=True,
-        timeout=900,
-        env={**os.environ, "MPLBACKEND": "Agg"},
-    )
-    if check and result.returncode != 0:
-        raise AssertionError(f"snakemake failed:\n{result.stdout}\n{result.stderr}")
+    """Snakemake's output, stdout and stderr; with ``check``, a failure raises."""
+    result = snakemake(workdir, *args, check=check, timeout=900)
     return result.stdout + result.stderr
 
 
 @pytest.mark.workflow
 def test_fig05_plans_only_the_scan(tmp_path):
-    plan = run(tmp_path, "results/ci/visco2008/fig05.pdf", "--configfile", CI, "--dry-run")
+    plan = run(tmp_path, "results/ci/visco2008/fig05.pdf", "--dry-run", "--configfile", CI_CONFIG)
     assert "visco2008_simulate_cloning" in plan and "visco2008_cloning_table" in plan
     assert "visco2008_theory_cloning_reference" in plan
     assert "error_vs_time" not in plan

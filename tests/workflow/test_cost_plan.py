@@ -1,7 +1,6 @@
 """The workflow's resource requests and budget check against kinetic.plan and kinetic.cost."""
 
 import copy
-import os
 import re
 import subprocess
 import sys
@@ -9,25 +8,12 @@ from pathlib import Path
 
 import pytest
 import yaml
+from _snakemake import CI_CONFIG, REPOSITORY, snakemake
 
 from kinetic import cost, plan
 from kinetic.config import validate_config
 
-REPOSITORY = Path(__file__).resolve().parents[2]
-SNAKEMAKE = [sys.executable, "-m", "snakemake", "--snakefile", str(REPOSITORY / "Snakefile")]
-CI_CONFIG = REPOSITORY / "config" / "ci.yaml"
-
 pytestmark = pytest.mark.workflow
-
-
-def _snakemake(workdir, *args):
-    return subprocess.run(
-        [*SNAKEMAKE, "--directory", str(workdir), *args],
-        capture_output=True,
-        text=True,
-        timeout=600,
-        env={**os.environ, "MPLBACKEND": "Agg"},
-    )
 
 
 def _planned(path):
@@ -51,7 +37,7 @@ def _dry_run_requests(output):
 
 def test_every_simulation_job_asks_for_its_planned_resources(tmp_path):
     """The dry run's simulation jobs are exactly kinetic.plan's, with its requests."""
-    result = _snakemake(tmp_path, "--configfile", str(CI_CONFIG), "--dry-run")
+    result = snakemake(tmp_path, "--configfile", str(CI_CONFIG), "--dry-run")
     output = result.stdout + result.stderr
     assert result.returncode == 0, output
     jobs = _planned(CI_CONFIG)
@@ -93,7 +79,7 @@ def test_every_simulation_job_asks_for_its_planned_resources(tmp_path):
 def test_unaffordable_requests_are_refused_before_any_job(tmp_path, override, expected):
     extra = tmp_path / "override.yaml"
     extra.write_text(override)
-    result = _snakemake(tmp_path, "--configfile", str(CI_CONFIG), str(extra), "--cores", "1")
+    result = snakemake(tmp_path, "--configfile", str(CI_CONFIG), str(extra), "--cores", "1")
     output = result.stdout + result.stderr
     assert result.returncode != 0
     assert "refused before any job" in output
@@ -128,7 +114,7 @@ def test_cuda_jobs_ask_for_one_gpu_and_run_each_point_in_one_job(tmp_path):
     extra = tmp_path / "cuda.yaml"
     cut = {"visco2008": {"cloning": {"realizations_per_job": 1}}}  # several CPU jobs a point
     extra.write_text(yaml.safe_dump({"backend": "cuda", **cut}))
-    result = _snakemake(tmp_path, "--configfile", str(CI_CONFIG), str(extra), "--dry-run")
+    result = snakemake(tmp_path, "--configfile", str(CI_CONFIG), str(extra), "--dry-run")
     output = result.stdout + result.stderr
     assert result.returncode == 0, output
     config = yaml.safe_load(CI_CONFIG.read_text())

@@ -1,35 +1,13 @@
 """The DSMC part of the workflow: Fig. 12 plans only its own DSMC jobs."""
 
-import os
-import subprocess
-import sys
-from pathlib import Path
-
 import pytest
-
-REPOSITORY = Path(__file__).resolve().parents[2]
+from _snakemake import CI_CONFIG, snakemake
 
 
 @pytest.mark.workflow
 def test_fig12_plans_the_maxwell_jobs_only(tmp_path):
-    result = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "snakemake",
-            "--snakefile",
-            str(REPOSITORY / "Snakefile"),
-            "--directory",
-            str(tmp_path),
-            "--configfile",
-            str(REPOSITORY / "config" / "ci.yaml"),
-            "--dry-run",
-            "results/ci/visco2008/fig12.pdf",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=600,
-        env={**os.environ, "MPLBACKEND": "Agg"},
+    result = snakemake(
+        tmp_path, "results/ci/visco2008/fig12.pdf", "--dry-run", "--configfile", CI_CONFIG
     )
     plan = result.stdout + result.stderr
     assert result.returncode == 0, plan

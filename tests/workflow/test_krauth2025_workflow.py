@@ -1,43 +1,14 @@
 """The krauth2025 part of the workflow: a figure plans only its samples; configs that no
 line or ring can satisfy stop before any job."""
 
-import os
-import subprocess
-import sys
-from pathlib import Path
-
 import pytest
-import yaml
-
-REPOSITORY = Path(__file__).resolve().parents[2]
-SNAKEMAKE = [sys.executable, "-m", "snakemake", "--snakefile", str(REPOSITORY / "Snakefile")]
-
-
-def _snakemake(workdir, config_path, *args):
-    # targets before --configfile: after it they would be read as more config files
-    return subprocess.run(
-        [*SNAKEMAKE, "--directory", str(workdir), *args, "--configfile", str(config_path)],
-        capture_output=True,
-        text=True,
-        timeout=600,
-        env={**os.environ, "MPLBACKEND": "Agg"},
-        check=False,
-    )
-
-
-def _ci_config(tmp_path, section=None, **changes):
-    config = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
-    if section:
-        config["krauth2025"][section].update(changes)
-    path = tmp_path / "config.yaml"
-    path.write_text(yaml.safe_dump(config))
-    return path
+from _snakemake import CI_CONFIG, ci_config, snakemake
 
 
 @pytest.mark.workflow
 def test_ring_figure_plans_only_the_ring(tmp_path):
-    result = _snakemake(
-        tmp_path, _ci_config(tmp_path), "results/ci/krauth2025/fig04_13.pdf", "--dry-run"
+    result = snakemake(
+        tmp_path, "results/ci/krauth2025/fig04_13.pdf", "--dry-run", "--configfile", CI_CONFIG
     )
     plan = result.stdout + result.stderr
     assert result.returncode == 0, plan
@@ -63,7 +34,8 @@ def test_ring_figure_plans_only_the_ring(tmp_path):
     ],
 )
 def test_impossible_pin_configs_stop_before_any_job(tmp_path, section, changes, message):
-    result = _snakemake(tmp_path, _ci_config(tmp_path, section, **changes), "--cores", "1")
+    config = ci_config(tmp_path, lambda config: config["krauth2025"][section].update(changes))
+    result = snakemake(tmp_path, "--cores", "1", "--configfile", config)
     assert result.returncode != 0
     assert message in result.stdout + result.stderr
     assert not (tmp_path / "results").exists()

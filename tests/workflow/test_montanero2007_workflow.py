@@ -1,46 +1,13 @@
 """The montanero2007 part of the workflow: targets build only their runs; bad configs stop early."""
 
-import os
-import subprocess
-import sys
-from pathlib import Path
-
 import pytest
-import yaml
-
-REPOSITORY = Path(__file__).resolve().parents[2]
-SNAKEMAKE = [sys.executable, "-m", "snakemake", "--snakefile", str(REPOSITORY / "Snakefile")]
-
-
-def _snakemake(workdir, *args):
-    env = {**os.environ, "MPLBACKEND": "Agg"}
-    return subprocess.run(
-        [*SNAKEMAKE, "--directory", str(workdir), *args],
-        capture_output=True,
-        text=True,
-        timeout=600,
-        env=env,
-        check=False,
-    )
-
-
-def _ci_config(tmp_path, change=None):
-    config = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
-    if change:
-        change(config["montanero2007"])
-    path = tmp_path / "config.yaml"
-    path.write_text(yaml.safe_dump(config))
-    return path
+from _snakemake import CI_CONFIG, ci_config, snakemake
 
 
 @pytest.mark.workflow
 def test_fig05_plans_only_its_two_runs(tmp_path):
-    result = _snakemake(
-        tmp_path,
-        "results/ci/montanero2007/fig05.pdf",
-        "--configfile",
-        str(_ci_config(tmp_path)),
-        "--dry-run",
+    result = snakemake(
+        tmp_path, "results/ci/montanero2007/fig05.pdf", "--dry-run", "--configfile", CI_CONFIG
     )
     assert result.returncode == 0, result.stderr
     plan = result.stdout + result.stderr
@@ -52,12 +19,10 @@ def test_fig05_plans_only_its_two_runs(tmp_path):
 
 @pytest.mark.workflow
 def test_bad_montanero2007_values_stop_before_any_job(tmp_path):
-    def negative_step(section):
-        section["protocol"]["time_step"] = -0.01
+    def negative_step(config):
+        config["montanero2007"]["protocol"]["time_step"] = -0.01
 
-    result = _snakemake(
-        tmp_path, "--configfile", str(_ci_config(tmp_path, negative_step)), "--cores", "1"
-    )
+    result = snakemake(tmp_path, "--cores", "1", "--configfile", ci_config(tmp_path, negative_step))
     assert result.returncode != 0
     assert "montanero2007.protocol.time_step = -0.01" in result.stdout + result.stderr
     assert not (tmp_path / "results").exists()
@@ -65,16 +30,10 @@ def test_bad_montanero2007_values_stop_before_any_job(tmp_path):
 
 @pytest.mark.workflow
 def test_figure_alpha_outside_the_scan_is_named(tmp_path):
-    def stray_alpha(section):
-        section["figures"]["fig06_alphas"] = [0.7, 0.45]
+    def stray_alpha(config):
+        config["montanero2007"]["figures"]["fig06_alphas"] = [0.7, 0.45]
 
-    result = _snakemake(
-        tmp_path,
-        "--configfile",
-        str(_ci_config(tmp_path, stray_alpha)),
-        "--cores",
-        "1",
-        "--dry-run",
-    )
+    config = ci_config(tmp_path, stray_alpha)
+    result = snakemake(tmp_path, "--cores", "1", "--dry-run", "--configfile", config)
     assert result.returncode != 0
     assert "montanero2007.figures.fig06_alphas" in result.stdout + result.stderr

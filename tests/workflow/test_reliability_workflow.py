@@ -6,29 +6,20 @@ import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import pytest
 import yaml
+from _snakemake import REPOSITORY, SNAKEMAKE, ci_config
+from _snakemake import snakemake as _run
 
 from kinetic import io
 from kinetic.config import load_config_file, validate_config
 
-REPOSITORY = Path(__file__).resolve().parents[2]
-SNAKEMAKE = [sys.executable, "-m", "snakemake", "--snakefile", str(REPOSITORY / "Snakefile")]
-ENV = {**os.environ, "MPLBACKEND": "Agg"}
 
-
-def _snakemake(workdir, *args, timeout=600):
-    return subprocess.run(
-        [*SNAKEMAKE, "--directory", str(workdir), *args],
-        cwd=REPOSITORY,  # where config/config.yaml would be found and merged by a relative path
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-        env=ENV,
-        check=False,
-    )
+def _snakemake(workdir, *args):
+    # from the repository, where config/config.yaml would be found and merged by a
+    # relative path
+    return _run(workdir, *args, cwd=REPOSITORY)
 
 
 @pytest.mark.workflow
@@ -86,19 +77,19 @@ def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_
     """kill -9 of the whole build while its second job runs: the first job's file is kept
     and not rebuilt, nothing half-written is under a final name, the lock is lifted with
     --unlock, and the rerun builds only what is missing (and removes the orphans)."""
-    config = tmp_path / "config.yaml"
-    settings = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
     # two jobs of about 5 s each, so that the second is surely running when killed
-    settings["costantini2010"].update(
-        {"realizations": 2, "realizations_per_job": 1, "min_duration": 600}
+    config = ci_config(
+        tmp_path,
+        lambda settings: settings["costantini2010"].update(
+            {"realizations": 2, "realizations_per_job": 1, "min_duration": 600}
+        ),
     )
-    config.write_text(yaml.safe_dump(settings))
     run = "results/ci/costantini2010/dsmc/n1000-alpha1-f10-cell0.5-step0.05"
     target = [f"{run}.nc", "--cores", "1", "--configfile", str(config)]
     process = subprocess.Popen(
         [*SNAKEMAKE, "--directory", str(tmp_path), *target],
         cwd=REPOSITORY,
-        env=ENV,
+        env={**os.environ, "MPLBACKEND": "Agg"},
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
         start_new_session=True,

@@ -7,39 +7,24 @@ import shlex
 import shutil
 import subprocess
 import sys
-from pathlib import Path
 
 import pandas as pd
 import pytest
 import xarray as xr
 import yaml
 from _browser import report_panels
+from _snakemake import CI_CONFIG, REPOSITORY, snakemake
 
 from kinetic import plan
 from kinetic.config import validate_config
 
-REPOSITORY = Path(__file__).resolve().parents[2]
-SNAKEMAKE = [sys.executable, "-m", "snakemake", "--snakefile", str(REPOSITORY / "Snakefile")]
 
-
-def _snakemake(workdir, *args, check=True, timeout=1500):
-    env = {**os.environ, "MPLBACKEND": "Agg"}
-    result = subprocess.run(
-        [*SNAKEMAKE, "--directory", str(workdir), *args],
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-        env=env,
-    )
-    if check and result.returncode != 0:
-        raise AssertionError(f"snakemake failed:\n{result.stdout}\n{result.stderr}")
-    return result
+def _snakemake(workdir, *args, check=True):
+    return snakemake(workdir, *args, check=check, timeout=1500)
 
 
 def _planned_rules(workdir, *targets):
-    result = _snakemake(
-        workdir, *targets, "--configfile", str(REPOSITORY / "config" / "ci.yaml"), "--dry-run"
-    )
+    result = _snakemake(workdir, *targets, "--dry-run", "--configfile", CI_CONFIG)
     return result.stdout + result.stderr
 
 
@@ -63,14 +48,7 @@ def test_readme_figures_command_plans_every_artefact(tmp_path):
     command = shlex.split(line)
     command = command[command.index("--") + 1 :]  # after kinetic.docs timed's arguments
     assert command[1] == "all"  # a target after --configfile would be read as a config file
-    result = subprocess.run(
-        [*SNAKEMAKE, *command[1:], "--directory", str(tmp_path), "--dry-run"],
-        cwd=REPOSITORY,
-        capture_output=True,
-        text=True,
-        timeout=600,
-        env={**os.environ, "MPLBACKEND": "Agg"},
-    )
+    result = snakemake(tmp_path, *command[1:], "--dry-run", cwd=REPOSITORY)
     plan = result.stdout + result.stderr
     assert result.returncode == 0, plan
     for rule in ("visco2008_fig01", "visco2008_fig12", "montanero2007_fig07", "visco2008_table1"):
@@ -82,9 +60,7 @@ def test_lint_finds_nothing_but_the_missing_software_environments(tmp_path):
     """snakemake --lint: rule files hold only rules (helpers in common.smk files), every
     rule has a log; the one lint left asks for a conda environment or a container per
     rule, which the build machines cannot reach."""
-    result = _snakemake(
-        tmp_path, "--lint", "--configfile", str(REPOSITORY / "config" / "ci.yaml"), check=False
-    )
+    result = _snakemake(tmp_path, "--lint", "--configfile", CI_CONFIG, check=False)
     output = result.stdout + result.stderr
     titles = set(re.findall(r"^\s+\* (.+?):?$", output, re.MULTILINE))
     assert titles == {"Specify a conda environment or container for each rule."}, output
@@ -164,12 +140,12 @@ def test_a_new_figure_needs_a_rule_entry_a_script_and_a_caption(tmp_path):
         rules.write(TOY_RULE)
     (tree / "workflow" / "scripts" / "krauth2025_figtoy.py").write_text(TOY_SCRIPT)
     (tree / "workflow" / "report" / "krauth2025_figtoy.rst").write_text("A toy figure.\n")
-    ci = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
+    ci = yaml.safe_load(CI_CONFIG.read_text())
     config = tmp_path / "toy.yaml"
     config.write_text(yaml.safe_dump({**ci, "targets": ["krauth2025/figtoy"]}))
     command = [sys.executable, "-m", "snakemake", "--snakefile", str(tree / "Snakefile")]
 
-    def snakemake(*args):
+    def in_tree(*args):
         result = subprocess.run(
             [*command, "--directory", str(tmp_path), *args, "--configfile", str(config)],
             capture_output=True,
@@ -180,7 +156,7 @@ def test_a_new_figure_needs_a_rule_entry_a_script_and_a_caption(tmp_path):
         assert result.returncode == 0, result.stdout + result.stderr
         return result.stdout + result.stderr
 
-    built = snakemake("--cores", "1")
+    built = in_tree("--cores", "1")
     assert set(re.findall(r"^(?:local)?rule (\w+):", built, re.MULTILINE)) == {
         "krauth2025_theory_ring",
         "krauth2025_figtoy",
@@ -188,8 +164,8 @@ def test_a_new_figure_needs_a_rule_entry_a_script_and_a_caption(tmp_path):
     }
     assert (tmp_path / "results" / "ci" / "krauth2025" / "figtoy.png").stat().st_size > 0
     config.write_text(yaml.safe_dump({**ci, "targets": "all"}))
-    assert "krauth2025_figtoy" not in snakemake("--dry-run")  # rule all: built already
-    assert "krauth2025/figtoy.pdf" in snakemake("--dry-run", "--forceall")
+    assert "krauth2025_figtoy" not in in_tree("--dry-run")  # rule all: built already
+    assert "krauth2025/figtoy.pdf" in in_tree("--dry-run", "--forceall")
 
 
 @pytest.mark.workflow
@@ -210,7 +186,7 @@ def test_md_config_is_refused_by_the_fronts_own_checks_before_any_job(tmp_path):
 @pytest.mark.workflow
 @pytest.mark.slow
 def test_ci_config_builds_every_target_with_provenance(tmp_path):
-    _snakemake(tmp_path, "--configfile", str(REPOSITORY / "config" / "ci.yaml"), "--cores", "2")
+    _snakemake(tmp_path, "--configfile", CI_CONFIG, "--cores", "2")
     results = tmp_path / "results" / "ci"
     for name in ("fig03", "fig11"):
         assert (results / "visco2008" / f"{name}.pdf").stat().st_size > 1000
@@ -268,7 +244,7 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
             assert provenance <= set(dataset.attrs), f"{path}: {sorted(dataset.attrs)}"
             assert dataset.attrs["root_seed"] == 7, path
     # every simulation job ran within the runtime and memory it asked for (kinetic.cost)
-    config = yaml.safe_load((REPOSITORY / "config" / "ci.yaml").read_text())
+    config = yaml.safe_load(CI_CONFIG.read_text())
     validate_config(config)
     checked, overruns = plan.benchmark_overruns(tmp_path, plan.plan_jobs(config))
     assert checked >= 40, checked
@@ -277,7 +253,7 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
     rerun = _snakemake(
         tmp_path,
         "--configfile",
-        str(REPOSITORY / "config" / "ci.yaml"),
+        CI_CONFIG,
         "--cores",
         "2",
         "--dry-run",
@@ -286,7 +262,7 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
     report = _snakemake(
         tmp_path,
         "--configfile",
-        str(REPOSITORY / "config" / "ci.yaml"),
+        CI_CONFIG,
         "--report",
         str(tmp_path / "report.html"),
     )
