@@ -208,3 +208,24 @@ def test_band_exceedance_is_nominal_for_a_gaussian_scatter_and_larger_for_a_skew
     )
     with pytest.raises(ValueError, match=">= 2 realizations"):
         checks.band_exceedance(gaussian, 1, 2.0)
+
+
+def test_sum_of_squares_bounds_hold_their_false_alarm_for_student_errors():
+    """Σ z² of Student's t: fresh draws (another seed than the bound's own) exceed the
+    bound at its false-alarm rate within 4 binomial errors, where χ²'s quantile is
+    exceeded 4.4 % of the time for 40 bins of 12 realizations; many degrees of freedom
+    give χ²'s quantile; the p-value of the bound is its false alarm."""
+    from scipy import stats
+
+    bound = checks.sum_of_squares_tolerance(40, 11)
+    assert bound == pytest.approx(107.5, rel=0.02)
+    rng = np.random.default_rng(11)
+    draws = 400_000
+    sums = np.sum(rng.standard_t(11, size=(draws, 40)) ** 2, axis=1)
+    assert abs(np.mean(sums > bound) - 1e-3) < 4 * math.sqrt(1e-3 / draws)
+    assert np.mean(sums > stats.chi2.isf(1e-3, 40)) > 0.04
+    assert checks.sum_of_squares_tolerance(40, 20_000) == pytest.approx(stats.chi2.isf(1e-3, 40))
+    assert checks.sum_of_squares_p_value(bound, 40, 11) == pytest.approx(1e-3, rel=0.1)
+    assert 0 < checks.sum_of_squares_p_value(1e6, 40, 11) < 2e-6  # never 0
+    with pytest.raises(ValueError, match="degree of freedom"):
+        checks.sum_of_squares_tolerance(40, 0)

@@ -5,9 +5,8 @@ runs (mean and standard error over realizations) against the sphere's marginal
 ∝ (1 − u²)^(N − 3/2) and the Maxwell Gaussian √(N/π) e^(−N u²) it tends to at large N,
 both averaged over the bins; residuals against the sphere; χ²/dof of each curve."""
 
-from scipy import stats
-
 from kinetic import io, plotting
+from kinetic.analysis.checks import sum_of_squares_p_value
 from kinetic.analysis.statistics import chi2_per_dof, mean_and_sem
 from kinetic.theory import krauth2025 as theory
 from kinetic.workflow_support import start, write_caption
@@ -49,7 +48,8 @@ write_caption(
     chi2_sphere=chi2["sphere"],
     chi2_maxwell=chi2["maxwell"],
     dof=dof,
-    p_sphere=float(stats.chi2.sf(chi2["sphere"] * dof, dof)),
+    # the errors come from the realizations: Σ z² of Student's t, not χ²_dof
+    p_sphere=sum_of_squares_p_value(chi2["sphere"] * dof, dof, md.sizes["realization"] - 1),
     centre_ratio=float(
         theory.sphere_velocity_marginal(0.0, n) / theory.maxwell_velocity_marginal(0.0, n)
     ),
