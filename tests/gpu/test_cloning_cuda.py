@@ -28,6 +28,7 @@ os.environ.setdefault("NUMBA_ENABLE_CUDASIM", "1")
 
 import numpy as np
 import pytest
+from scipy import stats
 
 pytest.importorskip("numba.cuda")
 
@@ -85,8 +86,14 @@ def test_maxwell_molecules_have_the_exact_large_deviation_function():
     exact = math.expm1(-lam)
     bias, spread = visco2008.poisson_cloning_estimator(lam, n, interval, 8.0)
     realizations = ds.sizes["realization"]
-    error = max(float(ds.mu_err), spread / math.sqrt(realizations))
-    assert error < 0.015  # the band is a tenth of μ, not the third it was with 16 clones
+    expected_error = spread / math.sqrt(realizations)
+    assert expected_error < 0.015  # the band is a tenth of μ, not the third it was with 16 clones
+    # the realizations' own error scatters about the estimator's (a χ² of 7 degrees of
+    # freedom: salts 32 and 34 gave 1.43 and 1.79 times it, which a fixed 0.015 refused):
+    # within the χ²'s 10⁻³ upper quantile, 1.86 times
+    dof = realizations - 1
+    assert float(ds.mu_err) < expected_error * math.sqrt(stats.chi2.isf(1e-3, dof) / dof)
+    error = max(float(ds.mu_err), expected_error)
     assert abs(float(ds.mu) - exact - bias) < Z * error
     # T = 1 and a2 = 0 are not checked: selection at λ = 1 leaves a small population few
     # distinct velocities (16 realizations of 16 clones gave a2 = -0.23 ± 0.03; T

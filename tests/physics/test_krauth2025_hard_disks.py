@@ -3,7 +3,10 @@ cell/calendar engine, equal probability (MD against direct-disks and markov-disk
 pressure estimators and the finite-N averages of Eqs. (4.13, 4.14).
 
 Fixed seeds; tolerances are 4.5 standard errors of the runs themselves (spread of
-independent realizations), combined when two estimates are compared.
+independent realizations), combined when two estimates are compared, widened to Student's
+t for the 11 degrees of freedom of 12 realizations (``BAND``: 8.0 errors; the normal 4.5
+failed salts 33 and 34 at 4.7 and 5.1), and for the largest of many bins its family-wise
+quantile.
 """
 
 import math
@@ -11,6 +14,7 @@ import math
 import numpy as np
 import pytest
 
+from kinetic.analysis.checks import largest_z_tolerance, tolerance_factor
 from kinetic.analysis.krauth2025 import (
     contact_pressure,
     parting_table,
@@ -26,6 +30,8 @@ from kinetic.samplers import sample_disks
 from kinetic.theory import krauth2025 as theory
 
 N, SIGMA = 4, 0.15
+REALIZATIONS = 12
+BAND = tolerance_factor(4.5, REALIZATIONS - 1)
 
 
 @pytest.fixture(scope="module")
@@ -36,16 +42,26 @@ def md():
         duration=4000.0,
         snapshot_interval=0.5,
         bins=35,
-        realizations=12,
+        realizations=REALIZATIONS,
         seed=21,
+    )
+
+
+def _sampled(method, seed):
+    return sample_disks(
+        method,
+        n_disks=N,
+        sigma=SIGMA,
+        samples=40_000,
+        realizations=REALIZATIONS,
+        bins=35,
+        seed=seed,
     )
 
 
 @pytest.fixture(scope="module")
 def direct():
-    return sample_disks(
-        "direct", n_disks=N, sigma=SIGMA, samples=40_000, realizations=12, bins=35, seed=22
-    )
+    return _sampled("direct", 22)
 
 
 def test_event_disks_follows_the_cell_engine_event_by_event():
@@ -100,18 +116,16 @@ def test_event_disks_conserves_energy_and_never_overlaps():
 def test_molecular_dynamics_samples_the_equal_probability_distribution(md, direct):
     """Eq. (4.3) along the trajectories, the stroboscopic snapshots, direct-disks and
     markov-disks give the same y-density (it is not flat)."""
-    markov = sample_disks(
-        "markov", n_disks=N, sigma=SIGMA, samples=40_000, realizations=12, bins=35, seed=23
-    )
+    markov = _sampled("markov", 23)
     reference, reference_sem = direct["density"].values, direct["density_sem"].values
     for name in ("density_trajectory", "density_snapshots"):
         value, sem = mean_and_sem(md[name].values)
         z = (value - reference) / np.hypot(sem, reference_sem)
-        assert np.abs(z).max() < 4.5, name
+        assert np.abs(z).max() < largest_z_tolerance(z.size, REALIZATIONS - 1), name
     z = (markov["density"].values - reference) / np.hypot(
         markov["density_sem"].values, reference_sem
     )
-    assert np.abs(z).max() < 4.5
+    assert np.abs(z).max() < largest_z_tolerance(z.size, REALIZATIONS - 1)
     assert reference[0] > 2 * reference[reference.size // 2 - 3]  # the walls attract
 
 
@@ -128,7 +142,7 @@ def test_pressure_estimators_agree_with_the_contact_density(md, direct):
         (estimates[1], estimates[2]),
         (estimates[0], estimates[1]),
     ):
-        assert abs(a - b) < 4.5 * math.hypot(sa, sb)
+        assert abs(a - b) < BAND * math.hypot(sa, sb)
     assert estimates[2][1] < 0.01 * estimates[2][0]  # the comparison has power
 
 
@@ -144,7 +158,7 @@ def test_rate_form_of_the_pressure_needs_the_finite_n_average(md, direct):
     value, sem = mean_and_sem(finite)
     reference, reference_sem = mean_and_sem(contact_pressure(direct))
     error = math.hypot(sem, reference_sem)
-    assert abs(value - reference) < 4.5 * error
+    assert abs(value - reference) < BAND * error
     assert (1 / 0.969311 - 1) * reference > 3 * error  # the comparison has power
 
 
@@ -164,7 +178,7 @@ def test_finite_n_averages_of_eqs_4_13_and_4_14(md):
     ]
     for values, expected in checks:
         value, sem = mean_and_sem(values)
-        assert abs(value - expected) < 4.5 * sem
+        assert abs(value - expected) < BAND * sem
     value, sem = mean_and_sem(pairs[:, 2] / pairs[:, 0])
     assert abs(value - pair["inverse_printed"]) > 100 * sem
 
@@ -177,7 +191,10 @@ def test_pressure_table_rows_agree_with_their_references(md, direct):
     assert len(table) == 16
     claims = table[table["reference"].notna() & ~table.index.str.contains("N -> inf")]
     assert len(claims) == 11
-    assert (claims["z"].abs() < 4.5).all(), claims["z"]
+    # each within 4.5 errors widened to Student's t for its own (Welch) degrees of freedom
+    bands = [tolerance_factor(4.5, int(dof)) for dof in claims["dof"]]
+    assert (claims["z"].abs() < bands).all(), claims[["z", "dof"]]
+    assert (claims["dof"] >= REALIZATIONS - 1).all()
     limits = table[table.index.str.contains("N -> inf")]
     finite = table[table.index.str.contains("finite N") & table.index.str.startswith("beta")]
     np.testing.assert_allclose(finite["value"].values / limits["value"].values, 0.969311, rtol=1e-5)

@@ -102,23 +102,46 @@ def test_krauth2025_checks_correct_the_extrapolation_bias_and_only_report_the_li
             | {"wall_over_bulk_sem": 0.006, "wall_over_bulk_exact": 1.46924}
             | {"acceptance": np.nan, "acceptance_sem": np.nan, "acceptance_exact": np.nan}
             | {"beta_p_wall_rift": 0.5866, "beta_p_wall_rift_sem": 0.0036, "beta_p_exact": 0.6}
-            | {"beta_p_extrapolation_bias": -0.0126}
+            | {"beta_p_extrapolation_bias": -0.0126, "realizations": 16}
         ]
     )
+    error = math.hypot(0.04, 0.15)
+
+    def kinematic(value, dof):
+        return {"quantity": "beta P_x, kinematic", "equation": "4.10a", "value": value} | {
+            "sem": 0.04,
+            "reference": 10.81,
+            "reference_sem": 0.15,
+            "reference_source": "contact density",
+            "dof": dof,
+        }
+
     pressure = pd.DataFrame(
         [
-            {"quantity": "beta P_x, kinematic", "equation": "4.10a", "value": 10.83}
-            | {"sem": 0.04, "reference": 10.81, "reference_sem": 0.15}
-            | {"reference_source": "contact density"},
+            kinematic(10.83, 30.0),
+            # 3.3 errors off: within Student's band for 15 degrees of freedom (3.59 for the
+            # default 3 sigma), beyond the normal one that 10⁴ of them give
+            kinematic(10.81 + 3.3 * error, 15.0),
+            kinematic(10.81 + 3.3 * error, 1e4),
             {"quantity": "beta P_x, wall-hit rate, N -> inf", "equation": "4.9d", "value": 11.15}
             | {"sem": 0.02, "reference": 10.81, "reference_sem": 0.15}
-            | {"reference_source": "contact density"},
+            | {"reference_source": "contact density", "dof": 30.0},
         ]
     )
     found = krauth2025.checks(pins, pressure)
     verdicts = [check.passed for check in found]
     # the raw wall rift (z = -3.7) would fail; less its known bias it agrees
-    assert verdicts == [True, True, True, None]
+    assert verdicts == [True, True, True, True, False, None]
+    assert found[0].rule == f"|z| <= {checks.tolerance_factor(3.0, 15):.3g}"
+
+
+def test_welch_dof_combines_errors_of_their_own_degrees_of_freedom():
+    assert checks.welch_dof([0.1], [11]) == pytest.approx(11)
+    assert checks.welch_dof([0.1, 0.0], [11, 5]) == pytest.approx(11)  # an exact reference
+    assert checks.welch_dof([0.1, 0.1], [11, 11]) == pytest.approx(22)  # twice the data
+    assert 11 < checks.welch_dof([0.1, 0.05], [11, 11]) < 22
+    with pytest.raises(ValueError, match="no error"):
+        checks.welch_dof([0.0], [3])
 
 
 def _md_run(density, k2):

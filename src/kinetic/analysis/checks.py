@@ -48,6 +48,7 @@ __all__ = [
     "sum_of_squares_tolerance",
     "table",
     "tolerance_factor",
+    "welch_dof",
     "within",
     "write",
 ]
@@ -91,6 +92,17 @@ def tolerance_factor(sigmas: float, dof: int) -> float:
         raise ValueError(f"need >= 1 degree of freedom (>= 2 realizations), got {dof}")
     tail = stats.norm.sf(sigmas)
     return float(stats.t.isf(tail, dof))
+
+
+def welch_dof(errors, dofs) -> float:
+    """Degrees of freedom of the error √(Σ s²) combined from independent ``errors``, each
+    estimated with its ``dofs`` (Welch–Satterthwaite: (Σ s²)² / Σ s⁴/ν, never below the
+    smallest ν of a nonzero part); an exact part (s = 0) adds nothing."""
+    parts = [(float(s) ** 2, float(nu)) for s, nu in zip(errors, dofs, strict=True) if s > 0]
+    if not parts:
+        raise ValueError("no error to combine")
+    total = sum(square for square, _ in parts)
+    return total**2 / sum(square**2 / nu for square, nu in parts)
 
 
 def largest_z_tolerance(n_values: int, dof: int, false_alarm: float = 1e-3) -> float:
