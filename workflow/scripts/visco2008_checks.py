@@ -8,7 +8,11 @@ from kinetic.workflow_support import start
 log = start(snakemake)
 cloning = io.read_table(snakemake.input.cloning).rename(columns={"lambda": "lam"})
 found = analysis.checks(
-    io.read_table(snakemake.input.table), cloning, io.read_dataset(snakemake.input.reference)
+    io.read_table(snakemake.input.table),
+    cloning,
+    io.read_dataset(snakemake.input.reference),
+    md_dof=snakemake.params.md_dof,
+    cloning_dof=snakemake.params.cloning_dof,
 )
 log.info("checks:\n%s", check.table(found).to_string(index=False))
 check.write(found, snakemake.output.csv, snakemake.output.md, fail=snakemake.params.fail)

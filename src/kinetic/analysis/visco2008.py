@@ -213,9 +213,23 @@ def table1_caption_numbers(table, extrapolation_windows) -> dict:
     return numbers
 
 
-def checks(table1, cloning, reference, sigmas: float = check.SIGMAS) -> list[Check]:
+def checks(
+    table1,
+    cloning,
+    reference,
+    sigmas: float = check.SIGMAS,
+    md_dof: int | None = None,
+    cloning_dof: int | None = None,
+) -> list[Check]:
     """The checks above; ``table1`` and ``cloning`` are the DataFrames of the tables,
-    ``reference`` the dataset of Eq. 28 (variables mu, temperature, a2 over lam)."""
+    ``reference`` the dataset of Eq. 28 (variables mu, temperature, a2 over lam).
+    ``md_dof`` and ``cloning_dof``: the degrees of freedom of the MD's and the cloning's
+    errors (their realizations less one), which widen ``sigmas`` to Student's t for the
+    Table I and the cloning checks (None: the normal band). A 1/N_c -> 0 row combines
+    several populations, so its errors have more; the points' own is the conservative
+    band."""
+    md_band = sigmas if md_dof is None else check.tolerance_factor(sigmas, md_dof)
+    cloning_band = sigmas if cloning_dof is None else check.tolerance_factor(sigmas, cloning_dof)
     found = []
     md = table1[(table1["kind"] == "md") & (table1["paper_row_density"] == 1)]
     for row in md.itertuples():
@@ -230,7 +244,7 @@ def checks(table1, cloning, reference, sigmas: float = check.SIGMAS) -> list[Che
                     getattr(row, f"k{order}"),
                     getattr(row, f"k{order}_err"),
                     printed,
-                    sigmas,
+                    md_band,
                 )
             )
     closures = table1[table1["kind"] == "theory"].set_index("source")
@@ -244,7 +258,7 @@ def checks(table1, cloning, reference, sigmas: float = check.SIGMAS) -> list[Che
                 row["k2"],
                 row["k2_err"],
                 closures.loc["Sonine", "k2"],
-                sigmas,
+                md_band,
             )
         )
         found.append(
@@ -253,7 +267,7 @@ def checks(table1, cloning, reference, sigmas: float = check.SIGMAS) -> list[Che
                 row["k2"],
                 row["k2_err"],
                 closures.loc["Gaussian", "k2"],
-                sigmas,
+                md_band,
             )
         )
     for row in cloning[cloning["kernel"] == "maxwell"].itertuples():
@@ -266,7 +280,7 @@ def checks(table1, cloning, reference, sigmas: float = check.SIGMAS) -> list[Che
                 row.mu,
                 row.mu_err,
                 math.expm1(-row.lam),
-                sigmas,
+                cloning_band,
             )
         )
     lams = np.asarray(reference["lam"].values, dtype=float)
@@ -285,7 +299,7 @@ def checks(table1, cloning, reference, sigmas: float = check.SIGMAS) -> list[Che
                     getattr(row, name),
                     getattr(row, f"{name}_err"),
                     exact,
-                    sigmas,
+                    cloning_band,
                 )
             )
     return found

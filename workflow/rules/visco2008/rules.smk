@@ -630,5 +630,8 @@ rule visco2008_checks:
         log_file("visco2008/checks.log"),
     params:
         fail=fails_on_checks("visco2008"),
+        # the errors' degrees of freedom: their realizations less one (Student's bands)
+        md_dof=config["visco2008"]["md"]["realizations"] - 1,
+        cloning_dof=config["visco2008"]["cloning"]["realizations"] - 1,
     script:
         "../../scripts/visco2008_checks.py"
