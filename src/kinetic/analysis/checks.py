@@ -117,22 +117,27 @@ def largest_z_tolerance(n_values: int, dof: int, false_alarm: float = 1e-3) -> f
     return float(stats.t.isf(false_alarm / (2 * n_values), dof))
 
 
-def _student_sums_of_squares(n_values: int, dof: int, draws: int, seed: int):
-    """``draws`` sums of ``n_values`` squared Student's t with ``dof`` degrees of freedom
-    (seeded: the same numbers every call)."""
+@functools.cache
+def _student_sums_of_squares(n_values: int, dof: int, draws: int):
+    """``draws`` sums of ``n_values`` squared Student's t with ``dof`` degrees of freedom,
+    sorted: a Monte Carlo seeded by its arguments (the same numbers every call), computed
+    once per process."""
     import numpy as np
 
-    rng = np.random.default_rng(seed)
+    if dof < 1 or n_values < 1:
+        raise ValueError(f"need >= 1 value and >= 1 degree of freedom, got {n_values}, {dof}")
+    rng = np.random.default_rng(n_values * 100_003 + dof)
     chunk = max(1, 4_000_000 // n_values)
-    return np.concatenate(
+    sums = np.concatenate(
         [
             np.sum(rng.standard_t(dof, size=(min(chunk, draws - start), n_values)) ** 2, axis=1)
             for start in range(0, draws, chunk)
         ]
     )
+    sums.sort()
+    return sums
 
 
-@functools.cache
 def sum_of_squares_tolerance(n_values: int, dof: int, false_alarm: float = 1e-3) -> float:
     """Bound on Σ z² over ``n_values`` independent z-scores, each Student's t with ``dof``
     degrees of freedom (errors from dof + 1 realizations), exceeded with probability
@@ -143,27 +148,25 @@ def sum_of_squares_tolerance(n_values: int, dof: int, false_alarm: float = 1e-3)
     import numpy as np
     from scipy import stats
 
-    if dof < 1 or n_values < 1:
-        raise ValueError(f"need >= 1 value and >= 1 degree of freedom, got {n_values}, {dof}")
     if dof > 10_000:
         return float(stats.chi2.isf(false_alarm, n_values))
-    draws = max(10**6, int(200 / false_alarm))
-    sums = _student_sums_of_squares(n_values, dof, draws, seed=n_values * 100_003 + dof)
+    sums = _student_sums_of_squares(n_values, dof, max(10**6, int(200 / false_alarm)))
     return float(np.quantile(sums, 1.0 - false_alarm))
 
 
-def sum_of_squares_p_value(total: float, n_values: int, dof: int, draws: int = 10**6) -> float:
+def sum_of_squares_p_value(total: float, n_values: int, dof: int) -> float:
     """Probability that Σ z² of ``n_values`` Student's t with ``dof`` degrees of freedom
     reaches ``total`` (the χ² test's p-value when the errors come from dof + 1
-    realizations; :func:`sum_of_squares_tolerance`): (exceedances + 1)/(draws + 1) of a
-    seeded Monte Carlo, so never 0; χ²'s beyond 10⁴ degrees of freedom."""
+    realizations; :func:`sum_of_squares_tolerance`): (exceedances + 1)/(draws + 1) of 10⁶
+    seeded sums, so never 0; χ²'s beyond 10⁴ degrees of freedom."""
     import numpy as np
     from scipy import stats
 
     if dof > 10_000:
         return float(stats.chi2.sf(total, n_values))
-    sums = _student_sums_of_squares(n_values, dof, draws, seed=n_values * 100_003 + dof)
-    return float((np.count_nonzero(sums >= total) + 1) / (draws + 1))
+    sums = _student_sums_of_squares(n_values, dof, 10**6)
+    exceeding = sums.size - int(np.searchsorted(sums, total, side="left"))
+    return float((exceeding + 1) / (sums.size + 1))
 
 
 def band_exceedance(

@@ -669,14 +669,15 @@ def _linear_response(row, rows, key, claim):
     # the error's degrees of freedom (Welch-Satterthwaite): (1 + w) s1 and w s2 combine,
     # and the partner's, weighted by w = 1/3 at twice the field, counts for little
     w = limit["field_low"] ** 2 / (limit["field_high"] ** 2 - limit["field_low"] ** 2)
-    parts = np.array([(1 + w) * row[f"{key}_err"], w * partner[f"{key}_err"]]) ** 2
-    dofs = np.array([row["realizations"], partner["realizations"]]) - 1.0
-    welch = parts.sum() ** 2 / np.sum(parts**2 / dofs) if parts.sum() > 0 else 0.0
+    errors = ((1 + w) * row[f"{key}_err"], w * partner[f"{key}_err"])
+    dofs = (row["realizations"] - 1, partner["realizations"] - 1)
+    # (never below the smaller count, which rounding could cross)
+    dof = max(int(check.welch_dof(errors, dofs)), min(dofs)) if max(errors) > 0 else min(dofs)
     return (
         f"{claim} (eps* -> 0 from {fields})",
         limit[f"{key}_extrapolated"],
         limit[f"{key}_extrapolated_err"],
-        max(int(welch), int(dofs.min())),
+        dof,
     )
 
 
