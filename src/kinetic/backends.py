@@ -60,7 +60,8 @@ def check_realizations(backend, count: int) -> int:
 
 def simulated() -> bool:
     """True under numba's CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``): the ``cuda`` kernels
-    run as Python threads on the CPU, for tests on machines without a GPU."""
+    run as Python on the CPU (a block's threads as greenlets, ``kinetic.gpu``), for tests on
+    machines without a GPU."""
     return os.environ.get("NUMBA_ENABLE_CUDASIM", "0") == "1"
 
 

@@ -271,8 +271,7 @@ def test_visco2008_document_runs_a_cloning_job_through_the_workflows_job(monkeyp
     """``visco2008_document`` runs a cloning job as the workflow does (``run_job``: the
     job's front, its files), after the compile process of its one front; here the error
     study's job cut to its λ = 1 point of 25 clones over a few intervals, under the
-    simulator (where every thread of the resident kernel is a Python thread: 10 s a
-    point)."""
+    simulator (where every thread of the resident kernel runs Python)."""
     import dataclasses
 
     from kinetic.studies import visco2008

@@ -3,7 +3,7 @@ kinetic.dsmc.gpu) against the CPU engine and theory.
 
 Runs under numba's CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``, set here unless the
 environment says otherwise: with ``NUMBA_ENABLE_CUDASIM=0`` on a GPU machine the same
-tests run on the GPU). The simulator runs every GPU thread as a Python thread, so the
+tests run on the GPU). The simulator runs every GPU thread as Python code, so the
 systems are tiny (N = 128, 2 to 6 realizations, at most ten steps) and the physics checks
 are coarse: their tolerances are a few combined standard errors of window or realization
 averages.

@@ -3,8 +3,8 @@ kinetic.dsmc.inhomogeneous_gpu) against the CPU engine and exact properties.
 
 Runs under numba's CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``, set here unless the
 environment says otherwise: with ``NUMBA_ENABLE_CUDASIM=0`` on a GPU machine the same
-tests run on the GPU). The simulator costs about a quarter of a second per realization
-and step whatever the size (every thread block is a set of Python threads), so the
+tests run on the GPU). The simulator costs about 0.08 s per realization and step
+whatever the size (every thread block is a set of greenlets running Python), so the
 systems are tiny (40-100 real particles, Λ = 2, 2 x 2 cells) and the runs a dozen steps;
 the statistical checks are dilute gases (n σ² = 0.005, a step of 0.09 collisions per
 particle and a box of about one mean free path) whose samples decorrelate within a few
@@ -348,9 +348,9 @@ means, which is large and itself scattered (0.25, 0.67 and 0.81 for three seeds 
 realizations of 100 particles: a mode decorrelates over about 6 of the 12 samples), so
 many small realizations rather than a few larger ones. 24 of 50 particles: C(0) = 0.946
 ± 0.072, 1.004 ± 0.092, 0.945 ± 0.070 for seeds 31, 32, 33 (bands of 0.35, 0.45, 0.34),
-32-51 s under the simulator on the development machine since the simulator's block
-manager pauses between polls (``kinetic.gpu._pause_simulated_block_polls``); 12 took 150
-s of a CI worker before, for a band of 0.71."""
+9-11 s under the simulator on the development machine since a block's threads are
+greenlets (``kinetic.gpu._run_simulated_blocks_as_greenlets``; 32-51 s with numba's
+threads, their polls paused); 12 took 150 s of a CI worker before, for a band of 0.71."""
 
 
 def _elastic_run():

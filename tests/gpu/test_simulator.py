@@ -1,11 +1,12 @@
 """numba's CUDA simulator as the GPU tests use it: every thread of a block gets the block's
 shared arrays. numba's ``FakeCUDAShared.array`` looks a line's array up and, when absent,
 creates it, without a lock, so two threads arriving together can each get their own;
-``kinetic.gpu`` replaces it with a locked lookup. And the block manager pauses between
-its polls of a block's threads (``kinetic.gpu._pause_simulated_block_polls``) with the
-simulator's barriers and errors intact."""
+``kinetic.gpu`` replaces it with a locked lookup. And a block's threads are greenlets
+that take turns between barriers (``kinetic.gpu._run_simulated_blocks_as_greenlets``),
+not operating-system threads, with the simulator's barriers and errors intact."""
 
 import os
+import threading
 import time
 
 os.environ.setdefault("NUMBA_ENABLE_CUDASIM", "1")
@@ -68,25 +69,58 @@ def _tree_sums(values, out):
     out[cuda.blockIdx.x, t] = block_reduce_sum(shared, values[cuda.blockIdx.x, t], THREADS)
 
 
-def test_the_paused_block_manager_keeps_every_barrier():
+def test_the_greenlet_blocks_keep_every_barrier():
     """Every thread of every block reads the block's total after the last barrier: a
-    thread released early from any barrier would read a partial sum."""
+    thread released early from any barrier would read a partial sum. No operating-system
+    thread is started for them."""
     from numba.cuda.simulator.kernel import BlockManager
 
     from kinetic import gpu
 
-    assert gpu._pause_simulated_block_polls()
+    assert gpu._run_simulated_blocks_as_greenlets()
     assert BlockManager.run.__module__ == "kinetic.gpu"
     values = np.arange(3 * THREADS, dtype=np.float64).reshape(3, THREADS) ** 2
     out = np.zeros_like(values)
-    _tree_sums[3, THREADS](values, out)
+    started = threading.Thread.start
+    threads = []
+
+    def count(thread):
+        threads.append(thread)
+        started(thread)
+
+    threading.Thread.start = count
+    try:
+        _tree_sums[3, THREADS](values, out)
+    finally:
+        threading.Thread.start = started
     np.testing.assert_array_equal(out, np.broadcast_to(values.sum(axis=1)[:, None], out.shape))
+    assert threads == []
 
 
-def test_the_pause_replaces_only_the_loop_it_copies(monkeypatch):
-    """A numba-cuda whose block manager runs another loop keeps it: the pause is installed
-    over numba-cuda 0.30.4's loop only (the digest of its source), never over a loop whose
-    logic it has not checked."""
+@kernel
+def _indices(out):
+    t = cuda.threadIdx.x
+    out[cuda.blockIdx.x, t, 0] = cuda.blockIdx.x
+    out[cuda.blockIdx.x, t, 1] = t
+    out[cuda.blockIdx.x, t, 2] = cuda.laneid
+    cuda.syncthreads()
+    out[cuda.blockIdx.x, t, 3] = cuda.threadIdx.x  # still its own after a barrier
+
+
+def test_each_greenlet_sees_its_own_indices():
+    blocks = 2
+    out = np.full((blocks, THREADS, 4), -1, dtype=np.int64)
+    _indices[blocks, THREADS](out)
+    block, thread = np.meshgrid(np.arange(blocks), np.arange(THREADS), indexing="ij")
+    np.testing.assert_array_equal(out[..., 0], block)
+    for column in (1, 2, 3):
+        np.testing.assert_array_equal(out[..., column], thread)
+
+
+def test_the_greenlets_replace_only_the_loop_they_were_checked_against(monkeypatch):
+    """A numba-cuda whose block manager runs another loop keeps it: the greenlets are
+    installed over numba-cuda 0.30.4's loop only (the digest of its source), never over a
+    loop whose logic has not been checked."""
     from numba.cuda.simulator.kernel import BlockManager
 
     from kinetic import gpu
@@ -95,7 +129,7 @@ def test_the_pause_replaces_only_the_loop_it_copies(monkeypatch):
         raise AssertionError("not called")
 
     monkeypatch.setattr(BlockManager, "run", other_loop)
-    assert not gpu._pause_simulated_block_polls.__wrapped__()
+    assert not gpu._run_simulated_blocks_as_greenlets.__wrapped__()
     assert BlockManager.run is other_loop
 
 
@@ -108,8 +142,12 @@ def _fails_in_one_thread(out):
 
 
 def test_a_failing_thread_stops_its_block_with_its_error():
-    """A thread's error reaches the launch, naming the thread, while the others wait at a
-    barrier (they are aborted, not left waiting)."""
+    """A thread's error reaches the launch, naming the thread and its block, while the
+    others wait at a barrier (they are dropped, and the next launch runs as usual)."""
     out = np.zeros(THREADS)
-    with pytest.raises(IndexError, match=r"tid=\[5, 0, 0\]"):
+    with pytest.raises(IndexError, match=r"tid=\[5, 0, 0\] ctaid=\[0, 0, 0\]"):
         _fails_in_one_thread[1, THREADS](out)
+    values = np.ones((1, THREADS))
+    sums = np.zeros_like(values)
+    _tree_sums[1, THREADS](values, sums)
+    np.testing.assert_array_equal(sums, THREADS)

@@ -140,7 +140,8 @@ the GPU (N = 2 x 10^5, 50 realizations: 2.98 against 3.05 ms a step)."""
 
 _SMALL = 8 if simulated() else 32
 """Threads per block of the kernels with one thread per realization (8 under the
-simulator, where every thread is a Python thread that its block manager polls)."""
+simulator, where every thread is a greenlet that runs Python: fewer threads, less
+overhead)."""
 
 THREADS = 8 if simulated() else BLOCK
 """Threads per block of the kernels over particles (a power of two: the block sums halve
