@@ -111,7 +111,8 @@ def _run_simulated_blocks_as_greenlets() -> bool:
     numba's ``cuda`` module of the simulator finds threadIdx and the barrier, is made to
     return the running greenlet. Measured on the development machine: the inhomogeneous
     engine, 2 realizations of 200 simulated particles and 12 steps, 5.5 CPU-s with
-    numba's threads (polls paused), 1.9 with greenlets, the same datasets bit for bit.
+    numba's threads (polls paused), 1.9 with greenlets, the same datasets bit for bit
+    (and so the homogeneous engine's and the cloning's, docs/gpu.md).
     Installed over numba-cuda 0.30.4's loop only (the digest of its source); another
     numba-cuda keeps its own, and tests/gpu/test_simulator.py then fails. Returns
     whether it is installed."""
