@@ -3,7 +3,9 @@ shared arrays. numba's ``FakeCUDAShared.array`` looks a line's array up and, whe
 creates it, without a lock, so two threads arriving together can each get their own;
 ``kinetic.gpu`` replaces it with a locked lookup. And a block's threads are greenlets
 that take turns between barriers (``kinetic.gpu._run_simulated_blocks_as_greenlets``),
-not operating-system threads, with the simulator's barriers and errors intact."""
+not operating-system threads, with the simulator's barriers and errors intact; a device
+function's module is pointed at the launch's fake ``cuda`` once per launch
+(``kinetic.gpu._swap_device_modules_once_per_launch``)."""
 
 import os
 import threading
@@ -139,6 +141,37 @@ def _fails_in_one_thread(out):
     cuda.syncthreads()
     out[t + (THREADS if t == 5 else 0)] = 1.0  # thread 5 writes past the end
     cuda.syncthreads()
+
+
+def test_device_modules_are_swapped_for_a_launch_and_back_after_it():
+    """``_tree_sums`` calls ``kinetic.gpu.block_reduce_sum``, whose module numba's simulator
+    would swap at every call: it is swapped once for the launch, and ``kinetic.gpu``'s
+    ``cuda`` is numba's module again after it, also after a launch that failed."""
+    from kinetic import gpu
+
+    real = vars(gpu)["cuda"]
+    assert gpu._swap_device_modules_once_per_launch()
+    values = np.arange(2 * THREADS, dtype=np.float64).reshape(2, THREADS)
+    out = np.zeros_like(values)
+    _tree_sums[2, THREADS](values, out)
+    np.testing.assert_array_equal(out, np.broadcast_to(values.sum(axis=1)[:, None], out.shape))
+    assert vars(gpu)["cuda"] is real
+    with pytest.raises(IndexError):
+        _fails_in_one_thread[1, THREADS](np.zeros(THREADS))
+    assert vars(gpu)["cuda"] is real
+
+
+def test_the_launch_swap_wraps_only_the_call_it_was_checked_against(monkeypatch):
+    from numba.cuda.simulator.kernel import FakeCUDAKernel
+
+    from kinetic import gpu
+
+    def other_call(self, *args):  # pragma: no cover - never run
+        raise AssertionError("not called")
+
+    monkeypatch.setattr(FakeCUDAKernel, "__call__", other_call)
+    assert not gpu._swap_device_modules_once_per_launch.__wrapped__()
+    assert FakeCUDAKernel.__call__ is other_call
 
 
 def test_a_failing_thread_stops_its_block_with_its_error():
