@@ -90,6 +90,16 @@ def _lock_simulated_shared_arrays() -> bool:
     return True
 
 
+def _is_upstream(function, digest: str) -> bool:
+    """Whether the source of ``function`` is the numba-cuda code whose SHA-256 is ``digest``:
+    the code a replacement below was checked against (another numba-cuda keeps its own)."""
+    try:
+        source = inspect.getsource(function)
+    except (OSError, TypeError):
+        return False
+    return hashlib.sha256(source.encode()).hexdigest() == digest
+
+
 _UPSTREAM_BLOCK_RUN = "54626c6819f55d514a598517b1467ed1cc2e7c3bf1f3b9814e13ef2a4ba3541f"
 """SHA-256 of the source of numba-cuda 0.30.4's ``BlockManager.run``, the loop that
 :func:`_run_simulated_blocks_as_greenlets` replaces."""
@@ -121,10 +131,10 @@ def _run_simulated_blocks_as_greenlets() -> bool:
         from numba.cuda.simulator import kernel as simulator
         from numba.cuda.simulator import kernelapi
 
-        upstream = inspect.getsource(simulator.BlockManager.run)
-    except (ImportError, AttributeError, OSError, TypeError):
+        upstream = simulator.BlockManager.run
+    except (ImportError, AttributeError):
         return False
-    if hashlib.sha256(upstream.encode()).hexdigest() != _UPSTREAM_BLOCK_RUN:
+    if not _is_upstream(upstream, _UPSTREAM_BLOCK_RUN):
         return False
     if getattr(kernelapi, "threading", None) is not threading:
         return False
@@ -211,12 +221,11 @@ def _swap_device_modules_once_per_launch() -> bool:
     try:
         from numba.cuda.simulator import kernel as simulator
 
-        upstream = inspect.getsource(simulator.FakeCUDAKernel.__call__)
-    except (ImportError, AttributeError, OSError, TypeError):
+        launch = simulator.FakeCUDAKernel.__call__
+    except (ImportError, AttributeError):
         return False
-    if hashlib.sha256(upstream.encode()).hexdigest() != _UPSTREAM_KERNEL_CALL:
+    if not _is_upstream(launch, _UPSTREAM_KERNEL_CALL):
         return False
-    launch = simulator.FakeCUDAKernel.__call__
     real = cuda  # this module's ``cuda`` is swapped too while its helpers run
     swapped: dict[int, tuple[dict, list[str]]] = {}  # a module's globals: the names swapped
 
@@ -344,7 +353,6 @@ def warm(name: str, engine: str, compile_kernels) -> float:
     if not CACHED:
         compile_kernels()
         return time.perf_counter() - begin
-    import hashlib
     from importlib.metadata import version
 
     from kinetic import jit

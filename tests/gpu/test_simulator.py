@@ -71,7 +71,7 @@ def _tree_sums(values, out):
     out[cuda.blockIdx.x, t] = block_reduce_sum(shared, values[cuda.blockIdx.x, t], THREADS)
 
 
-def test_the_greenlet_blocks_keep_every_barrier():
+def test_the_greenlet_blocks_keep_every_barrier(monkeypatch):
     """Every thread of every block reads the block's total after the last barrier: a
     thread released early from any barrier would read a partial sum. No operating-system
     thread is started for them."""
@@ -90,11 +90,9 @@ def test_the_greenlet_blocks_keep_every_barrier():
         threads.append(thread)
         started(thread)
 
-    threading.Thread.start = count
-    try:
-        _tree_sums[3, THREADS](values, out)
-    finally:
-        threading.Thread.start = started
+    monkeypatch.setattr(threading.Thread, "start", count)
+    _tree_sums[3, THREADS](values, out)
+    monkeypatch.undo()
     np.testing.assert_array_equal(out, np.broadcast_to(values.sum(axis=1)[:, None], out.shape))
     assert threads == []
 
