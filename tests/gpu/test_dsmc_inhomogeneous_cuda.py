@@ -203,6 +203,10 @@ def test_steps_of_one_cooperative_launch_alternate_their_buffers():
             )
 
 
+def _but_revision(attrs):
+    return {key: value for key, value in attrs.items() if key != "git_revision"}
+
+
 def test_runs_sharing_launches_give_what_they_give_alone(tiny_runs, short_elastic_run):
     """``simulate_cooling_modes_points``: a run of α = 1 and two samples and one of α =
     0.8 with drag and four samples (three realizations in one batch, the shorter run
@@ -211,7 +215,9 @@ def test_runs_sharing_launches_give_what_they_give_alone(tiny_runs, short_elasti
     points = [{**TINY, **SHORT_ELASTIC, "backend": "cuda"}, {**TINY, "backend": "cuda"}]
     together = simulate_cooling_modes_points(points)
     for got, alone in zip(together, (short_elastic_run, tiny_runs[1]), strict=True):
-        assert got.attrs == alone.attrs
+        # the fixtures may come from another worker, which read git's revision at its own
+        # start: a commit between the two starts changes that one attribute only
+        assert _but_revision(got.attrs) == _but_revision(alone.attrs)
         for name in alone.data_vars:
             if name != "cpu_seconds":
                 np.testing.assert_array_equal(got[name].values, alone[name].values, name)
