@@ -37,7 +37,7 @@ def _chi2_max() -> float:
     (errors from 16 realizations), so the mean of 20 z² is 1.15 on average, and exceeds 2.0
     (the bound before 3.0: one seed in four failed one of the four tests) with probability
     3.7 %, 3.0 (the bound until salt 28 of KINETIC_TEST_SEED_SALT failed it at 3.12) with
-    0.12 %, and this bound, 3.85, with 10⁻⁴. Over 300 seeds the hard disks' Eq. (9)
+    0.12 %, and this bound, 3.84, with 10⁻⁴. Over 300 seeds the hard disks' Eq. (9)
     comparison had a mean of 1.169, a largest of 3.34 and two above 3.0. The Poisson law that
     hard disks must reject gives more than 20."""
     return sum_of_squares_tolerance(BINS, REALIZATIONS - 1, 1e-4) / BINS  # cached

@@ -243,21 +243,37 @@ def test_band_exceedance_is_nominal_for_a_gaussian_scatter_and_larger_for_a_skew
 
 
 def test_sum_of_squares_bounds_hold_their_false_alarm_for_student_errors():
-    """Σ z² of Student's t: fresh draws (another seed than the bound's own) exceed the
-    bound at its false-alarm rate within 4 binomial errors, where χ²'s quantile is
-    exceeded 4.4 % of the time for 40 bins of 12 realizations; many degrees of freedom
+    """Σ z² of Student's t: draws exceed the bound at its false-alarm rate within 4
+    binomial errors, where χ²'s quantile is exceeded 4.4 % of the time for 40 bins of 12
+    realizations; one value gives Student's own quantile squared; many degrees of freedom
     give χ²'s quantile; the p-value of the bound is its false alarm."""
     from scipy import stats
 
     bound = checks.sum_of_squares_tolerance(40, 11)
-    assert bound == pytest.approx(107.5, rel=0.02)
+    assert bound == pytest.approx(107.8, rel=0.002)
     rng = np.random.default_rng(11)
     draws = 400_000
     sums = np.sum(rng.standard_t(11, size=(draws, 40)) ** 2, axis=1)
     assert abs(np.mean(sums > bound) - 1e-3) < 4 * math.sqrt(1e-3 / draws)
     assert np.mean(sums > stats.chi2.isf(1e-3, 40)) > 0.04
+    # heavy tails (no finite variance at 3 degrees of freedom): the largest value dominates
+    wide = checks.sum_of_squares_tolerance(20, 3, 1e-2)
+    sums = np.sum(rng.standard_t(3, size=(draws, 20)) ** 2, axis=1)
+    assert abs(np.mean(sums > wide) - 1e-2) < 4 * math.sqrt(1e-2 / draws)
+    assert checks.sum_of_squares_tolerance(1, 5) == pytest.approx(
+        stats.t.isf(5e-4, 5) ** 2, rel=1e-5
+    )
     assert checks.sum_of_squares_tolerance(40, 20_000) == pytest.approx(stats.chi2.isf(1e-3, 40))
-    assert checks.sum_of_squares_p_value(bound, 40, 11) == pytest.approx(1e-3, rel=0.1)
-    assert 0 < checks.sum_of_squares_p_value(1e6, 40, 11) < 2e-6  # never 0
+    assert checks.sum_of_squares_tolerance(40, 9_000) == pytest.approx(
+        stats.chi2.isf(1e-3, 40), rel=1e-3
+    )
+    assert checks.sum_of_squares_p_value(bound, 40, 11) == pytest.approx(1e-3, rel=1e-4)
+    assert checks.sum_of_squares_p_value(0.0, 40, 11) == 1.0
+    # far beyond the computed tail: the largest t² alone, 40 P(t² > 10⁶), never 0
+    beyond = checks.sum_of_squares_p_value(1e6, 40, 11)
+    assert beyond == pytest.approx(40 * 2 * stats.t.sf(1e3, 11), rel=1e-3)
+    assert beyond > 0
     with pytest.raises(ValueError, match="degree of freedom"):
         checks.sum_of_squares_tolerance(40, 0)
+    with pytest.raises(ValueError, match="false_alarm"):
+        checks.sum_of_squares_tolerance(40, 11, 0.0)
