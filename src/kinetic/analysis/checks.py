@@ -136,7 +136,7 @@ def _sum_of_squares_cdf(n_values: int, dof: int, top: float):
     ends.
 
     One t² is F(1, dof): its mass on each step is a difference of the regularised
-    incomplete beta function, P(t² > x) = I_{dof/(dof + x)}(dof/2, 1/2). The n-fold
+    incomplete beta function (:func:`_student_square_sf`). The n-fold
     convolution is a power of its discrete Fourier transform, taken of the masses damped
     by e^{-θx} with θ top = :data:`_SUM_DAMPING`, so that the sums beyond ``top``, which
     the transform wraps round to the grid's start, come back weighted by e^{-θ top}, and
@@ -144,12 +144,11 @@ def _sum_of_squares_cdf(n_values: int, dof: int, top: float):
     The undamping multiplies the transform's round-off, 10⁻¹⁶ of the largest mass, by at
     most e^{θ top/3} = 1.6 × 10⁵ below a third of the grid."""
     import numpy as np
-    from scipy import special
 
     if dof < 1 or n_values < 1:
         raise ValueError(f"need >= 1 value and >= 1 degree of freedom, got {n_values}, {dof}")
     step = top / _SUM_POINTS
-    beyond = special.betainc(0.5 * dof, 0.5, dof / (dof + np.arange(_SUM_POINTS + 1) * step))
+    beyond = _student_square_sf(np.arange(_SUM_POINTS + 1) * step, dof)
     damping = np.exp(-(_SUM_DAMPING / _SUM_POINTS) * np.arange(_SUM_POINTS))
     spectrum = np.fft.rfft((beyond[:-1] - beyond[1:]) * damping)
     power = np.ones_like(spectrum)
@@ -179,11 +178,13 @@ def _sum_of_squares_sf(total: float, n_values: int, dof: int, top: float) -> flo
     return float(1.0 - np.interp(where, np.arange(cdf.size), cdf))
 
 
-def _student_square_sf(value: float, dof: int) -> float:
-    """P(t² > ``value``) for Student's t with ``dof`` degrees of freedom."""
+def _student_square_sf(value, dof: int):
+    """P(t² > ``value``) for Student's t with ``dof`` degrees of freedom (a number or an
+    array of them): t² is F(1, dof), whose tail is the regularised incomplete beta
+    function I_{dof/(dof + x)}(dof/2, 1/2)."""
     from scipy import special
 
-    return float(special.betainc(0.5 * dof, 0.5, dof / (dof + value)))
+    return special.betainc(0.5 * dof, 0.5, dof / (dof + value))
 
 
 def sum_of_squares_tolerance(n_values: int, dof: int, false_alarm: float = 1e-3) -> float:
@@ -228,7 +229,7 @@ def sum_of_squares_p_value(total: float, n_values: int, dof: int) -> float:
         return float(stats.chi2.sf(total, n_values))
     if total <= 0.0:
         return 1.0
-    largest = -math.expm1(n_values * math.log1p(-_student_square_sf(total, dof)))
+    largest = -math.expm1(n_values * math.log1p(-float(_student_square_sf(total, dof))))
     top = 3.0 * 2.0 ** math.ceil(math.log2(total))  # neighbouring totals share a grid
     return max(_sum_of_squares_sf(total, n_values, dof, top), largest)
 
