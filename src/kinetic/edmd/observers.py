@@ -130,18 +130,6 @@ class Observers:
             "normal_speed": self.record_normal_speed[slots].copy(),
         }
 
-    def reset_histograms(self) -> None:
-        """Zero every accumulated histogram and sum (the open windows keep counting)."""
-        for array in (
-            self.window_histogram,
-            self.window_overflow,
-            self.flight_histogram,
-            self.path_histogram,
-            self.flight_sums,
-            self.wall_statistics,
-        ):
-            array[...] = 0
-
     def kernel_arguments(self) -> ObserverBuffers:
         """The observer buffers as ``kernels.advance`` takes them."""
         return ObserverBuffers(
