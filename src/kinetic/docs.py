@@ -246,6 +246,7 @@ def collect(
             key: record[key] for key in ("wall_seconds", "cpu_seconds", "date", "exit_code")
         } | {
             "note": record.get("note", ""),
+            "summary": record.get("summary", ""),
             "cpu": record["machine"]["cpu"],
             "logical_cpus": record["machine"]["logical_cpus"],
             "git_revision": record["machine"]["git_revision"],
@@ -291,23 +292,28 @@ def _agreement(summary: dict[str, Any]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _timing(summary: dict[str, Any], name: str) -> str:
+def _timing(summary: dict[str, Any], name: str, detail: bool) -> str:
+    """One timing record: wall, CPU, machine, date and revision, then its ``summary`` (a
+    short outcome, the README's) or, with ``detail``, its whole ``note`` as well."""
     record = summary["timings"].get(name)
     if record is None:
         return "not measured yet"
-    note = f"; {record['note']}" if record.get("note") else ""
-    return (
+    head = (
         f"{_seconds(record['wall_seconds'])} wall, {record['cpu_seconds'] / 3600:.2f} CPU-hours "
         f"on {record['logical_cpus']} cores ({record['cpu']}, {record['date']}, "
-        f"revision {record['git_revision'][:7]}{note})"
+        f"revision {record['git_revision'][:7]})"
     )
+    said = [record.get("summary", "")] + ([record.get("note", "")] if detail else [])
+    said = [text for text in said if text]
+    return head + (": " + "; ".join(said) if said else "")
 
 
-def _timings(summary: dict[str, Any]) -> str:
+def _timings(summary: dict[str, Any], detail: bool = False) -> str:
     return (
         f"- `make figures` (the build of the default config from a clean clone, numba's "
-        f"compilation included, the installation not): {_timing(summary, 'figures-config')}\n"
-        f"- `make test`: {_timing(summary, 'test')}\n"
+        f"compilation included, the installation not): "
+        f"{_timing(summary, 'figures-config', detail)}\n"
+        f"- `make test`: {_timing(summary, 'test', detail)}\n"
     )
 
 
@@ -365,6 +371,7 @@ def blocks(summary: dict[str, Any]) -> dict[str, str]:
     made = {
         "agreement": _agreement(summary),
         "timings": _timings(summary),
+        "timings-detail": _timings(summary, detail=True),
         "checks": _checks_tables(summary),
         "benchmarks": _benchmark_table(summary),
         "plan-default": _plan("config/config.yaml"),

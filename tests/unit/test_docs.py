@@ -73,6 +73,16 @@ def test_measurements_are_quoted_to_their_error(value, error, text):
     assert docs.measurement(value, error) == text
 
 
+def test_the_readme_quotes_a_timings_outcome_and_benchmarks_md_its_history():
+    summary = json.loads((REPOSITORY / docs.SUMMARY).read_text())
+    record = summary["timings"]["test"] | {"summary": "OUTCOME", "note": "HISTORY"}
+    summary["timings"] = {"test": record}
+    short, detail = docs.blocks(summary)["timings"], docs.blocks(summary)["timings-detail"]
+    assert "OUTCOME" in short and "HISTORY" not in short
+    assert "OUTCOME; HISTORY" in detail
+    assert "`make figures` (" in short and "not measured yet" in short
+
+
 def test_timed_records_the_command_and_passes_its_exit_code_on(tmp_path):
     out = tmp_path / "timing.json"
     code = docs.timed(out, [sys.executable, "-c", "import sys; sys.exit(3)"])
