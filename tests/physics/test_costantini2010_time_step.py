@@ -12,12 +12,14 @@ import math
 
 from kinetic import dsmc
 from kinetic.analysis.checks import tolerance_factor, welch_dof
+from kinetic.studies.costantini2010 import mean_free_time
 from kinetic.theory import costantini2010 as theory
 
 DENSITY = 0.005
-MEAN_FREE_TIME = 1.0 / (2.0 * DENSITY * math.sqrt(math.pi))
+MEAN_FREE_TIME = mean_free_time(DENSITY)
 SIGMAS = 4.0
 REALIZATIONS = 16
+FINE, COARSE = 0.05, 0.1  # Δτ in mean free times
 
 
 def steady_temperature(time_step, seed):
@@ -43,11 +45,11 @@ def steady_temperature(time_step, seed):
 
 def test_steady_temperature_falls_by_twice_the_drag_over_the_step():
     drag = theory.drag_rate(0.8, DENSITY) * MEAN_FREE_TIME  # ω0 a mean free time
-    fine, fine_err = steady_temperature(0.05, seed=21)
-    coarse, coarse_err = steady_temperature(0.1, seed=22)
+    fine, fine_err = steady_temperature(FINE, seed=21)
+    coarse, coarse_err = steady_temperature(COARSE, seed=22)
     difference, error = fine - coarse, math.hypot(fine_err, coarse_err)
     dof = welch_dof([fine_err, coarse_err], [REALIZATIONS - 1] * 2)
     band = tolerance_factor(SIGMAS, round(dof)) * error
-    predicted = 2.0 * drag * (0.1 - 0.05) * fine  # 0.0090: the O(Δτ²) rest is 0.0004
+    predicted = 2.0 * drag * (COARSE - FINE) * fine  # 0.0090: the O(Δτ²) rest is 0.0004
     assert difference > band, (difference, band)  # resolved: the step is not exact
     assert abs(difference - predicted) < band, (difference, predicted, band)

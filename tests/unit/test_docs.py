@@ -77,7 +77,8 @@ def test_the_readme_quotes_a_timings_outcome_and_benchmarks_md_its_history():
     summary = json.loads((REPOSITORY / docs.SUMMARY).read_text())
     record = summary["timings"]["test"] | {"summary": "OUTCOME", "note": "HISTORY"}
     summary["timings"] = {"test": record}
-    short, detail = docs.blocks(summary)["timings"], docs.blocks(summary)["timings-detail"]
+    made = docs.blocks(summary)
+    short, detail = made["timings"], made["timings-detail"]
     assert "OUTCOME" in short and "HISTORY" not in short
     assert "OUTCOME; HISTORY" in detail
     assert "`make figures` (" in short and "not measured yet" in short
