@@ -182,7 +182,7 @@ def test_extrapolation_in_inverse_n_is_exact_on_a_line_and_reports_chi2():
 def test_convergence_table_removes_the_paper_rules_collision_excess():
     # 1000 real disks, Lambda = 10, 51 x 51 cells: the paper's rule collides
     # 1 + (51^2 - 1)/10^4 = 1.26 times too often, the majorant rule exactly
-    def run(rule):
+    def run(rule, cells=51):
         return xr.Dataset(
             {
                 name: ((), value)
@@ -197,9 +197,10 @@ def test_convergence_table_removes_the_paper_rules_collision_excess():
             attrs={
                 "n_particles": 1000,
                 "fictive_factor": 10,
-                "cells_per_side": 51,
+                "cells_per_side": cells,
                 "time_step": 1.4,
                 "collision_rule": rule,
+                "restitution": 1.0,
             },
         )
 
@@ -212,3 +213,13 @@ def test_convergence_table_removes_the_paper_rules_collision_excess():
     majorant = analysis.convergence_table([run("majorant")], density).iloc[0]
     assert majorant["collision_excess"] == 1.0
     assert majorant["nu_star_excess_removed"] == pytest.approx(0.14)
+    # the cells' collisional transfer: 2√(2π)/24 Δx*² F at α = 1, Δx*² = N nσ²/M²;
+    # six cells a side (1.05 mean free paths): 0.029014 times F = 0.96415 (kΔx = π/3)
+    coarse = analysis.convergence_table([run("majorant", cells=6)], density).iloc[0]
+    assert coarse["nu_star_cells"] == pytest.approx(0.027973, abs=2e-6)
+    assert coarse["nu_star_corrected"] == pytest.approx(0.14 - 0.027973, abs=2e-6)
+    # the paper's rule collides 1.26 times too often: the cells' part grows with the rate
+    fine = 2.0 * math.sqrt(2.0 * math.pi) / 24.0 * 5.0 / 51**2
+    assert paper["nu_star_cells"] == pytest.approx(fine, rel=1e-3)
+    assert paper["nu_star_corrected"] == pytest.approx(1.26 * (0.14 - 1.26 * fine), rel=1e-5)
+    assert paper["nu_star_corrected_err"] == pytest.approx(0.003 * 1.26)

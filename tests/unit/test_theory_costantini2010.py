@@ -94,3 +94,69 @@ def test_sonine_viscosity_converges_for_hard_disks():
     assert steps[-1] < 2e-6
     assert ratios[-1] == pytest.approx(1.02197, abs=2e-5)
     assert theory.nu_star_elastic() == pytest.approx(0.19947 * 1.02197, abs=2e-5)
+
+
+def _cell_collision_transfer(dimension, alpha, samples, rng, shear=0.1):
+    """Monte Carlo of one DSMC cell of unit side across the linear flow u_x = shear y:
+    Maxwellian pairs (T = m = 1) at independent uniform positions, the line of centres
+    uniform on the sphere, each pair weighted by the acceptance |g·σ̂| of hard particles
+    and kicked by −(1 + α)/2 (g·σ̂)σ̂. Returns the mean of Δp1x Δy over the collisions in
+    units of shear ⟨Δy²⟩ = shear/6, with its standard error: minus the collisional
+    transfer. The same pairs without the flow are subtracted (their mean is zero), which
+    leaves only the part linear in the flow."""
+    velocity = rng.normal(size=(2, samples, dimension))
+    height = rng.uniform(-0.5, 0.5, size=(2, samples))
+    separation = height[0] - height[1]
+    normal = rng.normal(size=(samples, dimension))
+    normal /= np.linalg.norm(normal, axis=1)[:, None]
+    values = []
+    for rate in (shear, 0.0):
+        relative = velocity[0] - velocity[1]
+        relative[:, 0] += rate * separation
+        approach = np.sum(relative * normal, axis=1)
+        weight = np.abs(approach)
+        kick = -(1.0 + alpha) / 2.0 * approach * normal[:, 0]
+        values.append(weight * kick * separation / weight.mean())
+    flow_part = (values[0] - values[1]) / (shear / 6.0)
+    return flow_part.mean(), flow_part.std(ddof=1) / math.sqrt(samples)
+
+
+@pytest.mark.parametrize("dimension", [2, 3])
+@pytest.mark.parametrize("alpha", [1.0, 0.8, 0.0])
+def test_collisional_transfer_matches_a_monte_carlo_of_one_cell(dimension, alpha):
+    # the factor 1 + 1/d of the acceptance ∝ |g| is 50 or 33 % of the answer; the
+    # Monte Carlo resolves it to 0.5 %
+    rng = np.random.default_rng(20 + dimension + int(10 * alpha))
+    estimate, error = _cell_collision_transfer(dimension, alpha, 200_000, rng)
+    expected = float(theory.collisional_transfer(alpha, dimension))
+    assert abs(-estimate - expected) < 4.0 * error
+    assert abs(-estimate - expected * dimension / (dimension + 1)) > 20.0 * error
+
+
+def test_cell_viscosity_of_elastic_spheres_is_alexander_garcia_and_alder_s():
+    # Δν/ν0 = transfer ν_c Δx²/12 with ν_c/ν0 = 32/(5π λ²) for first-Sonine hard spheres
+    assert float(theory.collisional_transfer(1.0, 3)) * 32.0 / (5.0 * math.pi) / 12.0 == (
+        pytest.approx(16.0 / (45.0 * math.pi), rel=1e-12)
+    )
+
+
+def test_cell_viscosity_scales_as_the_squared_cell_side_and_vanishes_in_one_cell():
+    # Δν* = (1 + α)√(2π)Δx*²/24 for cells much smaller than the mode (F → 1)
+    n_particles, density = 2000, 0.005
+    for cells in (400, 4000):
+        spacing_sq = n_particles * density / cells**2
+        assert float(theory.dsmc_cell_viscosity(0.8, n_particles, density, cells)) == (
+            pytest.approx(1.8 * math.sqrt(2.0 * math.pi) * spacing_sq / 24.0, rel=1e-4)
+        )
+    # nine cells a side of N = 2000 (0.99 mean free paths): the longest mode spans nine
+    # cells, F = 12(1 − sinc²(π/9))/(2π/9)² = 0.984 of the square law
+    half_phase = math.pi / 9.0
+    finite_mode = 12.0 * (1.0 - (math.sin(half_phase) / half_phase) ** 2) / (2 * half_phase) ** 2
+    assert finite_mode == pytest.approx(0.984, abs=5e-4)
+    coarse = theory.dsmc_cell_viscosity(0.8, n_particles, density, 9)
+    assert float(coarse) == pytest.approx(
+        1.8 * math.sqrt(2.0 * math.pi) * 10.0 / 81.0 / 24.0 * finite_mode, rel=1e-12
+    )
+    assert float(theory.dsmc_cell_viscosity(1.0, 1000, density, 1)) == 0.0
+    with pytest.raises(ValueError, match="dimension"):
+        theory.collisional_transfer(1.0, 4)

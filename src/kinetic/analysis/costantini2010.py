@@ -668,10 +668,16 @@ def convergence_table(results: Sequence[xr.Dataset], density: float):
     1 + (M² - 1)/N_sim times too often (its n_c counts the colliding particle itself;
     ``kinetic.dsmc.inhomogeneous_kernels``), the majorant rule 1 times; ν* times the
     excess (``nu_star_excess_removed``) is what the viscosity would be at the exact rate,
-    as ν* scales as one over the collision rate."""
+    as ν* scales as one over the collision rate. Last, the viscosity the cells add by
+    colliding partners up to a cell apart (``nu_star_cells``,
+    ``kinetic.theory.costantini2010.dsmc_cell_viscosity``, leading order in the cell
+    side, proportional to the collision rate) and ν* with both removed,
+    ``nu_star_corrected`` = excess (ν* − excess Δν*): what a point-collision gas, the
+    Boltzmann equation's, would give."""
     import pandas as pd
 
     from kinetic.studies.costantini2010 import mean_free_path, mean_free_time
+    from kinetic.theory.costantini2010 import dsmc_cell_viscosity
 
     records = []
     for result in results:
@@ -680,6 +686,14 @@ def convergence_table(results: Sequence[xr.Dataset], density: float):
         simulated = int(result.attrs["n_particles"]) * int(result.attrs["fictive_factor"])
         paper_rule = result.attrs["collision_rule"] == "paper"
         excess = 1.0 + (cells - 1) / simulated if paper_rule else 1.0
+        cell_viscosity = float(
+            dsmc_cell_viscosity(
+                float(result.attrs["restitution"]),
+                int(result.attrs["n_particles"]),
+                density,
+                int(result.attrs["cells_per_side"]),
+            )
+        )
         records.append(
             {
                 "n_particles": int(result.attrs["n_particles"]),
@@ -695,6 +709,9 @@ def convergence_table(results: Sequence[xr.Dataset], density: float):
                 "collision_excess": excess,
                 "nu_star_excess_removed": float(result.nu_star) * excess,
                 "nu_star_excess_removed_err": float(result.nu_star_err) * excess,
+                "nu_star_cells": cell_viscosity,
+                "nu_star_corrected": excess * (float(result.nu_star) - excess * cell_viscosity),
+                "nu_star_corrected_err": float(result.nu_star_err) * excess,
             }
         )
     return pd.DataFrame(records).drop_duplicates(["cell_side", "time_step"])

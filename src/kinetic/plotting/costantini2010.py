@@ -340,7 +340,9 @@ def fig07(table, study, pdf) -> None:
 def convergence_figure(table, study, pdf) -> None:
     """DSMC's systematic errors at α = 1: ν* against the squared collision cell side (at the
     production time step) and against the squared time step (at the production cells),
-    beside the first-Sonine and converged elastic values; ``table`` is
+    as measured and with the paper rule's collision excess and the cells' collisional
+    transfer removed (``nu_star_corrected``, filled markers), beside the first-Sonine and
+    converged elastic values; ``table`` is
     ``kinetic.analysis.costantini2010.convergence_table``'s. Saved at ``pdf``."""
     from kinetic.theory import costantini2010 as theory
 
@@ -355,15 +357,21 @@ def convergence_figure(table, study, pdf) -> None:
         (axes[1], "time_step", "cell_side", production_cells, r"$\Delta\tau\ \omega_c$"),
     ):
         rows = table[(table[fixed] - fixed_value).abs() < 1e-6 * fixed_value].sort_values(column)
-        plotting.errorbar(
-            ax,
-            rows[column] ** 2,
-            rows.nu_star,
-            rows.nu_star_err,
-            marker=style["marker"],
-            color=style["color"],
-            label=f"DSMC, N = {rows.n_particles.iloc[0]}",
-        )
+        measured = f"DSMC, N = {rows.n_particles.iloc[0]}"
+        for name, fill, series in (
+            ("nu_star", "none", measured),
+            ("nu_star_corrected", style["color"], "rule's excess and cells' transfer removed"),
+        ):
+            plotting.errorbar(
+                ax,
+                rows[column] ** 2,
+                rows[name],
+                rows[f"{name}_err"],
+                marker=style["marker"],
+                color=style["color"],
+                mfc=fill,
+                label=series,
+            )
         ax.axhline(
             theory.nu_star(1.0),
             color=METHOD_STYLE["theory"]["color"],

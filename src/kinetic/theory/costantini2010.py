@@ -24,6 +24,7 @@ __all__ = [
     "a2_montanero",
     "a2_van_noije_ernst",
     "check_stable",
+    "collisional_transfer",
     "coloured_noise_amplitude",
     "correlation_amplitude",
     "correlation_time",
@@ -163,6 +164,51 @@ def fdr_ratio_coloured(alpha, n_particles, density, a2=None):
     """ν̄*/ν* that a fit of the exponential tail measures with coloured noise: the white
     ratio times ``coloured_noise_amplitude``."""
     return fdr_ratio_white(alpha, a2) * coloured_noise_amplitude(alpha, n_particles, density, a2)
+
+
+def collisional_transfer(alpha, dimension=DIMENSION):
+    """(1 + 1/d) c: the mean momentum that a collision of inelastic hard disks (d = 2) or
+    spheres (d = 3) exchanges, in units of m times the pair's mean relative velocity u,
+    for the collisions of a gas whose pairs are accepted ∝ |g|: ⟨Δp1⟩ = −(1 + 1/d) c m u.
+
+    c = (1 + α)/2 ⟨cos²θ⟩ for a given g (θ between g and the line of centres: ⟨cos²θ⟩ =
+    2/3 for disks, 1/2 for spheres), and ⟨|g| g_x⟩ = (1 + 1/d)⟨|g|⟩u_x to first order in u.
+    (1 + α)/2 in d = 2; 2/3 for elastic spheres."""
+    if dimension not in (2, 3):
+        raise ValueError(f"dimension must be 2 or 3, got {dimension!r}")
+    cosine_sq = 2.0 / 3.0 if dimension == 2 else 0.5
+    return (1.0 + 1.0 / dimension) * (1.0 + np.asarray(alpha, dtype=float)) / 2.0 * cosine_sq
+
+
+def dsmc_cell_viscosity(alpha, n_particles, density, cells_per_side):
+    """Δν* that DSMC's collision cells add to the ν* of the longest transverse mode (d = 2,
+    M = ``cells_per_side`` cells a side), to leading order in the cell side Δx over the
+    mean free path λ.
+
+    DSMC collides partners anywhere in one cell: a pair a distance Δy apart across the
+    flow u(y) exchanges x-momentum −``collisional_transfer`` m (u(y1) − u(y2)) on average,
+    and so carries momentum a distance Δy, a transfer that the point collisions of the
+    Boltzmann equation (and MD at this density) lack. With positions uniform and
+    independent in a cell, ⟨Δy²⟩ = Δx²/6, and n ν_c/2 collisions per unit area and time
+    (ν_c = √(2π) v_s/ℓ a particle) add the kinematic viscosity
+    Δν = collisional_transfer ν_c Δx²/12; with Δx* = √(N nσ²)/M in ℓ,
+    Δν* = (1 + α) √(2π) Δx*²/24. (For elastic hard spheres the same sum, over their
+    first-Sonine viscosity, is (16/(45π))(Δx/λ)², the cell-size error of viscosity
+    that Alexander, Garcia and Alder derived, Phys. Fluids 10, 1540 (1998).)
+
+    The mode k = 2π/L spans only M cells: the pair average of (sin ky1 − sin ky2)²
+    replaces k²Δy²/2, which multiplies Δν* by F = 12(1 − sinc²(kΔx/2))/(kΔx)² with
+    kΔx = 2π/M (0.984 at M = 9; 1 as M → ∞). Leading order: where Δx approaches λ, the
+    collisions also flatten the flow inside a cell and the measured shift is smaller
+    (docs/reproduced.md, the cell-size study). One cell (M = 1, the homogeneous gas) has
+    no flow: 0.
+    """
+    cells = np.asarray(cells_per_side, dtype=float)
+    spacing_sq = np.asarray(n_particles, dtype=float) * density / cells**2  # Δx*² in ℓ²
+    phase = 2.0 * math.pi / cells  # kΔx
+    finite_mode = 12.0 * (1.0 - np.sinc(phase / (2.0 * math.pi)) ** 2) / phase**2
+    excess = collisional_transfer(alpha) * RATE_UNIT * spacing_sq / 12.0 * finite_mode
+    return np.where(cells > 1, excess, 0.0)
 
 
 def nu_star_from_fit(tau_c, zeta_star, k_star):
