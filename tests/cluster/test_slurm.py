@@ -158,12 +158,18 @@ def test_scancel_loses_nothing_finished_and_the_rerun_builds_only_what_is_missin
     )
     try:
         # with --jobs 1 a job starts after the previous one is finished for Snakemake: wait
-        # for a batch file, then for the next job to start, and cancel that one
+        # for a batch file, then for the next job to start, and cancel that one at once
+        # (a job takes seconds: anything done between seeing it and cancelling it, such
+        # as the lock check below, which takes as long, lets it finish on a fast machine)
         deadline, running_at_first_file = time.monotonic() + 600, None
         while time.monotonic() < deadline:
             running = _running_jobs()
             if running_at_first_file is None and batches.exists() and any(batches.iterdir()):
                 running_at_first_file = set(running)
+                # a second invocation in the same directory is refused by Snakemake's lock
+                second = _snakemake(tmp_path, target, *configs, "--cores", "1", check=False)
+                assert second.returncode != 0
+                assert "cannot be locked" in second.stdout + second.stderr
             elif running_at_first_file is not None and set(running) - running_at_first_file:
                 break
             assert run.poll() is None, run.communicate()[0]
@@ -171,13 +177,9 @@ def test_scancel_loses_nothing_finished_and_the_rerun_builds_only_what_is_missin
         else:
             raise AssertionError("no job started after the first batch finished")
         (cancelled,) = set(running) - running_at_first_file
-        finished = sorted(batches.glob("batch*.nc"))
-        # a second invocation in the same directory is refused by Snakemake's lock
-        second = _snakemake(tmp_path, target, *configs, "--cores", "1", check=False)
-        assert second.returncode != 0
-        assert "cannot be locked" in second.stdout + second.stderr
-        kept = {path: path.stat().st_mtime_ns for path in finished}
         subprocess.run(["scancel", cancelled], check=True)
+        finished = sorted(batches.glob("batch*.nc"))
+        kept = {path: path.stat().st_mtime_ns for path in finished}
         output = run.communicate(timeout=600)[0]
     finally:
         if run.poll() is None:

@@ -101,12 +101,13 @@ def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_
     ]
     deadline = time.monotonic() + 300
     # Snakemake picks the order of the two jobs: wait until one is done and the other runs
+    # (its job has opened its log), then kill at once: a job takes seconds, and on a fast
+    # machine a pause here would let the second finish too (it did, at 2 s, on a Xeon)
     while time.monotonic() < deadline and process.poll() is None:
         done = [path.exists() for path in batch_files]
-        if any(done) and all(log.exists() for log in logs):
+        if done.count(True) == 1 and all(log.exists() for log in logs):
             break
-        time.sleep(0.2)
-    time.sleep(2.0)  # the other job is running
+        time.sleep(0.05)
     os.killpg(process.pid, signal.SIGKILL)
     process.wait()
     done = [path.exists() for path in batch_files]
