@@ -213,13 +213,16 @@ def test_convergence_table_removes_the_paper_rules_collision_excess():
     majorant = analysis.convergence_table([run("majorant")], density).iloc[0]
     assert majorant["collision_excess"] == 1.0
     assert majorant["nu_star_excess_removed"] == pytest.approx(0.14)
-    # the cells' collisional transfer: 2√(2π)/24 Δx*² F at α = 1, Δx*² = N nσ²/M²;
-    # six cells a side (1.05 mean free paths): 0.029014 times F = 0.96415 (kΔx = π/3)
+    # the cells' collisional transfer: 2√(2π)/24 Δx*² F at α = 1, Δx*² = N nσ²/M², times
+    # the flattened flow inside a cell; six cells a side (1.05 mean free paths): 0.029014
+    # times F = 0.96415 (kΔx = π/3)
     coarse = analysis.convergence_table([run("majorant", cells=6)], density).iloc[0]
-    assert coarse["nu_star_cells"] == pytest.approx(0.027973, abs=2e-6)
-    assert coarse["nu_star_corrected"] == pytest.approx(0.14 - 0.027973, abs=2e-6)
+    flattened = float(theory.in_cell_flow(1.0, 2.0 * math.sqrt(2.0 * 5.0) / 6.0))
+    assert coarse["nu_star_cells"] == pytest.approx(0.027973 * flattened, abs=2e-6)
+    assert coarse["nu_star_corrected"] == pytest.approx(0.14 - 0.027973 * flattened, abs=2e-6)
     # the paper's rule collides 1.26 times too often: the cells' part grows with the rate
     fine = 2.0 * math.sqrt(2.0 * math.pi) / 24.0 * 5.0 / 51**2
+    fine *= float(theory.in_cell_flow(1.0, 2.0 * math.sqrt(2.0 * 5.0) / 51.0))
     assert paper["nu_star_cells"] == pytest.approx(fine, rel=1e-3)
     assert paper["nu_star_corrected"] == pytest.approx(1.26 * (0.14 - 1.26 * fine), rel=1e-5)
     assert paper["nu_star_corrected_err"] == pytest.approx(0.003 * 1.26)

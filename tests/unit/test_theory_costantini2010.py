@@ -141,22 +141,54 @@ def test_cell_viscosity_of_elastic_spheres_is_alexander_garcia_and_alder_s():
 
 
 def test_cell_viscosity_scales_as_the_squared_cell_side_and_vanishes_in_one_cell():
-    # Δν* = (1 + α)√(2π)Δx*²/24 for cells much smaller than the mode (F → 1)
+    # leading order: Δν* = (1 + α)√(2π)Δx*²/24 for cells much smaller than the mode (F → 1)
     n_particles, density = 2000, 0.005
     for cells in (400, 4000):
         spacing_sq = n_particles * density / cells**2
-        assert float(theory.dsmc_cell_viscosity(0.8, n_particles, density, cells)) == (
-            pytest.approx(1.8 * math.sqrt(2.0 * math.pi) * spacing_sq / 24.0, rel=1e-4)
+        leading = theory.dsmc_cell_viscosity(0.8, n_particles, density, cells, flattened=False)
+        assert float(leading) == pytest.approx(
+            1.8 * math.sqrt(2.0 * math.pi) * spacing_sq / 24.0, rel=1e-4
         )
     # nine cells a side of N = 2000 (0.99 mean free paths): the longest mode spans nine
     # cells, F = 12(1 − sinc²(π/9))/(2π/9)² = 0.984 of the square law
     half_phase = math.pi / 9.0
     finite_mode = 12.0 * (1.0 - (math.sin(half_phase) / half_phase) ** 2) / (2 * half_phase) ** 2
     assert finite_mode == pytest.approx(0.984, abs=5e-4)
-    coarse = theory.dsmc_cell_viscosity(0.8, n_particles, density, 9)
-    assert float(coarse) == pytest.approx(
-        1.8 * math.sqrt(2.0 * math.pi) * 10.0 / 81.0 / 24.0 * finite_mode, rel=1e-12
-    )
+    leading = 1.8 * math.sqrt(2.0 * math.pi) * 10.0 / 81.0 / 24.0 * finite_mode
+    coarse = theory.dsmc_cell_viscosity(0.8, n_particles, density, 9, flattened=False)
+    assert float(coarse) == pytest.approx(leading, rel=1e-12)
+    # the flattened flow inside the cells: the model's factor at Δx/λ = 2√2 √10/9
+    flattened = theory.dsmc_cell_viscosity(0.8, n_particles, density, 9)
+    side = 2.0 * math.sqrt(2.0) * math.sqrt(10.0) / 9.0
+    assert float(flattened) == pytest.approx(leading * float(theory.in_cell_flow(0.8, side)))
     assert float(theory.dsmc_cell_viscosity(1.0, 1000, density, 1)) == 0.0
     with pytest.raises(ValueError, match="dimension"):
         theory.collisional_transfer(1.0, 4)
+
+
+def _in_cell_flow_by_quadrature(alpha, side, harmonics=60):
+    """The same sum with each flight factor K_m = ∫e^{−u − a u²}du by quadrature, and the
+    harmonics beyond ``harmonics`` from their asymptote K_m ≈ Δx/(4mλ) (ζ(3)'s tail)."""
+    from scipy.integrate import quad
+    from scipy.special import zeta
+
+    kappa = (1.0 + alpha) / 2.0
+    total = 0.0
+    for m in range(1, harmonics + 1):
+        a = 4.0 * math.pi * m**2 / side**2
+        flights = quad(lambda u, a=a: math.exp(-u - a * u * u), 0.0, math.inf)[0]
+        total += flights / (m**2 * (1.0 - (1.0 - kappa) * flights))
+    tail = side / 4.0 * (zeta(3.0) - sum(1.0 / m**3 for m in range(1, harmonics + 1)))
+    return 1.0 - 6.0 / math.pi**2 * kappa * (total + tail)
+
+
+@pytest.mark.parametrize("alpha", [1.0, 0.8])
+def test_in_cell_flow_matches_its_sum_by_quadrature_and_its_small_cell_limit(alpha):
+    sides = [0.25, 0.5, 1.0, 2.24]
+    factors = [float(theory.in_cell_flow(alpha, side)) for side in sides]
+    for side, factor in zip(sides, factors, strict=True):
+        assert factor == pytest.approx(_in_cell_flow_by_quadrature(alpha, side), abs=1e-5)
+    assert all(0.0 < f < 1.0 for f in factors) and factors == sorted(factors, reverse=True)
+    # b → 1 − (3ζ(3)/(2π²)) κ Δx/λ as the cell shrinks (κ = (1 + α)/2)
+    slope = 3.0 * 1.2020569031595942 / (2.0 * math.pi**2) * (1.0 + alpha) / 2.0
+    assert (1.0 - float(theory.in_cell_flow(alpha, 1e-3))) / 1e-3 == pytest.approx(slope, rel=2e-3)
