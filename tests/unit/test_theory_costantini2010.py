@@ -162,6 +162,10 @@ def test_cell_viscosity_scales_as_the_squared_cell_side_and_vanishes_in_one_cell
     side = 2.0 * math.sqrt(2.0) * math.sqrt(10.0) / 9.0
     assert float(flattened) == pytest.approx(leading * float(theory.in_cell_flow(0.8, side)))
     assert float(theory.dsmc_cell_viscosity(1.0, 1000, density, 1)) == 0.0
+    # arrays of cells, as the scalars give
+    many = theory.dsmc_cell_viscosity(0.8, n_particles, density, np.array([1, 9, 18]))
+    singles = [float(theory.dsmc_cell_viscosity(0.8, n_particles, density, m)) for m in (1, 9, 18)]
+    assert many.tolist() == pytest.approx(singles, rel=1e-12)
     with pytest.raises(ValueError, match="dimension"):
         theory.collisional_transfer(1.0, 4)
 

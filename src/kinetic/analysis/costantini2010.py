@@ -708,8 +708,9 @@ def convergence_table(results: Sequence[xr.Dataset], density: float):
     excess (``nu_star_excess_removed``) is what the viscosity would be at the exact rate,
     as ν* scales as one over the collision rate. Last, the viscosity the cells add by
     colliding partners up to a cell apart (``nu_star_cells``,
-    ``kinetic.theory.costantini2010.dsmc_cell_viscosity``, leading order in the cell
-    side, proportional to the collision rate) and ν* with both removed,
+    ``kinetic.theory.costantini2010.dsmc_cell_viscosity``: the leading order in the cell
+    side times the model of the flow the cells flatten, proportional to the collision
+    rate) and ν* with both removed,
     ``nu_star_corrected`` = excess (ν* − excess Δν*): what a point-collision gas, the
     Boltzmann equation's, would give."""
     import pandas as pd

@@ -242,7 +242,7 @@ def dsmc_cell_viscosity(alpha, n_particles, density, cells_per_side, *, flattene
     finite_mode = 12.0 * (1.0 - np.sinc(phase / (2.0 * math.pi)) ** 2) / phase**2
     excess = collisional_transfer(alpha) * RATE_UNIT * spacing_sq / 12.0 * finite_mode
     if flattened:
-        excess = excess * in_cell_flow(alpha, 2.0 * math.sqrt(2.0 * spacing_sq))  # Δx/λ
+        excess = excess * in_cell_flow(alpha, 2.0 * np.sqrt(2.0 * spacing_sq))  # Δx/λ
     return np.where(cells > 1, excess, 0.0)
 
 
