@@ -621,13 +621,13 @@ def checks(results: Sequence[xr.Dataset], study: dict[str, Any]) -> list[Check]:
     if dsmc is not None and md is not None:
         # the paper statistics resolve both of DSMC's computed errors (2-3 % each at the
         # documents' cells): with them removed, the gas is MD's at this dilution
-        excess, cells = dsmc_viscosity_errors(dsmc, study["density"])
+        corrected = dsmc_viscosity_errors(dsmc, study["density"])
         rows.append(
             check.agrees(
                 f"inhomogeneous DSMC (Lambda = {production}) nu* with the rule's excess and "
                 "the cells' transfer removed equals MD's",
-                excess * (float(dsmc.nu_star) - excess * cells),
-                math.hypot(excess * float(dsmc.nu_star_err), float(md.nu_star_err)),
+                corrected["nu_star_corrected"],
+                math.hypot(corrected["nu_star_corrected_err"], float(md.nu_star_err)),
                 float(md.nu_star),
                 CHECK_SIGMAS,
             )
@@ -679,23 +679,32 @@ def elastic_checks(
     return rows
 
 
-def dsmc_viscosity_errors(result: xr.Dataset, density: float) -> tuple[float, float]:
-    """The two computed errors of an inhomogeneous DSMC run's ν*: the collision excess of
-    its rule (the paper's: 1 + (M² − 1)/N_sim, M² cells of N_sim simulated particles; the
-    majorant's: 1) and the viscosity its cells add
-    (``kinetic.theory.costantini2010.dsmc_cell_viscosity``). ν* scales as one over the
-    collision rate and the cells' part as the rate, so the point-collision gas's ν* is
-    excess (ν* − excess Δν*)."""
+def dsmc_viscosity_errors(result: xr.Dataset, density: float) -> dict[str, float]:
+    """The two computed errors of an inhomogeneous DSMC run's ν* and ν* without them:
+    ``collision_excess``, the rule's (the paper's: 1 + (M² − 1)/N_sim, M² cells of N_sim
+    simulated particles; the majorant's: 1), ``nu_star_cells``, the viscosity its cells
+    add (``kinetic.theory.costantini2010.dsmc_cell_viscosity``), and, as ν* scales as one
+    over the collision rate and the cells' part as the rate, the point-collision gas's
+    ``nu_star_corrected`` = excess (ν* − excess Δν*) with its error; also
+    ``particles_per_cell`` (N_sim/M²)."""
     from kinetic.theory.costantini2010 import dsmc_cell_viscosity
 
     cells = int(result.attrs["cells_per_side"])
     simulated = int(result.attrs["n_particles"]) * int(result.attrs["fictive_factor"])
     paper_rule = result.attrs["collision_rule"] == "paper"
     excess = 1.0 + (cells**2 - 1) / simulated if paper_rule else 1.0
-    cell_viscosity = dsmc_cell_viscosity(
-        float(result.attrs["restitution"]), int(result.attrs["n_particles"]), density, cells
+    cell_viscosity = float(
+        dsmc_cell_viscosity(
+            float(result.attrs["restitution"]), int(result.attrs["n_particles"]), density, cells
+        )
     )
-    return excess, float(cell_viscosity)
+    return {
+        "particles_per_cell": simulated / cells**2,
+        "collision_excess": excess,
+        "nu_star_cells": cell_viscosity,
+        "nu_star_corrected": excess * (float(result.nu_star) - excess * cell_viscosity),
+        "nu_star_corrected_err": excess * float(result.nu_star_err),
+    }
 
 
 def convergence_table(results: Sequence[xr.Dataset], density: float):
@@ -720,9 +729,8 @@ def convergence_table(results: Sequence[xr.Dataset], density: float):
     records = []
     for result in results:
         side = (float(result.attrs["n_particles"]) / density) ** 0.5
-        cells = int(result.attrs["cells_per_side"]) ** 2
-        simulated = int(result.attrs["n_particles"]) * int(result.attrs["fictive_factor"])
-        excess, cell_viscosity = dsmc_viscosity_errors(result, density)
+        errors = dsmc_viscosity_errors(result, density)
+        excess = errors["collision_excess"]
         records.append(
             {
                 "n_particles": int(result.attrs["n_particles"]),
@@ -734,13 +742,13 @@ def convergence_table(results: Sequence[xr.Dataset], density: float):
                 "nu_star": float(result.nu_star),
                 "nu_star_err": float(result.nu_star_err),
                 "temperature_s": float(result.temperature_s),
-                "particles_per_cell": simulated / cells,
+                "particles_per_cell": errors["particles_per_cell"],
                 "collision_excess": excess,
                 "nu_star_excess_removed": float(result.nu_star) * excess,
                 "nu_star_excess_removed_err": float(result.nu_star_err) * excess,
-                "nu_star_cells": cell_viscosity,
-                "nu_star_corrected": excess * (float(result.nu_star) - excess * cell_viscosity),
-                "nu_star_corrected_err": float(result.nu_star_err) * excess,
+                "nu_star_cells": errors["nu_star_cells"],
+                "nu_star_corrected": errors["nu_star_corrected"],
+                "nu_star_corrected_err": errors["nu_star_corrected_err"],
             }
         )
     return pd.DataFrame(records).drop_duplicates(["cell_side", "time_step"])
