@@ -64,12 +64,13 @@ One step (``advance``)
    collision. Measured at N = 1000, Λ = 10, α = 0.8 with the drag, cells of 0.125 mean
    free paths (3.8 simulated particles a cell; 2 realizations of 200 mean free times):
    the carried fraction raised the collision rate at a given T by 0.42 % and the
-   dissipation by 1.07 %, and T_s fell to 0.978 from one cell's 0.999; with the fresh
-   phase T_s is 0.998 ± 0.001 at cells of 0.5, 0.25 and 0.125 mean free paths, as in
-   one cell. (The elastic rate at 5 simulated particles a cell: +0.10 ± 0.02 % carried,
-   +0.01 ± 0.05 % fresh.) What remains with few particles a cell that stay in it a
-   while is DSMC's own loss of chaos (recollisions; ``tally[TALLY_REPEATED]``): at 3.8
-   simulated particles in cells of 0.36 mean free paths T_s is 0.7 % above one cell's.
+   dissipation by 1.07 %, and T_s fell 1.9 % below one cell's; with the fresh phase it
+   lies 0.12, 0.33 and 0.28 % below at cells of 0.5, 0.25 and 0.125 mean free paths
+   (± 0.04 %; 16 realizations of 1000 mean free times; docs/reproduced.md). (The elastic
+   rate at 5 simulated particles a cell: +0.10 ± 0.02 % carried, +0.01 ± 0.05 % fresh.)
+   With few particles a cell that stay in it a while DSMC also loses chaos
+   (recollisions; ``tally[TALLY_REPEATED]``): at 3.8 simulated particles in cells of
+   0.36 mean free paths T_s is 0.7 % above one cell's.
 
    ``RULE_PAPER`` (costantini2010, Appendix): ½ count ω_c(T_c) Δτ collisions per step
    (the fractional part carried to the next step of the cell), T_c = Σ|w - ū|²/(2(count
