@@ -13,8 +13,8 @@ Here α = 0.8, N = 32 and Λ = 96 (3072 simulated particles) in a box of 3.6 mea
 paths, Δτ = 0.027 mean free times: one cell against 28 x 28 cells (3.9 particles, 0.13
 mean free paths a cell), 16 realizations of 230 mean free times each. The two T_s agree
 within Student's 4 standard errors of their difference. With the carried fraction the
-same runs gave 0.97910 ± 0.00100 against 0.99954 ± 0.00123, a difference twice this band;
-with the fresh phase −0.0046 ± 0.0021.
+same runs gave 0.97910 ± 0.00100 against 0.99954 ± 0.00123, 2.8 times their band; with
+the fresh phase the difference is −0.0046 ± 0.0021.
 """
 
 import math

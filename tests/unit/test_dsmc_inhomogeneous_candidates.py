@@ -5,11 +5,11 @@ average, spacing_c = 1/(pair_coefficient x count(count - 1)/2 x (top1 + top2)), 
 the cell carried from its earlier steps (``Cells.carry``, which rule "majorant" leaves
 alone): the count is floor(x_c + u) with a fresh uniform u. The state is restored before
 every call, and the carried fractions are set to 0 for half the calls and to 0.999 for
-the other half; a carried fraction would move the mean by about half a candidate a cell
-(0.5 M² against Σ x_c ≈ 0.3 M² here). Elastic collisions, a step short enough that a
-collision rarely raises a cell's bound within it. Each half's mean must lie within 4
-standard errors of Σ x_c, the error of the Bernoulli rounding Σ f_c(1 - f_c) known
-exactly.
+the other half; counting from the carried fraction (the code before 2026-11-30) gave
+Σ floor(x_c) from 0, 9.75 candidates a step below Σ x_c here. Elastic collisions, a
+step short enough that a collision rarely raises a cell's bound within it. Each half's
+mean must lie within 4 standard errors of Σ x_c, the error of the Bernoulli rounding
+Σ f_c(1 - f_c) known exactly.
 """
 
 import math
