@@ -66,8 +66,9 @@ One step (``advance``)
    the carried fraction raised the collision rate at a given T by 0.42 % and the
    dissipation by 1.07 %, and T_s fell 1.9 % below one cell's; with the fresh phase it
    lies 0.12, 0.33 and 0.28 % below at cells of 0.5, 0.25 and 0.125 mean free paths
-   (± 0.04–0.05 %; 16 realizations of 1000 mean free times; docs/reproduced.md), an error
-   of the time step that falls to 0.08 and 0.03 % at half the step. (The elastic
+   (± 0.04–0.05 %; 16 realizations of 1000 mean free times; docs/reproduced.md): in one
+   cell a step's later collisions see the gas cooled by its earlier ones, which small
+   cells do not, and at smaller steps the cells' loss of chaos takes over. (The elastic
    rate at 5 simulated particles a cell: +0.10 ± 0.02 % carried, +0.01 ± 0.05 % fresh.)
    With few particles a cell that stay in it a while DSMC also loses chaos
    (recollisions; ``tally[TALLY_REPEATED]``): at 3.8 simulated particles in cells of
