@@ -25,6 +25,7 @@ import pytest
 
 from kinetic.dsmc import CoolingModesSettings, new_cooling_gas, realization_streams
 from kinetic.dsmc import inhomogeneous_kernels as kernels
+from kinetic.theory.costantini2010 import drag_rate
 
 N, LAMBDA, DENSITY, ALPHA, CALLS = 1000, 10, 0.005, 0.8, 40_000
 MEAN_FREE_TIME = 1.0 / (2.0 * DENSITY * math.sqrt(math.pi))
@@ -32,8 +33,6 @@ MEAN_FREE_TIME = 1.0 / (2.0 * DENSITY * math.sqrt(math.pi))
 
 def step_dissipation(cells_per_side: int):
     """(mean dissipation of one collision stage, its standard error, E_1, energy)."""
-    from kinetic.theory.costantini2010 import drag_rate
-
     settings = CoolingModesSettings(
         n_particles=N,
         density=DENSITY,
