@@ -1,11 +1,12 @@
 """Rule "majorant" with a few simulated particles a cell: the steady state of one cell.
 
 The majorant rule's pair rate is exact in any cell, so the steady temperature of the
-inelastic gas under the drag ω0 = ζ(T0)/2 must not depend on the cells while they stay
-well below a mean free path. Until the candidates of a step were counted with a fresh
-uniform phase (SPARTA's ``collide_modify remain no``), each cell carried the fraction of
-a candidate left at the end of a step into its next step, and its candidates then fell
-more often on states long without a collision (``kernels.inhomogeneous_kernels``): at
+inelastic gas under the drag ω0 = ζ(T0)/2 may depend on the cells, while they stay well
+below a mean free path, only through the step's splitting (below). Until the
+candidates of a step were counted with a fresh uniform phase (SPARTA's ``collide_modify
+remain no``), each cell carried the fraction of a candidate left at the end of a step
+into its next step, and its candidates then fell more often on states long without a
+collision (``kinetic.dsmc.inhomogeneous_kernels``): at
 3.8 simulated particles a cell the gas cooled 1 % faster and T_s was 2 % low, the
 "extra cooling in small cells" of the paper-statistics runs.
 
