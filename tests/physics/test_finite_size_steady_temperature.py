@@ -9,17 +9,17 @@ Enskog's factor of the disks' density). The majorant rule normalises its rate to
 density N/A (``pair_coefficient``'s N_sim/(N_sim - 1)), so one cell gives T∞ ((N - 1)/N)³.
 The ratio MD χ²/DSMC is therefore (N/(N - 1))², 1.0412 at N = 50: the finite-size part
 of MD's T_s at N = 1000 (docs/reproduced.md, costantini2010 Fig. 1, "MD's density and
-size"). Measured: 1.0402 ± 0.0012 (16 realizations of 20000 mean free times each);
+size"). Measured: 1.0402 ± 0.0013 (16 realizations of 20000 mean free times each);
 this test's runs with seeds shifted by 100-400 give 1.0405, 1.0407, 1.0412 and 1.0389
 (± 0.0014-0.0019, windows 0.0066-0.0086).
 
 α = 0.8, nσ² = 0.005 (a box of 1.4 mean free paths: no hydrodynamic flow to speak of),
 12 realizations of 15000 mean free times per engine after 50 discarded; DSMC at
 Δτ = 0.0125 mean free times. The window is 4 combined standard errors plus 0.001 for
-what the ratio leaves out (the DSMC's time step moves one cell's T_s by 0.03 % between
-Δτ = 0.0125 and 0.00625; at N = 100 the ratio is 1.0215 ± 0.0008 against 1.0203). A
-pair count of N in both engines (ratio 1) or the DSMC's count without its normalisation
-(N/(N - 1), 1.0204) lies outside it.
+what the law leaves out (at N = 100 the ratio is 1.0205 ± 0.0004 at this step and
+1.0182 ± 0.0005 at Δτ = 0.003125, against 1.0203). A pair count of N in both engines
+(ratio 1) or the DSMC's count without its normalisation (N/(N - 1), 1.0204) lies
+outside it.
 """
 
 import math
@@ -82,7 +82,7 @@ def test_md_over_one_cell_dsmc_is_the_squared_pair_count_ratio(runs):
     for wrong in (1.0, N / (N - 1.0)):
         assert abs(ratio - wrong) > window
     # each engine on its own: T∞ ((N - 1)/N)^p with p = 1 (MD), 3 (DSMC) and T∞ = 1 but
-    # for T∞'s 0.08 % at this step and the finite gas's velocity distribution (both
-    # engines +0.2-0.35 % at N = 50 in the runs above, +0.05 % at N = 100)
+    # for T∞'s +0.1 % (Eq. 12's ζ; DSMC's step) and the finite gas's velocity
+    # distribution (both engines +0.2-0.35 % at N = 50 in the runs above)
     assert abs(md / ((N - 1.0) / N) - 1.0) < 4.0 * md_sem / md + 0.004
     assert abs(cell / ((N - 1.0) / N) ** 3 - 1.0) < 4.0 * cell_sem / cell + 0.004
