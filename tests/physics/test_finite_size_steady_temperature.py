@@ -29,13 +29,13 @@ import pytest
 
 from kinetic import dsmc, edmd, gas
 from kinetic.analysis.statistics import mean_and_sem
+from kinetic.edmd.system import contact_value
 from kinetic.theory.costantini2010 import drag_rate
 
 N, ALPHA, DENSITY, REALIZATIONS = 50, 0.8, 0.005, 12
 MEAN_FREE_TIME = 1.0 / gas.equilibrium_collision_frequency("hard_spheres", 2, DENSITY)
 TRANSIENT, DURATION, INTERVAL = 50.0, 15000.0, 1.0  # mean free times
-ETA = math.pi * DENSITY / 4.0
-CHI = (1.0 - 7.0 * ETA / 16.0) / (1.0 - ETA) ** 2  # Henderson's contact value
+CHI = contact_value(DENSITY, 2)  # Henderson's χ
 
 
 def steady_temperatures(engine: str) -> np.ndarray:
@@ -48,15 +48,13 @@ def steady_temperatures(engine: str) -> np.ndarray:
         sample_interval=INTERVAL * MEAN_FREE_TIME,
         n_samples=round(DURATION / INTERVAL),
         n_realizations=REALIZATIONS,
+        equilibration=TRANSIENT * MEAN_FREE_TIME,
     )
     if engine == "md":
-        data = edmd.simulate_cooling_modes(
-            **common, equilibration=TRANSIENT * MEAN_FREE_TIME, seed=17
-        )
+        data = edmd.simulate_cooling_modes(**common, seed=17)
         return data.temperature.values.mean(axis=1) * CHI**2
     data = dsmc.simulate_cooling_modes(
         **common,
-        equilibration=TRANSIENT * MEAN_FREE_TIME,
         seed=18,
         fictive_factor=1,
         cells_per_side=1,
