@@ -23,10 +23,11 @@ import pytest
 
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import CoolingModesSettings, new_cooling_gas, realization_streams
+from kinetic.studies.costantini2010 import mean_free_time
 from kinetic.theory.costantini2010 import drag_rate
 
 ALPHA, N, LAMBDA, DENSITY, REALIZATIONS = 0.3, 500, 4, 0.05, 4
-MEAN_FREE_TIME = 1.0 / (2.0 * DENSITY * math.sqrt(math.pi))
+MEAN_FREE_TIME = mean_free_time(DENSITY)
 STEP = 0.025 * MEAN_FREE_TIME
 BLOCKS, BLOCK_STEPS = 400, 100
 RULES = ("paper", "majorant")

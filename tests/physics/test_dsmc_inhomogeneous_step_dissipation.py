@@ -25,10 +25,11 @@ import pytest
 
 from kinetic.dsmc import CoolingModesSettings, new_cooling_gas, realization_streams
 from kinetic.dsmc import inhomogeneous_kernels as kernels
+from kinetic.studies.costantini2010 import mean_free_time
 from kinetic.theory.costantini2010 import drag_rate
 
 N, LAMBDA, DENSITY, ALPHA, CALLS = 1000, 10, 0.005, 0.8, 40_000
-MEAN_FREE_TIME = 1.0 / (2.0 * DENSITY * math.sqrt(math.pi))
+MEAN_FREE_TIME = mean_free_time(DENSITY)
 
 
 def step_dissipation(cells_per_side: int):

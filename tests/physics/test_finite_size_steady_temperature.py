@@ -27,13 +27,14 @@ import math
 import numpy as np
 import pytest
 
-from kinetic import dsmc, edmd, gas
+from kinetic import dsmc, edmd
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.edmd.system import contact_value
+from kinetic.studies.costantini2010 import mean_free_time
 from kinetic.theory.costantini2010 import drag_rate
 
 N, ALPHA, DENSITY, REALIZATIONS = 50, 0.8, 0.005, 12
-MEAN_FREE_TIME = 1.0 / gas.equilibrium_collision_frequency("hard_spheres", 2, DENSITY)
+MEAN_FREE_TIME = mean_free_time(DENSITY)
 TRANSIENT, DURATION, INTERVAL = 50.0, 15000.0, 1.0  # mean free times
 CHI = contact_value(DENSITY, 2)  # Henderson's χ
 
