@@ -3,16 +3,15 @@ instability's 19.7) over long runs stays finite, stationary and at zero momentum
 and in MD (where the drag multiplies round-off momentum by e^{ω0 τ}, about e^{190} here,
 unless it is removed)."""
 
-import math
-
 import numpy as np
 import pytest
 
 from kinetic import dsmc, edmd
+from kinetic.studies.costantini2010 import mean_free_time
 from kinetic.theory import costantini2010 as theory
 
 DENSITY = 0.005
-MEAN_FREE_TIME = 1.0 / (2.0 * DENSITY * math.sqrt(math.pi))
+MEAN_FREE_TIME = mean_free_time(DENSITY)
 
 
 def check_stationary(dataset):

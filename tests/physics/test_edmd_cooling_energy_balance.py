@@ -1,17 +1,16 @@
 """MD in the stationary representation: the rescaled temperature settles where collisions
 dissipate, per unit rescaled time, exactly what the drag injects (ζ(T_s) = 2ω0)."""
 
-import math
-
 import numpy as np
 
 from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.edmd import simulate_cooling_modes
+from kinetic.studies.costantini2010 import mean_free_time
 from kinetic.theory import costantini2010 as theory
 
 DENSITY = 0.005
-MEAN_FREE_TIME = 1.0 / (2.0 * DENSITY * math.sqrt(math.pi))
+MEAN_FREE_TIME = mean_free_time(DENSITY)
 
 
 def test_energy_balance_and_stationary_temperature():

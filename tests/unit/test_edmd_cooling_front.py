@@ -8,9 +8,10 @@ import pytest
 from kinetic import rng
 from kinetic.edmd import HardSphereSystem, simulate_cooling_modes
 from kinetic.edmd.cooling import transverse_modes
+from kinetic.studies.costantini2010 import mean_free_time
 
 DENSITY = 0.005
-MEAN_FREE_TIME = 1.0 / (2.0 * DENSITY * math.sqrt(math.pi))
+MEAN_FREE_TIME = mean_free_time(DENSITY)
 BASE = {
     "n_particles": 100,
     "density": DENSITY,

@@ -6,9 +6,10 @@ import math
 import pytest
 
 from kinetic import dsmc, edmd, rng
+from kinetic.studies.costantini2010 import mean_free_time
 
 DENSITY = 0.005
-MEAN_FREE_TIME = 1.0 / (2.0 * DENSITY * math.sqrt(math.pi))
+MEAN_FREE_TIME = mean_free_time(DENSITY)
 
 
 @pytest.mark.parametrize(
