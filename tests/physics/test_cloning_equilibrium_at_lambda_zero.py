@@ -26,8 +26,13 @@ def equilibrium(request):
 
 
 def test_no_compensation_at_lambda_zero(equilibrium):
+    # every collision is kept: none duplicates or annihilates a clone, in every block
     assert float(equilibrium.mu) == 0.0
-    assert float(equilibrium.mu_rate) == 0.0
+    assert np.all(equilibrium.net_compensations.values == 0)
+    assert np.array_equal(
+        equilibrium.elastic_collisions.values, equilibrium.collision_events.values
+    )
+    assert float(equilibrium.collision_events.sum()) > 0
 
 
 def test_temperature_and_kurtosis_of_the_bath(equilibrium):
