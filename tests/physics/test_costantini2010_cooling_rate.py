@@ -1,22 +1,69 @@
-"""ζ* measured from the energy dissipated in collisions, in DSMC and MD, against Eq. 12
-(first Sonine with van Noije-Ernst's a2: percent-level offsets are expected), and the
-noise viscosity exceeds the kinematic one (ν̄*/ν* > 1) at α = 0.7."""
+"""ζ* measured from the energy dissipated in collisions, in MD and DSMC, against Eq. 12; the
+paper rule's collision excess; and the noise viscosity above the kinematic one (ν̄*/ν* >
+1) at α = 0.7.
 
-from _costantini2010_runs import analysed
+The drag is set from Eq. 12 and pins the dissipation rate to 2ω0 T, so the measured ζ* =
+2ω0/(n√(2T_s)) tests the steady temperature: ζ*/ζ*(Eq. 12) = T_s^(-1/2), and an engine
+whose cooling rate is off by x % settles x % away in ζ*. Errors come from 6 realizations
+of 4 blocks (Student's 4σ for 23 degrees of freedom: 4.9 errors)."""
 
+import math
+
+from _costantini2010_runs import STUDY, analysed
+
+from kinetic.analysis.checks import tolerance_factor
+from kinetic.studies import costantini2010 as study
 from kinetic.theory import costantini2010 as theory
 
+ALPHA, N, FICTIVE, REALIZATIONS = 0.7, 500, 10, 6
+#: what Eq. 12 leaves out, at most: its first-Sonine a2 and, in DSMC, the Lie step's T_s
+#: shift 2ω0Δτ (1.3 % at Δτ = 0.05 here, 0.64 % in ζ*). Seeds 5-8 gave +0.2 to +0.9 % in
+#: MD and +0.9 to +1.2 % with the majorant rule (± 0.05-0.25 %)
+EQ_12_ALLOWANCE = 0.015
+#: the paper rule's excess beyond 1/N̄: its Maxwellian ω_c's a2 bias (3a2/16 = 0.04 % at
+#: α = 0.7) and what docs/reproduced.md leaves unexplained; seeds 5-8 gave +0.06 to +0.32 %
+EXCESS_ALLOWANCE = 0.004
 
-def test_measured_cooling_rate_is_eq_12_within_a_few_per_cent():
-    expected = float(theory.zeta_star(0.7))
-    for result in (analysed("dsmc", 500, 0.7, fictive_factor=10), analysed("md", 500, 0.7)):
-        measured, error = float(result.zeta_star), float(result.zeta_star_err)
-        assert error < 0.01 * measured
-        assert abs(measured / expected - 1.0) < 0.05
-        # the steady state balances dissipation and drag: ζ(T_s) = 2ω0
-        assert abs(measured - float(result.zeta_star_balance)) < 4 * error + 0.01 * measured
+
+def _runs(rule):
+    return analysed("dsmc", N, ALPHA, fictive_factor=FICTIVE, rule=rule, realizations=REALIZATIONS)
+
+
+def _band(result, name="zeta_star"):
+    return tolerance_factor(4.0, int(result.blocks) - 1) * float(result[f"{name}_err"])
+
+
+def test_measured_cooling_rate_is_eq_12_in_md_and_majorant_dsmc():
+    expected = float(theory.zeta_star(ALPHA))
+    for result in (analysed("md", N, ALPHA, realizations=REALIZATIONS), _runs("majorant")):
+        measured = float(result.zeta_star)
+        assert float(result.zeta_star_err) < 0.005 * measured
+        assert abs(measured / expected - 1.0) < _band(result) / expected + EQ_12_ALLOWANCE
+    for result in (_runs("majorant"), _runs("paper")):
+        # the steady state balances dissipation and drag, ζ(T_s) = 2ω0, to the Lie step's
+        # O(ω0Δτ) (0.6 % here)
+        balance = float(result.zeta_star_balance)
+        assert abs(float(result.zeta_star) - balance) < _band(result) + 0.01 * balance
+
+
+def test_paper_rule_collides_one_over_n_too_often():
+    """The paper's rule draws each cell's collisions from the Maxwellian ω_c of its N̄
+    simulated particles and so collides 1 + 1/N̄ times too often (docs/reproduced.md,
+    costantini2010's cell-size study): 62 a cell here, +1.62 % in ζ* over the majorant
+    rule on the same cells and step."""
+    paper, majorant = _runs("paper"), _runs("majorant")
+    run = study.Run("dsmc", N, ALPHA, FICTIVE, cell_side=0.5, time_step=0.05)
+    simulated_per_cell = FICTIVE * run.real_particles_per_cell(STUDY["density"])
+    excess = float(paper.zeta_star) / float(majorant.zeta_star) - 1.0
+    error = math.hypot(
+        float(paper.zeta_star_err) / float(paper.zeta_star),
+        float(majorant.zeta_star_err) / float(majorant.zeta_star),
+    )
+    factor = tolerance_factor(4.0, int(paper.blocks) - 1)
+    assert abs(excess - 1.0 / simulated_per_cell) < factor * error + EXCESS_ALLOWANCE
+    assert excess > factor * error  # the excess is resolved
 
 
 def test_fluctuation_dissipation_ratio_exceeds_one_when_inelastic():
-    md = analysed("md", 1000, 0.7, realizations=3)
-    assert float(md.ratio) - 1.0 > 2.0 * float(md.ratio_err)
+    md = analysed("md", N, ALPHA, realizations=REALIZATIONS)
+    assert float(md.ratio) - 1.0 > _band(md, "ratio")

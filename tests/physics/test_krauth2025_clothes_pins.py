@@ -133,9 +133,10 @@ def test_ring_pair_density_matches_the_mapping():
         lambda r: theory.ring_pair_density(r, n, length, sigma), data.bin_edges.values
     )
     z = _z_scores(data.pair_density.values, data.pair_density_sem.values, exact)
-    # one chain's fluctuations move neighbouring bins together: max |z| only, and the
-    # empty bins (r < 2σ, r > L − 2σ) are exactly empty
-    assert np.abs(z).max() < 4.5
+    # one chain's fluctuations move neighbouring bins together: the largest |z| only (its
+    # Bonferroni bound holds for correlated bins too; Σ z² does not), and the empty bins
+    # (r < 2σ, r > L − 2σ) are exactly empty
+    assert np.abs(z).max() < largest_z_tolerance(z.size, realizations - 1)
     empty = (data.r.values < 2 * sigma) | (data.r.values > length - 2 * sigma)
     assert np.all(data.pair_density.values[empty] == 0)
     assert 0.2 < float(data.acceptance.mean()) < 0.9

@@ -125,3 +125,20 @@ def test_mode_observer_and_batching():
     # modes of random positions have |w⊥|² ~ Σ w_y²: the ratio is O(1)
     power = (both.mode_real**2 + both.mode_imag**2) / both.mode_norm
     assert 0.0 < float(power.mean()) < 10.0
+
+
+def test_first_dissipation_is_the_equilibrations_last_interval():
+    """The first sample's dissipated energy is that of the interval before it, as in the
+    DSMC engine: the equilibration's last segment when it is a whole interval (it was 0,
+    which lowered a run's mean dissipation by 1/n_samples), NaN when it is shorter. The
+    same gas run one interval less before its first sample records that interval as its
+    second sample's."""
+    interval = BASE["sample_interval"]
+    late = simulate_cooling_modes(**(BASE | {"equilibration": 2 * interval}))
+    early = simulate_cooling_modes(**(BASE | {"equilibration": interval, "n_samples": 6}))
+    lost = late.dissipated_energy.values[0]
+    assert np.all(lost > 0)
+    np.testing.assert_allclose(lost, early.dissipated_energy.values[0, 1:], rtol=1e-9)
+    partial = simulate_cooling_modes(**(BASE | {"equilibration": 0.5 * interval}))
+    assert np.isnan(partial.dissipated_energy.values[0, 0])
+    assert np.all(partial.dissipated_energy.values[0, 1:] > 0)
