@@ -729,7 +729,9 @@ def checks(rows, tolerances) -> list[Check]:
        difference is reported beside it;
     4. the HCS a2 (zero field) agrees with Eq. (2.16) for α >= ``a2_alpha_min`` within
        ``a2_relative_tolerance`` |a2| + ``a2_absolute_floor`` + sigmas errors (reported
-       below ``a2_alpha_min``);
+       below ``a2_alpha_min``); the floor is what Eq. (2.16) misses: the DSMC a2 lies
+       0.0012-0.0023 below it at α = 0.5-0.9 (N = 2·10⁴, 16 realizations of 400 τ:
+       errors of 1-1.5·10⁻⁴), 0.0020 at α = 0.7 where Eq. (2.16) gives 0.0013;
     5. the thermostat holds momentum and energy: |<c_x>|, |<c²> - 3/2| <=
        ``thermostat_tolerance``.
     Reported with no verdict: the HCS cooling rate against Eq. (2.14).
