@@ -47,6 +47,8 @@ SMALL = dict(
         ({"duration": 1.2}, "duration = 1.2 must be a whole multiple (>= 1) of sample_interval"),
         ({"sample_stride": 20}, "sample_stride = 20 is not allowed: must be in [1, 10]"),
         ({"histogram_start": 1.0}, "histogram_start = 1.0 τ is outside the allowed range"),
+        # inside the last window: rounded up to 1.0 τ, it left the histograms empty
+        ({"histogram_start": 0.75}, "leaves no window of the 1 τ run to histogram"),
         ({"n_cx_bins": 7}, "n_cx_bins = 7 must be an even integer"),
         ({"seed": -1}, "seed = -1 is not allowed"),
         ({"n_realizations": 0}, "n_realizations = 0 is not allowed"),

@@ -73,6 +73,21 @@ def test_inconsistent_sections_are_refused_with_the_key():
         study.run_plan(section)
 
 
+def test_values_the_engine_front_refuses_stop_the_parse():
+    """The front's own checks (kinetic.dsmc.arguments) run on every run's arguments while
+    the config is read: a steady_from that rounds up to the duration, or a field too large
+    for the time step, used to pass here and fail every job at its start."""
+    section = copy.deepcopy(_section("ci.yaml"))
+    section["protocol"]["steady_from"] = 23.5  # 40 windows of 0.6 τ: rounds up to 24
+    with pytest.raises(ValueError, match=r"run alpha030: histogram_start = 24.0 τ.*steady_from"):
+        study.run_plan(section)
+    section = copy.deepcopy(_section("ci.yaml"))
+    section["protocol"].update(time_step=0.3, sample_stride=2)
+    section["extreme"]["reduced_fields"] = [0.5]
+    with pytest.raises(ValueError, match=r"run extreme_field500_alpha100: .*too large a force"):
+        study.run_plan(section)
+
+
 def _run():
     return {
         "n_particles": 200,

@@ -14,25 +14,29 @@ homogeneous cooling state, with the transverse-mode observers."""
 
 from __future__ import annotations
 
-from kinetic.dsmc.free_flights import simulate_free_flights
-from kinetic.dsmc.homogeneous import simulate_homogeneous, simulate_homogeneous_points
-from kinetic.dsmc.inhomogeneous import (
-    CoolingModesGas,
-    CoolingModesSettings,
-    new_cooling_gas,
-    simulate_cooling_modes,
-    simulate_cooling_modes_points,
-)
-from kinetic.dsmc.state import (
-    MOMENT_NAMES,
-    HomogeneousGas,
-    HomogeneousSettings,
-    Samples,
-    advance_gas,
-    maxwellian_starts,
-    new_gas,
-    realization_streams,
-)
+import importlib
+
+_EXPORTS = {
+    "simulate_free_flights": "free_flights",
+    "simulate_homogeneous": "homogeneous",
+    "simulate_homogeneous_points": "homogeneous",
+    "CoolingModesGas": "inhomogeneous",
+    "CoolingModesSettings": "inhomogeneous",
+    "new_cooling_gas": "inhomogeneous",
+    "simulate_cooling_modes": "inhomogeneous",
+    "simulate_cooling_modes_points": "inhomogeneous",
+    "MOMENT_NAMES": "state",
+    "HomogeneousGas": "state",
+    "HomogeneousSettings": "state",
+    "Samples": "state",
+    "advance_gas": "state",
+    "maxwellian_starts": "state",
+    "new_gas": "state",
+    "realization_streams": "state",
+}
+"""Public names and the module that defines each: loaded on first use, so that importing
+``kinetic.dsmc.arguments`` (the numpy-only checks the workflow runs while it reads the
+config) loads neither numba nor the kernels."""
 
 __all__ = [
     "MOMENT_NAMES",
@@ -54,9 +58,34 @@ __all__ = [
 ]
 
 
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(f"kinetic.dsmc.{_EXPORTS[name]}"), name)
+    else:
+        try:  # a submodule, e.g. kinetic.dsmc.kernels after a bare ``import kinetic.dsmc``
+            value = importlib.import_module(f"kinetic.dsmc.{name}")
+        except ModuleNotFoundError:
+            raise AttributeError(f"module 'kinetic.dsmc' has no attribute {name!r}") from None
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))
+
+
 def _warm_homogeneous() -> None:
     """``simulate_homogeneous``'s kernels: a tiny gas in d = 2 and 3, with the NTC and
     Poisson clocks, the Euler and exact force steps, Lie and Strang splitting."""
+    from kinetic.dsmc.state import (
+        HomogeneousSettings,
+        Samples,
+        advance_gas,
+        maxwellian_starts,
+        new_gas,
+        realization_streams,
+    )
+
     for dimension in (2, 3):
         for selection, force_step, splitting in (
             ("ntc", "euler", "lie"),
@@ -79,12 +108,16 @@ def _warm_homogeneous() -> None:
 
 def _warm_free_flights() -> None:
     """``simulate_free_flights``'s kernels, d = 2 and 3."""
+    from kinetic.dsmc.free_flights import simulate_free_flights
+
     for dimension in (2, 3):
         simulate_free_flights(n_particles=8, duration=0.5, seed=0, dimension=dimension, chunk=0.5)
 
 
 def _warm_cooling_modes() -> None:
     """``simulate_cooling_modes``'s kernels: both collision rules, with and without drag."""
+    from kinetic.dsmc.inhomogeneous import simulate_cooling_modes
+
     for rule in ("paper", "majorant"):
         for restitution, drag_rate in ((1.0, 0.0), (0.8, 0.001)):
             simulate_cooling_modes(
@@ -119,6 +152,8 @@ def warmup() -> None:
     those of every front (``WARMUPS``) and the inhomogeneous engine's stepping, observers
     and collision stage called alone (as the tests and benchmarks do)."""
     from kinetic.dsmc import inhomogeneous_kernels
+    from kinetic.dsmc.inhomogeneous import CoolingModesSettings, new_cooling_gas
+    from kinetic.dsmc.state import realization_streams
 
     for compile_kernels in dict.fromkeys(WARMUPS.values()):
         compile_kernels()

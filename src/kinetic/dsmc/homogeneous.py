@@ -35,12 +35,12 @@ Timing hooks: every dataset holds per realization ``cpu_seconds`` (process time)
 from __future__ import annotations
 
 import inspect
-import math
 
 import numpy as np
 
-from kinetic import backends, io, validate
+from kinetic import backends, io
 from kinetic.dsmc import kernels
+from kinetic.dsmc.arguments import check_windows
 from kinetic.dsmc.state import (
     LINEAR_RESPONSE_FIELD,
     MOMENT_NAMES,
@@ -151,18 +151,15 @@ def simulate_homogeneous(
         selection=selection,
         splitting=splitting,
     )
-    duration = validate.real("duration", duration, 0.0, 1e12, low_open=True, unit=" τ")
-    sample_interval = validate.real(
-        "sample_interval", sample_interval, 0.0, duration, low_open=True, unit=" τ"
+    windows = check_windows(
+        duration=duration,
+        sample_interval=sample_interval,
+        time_step=time_step,
+        sample_stride=sample_stride,
+        histogram_start=histogram_start,
     )
-    steps_per_window = validate.multiple("sample_interval", sample_interval, "time_step", time_step)
-    n_windows = validate.multiple("duration", duration, "sample_interval", sample_interval)
-    validate.integer("sample_stride", sample_stride, 1, steps_per_window)
-    if histogram_start is None:
-        histogram_start = 0.5 * duration
-    histogram_start = validate.real(
-        "histogram_start", histogram_start, 0.0, duration, high_open=True, unit=" τ"
-    )
+    duration, sample_interval, steps_per_window, n_windows = windows[:4]
+    histogram_start, first_histogram_window = windows[4:]
     streams = realization_streams(seed, first_realization, n_realizations)
     samples = Samples(
         stride=sample_stride,
@@ -188,7 +185,6 @@ def simulate_homogeneous(
             settings.reduced_field,
         )
     progress = Progress(n_realizations * n_windows, label=label, unit="windows")
-    first_histogram_window = math.ceil(histogram_start / sample_interval - 1e-9)
     out = _empty_results(n_realizations, n_windows, samples)
     run = (settings, samples, streams, n_windows, steps_per_window, first_histogram_window)
     if backend == "cuda":

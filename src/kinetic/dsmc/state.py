@@ -28,15 +28,27 @@ import numpy as np
 from kinetic import gas as units
 from kinetic import validate
 from kinetic.dsmc import kernels
+from kinetic.dsmc.arguments import (
+    FORCE_STEPS,
+    LINEAR_RESPONSE_FIELD,
+    MAX_COLLISIONS_PER_STEP,
+    MAX_FIELD_STEP,
+    MAX_REDUCED_FIELD,
+    SELECTIONS,
+    SPLITTINGS,
+    check_settings,
+)
 from kinetic.rng import stream_states
 
 __all__ = [
     "FORCE_STEPS",
+    "LINEAR_RESPONSE_FIELD",
     "MAX_COLLISIONS_PER_STEP",
     "MAX_FIELD_STEP",
     "MAX_REDUCED_FIELD",
     "MOMENT_NAMES",
     "SELECTIONS",
+    "SPLITTINGS",
     "HomogeneousGas",
     "HomogeneousSettings",
     "Samples",
@@ -65,22 +77,6 @@ MOMENT_NAMES = (
 <c⁴>, <c² c_x>, <c_x L_k^(d/2)(c²)> (k = 1..3, Eq. 3.10), <c_x L_k^(1/2)(c_x²)>
 (k = 1..3, Eq. 3.12), <c⁶>, <c_x⁴>, <c_x c_y>. Same names as
 kinetic.analysis.montanero2007.MOMENTS for the entries both have."""
-
-FORCE_STEPS = ("euler", "exact")
-SPLITTINGS = ("lie", "strang")
-SELECTIONS = ("ntc", "poisson")
-
-MAX_COLLISIONS_PER_STEP = 0.5
-"""Largest mean number of collisions per particle in one time step (δt ν <= 0.5)."""
-
-MAX_REDUCED_FIELD = 1.0
-"""Largest ε* accepted (linear response needs ε* << 1; the paper uses 0.025)."""
-
-LINEAR_RESPONSE_FIELD = 0.1
-"""Above this ε* a warning is logged: see tests/physics/test_dsmc_extreme_cases.py."""
-
-MAX_FIELD_STEP = 0.1
-"""Largest ε* δt/τ: the relative change of V_x in one force step is ε* (δt/τ) c_x / 2."""
 
 _KERNEL_ID = {
     "hard_spheres": kernels.HARD_SPHERES,
@@ -118,31 +114,17 @@ class HomogeneousSettings:
     splitting: str = "lie"
 
     def __post_init__(self) -> None:
-        validate.integer("dimension", self.dimension, 2, 3)
-        validate.choice("kernel", self.kernel, units.KERNELS)
-        validate.integer("n_particles", self.n_particles, 2)
-        validate.real("restitution", self.restitution, 0.0, 1.0, low_open=True)
-        validate.real("reduced_field", self.reduced_field, 0.0, MAX_REDUCED_FIELD)
-        validate.choice("force_step", self.force_step, FORCE_STEPS)
-        validate.choice("selection", self.selection, SELECTIONS)
-        validate.choice("splitting", self.splitting, SPLITTINGS)
-        limit = MAX_COLLISIONS_PER_STEP / self.collision_frequency
-        if isinstance(self.time_step, bool) or not isinstance(
-            self.time_step, int | float | np.integer | np.floating
-        ):
-            raise TypeError(f"time_step must be a real number, got {self.time_step!r}")
-        if not (math.isfinite(self.time_step) and 0.0 < self.time_step <= limit):
-            raise ValueError(
-                f"time_step = {self.time_step!r} τ is not allowed: must be in (0, {limit:.4g}] τ "
-                f"(at most {MAX_COLLISIONS_PER_STEP} collisions per particle per step; the "
-                f"collision time is {1.0 / self.collision_frequency:.4g} τ)"
-            )
-        if self.reduced_field * self.time_step > MAX_FIELD_STEP:
-            raise ValueError(
-                f"reduced_field * time_step = {self.reduced_field!r} x {self.time_step!r} τ is "
-                f"too large a force step: must be <= {MAX_FIELD_STEP} (reduce time_step to "
-                f"<= {MAX_FIELD_STEP / self.reduced_field:.4g} τ)"
-            )
+        check_settings(
+            n_particles=self.n_particles,
+            restitution=self.restitution,
+            time_step=self.time_step,
+            dimension=self.dimension,
+            kernel=self.kernel,
+            reduced_field=self.reduced_field,
+            force_step=self.force_step,
+            selection=self.selection,
+            splitting=self.splitting,
+        )
         for name in ("n_particles", "dimension"):
             object.__setattr__(self, name, int(getattr(self, name)))
         for name in ("restitution", "time_step", "reduced_field"):

@@ -245,6 +245,36 @@ def _check_run(name: str, run: Mapping[str, Any]) -> None:
         )
     if run["realizations"] < 2:
         raise ValueError(f"montanero2007 run {name}: needs >= 2 realizations for error bars")
+    # the engine front's own checks, on the arguments its jobs will get (numpy only)
+    from kinetic.dsmc.arguments import check_settings, check_windows
+
+    arguments = _engine_arguments(run, seed=0, first=0, count=int(run["realizations"]), label=name)
+    try:
+        check_settings(**{key: arguments[key] for key in _SETTINGS_KEYS}, kernel="hard_spheres")
+        check_windows(**{key: arguments[key] for key in _WINDOW_KEYS})
+    except (TypeError, ValueError) as error:
+        raise type(error)(
+            f"montanero2007 run {name}: {error} (histogram_start is steady_from rounded up "
+            "to a window boundary)"
+            if "histogram_start" in str(error)
+            else f"montanero2007 run {name}: {error}"
+        ) from error
+
+
+_SETTINGS_KEYS = (
+    "n_particles",
+    "restitution",
+    "time_step",
+    "dimension",
+    "reduced_field",
+    "force_step",
+    "selection",
+    "splitting",
+)
+"""``simulate_homogeneous``'s arguments that ``check_settings`` judges (and the kernel)."""
+
+_WINDOW_KEYS = ("duration", "sample_interval", "time_step", "sample_stride", "histogram_start")
+"""``simulate_homogeneous``'s arguments that ``check_windows`` judges."""
 
 
 def _engine_arguments(
