@@ -38,6 +38,7 @@ from kinetic import io
 from kinetic.analysis import checks as check
 from kinetic.analysis.checks import Check
 from kinetic.analysis.statistics import error_against_cpu
+from kinetic.studies.costantini2010 import MIN_LAGS
 from kinetic.theory import costantini2010 as theory
 
 __all__ = [
@@ -218,10 +219,10 @@ def analyse_run(
     temperature_s = float(steady.temperature.mean())
     to_reduced = density * math.sqrt(2.0 * temperature_s)  # engine time -> ℓ/v_s
     k_star = theory.reduced_wavenumber(n_particles, density)
-    n_lags = max(3, round(max_lag / (interval * to_reduced)) + 1)
+    n_lags = max(MIN_LAGS, round(max_lag / (interval * to_reduced)) + 1)
     # a run whose gas is much colder than T0 (Fig 1's bad case) covers fewer l/v_s per
     # sample: its lags stop at half a block
-    n_lags = min(n_lags, max(3, steady.sizes["time"] // blocks_per_realization // 2))
+    n_lags = min(n_lags, max(MIN_LAGS, steady.sizes["time"] // blocks_per_realization // 2))
     lags = np.arange(n_lags) * interval * to_reduced
 
     modes = (steady.mode_real + 1j * steady.mode_imag).transpose("realization", "time", "mode")

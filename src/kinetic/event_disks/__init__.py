@@ -29,17 +29,9 @@ from kinetic.event_disks import kernels
 from kinetic.progress import Progress
 from kinetic.rng import stream_states
 from kinetic.samplers import disk_configuration
+from kinetic.theory.krauth2025 import CLASSIC_START
 
 __all__ = ["CLASSIC_START", "chaos", "initial_state", "simulate_box", "warmup"]
-
-CLASSIC_START = {
-    "sigma": 0.15,
-    "box": (1.0, 1.0),
-    "positions": ((0.25, 0.25), (0.75, 0.25), (0.25, 0.75), (0.75, 0.75)),
-    "velocities": ((0.21, 0.12), (0.71, 0.18), (-0.23, -0.79), (0.78, 0.1177)),
-}
-"""The start of Krauth's own event-disks program (four disks of radius 0.15 in the unit
-box), the snapshots readers of the book and the lecture know."""
 
 
 def initial_state(n_disks: int, sigma: float, box, seed: int, realization: int):

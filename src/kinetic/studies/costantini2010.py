@@ -61,6 +61,10 @@ __all__ = [
 ]
 
 METHODS = ("dsmc_homogeneous", "dsmc", "md")
+
+MIN_LAGS = 3
+"""Fewest lags of C a run's analysis takes (``kinetic.analysis.costantini2010``): a block
+of a realization needs twice as many samples."""
 """Method names of the table: homogeneous DSMC (one cell), inhomogeneous DSMC, MD."""
 
 
@@ -374,9 +378,10 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
 
 def check(config: Mapping[str, Any]) -> None:
     """Stop before any job on what the schema cannot judge: keys that contradict each
-    other (a tail fit starting beyond the longest lag of C), an (N, α) at or beyond the
-    shear instability (L >= L_c, where τ_c diverges), a sample interval that the DSMC
-    steps do not divide."""
+    other (a tail fit starting beyond the longest lag of C, blocks too short for the
+    correlation's lags, an error-against-CPU study at an N or α the grid does not run),
+    an (N, α) at or beyond the shear instability (L >= L_c, where τ_c diverges), a sample
+    interval that the DSMC steps do not divide."""
     study = config.get("costantini2010")
     if not study:
         return
@@ -392,6 +397,23 @@ def _check(study: Mapping[str, Any]) -> None:
             f"fit_start = {study['fit_start']} l/v_s starts the tail fit of C at or beyond "
             f"its longest lag max_lag = {study['max_lag']} l/v_s"
         )
-    for run in runs(study).values():
+    blocks = study["blocks_per_realization"]
+    for name, run in runs(study).items():
         theory.check_stable(run.n_particles, study["density"], run.restitution)
         run.engine_arguments(study)
+        samples = duration(run, study) / study["sample_interval"]
+        if samples // blocks < 2 * MIN_LAGS:
+            raise ValueError(
+                f"run {name}: blocks_per_realization = {blocks} cuts its {samples:.0f} "
+                f"steady samples into blocks of {samples // blocks:.0f}, and C needs "
+                f"{2 * MIN_LAGS} a block ({MIN_LAGS} lags): lower blocks_per_realization or "
+                "lengthen duration or min_duration"
+            )
+    figure_n, alpha = study["figures"]["particles"], study["error_restitution"]
+    if figure_n not in study["particles"] or alpha not in study["restitutions"]:
+        raise ValueError(
+            f"the error-against-CPU study runs at figures.particles = {figure_n} and "
+            f"error_restitution = {alpha}, which must be among particles "
+            f"{study['particles']} and restitutions {study['restitutions']} (its figure "
+            "and table would be empty)"
+        )

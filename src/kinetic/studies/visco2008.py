@@ -53,6 +53,12 @@ def check(config: Mapping[str, Any]) -> None:
             problems.append(f"{key} {missing} are not among windows {windows}")
     if md["error_window"] not in windows:
         problems.append(f"error_window {md['error_window']} is not among windows {windows}")
+    short = [t for t in md["checkpoints"] if t < md["error_window"]]
+    if short:
+        problems.append(
+            f"checkpoints {short} are shorter than error_window {md['error_window']}: the "
+            "error-against-CPU study would have no count window there (NaN)"
+        )
     if md["figure_run"] not in md["densities"]:
         problems.append(
             f"figure_run {md['figure_run']!r} is not a key of densities {sorted(md['densities'])}"

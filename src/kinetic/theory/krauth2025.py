@@ -31,6 +31,7 @@ import math
 import numpy as np
 
 __all__ = [
+    "CLASSIC_START",
     "MAX_NAIVE_STARTS",
     "bin_average",
     "check_disk_box",
@@ -46,6 +47,15 @@ __all__ = [
     "wall_speed_averages",
     "wall_value",
 ]
+
+CLASSIC_START = {
+    "sigma": 0.15,
+    "box": (1.0, 1.0),
+    "positions": ((0.25, 0.25), (0.75, 0.25), (0.25, 0.75), (0.75, 0.75)),
+    "velocities": ((0.21, 0.12), (0.71, 0.18), (-0.23, -0.79), (0.78, 0.1177)),
+}
+"""The start of Krauth's own event-disks program (four disks of radius 0.15 in the unit
+box), the snapshots readers of the book and the lecture know."""
 
 #: most configurations naive-pin may be expected to start in one call (about an hour)
 MAX_NAIVE_STARTS = 1e10
