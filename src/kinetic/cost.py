@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from kinetic.cloning.arguments import MAX_TRANSIENT_BLOCKS, default_control_interval
 from kinetic.gas import cell_changing_fraction
 
 __all__ = [
@@ -630,15 +631,6 @@ CLONING_GPU_HOST_BYTES_PER_MEMBER = 32.0
 (up to 3 float64 components a member, for the count of distinct clones), rounded up."""
 
 
-def cloning_control_interval(lam: float) -> float:
-    """``kinetic.cloning.simulate.default_control_interval`` without loading the kernels
-    (the workflow plans jobs while it parses; a unit test keeps the two equal)."""
-    spread = math.expm1(-lam) ** 2
-    if spread == 0.0:
-        return 1.0
-    return min(1.0, math.log1p(0.5) / spread)
-
-
 CLONING_GPU_RESIDENT_BLOCKS = 132
 """Resident-kernel thread blocks (one per realization of a point) an H100 runs at once:
 132 SMs x 1 block of 256 threads. The H100 run of revision 5836ea7 reported ``_resident``
@@ -646,10 +638,6 @@ at 144 registers a thread (at most 384 threads a block): 36 864 a block of 256, 
 multiprocessor has 65 536. More blocks than this run one after another as blocks finish
 (``cloning_points``)."""
 
-
-CLONING_MAX_TRANSIENT_BLOCKS = 50
-"""``kinetic.cloning.simulate.MAX_TRANSIENT_BLOCKS`` (a unit test keeps the two equal): the
-transient runs in at most this many blocks, none shorter than a measured block."""
 
 CLONING_GPU_GROUPED_MAX_POPULATION = 100_000
 """With the ``cuda`` backend, the points of a (study, kernel, N_c) with N_c up to this run
@@ -665,9 +653,9 @@ fills the GPU alone."""
 def _cloning_blocks(duration: float, transient: float, n_blocks: int) -> list[float]:
     """The block durations of a cloning realization, as the front cuts them
     (``kinetic.cloning.simulate``): the transient in blocks no shorter than a measured
-    block, at most ``CLONING_MAX_TRANSIENT_BLOCKS`` of them, then ``n_blocks`` measured."""
+    block, at most ``MAX_TRANSIENT_BLOCKS`` of them (the front's), then ``n_blocks`` measured."""
     block = duration / n_blocks
-    transient_block = max(block, transient / CLONING_MAX_TRANSIENT_BLOCKS)
+    transient_block = max(block, transient / MAX_TRANSIENT_BLOCKS)
     count = math.ceil(transient / transient_block - 1e-9) if transient else 0
     return [transient_block] * count + [block] * n_blocks
 
@@ -683,7 +671,7 @@ def _cloning_gpu(lam, population, elapsed, n_realizations, control_interval=None
     events). Up to ``CLONING_GPU_RESIDENT_MAX_POPULATION`` clones the latency is that of one
     thread block running every interval (its barriers plus one thread's share of the
     events); above, the intervals' launches."""
-    interval = control_interval or cloning_control_interval(lam)
+    interval = control_interval or default_control_interval(lam)
     events = n_realizations * population * elapsed
     intervals = elapsed / interval
     if population <= CLONING_GPU_RESIDENT_MAX_POPULATION:
@@ -706,7 +694,7 @@ def _launched_intervals(points) -> int:
     each block of the run, as many as the point with the most (the others idle)."""
     per_point = []
     for point in points:
-        interval = point.get("control_interval") or cloning_control_interval(point["lam"])
+        interval = point.get("control_interval") or default_control_interval(point["lam"])
         blocks = _cloning_blocks(point["duration"], point["transient"], point["n_blocks"])
         per_point.append([max(1, math.ceil(block / interval - 1e-9)) for block in blocks])
     longest = max(len(steps) for steps in per_point)

@@ -1,6 +1,5 @@
 """kinetic.cost and kinetic.plan: resource requests, the budget check, the summary."""
 
-import importlib
 import math
 from pathlib import Path
 
@@ -8,6 +7,7 @@ import numpy as np
 import pytest
 
 from kinetic import cost, plan
+from kinetic.cloning.arguments import default_control_interval
 from kinetic.cost import Estimate
 from kinetic.studies import Job
 
@@ -156,13 +156,9 @@ def test_overruns_compare_the_cpu_time_a_job_used_with_its_request(tmp_path):
 
 
 def test_cuda_cloning_estimate_uses_the_fronts_control_interval():
-    """cost.cloning_control_interval repeats the front's rule without loading the kernels;
-    a cuda cloning job asks for one GPU and costs less than the same realizations on one
-    core."""
-    from kinetic.cloning.simulate import default_control_interval
-
-    for lam in (-4.0, -1.5, -0.5, 0.0, 0.25, 1.0, 8.0, 30.0):
-        assert cost.cloning_control_interval(lam) == default_control_interval(lam)
+    """A cuda cloning job asks for one GPU and costs less than the same realizations on one
+    core (the plan takes the front's control interval from kinetic.cloning.arguments,
+    without loading the kernels)."""
     arguments = {
         "lam": 1.0,
         "population": 10_000,
@@ -201,7 +197,7 @@ def test_cuda_cloning_estimate_switches_path_where_the_engine_does():
         launched = cost.cloning_batch(
             **arguments, population=largest + 1, n_realizations=32, backend="cuda"
         )
-        intervals = (arguments["duration"] + 50.0) / cost.cloning_control_interval(lam)
+        intervals = (arguments["duration"] + 50.0) / default_control_interval(lam)
         assert launched.cpu_seconds >= intervals * cost.CLONING_GPU_SECONDS_PER_INTERVAL
         assert 1 / 2 < resident.cpu_seconds / launched.cpu_seconds < 2
     small = cost.cloning_batch(**arguments, population=1000, n_realizations=32, backend="cuda")
@@ -257,9 +253,8 @@ def test_cloning_blocks_are_cut_as_the_front_cuts_them():
     """cost._cloning_blocks repeats the front's cut of a run into blocks (the transient in at
     most MAX_TRANSIENT_BLOCKS blocks, none shorter than a measured one) without loading
     the kernels."""
-    front = importlib.import_module("kinetic.cloning.simulate")  # the package exports its function
+    from kinetic.cloning import front
 
-    assert cost.CLONING_MAX_TRANSIENT_BLOCKS == front.MAX_TRANSIENT_BLOCKS
     for duration, transient, n_blocks in [(100.0, 2.5, 4), (100.0, 30.0, 10), (40.0, 3e3, 8)]:
         p = front.validate_parameters(
             kernel="hard_spheres",
@@ -299,7 +294,7 @@ def test_cuda_cloning_points_above_the_resident_kernel_pay_each_interval_once():
         for lam in (-1.0, 1.0, 2.0)
     ]
     together = cost.cloning_points(points)
-    intervals = 1e3 / min(cost.cloning_control_interval(lam) for lam in (-1.0, 1.0, 2.0))
+    intervals = 1e3 / min(default_control_interval(lam) for lam in (-1.0, 1.0, 2.0))
     events = 3 * 32 * population * 1e3
     expected = (
         intervals * cost.CLONING_GPU_SECONDS_PER_INTERVAL

@@ -56,3 +56,16 @@ def test_contradictory_values_stop_the_parse(ci, key, value, fragment):
     with pytest.raises(ValueError) as error:
         studies.check(_with(ci, key, value))
     assert fragment in str(error.value)
+
+
+def test_cloning_jobs_are_checked_by_the_fronts_own_checks(ci):
+    """A histogram the GPU's shared memory cannot hold stops the parse of a cuda build
+    (every cloning job failed at its start), and a transient of exactly one kept
+    collision at λ = -1.5 (the study's renewal time, within rounding of the bound) no
+    longer fails them."""
+    fine = _with(_with(ci, "visco2008.cloning.histogram_bins", 2000), "backend", "cuda")
+    with pytest.raises(ValueError, match=r"visco2008.cloning: job .*histogram_bins must be"):
+        studies.check(fine)
+    studies.check(_with(ci, "visco2008.cloning.histogram_bins", 2000))  # the CPU has no limit
+    renewal = _with(ci, "visco2008.cloning.transient", 0)
+    studies.check(_with(renewal, "visco2008.cloning.transient_kept_collisions", 1))

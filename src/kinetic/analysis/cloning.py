@@ -28,8 +28,8 @@ from kinetic.cloning.estimators import (
     observables_from_sums,
     summarize_realizations,
 )
+from kinetic.cloning.front import is_collapsed
 from kinetic.cloning.kernels import BLOCK_FIELDS
-from kinetic.cloning.simulate import is_collapsed
 
 __all__ = [
     "OBSERVABLES",

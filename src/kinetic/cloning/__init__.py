@@ -6,16 +6,22 @@ extrapolation in ``estimators``; ``warmup()`` compiles every kernel once (the wo
 runs it in its own job before the parallel simulation jobs, numba issue 4807).
 """
 
-from kinetic.cloning.estimators import Extrapolation, extrapolate_population
-from kinetic.cloning.simulate import (
-    KERNELS,
-    LAMBDA_MAX,
-    LAMBDA_MIN,
-    MIN_KEPT_COLLISIONS,
-    kernel_label,
-    simulate,
-    simulate_points,
-)
+import importlib
+
+_EXPORTS = {
+    "KERNELS": "arguments",
+    "LAMBDA_MAX": "arguments",
+    "LAMBDA_MIN": "arguments",
+    "MIN_KEPT_COLLISIONS": "arguments",
+    "Extrapolation": "estimators",
+    "extrapolate_population": "estimators",
+    "kernel_label": "front",
+    "simulate": "front",
+    "simulate_points": "front",
+}
+"""Public names and the module that defines each: loaded on first use, so that importing
+``kinetic.cloning.arguments`` (the numpy-only checks the workflow runs while it reads the
+config, and the cost plan's constants) loads neither numba nor the kernels."""
 
 __all__ = [
     "KERNELS",
@@ -31,12 +37,31 @@ __all__ = [
 ]
 
 
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(f"kinetic.cloning.{_EXPORTS[name]}"), name)
+    else:
+        try:  # a submodule, e.g. kinetic.cloning.kernels after a bare ``import kinetic.cloning``
+            value = importlib.import_module(f"kinetic.cloning.{name}")
+        except ModuleNotFoundError:
+            raise AttributeError(f"module 'kinetic.cloning' has no attribute {name!r}") from None
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))
+
+
 def warmup() -> None:
     """Compile (or load from numba's cache) every kernel with the production types.
 
     Runs a tiny population through every kernel code and both dimensions, for a
     positive and a negative tilt, through the same front as production runs.
     """
+    from kinetic.cloning.arguments import KERNELS
+    from kinetic.cloning.front import simulate
+
     for kernel in KERNELS:
         for dimension in (2, 3):
             for lam in (0.5, -0.5):

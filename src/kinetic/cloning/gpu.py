@@ -72,7 +72,7 @@ from numba.core.errors import NumbaPerformanceWarning
 
 from kinetic.backends import simulated
 from kinetic.cloning import kernels
-from kinetic.cloning.simulate import MAX_CUDA_HISTOGRAM_BINS
+from kinetic.cloning.arguments import MAX_CUDA_HISTOGRAM_BINS
 from kinetic.gpu import (
     BLOCK,
     block_exclusive_scan,

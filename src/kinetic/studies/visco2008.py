@@ -31,11 +31,13 @@ __all__ = [
 
 
 def check(config: Mapping[str, Any]) -> None:
-    """The MD section, before any job: every run's first job by the MD front's own checks
-    (``kinetic.edmd.arguments.check_simulate``, numpy only), then what only the config
-    knows (the windows the table and figures use, the figure's run)."""
+    """Before any job: the cloning section's jobs by the cloning front's own checks
+    (:func:`check_cloning`), then the MD section: every run's first job by the MD front's
+    own checks (``kinetic.edmd.arguments.check_simulate``, numpy only), then what only the
+    config knows (the windows the table and figures use, the figure's run)."""
     from kinetic.edmd.arguments import check_simulate
 
+    check_cloning(config)
     md = config.get("visco2008", {}).get("md")
     if not md:
         return
@@ -65,6 +67,28 @@ def check(config: Mapping[str, Any]) -> None:
         )
     if problems:
         raise ValueError("config section visco2008.md: " + "; ".join(problems))
+
+
+def check_cloning(config: Mapping[str, Any]) -> None:
+    """Every cloning job's arguments (each point of a grouped ``cuda`` job) by the front's
+    own checks (``kinetic.cloning.arguments.validate_parameters``, numpy only): a value it
+    refuses (a histogram too fine for the GPU, a transient too short at large λ) stops the
+    parse instead of the jobs."""
+    import inspect
+
+    from kinetic.cloning.arguments import validate_parameters
+
+    accepted = set(inspect.signature(validate_parameters).parameters)
+    problems = []
+    for job in cloning_jobs(config):
+        for arguments in job.arguments.get("points", [job.arguments]):
+            try:
+                validate_parameters(**{k: v for k, v in arguments.items() if k in accepted})
+            except (TypeError, ValueError) as error:
+                problems.append(f"job {job.output}: {error}")
+    if problems:
+        more = f" (and {len(problems) - 1} more jobs)" if len(problems) > 1 else ""
+        raise ValueError(f"config section visco2008.cloning: {problems[0]}{more}")
 
 
 def md_arguments(md: Mapping[str, Any], run: str) -> dict[str, Any]:

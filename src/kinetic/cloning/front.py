@@ -15,7 +15,6 @@ from __future__ import annotations
 import inspect
 import logging
 import math
-import numbers
 import time
 
 import numpy as np
@@ -23,6 +22,14 @@ import numpy as np
 from kinetic import backends, io
 from kinetic.batches import REALIZATION
 from kinetic.cloning import kernels
+from kinetic.cloning.arguments import (
+    KERNELS,
+    LAMBDA_MAX,
+    LAMBDA_MIN,
+    MAX_TRANSIENT_BLOCKS,
+    MIN_KEPT_COLLISIONS,
+    validate_parameters,
+)
 from kinetic.cloning.estimators import realization_observables, summarize_realizations
 from kinetic.cloning.rates import TABLE_STEP, rate_table
 from kinetic.progress import Progress
@@ -43,27 +50,6 @@ __all__ = [
 
 logger = logging.getLogger("kinetic")
 
-KERNELS = {"hard_spheres": kernels.HARD_SPHERES, "maxwell": kernels.MAXWELL}
-"""Collision kernels: hard spheres (rate ∝ (g·σ̂)⁺; hard disks in d = 2) and Maxwell
-molecules (constant rate)."""
-
-LAMBDA_MIN = -4.0
-"""Most negative supported tilt. Below it the time-rescaled dynamics (Eq. 56) needs
-2e^{-λ} - 1 > 108 events per collision time, most of them duplications, and the
-finite-population bias of the hard-sphere kernel (≈ -0.45/N_c in μ at λ = -1.5) has not
-been validated against the reference solution."""
-
-LAMBDA_MAX = 30.0
-"""Largest supported tilt: beyond it the keep probability e^{-λ} < 1e-13 is below what
-the transient criterion (``MIN_KEPT_COLLISIONS``) can reach in any affordable realization."""
-
-MIN_KEPT_COLLISIONS = 1.0
-"""Each member must keep at least this many collisions on average during the discarded
-transient (transient · e^{-λ} · r_min >= 1, with r_min = 1/√2 for hard spheres, 1 for
-Maxwell molecules). At large λ almost every collision annihilates, the population only
-selects among the velocities it already holds and clones of a few slow members take
-over (diversity collapse); without renewal it still remembers its initial bath sample."""
-
 MIN_DISTINCT_VELOCITIES = 10
 MIN_DISTINCT_FRACTION = 0.03
 """A realization that ends with fewer distinct velocities than both 10 and 3% of its members has
@@ -80,33 +66,6 @@ def is_collapsed(distinct_velocities, population):
     return bool(distinct_velocities < threshold)
 
 
-CONTROL_WEIGHT_VARIANCE = 0.5
-"""The ``cuda`` backend's control interval Δ keeps the relative variance of a clone's
-weight e^{-λK} below this value for a Poisson count K of mean Δ (the count of a clone at
-rest in a hard-sphere bath, r(0) = 1/√2, is slower; fast clones are more variable):
-exp(Δ (e^{-λ} - 1)²) - 1 <= CONTROL_WEIGHT_VARIANCE, and Δ <= ``MAX_CONTROL_INTERVAL``."""
-
-MAX_CONTROL_INTERVAL = 1.0
-"""Longest control interval of the ``cuda`` backend, in mean free times."""
-
-
-def default_control_interval(lam: float) -> float:
-    """Control interval Δ of the ``cuda`` backend at tilt ``lam`` (see
-    ``CONTROL_WEIGHT_VARIANCE``): Δ = ln(1 + v)/(e^{-λ} - 1)², at most
-    ``MAX_CONTROL_INTERVAL``."""
-    spread = math.expm1(-lam) ** 2
-    if spread == 0.0:
-        return MAX_CONTROL_INTERVAL
-    return min(MAX_CONTROL_INTERVAL, math.log1p(CONTROL_WEIGHT_VARIANCE) / spread)
-
-
-MAX_CUDA_HISTOGRAM_BINS = 1024
-"""Most velocity-histogram bins of the ``cuda`` backend (one shared-memory histogram per
-thread block)."""
-
-MAX_TRANSIENT_BLOCKS = 50
-"""The discarded transient is split into at most this many blocks."""
-
 _CHUNK_EVENTS = 3.0e7  # events per kernel call, so progress lines come every few seconds
 
 
@@ -116,116 +75,6 @@ def kernel_label(kernel: str, dimension: int) -> str:
     if kernel == "hard_spheres" and dimension == 2:
         return "hard_disks"
     return kernel
-
-
-def _slowest_rate(kernel: str) -> float:
-    return 1.0 / math.sqrt(2.0) if kernel == "hard_spheres" else 1.0
-
-
-def _check_integer(name, value, minimum, maximum=None):
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"{name} must be an integer, got {value!r}")
-    if value < minimum or (maximum is not None and value > maximum):
-        upper = f" and <= {maximum}" if maximum is not None else ""
-        raise ValueError(f"{name} must be >= {minimum}{upper}, got {value}")
-    return int(value)
-
-
-def _check_real(name, value, *, minimum=None, strictly_positive=False):
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} must be a real number, got {value!r}")
-    value = float(value)
-    if not math.isfinite(value):
-        raise ValueError(f"{name} must be finite, got {value}")
-    if strictly_positive and value <= 0.0:
-        raise ValueError(f"{name} must be > 0, got {value}")
-    if minimum is not None and value < minimum:
-        raise ValueError(f"{name} must be >= {minimum}, got {value}")
-    return value
-
-
-def validate_parameters(
-    *,
-    kernel,
-    dimension,
-    lam,
-    population,
-    duration,
-    transient,
-    n_blocks,
-    n_realizations,
-    first_realization,
-    seed,
-    histogram_half_width,
-    histogram_bins,
-    backend="cpu",
-    control_interval=None,
-):
-    """Check every argument of ``simulate``; return them normalised to Python types.
-
-    Raises ``TypeError``/``ValueError`` naming the bad value and the allowed range.
-    """
-    if kernel not in KERNELS:
-        raise ValueError(f"kernel must be one of {sorted(KERNELS)}, got {kernel!r}")
-    dimension = _check_integer("dimension", dimension, 2, 3)
-    lam = _check_real("lam", lam)
-    if not LAMBDA_MIN <= lam <= LAMBDA_MAX:
-        reason = (
-            "below it the time-rescaled duplication dynamics (Eq. 56) is not validated"
-            if lam < LAMBDA_MIN
-            else "beyond it e^{-λ} is too small for any affordable transient"
-        )
-        raise ValueError(f"lam must be in [{LAMBDA_MIN}, {LAMBDA_MAX}] ({reason}), got {lam}")
-    population = _check_integer("population", population, 2, 10**8)
-    duration = _check_real("duration", duration, strictly_positive=True)
-    transient = _check_real("transient", transient, minimum=0.0)
-    n_blocks = _check_integer("n_blocks", n_blocks, 1, 10**6)
-    n_realizations = _check_integer("n_realizations", n_realizations, 1, 10**6)
-    first_realization = _check_integer("first_realization", first_realization, 0)
-    seed = _check_integer("seed", seed, 0)
-    if n_realizations == 1 and n_blocks < 2:
-        raise ValueError("a single realization needs n_blocks >= 2 for a block error bar, got 1")
-    histogram_half_width = _check_real(
-        "histogram_half_width", histogram_half_width, strictly_positive=True
-    )
-    histogram_bins = _check_integer("histogram_bins", histogram_bins, 1, 10**6)
-    backends.check(backend)
-    backends.check_realizations(backend, n_realizations)
-    if backend == "cuda" and histogram_bins > MAX_CUDA_HISTOGRAM_BINS:
-        raise ValueError(
-            f"histogram_bins must be <= {MAX_CUDA_HISTOGRAM_BINS} with backend 'cuda' "
-            f"(a shared-memory histogram per thread block), got {histogram_bins}"
-        )
-    if control_interval is not None:
-        control_interval = _check_real("control_interval", control_interval, strictly_positive=True)
-    kept = transient * math.exp(-lam) * _slowest_rate(kernel)
-    if kept < MIN_KEPT_COLLISIONS:
-        needed = MIN_KEPT_COLLISIONS / (math.exp(-lam) * _slowest_rate(kernel))
-        raise ValueError(
-            f"transient={transient:g} is too short at lam={lam:g}: a member keeps on average "
-            f"{kept:.3g} collisions during it (fraction e^-lam = {math.exp(-lam):.3g} of its "
-            f"collisions), fewer than {MIN_KEPT_COLLISIONS:g}; the population would still "
-            f"hold clones of its initial bath sample (diversity collapse). "
-            f"Use transient >= {needed:.4g}."
-        )
-    checked = {
-        "kernel": kernel,
-        "dimension": dimension,
-        "lam": lam,
-        "population": population,
-        "duration": duration,
-        "transient": transient,
-        "n_blocks": n_blocks,
-        "n_realizations": n_realizations,
-        "first_realization": first_realization,
-        "seed": seed,
-        "histogram_half_width": histogram_half_width,
-        "histogram_bins": histogram_bins,
-        "backend": backend,
-    }
-    if backend == "cuda":  # the CPU engine's algorithm has no control interval
-        checked["control_interval"] = control_interval or default_control_interval(lam)
-    return checked
 
 
 def simulate(
