@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import os
 
+import numpy as np
+
 __all__ = [
     "BACKENDS",
     "MAX_CUDA_REALIZATIONS",
@@ -50,7 +52,8 @@ def check_realizations(backend, count: int) -> int:
     """``count`` realizations in one call of ``backend``, checked against the GPU's grid
     (``MAX_CUDA_REALIZATIONS`` for ``cuda``, no limit on the ``cpu``): ``ValueError``
     before any work. A count that is not an integer is left to the front's own check."""
-    if backend == "cuda" and isinstance(count, int) and count > MAX_CUDA_REALIZATIONS:
+    integral = isinstance(count, int | np.integer) and not isinstance(count, bool)
+    if backend == "cuda" and integral and count > MAX_CUDA_REALIZATIONS:
         raise ValueError(
             f"a cuda call runs at most {MAX_CUDA_REALIZATIONS} realizations (the CUDA grid's "
             f"y extent), got {count}: split them into jobs (first_realization, n_realizations)"

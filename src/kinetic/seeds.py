@@ -14,7 +14,7 @@ import zlib
 
 import numpy as np
 
-__all__ = ["derive_seed", "stream_states"]
+__all__ = ["checked_stream", "derive_seed", "stream_states"]
 
 
 def derive_seed(root_seed: int, key: str) -> int:
@@ -52,3 +52,19 @@ def stream_states(seed: int, n_streams: int) -> np.ndarray:
             words[0] = 1
         states[k] = words
     return states
+
+
+def checked_stream(stream) -> np.ndarray:
+    """A copy of one xoshiro256+ state (4 ``uint64``), refused with ``ValueError`` if it
+    has another shape or is all zero: that state yields only zeros (a Maxwellian draw from
+    it never ends, a random insertion piles every particle on one point). The states of
+    :func:`stream_states` are never all zero."""
+    state = np.array(stream, dtype=np.uint64).reshape(-1).copy()
+    if state.shape != (4,):
+        raise ValueError(f"stream must be one xoshiro state of 4 uint64, got {np.shape(stream)}")
+    if not state.any():
+        raise ValueError(
+            "stream is the all-zero xoshiro state, which yields only zeros: take one from "
+            "kinetic.seeds.stream_states"
+        )
+    return state

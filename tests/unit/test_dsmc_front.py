@@ -212,3 +212,25 @@ def test_batch_starts_are_new_gas_starts_bit_for_bit(dimension):
         np.testing.assert_array_equal(states[r], gas.rng)
         assert tops[r] == np.sqrt(np.einsum("kn,kn->n", gas.velocity, gas.velocity).max())
     assert np.array_equal(streams, realization_streams(4, 3, 5))  # the input is not advanced
+
+
+def test_an_all_zero_stream_is_refused_by_both_dsmc_engines():
+    """The all-zero xoshiro state yields only zeros: the homogeneous gas's Maxwellian draw
+    never ended, and the inhomogeneous gas put every particle on one point."""
+    from kinetic.dsmc import CoolingModesSettings, new_cooling_gas, new_gas
+
+    zero = np.zeros(4, np.uint64)
+    with pytest.raises(ValueError, match="all-zero xoshiro state"):
+        new_gas(HomogeneousSettings(n_particles=8, restitution=0.9, time_step=0.01), zero)
+    settings = CoolingModesSettings(
+        n_particles=8,
+        density=0.05,
+        restitution=0.9,
+        drag_rate=0.0,
+        fictive_factor=1,
+        cells_per_side=1,
+        time_step=0.5,
+        collision_rule="majorant",
+    )
+    with pytest.raises(ValueError, match="all-zero xoshiro state"):
+        new_cooling_gas(settings, zero)

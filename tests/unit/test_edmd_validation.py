@@ -27,6 +27,13 @@ from kinetic.edmd import HardSphereSystem, simulate
         ({"prefetch": 3}, "prefetch must be 0, 1 or 2, got 3"),
         ({"sort_every": -1}, r"sort_every must be >= 0 \(0: never\), got -1"),
         ({"sort_every": 2.5}, "sort_every must be an integer, got 2.5"),
+        # accepted before: 2.0 crashed later, the strings became walls, zeros never moved,
+        # the all-zero stream piled every disk on one point ("placed only 1 of 100")
+        ({"dimension": 2.0}, "dimension must be 2 or 3, got 2.0"),
+        ({"walls": "no"}, "walls must be a bool or one bool per axis, got 'no'"),
+        ({"walls": ["False", "False"]}, "walls must be a bool or one bool per axis"),
+        ({"velocities": np.zeros((100, 2))}, "velocities are all zero"),
+        ({"stream": np.zeros(4, np.uint64)}, "stream is the all-zero xoshiro state"),
     ],
 )
 def test_bad_parameters_are_refused(options, message):

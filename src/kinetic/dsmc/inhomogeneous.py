@@ -41,6 +41,7 @@ from kinetic.dsmc import inhomogeneous_kernels as kernels
 from kinetic.dsmc.state import realization_streams
 from kinetic.gas import cell_changing_fraction
 from kinetic.progress import Progress, logger
+from kinetic.seeds import checked_stream
 from kinetic.validate import choice, integer, real
 
 __all__ = [
@@ -410,7 +411,7 @@ def initial_particles(settings: CoolingModesSettings, stream: np.ndarray):
     velocity, labels, rng)``: (2, N_sim) float64, float64, int64 (particle i in column
     i) and the (4,) uint64 stream after the draws (the CUDA backend starts from these)."""
     n = settings.n_simulated
-    rng = np.array(stream, dtype=np.uint64).reshape(4).copy()
+    rng = checked_stream(stream)
     position = np.zeros((2, n))
     velocity = np.zeros((2, n))
     labels = np.zeros((2, n), dtype=np.int64)

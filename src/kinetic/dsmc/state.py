@@ -39,6 +39,7 @@ from kinetic.dsmc.arguments import (
     check_settings,
 )
 from kinetic.rng import stream_states
+from kinetic.seeds import checked_stream
 
 __all__ = [
     "FORCE_STEPS",
@@ -324,7 +325,7 @@ def new_gas(
     Maxwellian plus one particle far in the tail (a velocity outlier).
     """
     d, n = settings.dimension, settings.n_particles
-    rng = np.array(stream, dtype=np.uint64).reshape(4).copy()
+    rng = checked_stream(stream)
     if velocity is None:
         v = np.empty((d, n))
         kernels.maxwellian(v, rng, 1.0)

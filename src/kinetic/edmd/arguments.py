@@ -18,7 +18,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from kinetic.seeds import stream_states
+from kinetic.seeds import checked_stream, stream_states
 
 __all__ = [
     "CLOSE_PACKING",
@@ -166,8 +166,10 @@ def check_system(
         raise TypeError(f"n_particles must be an integer, got {n_particles!r}")
     if n_particles < 2:
         raise ValueError(f"n_particles must be >= 2, got {n_particles}")
-    if dimension not in (2, 3):
+    integral = isinstance(dimension, int | np.integer) and not isinstance(dimension, bool)
+    if not integral or dimension not in (2, 3):
         raise ValueError(f"dimension must be 2 or 3, got {dimension!r}")
+    dimension = int(dimension)
     diameter = _finite_positive("diameter", diameter)
     temperature = _finite_positive("temperature", temperature)
     if cell_occupancy is None and dimension in DEFAULT_CELL_OCCUPANCY:
@@ -214,7 +216,10 @@ def check_system(
         density = n_particles / math.prod(box)
     if isinstance(walls, bool | np.bool_):
         walls = [bool(walls)] * dimension
-    walls = [bool(w) for w in walls]
+    flags = list(np.ravel(walls)) if not isinstance(walls, str) else [walls]
+    if not all(isinstance(w, bool | np.bool_) for w in flags):
+        raise TypeError(f"walls must be a bool or one bool per axis, got {walls!r}")
+    walls = [bool(w) for w in flags]
     if len(walls) != dimension:
         raise ValueError(f"walls needs {dimension} flags, got {len(walls)}")
     # accessible volume: centres stay σ/2 away from walls
@@ -236,9 +241,7 @@ def check_system(
         if seed is None and (positions is None or velocities is None):
             raise ValueError("a seed (or stream) is needed for random initial conditions")
         stream = stream_states(0 if seed is None else seed, 1)[0]
-    stream = np.ascontiguousarray(stream, dtype=np.uint64).copy()
-    if stream.shape != (4,):
-        raise ValueError(f"stream must be one xoshiro state of 4 uint64, got {stream.shape}")
+    stream = checked_stream(stream)
 
     return SystemArguments(
         n_particles,
@@ -316,8 +319,7 @@ def check_simulate(
         raise ValueError("histogram bin counts must be >= 1")
     if dimension not in (2, 3):
         raise ValueError(f"dimension must be 2 or 3, got {dimension!r}")
-    if not (isinstance(density, int | float) and math.isfinite(density) and density > 0):
-        raise ValueError(f"density must be finite and > 0, got {density!r}")
+    density = _finite_positive("density", density)
     if not (math.isfinite(equilibration) and equilibration >= 1.0):
         raise ValueError(f"equilibration must be >= 1 collision per particle, got {equilibration}")
     if not (math.isfinite(duration) and duration > 0):

@@ -264,6 +264,8 @@ class HardSphereSystem:
             v = np.asarray(velocities, dtype=float)
             if v.shape != (n, dimension) or not np.all(np.isfinite(v)):
                 raise ValueError(f"velocities must be a finite ({n}, {dimension}) array")
+            if not np.any(v):
+                raise ValueError("velocities are all zero: no particle would ever move")
             self.phase[:, 3 : 3 + dimension] = v
         self._predict_all(0.0)
         if self.sort_every > 0:

@@ -24,7 +24,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from kinetic import io
+from kinetic import io, validate
 from kinetic.event_disks import kernels
 from kinetic.progress import Progress
 from kinetic.rng import stream_states
@@ -71,12 +71,9 @@ def simulate_box(
     snapshot_interval = _positive("snapshot_interval", snapshot_interval)
     if snapshot_interval > duration:
         raise ValueError("snapshot_interval must not exceed duration")
-    if isinstance(bins, bool) or not isinstance(bins, int) or bins < 1:
-        raise ValueError(f"bins must be an integer >= 1, got {bins!r}")
-    if isinstance(velocity_bins, bool) or not isinstance(velocity_bins, int) or velocity_bins < 2:
-        raise ValueError(f"velocity_bins must be an integer >= 2, got {velocity_bins!r}")
-    if isinstance(realizations, bool) or not isinstance(realizations, int) or realizations < 2:
-        raise ValueError(f"realizations must be an integer >= 2, got {realizations!r}")
+    bins = validate.integer("bins", bins, 1)
+    velocity_bins = validate.integer("velocity_bins", velocity_bins, 2)
+    realizations = validate.integer("realizations", realizations, 2)
     box = np.array([float(side) for side in box])
     # validates N, σ and the box, and fails before any run if no start can be drawn
     starts = [initial_state(n_disks, sigma, box, seed, r) for r in range(realizations)]
@@ -249,10 +246,8 @@ def chaos(
     (:data:`CLASSIC_START`) or "random" (realization 0 of ``seed``). ``extra_starts``
     random starts (realizations 1, 2, ... of ``seed``) add their event sequences
     (``start_event_pair``) for the statistics of where the precisions part."""
-    if isinstance(events, bool) or not isinstance(events, int) or events < 1:
-        raise ValueError(f"events must be an integer >= 1, got {events!r}")
-    if isinstance(extra_starts, bool) or not isinstance(extra_starts, int) or extra_starts < 0:
-        raise ValueError(f"extra_starts must be an integer >= 0, got {extra_starts!r}")
+    events = validate.integer("events", events, 1)
+    extra_starts = validate.integer("extra_starts", extra_starts, 0)
     if start == "classic":
         x, v = _classic_start(n_disks, sigma, box)
     elif start == "random":
