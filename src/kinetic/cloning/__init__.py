@@ -6,7 +6,7 @@ extrapolation in ``estimators``; ``warmup()`` compiles every kernel once (the wo
 runs it in its own job before the parallel simulation jobs, numba issue 4807).
 """
 
-import importlib
+from kinetic.lazy import lazy_exports
 
 _EXPORTS = {
     "KERNELS": "arguments",
@@ -37,20 +37,7 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        value = getattr(importlib.import_module(f"kinetic.cloning.{_EXPORTS[name]}"), name)
-    else:
-        try:  # a submodule, e.g. kinetic.cloning.kernels after a bare ``import kinetic.cloning``
-            value = importlib.import_module(f"kinetic.cloning.{name}")
-        except ModuleNotFoundError:
-            raise AttributeError(f"module 'kinetic.cloning' has no attribute {name!r}") from None
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
 
 
 def warmup() -> None:

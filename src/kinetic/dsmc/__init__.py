@@ -14,7 +14,7 @@ homogeneous cooling state, with the transverse-mode observers."""
 
 from __future__ import annotations
 
-import importlib
+from kinetic.lazy import lazy_exports
 
 _EXPORTS = {
     "simulate_free_flights": "free_flights",
@@ -58,20 +58,7 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        value = getattr(importlib.import_module(f"kinetic.dsmc.{_EXPORTS[name]}"), name)
-    else:
-        try:  # a submodule, e.g. kinetic.dsmc.kernels after a bare ``import kinetic.dsmc``
-            value = importlib.import_module(f"kinetic.dsmc.{name}")
-        except ModuleNotFoundError:
-            raise AttributeError(f"module 'kinetic.dsmc' has no attribute {name!r}") from None
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
 
 
 def _warm_homogeneous() -> None:

@@ -11,7 +11,7 @@ krauth2025's few disks in a box with walls run on the lecture's O(N²)-per-event
 event-disks, an engine of its own (``kinetic.event_disks``).
 """
 
-import importlib
+from kinetic.lazy import lazy_exports
 
 _EXPORTS = {
     "HardSphereSystem": "system",
@@ -34,20 +34,7 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        value = getattr(importlib.import_module(f"kinetic.edmd.{_EXPORTS[name]}"), name)
-    else:
-        try:  # a submodule, e.g. kinetic.edmd.kernels after a bare ``import kinetic.edmd``
-            value = importlib.import_module(f"kinetic.edmd.{name}")
-        except ModuleNotFoundError:
-            raise AttributeError(f"module 'kinetic.edmd' has no attribute {name!r}") from None
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
 
 
 def warmup() -> None:
