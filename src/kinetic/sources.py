@@ -184,17 +184,31 @@ def script_sources(script: str | Path) -> list[Path]:
     return sorted(seen)
 
 
+@cache
+def _lazy_exports(init: Path) -> dict[str, str]:
+    """The ``_EXPORTS`` mapping of a package's ``__init__.py`` (``kinetic.lazy``: public
+    name -> the submodule that defines it), read from its syntax tree; {} without one."""
+    for node in ast.parse(init.read_text()).body:
+        targets = node.targets if isinstance(node, ast.Assign) else []
+        if any(isinstance(t, ast.Name) and t.id == "_EXPORTS" for t in targets):
+            return ast.literal_eval(node.value)
+    return {}
+
+
 def front_sources(front: str, engines) -> list[Path]:
     """Files whose edit must rerun a simulation job that calls ``front`` (``module:function``,
     a ``kinetic.studies.Job``'s) with ``engines``: the engines' sources, the front's module
     and the packages on the way to it, and every package file they import, bookkeeping
     aside."""
-    module = front.partition(":")[0]
+    module, _, function = front.partition(":")
     bookkeeping = {PACKAGE / f"{name}.py" for name in BOOKKEEPING}
     files = {path for engine in engines for path in engine_sources(engine)}
     own = _module_files(module)
     if not own:
         raise ValueError(f"{module} is not a module of the package")
+    lazy = _lazy_exports(own[-1]) if own[-1].name == "__init__.py" else {}
+    if function in lazy:  # a name the package loads on first use: the module defining it
+        own += _module_files(f"{module}.{lazy[function]}")[-1:]
     seen: set[Path] = set()
     todo = list(own)
     while todo:

@@ -46,13 +46,12 @@ def warmup() -> None:
     Runs a tiny population through every kernel code and both dimensions, for a
     positive and a negative tilt, through the same front as production runs.
     """
-    from kinetic.cloning.arguments import KERNELS
-    from kinetic.cloning.front import simulate
+    from kinetic import cloning  # its lazy names: the package file imports no kernel
 
-    for kernel in KERNELS:
+    for kernel in cloning.KERNELS:
         for dimension in (2, 3):
             for lam in (0.5, -0.5):
-                simulate(
+                cloning.simulate(
                     kernel=kernel,
                     dimension=dimension,
                     lam=lam,

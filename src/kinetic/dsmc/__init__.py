@@ -64,21 +64,14 @@ __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
 def _warm_homogeneous() -> None:
     """``simulate_homogeneous``'s kernels: a tiny gas in d = 2 and 3, with the NTC and
     Poisson clocks, the Euler and exact force steps, Lie and Strang splitting."""
-    from kinetic.dsmc.state import (
-        HomogeneousSettings,
-        Samples,
-        advance_gas,
-        maxwellian_starts,
-        new_gas,
-        realization_streams,
-    )
+    from kinetic import dsmc  # its lazy names: the package file imports no kernel
 
     for dimension in (2, 3):
         for selection, force_step, splitting in (
             ("ntc", "euler", "lie"),
             ("poisson", "exact", "strang"),
         ):
-            settings = HomogeneousSettings(
+            settings = dsmc.HomogeneousSettings(
                 n_particles=8,
                 restitution=0.9,
                 time_step=0.01,
@@ -88,26 +81,28 @@ def _warm_homogeneous() -> None:
                 selection=selection,
                 splitting=splitting,
             )
-            gas = new_gas(settings, realization_streams(0, 0, 1)[0])
-            advance_gas(gas, 2, Samples(stride=1, histogram=True))
-    maxwellian_starts(3, 8, realization_streams(0, 0, 2))  # the cuda backend's starts
+            gas = dsmc.new_gas(settings, dsmc.realization_streams(0, 0, 1)[0])
+            dsmc.advance_gas(gas, 2, dsmc.Samples(stride=1, histogram=True))
+    dsmc.maxwellian_starts(3, 8, dsmc.realization_streams(0, 0, 2))  # the cuda backend's starts
 
 
 def _warm_free_flights() -> None:
     """``simulate_free_flights``'s kernels, d = 2 and 3."""
-    from kinetic.dsmc.free_flights import simulate_free_flights
+    from kinetic import dsmc
 
     for dimension in (2, 3):
-        simulate_free_flights(n_particles=8, duration=0.5, seed=0, dimension=dimension, chunk=0.5)
+        dsmc.simulate_free_flights(
+            n_particles=8, duration=0.5, seed=0, dimension=dimension, chunk=0.5
+        )
 
 
 def _warm_cooling_modes() -> None:
     """``simulate_cooling_modes``'s kernels: both collision rules, with and without drag."""
-    from kinetic.dsmc.inhomogeneous import simulate_cooling_modes
+    from kinetic import dsmc
 
     for rule in ("paper", "majorant"):
         for restitution, drag_rate in ((1.0, 0.0), (0.8, 0.001)):
-            simulate_cooling_modes(
+            dsmc.simulate_cooling_modes(
                 n_particles=8,
                 density=0.05,
                 restitution=restitution,
@@ -138,13 +133,11 @@ def warmup() -> None:
     """Compile (or load from numba's cache) every kernel with the production argument types:
     those of every front (``WARMUPS``) and the inhomogeneous engine's stepping, observers
     and collision stage called alone (as the tests and benchmarks do)."""
-    from kinetic.dsmc import inhomogeneous_kernels
-    from kinetic.dsmc.inhomogeneous import CoolingModesSettings, new_cooling_gas
-    from kinetic.dsmc.state import realization_streams
+    from kinetic import dsmc
 
     for compile_kernels in dict.fromkeys(WARMUPS.values()):
         compile_kernels()
-    settings = CoolingModesSettings(
+    settings = dsmc.CoolingModesSettings(
         n_particles=8,
         density=0.05,
         restitution=0.9,
@@ -154,10 +147,10 @@ def warmup() -> None:
         time_step=0.5,
         collision_rule="majorant",
     )
-    gas = new_cooling_gas(settings, realization_streams(0, 0, 1)[0])
+    gas = dsmc.new_cooling_gas(settings, dsmc.realization_streams(0, 0, 1)[0])
     gas.advance(1)
     gas.observables()
-    inhomogeneous_kernels.collide_cells(
+    dsmc.inhomogeneous_kernels.collide_cells(
         gas.velocity,
         gas.labels,
         gas.cells(),
