@@ -14,6 +14,8 @@ from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.dsmc import simulate_homogeneous
 
+FIELD_BIAS = 0.012
+"""κ′/κ0's relative O(ε*²) bias at ε* = 0.05, α = 1 (docs/reproduced.md, montanero2007)."""
 KAPPA_PER_FLUX = -0.48144  # κ'/κ0 = -(v0 λ ν0 / T)(4/15) q/ε* in d = 3 (ν0 τ = 8/(5√π))
 REALIZATIONS = 32
 """With 12 the Lie bias (+0.10-0.12) stood only 5-6 of its errors clear, and a seed that
@@ -49,4 +51,8 @@ def test_lie_splitting_is_biased_at_large_steps_and_strang_is_not():
     assert lie - reference > 5 * hypot(lie_sem, reference_sem)  # O(δt) bias, ~ +0.12
     assert abs(strang - reference) < band * hypot(strang_sem, reference_sem)
     assert abs(euler - strang) < band * hypot(euler_sem, strang_sem)
-    assert abs(reference - 1.025218) < band * reference_sem + 0.01  # the elastic κ/κ0
+    # the elastic κ/κ0 with the field's O(ε*²) bias at ε* = 0.05 (κ′/κ0 1.0402 ± 0.0024
+    # there and 1.0275 ± 0.0015 at ε* → 0 at the documents' statistics: +1.2 %); resolved
+    # to ± 0.034 here, a consistency check (tests/physics/test_montanero2007_elastic_*)
+    expected = 1.025218 * (1.0 + FIELD_BIAS)
+    assert abs(reference - expected) < band * reference_sem
