@@ -38,7 +38,7 @@ REFUSED = [
     # every analysis failed after the simulations: blocks of 0 samples
     ("costantini2010.blocks_per_realization", 10_000, "blocks_per_realization = 10000 cuts"),
     # the event-disks jobs failed at their start
-    ("krauth2025.disks.n_disks", 3, "start = classic is the lecture's 4 disks"),
+    ("krauth2025.disks.n_disks", 3, "start = classic: the classic start is 4 disks"),
     ("krauth2025.disks.snapshot_interval", 2000, "snapshot_interval = 2000 exceeds md_duration"),
     # the error-against-CPU study read NaN at the short checkpoint
     ("visco2008.md.checkpoints", [1, 200], "checkpoints [1] are shorter than error_window"),

@@ -40,9 +40,8 @@ import numpy as np
 
 from kinetic import backends, io
 from kinetic.dsmc import kernels
-from kinetic.dsmc.arguments import check_windows
+from kinetic.dsmc.arguments import LINEAR_RESPONSE_FIELD, check_windows
 from kinetic.dsmc.state import (
-    LINEAR_RESPONSE_FIELD,
     MOMENT_NAMES,
     HomogeneousSettings,
     Samples,

@@ -28,28 +28,12 @@ import numpy as np
 from kinetic import gas as units
 from kinetic import validate
 from kinetic.dsmc import kernels
-from kinetic.dsmc.arguments import (
-    FORCE_STEPS,
-    LINEAR_RESPONSE_FIELD,
-    MAX_COLLISIONS_PER_STEP,
-    MAX_FIELD_STEP,
-    MAX_REDUCED_FIELD,
-    SELECTIONS,
-    SPLITTINGS,
-    check_settings,
-)
+from kinetic.dsmc.arguments import check_settings, collision_frequency
 from kinetic.rng import stream_states
 from kinetic.seeds import checked_stream
 
 __all__ = [
-    "FORCE_STEPS",
-    "LINEAR_RESPONSE_FIELD",
-    "MAX_COLLISIONS_PER_STEP",
-    "MAX_FIELD_STEP",
-    "MAX_REDUCED_FIELD",
     "MOMENT_NAMES",
-    "SELECTIONS",
-    "SPLITTINGS",
     "HomogeneousGas",
     "HomogeneousSettings",
     "Samples",
@@ -94,9 +78,10 @@ class HomogeneousSettings:
     """Validated parameters of one homogeneous DSMC run (montanero2007 units).
 
     n_particles: N >= 2. restitution: α in (0, 1]. time_step: δt in τ, with at most
-    MAX_COLLISIONS_PER_STEP collisions per particle per step on average.
+    ``arguments.MAX_COLLISIONS_PER_STEP`` collisions per particle per step on average.
     dimension: 2 or 3. kernel: "hard_spheres", "maxwell" or "very_hard".
-    reduced_field: ε* in [0, MAX_REDUCED_FIELD], with ε* δt/τ <= MAX_FIELD_STEP.
+    reduced_field: ε* in [0, ``arguments.MAX_REDUCED_FIELD``], with ε* δt/τ <=
+    ``arguments.MAX_FIELD_STEP``.
     force_step: "euler" (Eq. 4.1) or "exact" (V -> V/(1 + ε V_x δt/2)).
     selection: "ntc" (no-time-counter) or "poisson" (exact event times).
     splitting: "lie" (the paper's: collisions, then force and thermostat; O(δt) bias)
@@ -145,8 +130,7 @@ class HomogeneousSettings:
     @property
     def collision_frequency(self) -> float:
         """Equilibrium collisions per particle per τ at T0 (2/√π for hard spheres)."""
-        omega = units.equilibrium_collision_frequency(self.kernel, self.dimension, self.density)
-        return omega * self.tau
+        return collision_frequency(self.kernel, self.dimension)
 
     @property
     def pair_coefficient(self) -> float:

@@ -29,7 +29,7 @@ from kinetic.event_disks import kernels
 from kinetic.progress import Progress
 from kinetic.rng import stream_states
 from kinetic.samplers import disk_configuration
-from kinetic.theory.krauth2025 import CLASSIC_START
+from kinetic.theory.krauth2025 import CLASSIC_START, check_classic_start
 
 __all__ = ["CLASSIC_START", "chaos", "initial_state", "simulate_box", "warmup"]
 
@@ -189,13 +189,7 @@ def simulate_box(
 
 
 def _classic_start(n_disks: int, sigma: float, box) -> tuple[np.ndarray, np.ndarray]:
-    expected = (len(CLASSIC_START["positions"]), CLASSIC_START["sigma"], CLASSIC_START["box"])
-    given = (n_disks, float(sigma), tuple(float(side) for side in box))
-    if given != expected:
-        raise ValueError(
-            f"the classic start is {expected[0]} disks of radius {expected[1]} in the box "
-            f"{expected[2]}; got n_disks = {n_disks}, sigma = {sigma}, box = {tuple(box)}"
-        )
+    check_classic_start(n_disks, sigma, box)
     return np.array(CLASSIC_START["positions"]), np.array(CLASSIC_START["velocities"])
 
 

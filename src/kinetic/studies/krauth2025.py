@@ -90,7 +90,7 @@ def check(config: Mapping[str, Any]) -> None:
     """Stop before any job on values the schema cannot judge alone: lines and rings too
     short for their pins, a naive-pin run that would take forever, a box that cannot hold
     the disks (:func:`check_disks`)."""
-    from kinetic.theory.krauth2025 import CLASSIC_START, check_naive_starts, check_pins
+    from kinetic.theory.krauth2025 import check_classic_start, check_naive_starts, check_pins
 
     section = config.get("krauth2025")
     if not section:
@@ -121,14 +121,14 @@ def check(config: Mapping[str, Any]) -> None:
             f"config krauth2025.disks: snapshot_interval = {disks['snapshot_interval']} "
             f"exceeds md_duration = {disks['md_duration']}"
         )
-    classic = (len(CLASSIC_START["positions"]), CLASSIC_START["sigma"], CLASSIC_START["box"])
-    given = (disks["n_disks"], float(disks["sigma"]), tuple(float(x) for x in disks["box"]))
-    if disks["start"] == "classic" and given != classic:
-        raise ValueError(
-            f"config krauth2025.disks: start = classic is the lecture's {classic[0]} disks "
-            f"of radius {classic[1]} in the box {classic[2]}; got n_disks = {given[0]}, "
-            f"sigma = {given[1]}, box = {given[2]} (use another start or those values)"
-        )
+    if disks["start"] == "classic":
+        try:
+            check_classic_start(disks["n_disks"], disks["sigma"], disks["box"])
+        except ValueError as error:
+            raise ValueError(
+                f"config krauth2025.disks: start = classic: {error} (use another start or "
+                "those values)"
+            ) from None
 
 
 def jobs(config: Mapping[str, Any]) -> list[Job]:

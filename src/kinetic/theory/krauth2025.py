@@ -34,6 +34,7 @@ __all__ = [
     "CLASSIC_START",
     "MAX_NAIVE_STARTS",
     "bin_average",
+    "check_classic_start",
     "check_disk_box",
     "check_naive_starts",
     "check_pins",
@@ -56,6 +57,18 @@ CLASSIC_START = {
 }
 """The start of Krauth's own event-disks program (four disks of radius 0.15 in the unit
 box), the snapshots readers of the book and the lecture know."""
+
+
+def check_classic_start(n_disks: int, sigma: float, box) -> None:
+    """Refuse (``ValueError``) disks other than :data:`CLASSIC_START`'s for that start."""
+    expected = (len(CLASSIC_START["positions"]), CLASSIC_START["sigma"], CLASSIC_START["box"])
+    given = (n_disks, float(sigma), tuple(float(side) for side in box))
+    if given != expected:
+        raise ValueError(
+            f"the classic start is {expected[0]} disks of radius {expected[1]} in the box "
+            f"{expected[2]}; got n_disks = {n_disks}, sigma = {sigma}, box = {tuple(box)}"
+        )
+
 
 #: most configurations naive-pin may be expected to start in one call (about an hour)
 MAX_NAIVE_STARTS = 1e10
