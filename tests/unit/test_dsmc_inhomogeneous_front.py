@@ -71,6 +71,14 @@ SMALL = dict(
         ({"first_realization": 1.5}, "first_realization must be an integer"),
         ({"backend": "cuda", "n_realizations": 65_536}, "at most 65535 realizations"),
         (
+            {"restitution": 1.0, "drag_rate": 0.1, "n_samples": 200},
+            "drag_rate = 0.1 heats the gas at restitution = 1.0 to T = 2.875e+17 T0 within the run",
+        ),
+        (
+            {"drag_rate": 0.15, "n_samples": 200},
+            "drag_rate = 0.15 heats the gas at restitution = 0.8 to T = 89.15 T0",
+        ),
+        (
             {"n_particles": 10**7, "fictive_factor": 10},
             "n_particles x fictive_factor = 10000000 x 10 = 100000000 simulated particles",
         ),
@@ -99,6 +107,79 @@ def test_a_step_of_exactly_the_limit_is_accepted(density):
     assert settings.collision_frequency * settings.time_step == pytest.approx(0.1, rel=1e-12)
     with pytest.raises(ValueError, match="too large"):
         CoolingModesSettings(**engine, time_step=limit * 1.001)
+
+
+def test_a_short_or_mild_heating_is_accepted():
+    """The heating check looks at the temperature the run reaches, not at T_s: an elastic
+    gas with drag over 4 time units (T = e^0.08), and a drag that holds T_s at 1.2 T0 with
+    the step on the T0 limit (0.1 x √1.2 = 0.1095 collisions, under the 0.11 headroom)."""
+    shared = {key: SMALL[key] for key in front.SHARED_SETTINGS}
+    settings = CoolingModesSettings(**shared, restitution=1.0, drag_rate=0.01)
+    assert front.largest_temperature(settings, 4.0) == pytest.approx(math.exp(0.08))
+    front.check_heating(settings, 4.0)
+    engine = shared | {"restitution": 0.8}
+    engine["time_step"] = front.MAX_COLLISIONS_PER_STEP / (2.0 * 0.05 * math.sqrt(math.pi))
+    zeta0 = 2.0 * front_drag(0.8, 0.05)
+    warm = CoolingModesSettings(**engine, drag_rate=math.sqrt(1.2) * zeta0 / 2.0)
+    assert front.largest_temperature(warm, 1e6) == pytest.approx(1.2, rel=1e-9)
+    front.check_heating(warm, 1e6)
+    hot = CoolingModesSettings(**engine, drag_rate=math.sqrt(1.25) * zeta0 / 2.0)
+    with pytest.raises(ValueError, match="heats the gas"):
+        front.check_heating(hot, 1e6)
+
+
+def front_drag(alpha, density):
+    """ω0 = ζ(T0)/2 of the workflow (``kinetic.theory.costantini2010.drag_rate``)."""
+    from kinetic.theory.costantini2010 import drag_rate
+
+    return drag_rate(alpha, density)
+
+
+def test_largest_temperature_follows_a_heated_run():
+    """``largest_temperature``'s logistic T(τ) is the temperature a heated DSMC gas has:
+    one cell, α = 0.8, a drag 1.3 times the one that holds T0 (T_s = 1.69 T0 by Eq. 12),
+    sampled as it heats. Eq. 12's ζ is a Sonine estimate (1 % between the a2 closures,
+    so 2 % in T_s) and the start has a2 = 0 (ζ 0.4 % low at first): 3 % of T, plus 4
+    errors of the mean over the realizations."""
+    density, alpha, interval = 0.05, 0.8, 10.0
+    drag = 1.3 * front_drag(alpha, density)
+    run = simulate_cooling_modes(
+        n_particles=5000,
+        density=density,
+        restitution=alpha,
+        drag_rate=drag,
+        equilibration=0.0,
+        sample_interval=interval,
+        n_samples=13,
+        seed=71,
+        fictive_factor=1,
+        cells_per_side=1,
+        time_step=0.25,
+        collision_rule="majorant",
+        n_realizations=4,
+    )
+    temperature = run.temperature
+    mean = temperature.mean("realization").values
+    error = temperature.std("realization", ddof=1).values / math.sqrt(
+        temperature.sizes["realization"]
+    )
+    settings = CoolingModesSettings(
+        n_particles=5000,
+        density=density,
+        restitution=alpha,
+        drag_rate=drag,
+        fictive_factor=1,
+        cells_per_side=1,
+        time_step=0.25,
+        collision_rule="majorant",
+    )
+    predicted = np.array([front.largest_temperature(settings, t) for t in run.time.values])
+    assert predicted[-1] > 1.5  # the run heats most of the way to T_s = 1.69
+    assert np.all(np.abs(mean - predicted) <= 0.03 * predicted + 4.0 * error + 1e-12), (
+        mean,
+        predicted,
+        error,
+    )
 
 
 def test_dataset_follows_the_contract():

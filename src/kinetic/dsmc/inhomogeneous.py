@@ -46,12 +46,15 @@ from kinetic.validate import choice, integer, real
 
 __all__ = [
     "COLLISION_RULES",
+    "HEATING_HEADROOM",
     "MAX_COLLISIONS_PER_STEP",
     "MAX_DRAG_PER_STEP",
     "SHARED_SETTINGS",
     "CoolingModesGas",
     "CoolingModesSettings",
+    "check_heating",
     "initial_particles",
+    "largest_temperature",
     "new_cooling_gas",
     "simulate_cooling_modes",
     "simulate_cooling_modes_points",
@@ -66,6 +69,14 @@ MAX_COLLISIONS_PER_STEP = 0.1
 
 MAX_DRAG_PER_STEP = 0.1
 """Largest ω0 Δτ: the drag's relative velocity change over one step."""
+
+HEATING_HEADROOM = 1.1
+"""How far above MAX_COLLISIONS_PER_STEP a run's step may go at the largest temperature
+its drag heats it to (``largest_temperature``): that temperature comes from Eq. 12, whose
+ζ* differs by up to 1 % between the two a2 closures, and a gas of N particles settles
+about 1/N above it, so that a run that holds T near T0 at a step on the T0 limit passes,
+while a drag that heats the gas to T_s > 1.21 T0 (or an elastic gas with drag, which heats
+without end) is refused."""
 
 SHARED_SETTINGS = (
     "n_particles",
@@ -246,6 +257,47 @@ class CoolingModesSettings:
             "time_step": self.time_step,
             "collision_rule": self.collision_rule,
         }
+
+
+def largest_temperature(settings: CoolingModesSettings, duration: float) -> float:
+    """The largest mean temperature (units of T0) of a run of this length, by the
+    homogeneous balance dT/dτ = (2ω0 − ζ(T)) T with ζ(T) = ζ(T0) √T from Eq. 12 (a2 of
+    van Noije and Ernst): x = √T is logistic, x(τ) = x_s/(1 + (x_s − 1) e^(−ω0 τ)) with
+    x_s = 2ω0/ζ(T0), so T rises monotonically to T(duration) when T_s = x_s² > 1 and never
+    exceeds T0 otherwise; an elastic gas with drag heats as e^(2ω0 τ)."""
+    from kinetic.theory.costantini2010 import zeta_star
+
+    omega0 = settings.drag_rate
+    if omega0 == 0.0:
+        return 1.0
+    # ζ(T0) = ζ* v/ℓ with v = √2 and ℓ = 1/n (engine units)
+    zeta0 = float(zeta_star(settings.restitution)) * math.sqrt(2.0) * settings.density
+    growth = min(omega0 * duration, 700.0)
+    if zeta0 == 0.0:
+        return math.exp(2.0 * growth)
+    steady = 2.0 * omega0 / zeta0
+    if steady <= 1.0:
+        return 1.0
+    return (steady / (1.0 + (steady - 1.0) * math.exp(-growth))) ** 2
+
+
+def check_heating(settings: CoolingModesSettings, duration: float) -> None:
+    """Refuse a run whose drag heats the gas until its step makes more than
+    HEATING_HEADROOM x MAX_COLLISIONS_PER_STEP collisions per particle (the step is
+    checked at T0 by ``CoolingModesSettings``; ω_c grows as √T)."""
+    temperature = largest_temperature(settings, duration)
+    collisions = settings.collision_frequency * math.sqrt(temperature) * settings.time_step
+    limit = HEATING_HEADROOM * MAX_COLLISIONS_PER_STEP
+    if collisions > limit * _ROUNDING:
+        raise ValueError(
+            f"drag_rate = {settings.drag_rate!r} heats the gas at restitution = "
+            f"{settings.restitution!r} to T = {temperature:.4g} T0 within the run "
+            f"({duration!r} time units; Eq. 12's steady T_s = (2 drag_rate/zeta(T0))^2), "
+            f"where time_step = {settings.time_step!r} makes {collisions:.4g} collisions per "
+            f"particle per step: must be <= {limit:.4g}. Use drag_rate = zeta(T0)/2 "
+            "(kinetic.theory.costantini2010.drag_rate) to hold T near T0, a shorter run, "
+            f"or time_step <= {limit / (settings.collision_frequency * math.sqrt(temperature)):.6g}"
+        )
 
 
 def slack_per_cell(mean: float, changing: float = 0.0) -> int:
@@ -518,7 +570,10 @@ def simulate_cooling_modes(
         M >= 1: M x M equal square collision cells (M = 1: "homogeneous DSMC"). With
         Λ = 1 and fewer than one real particle per cell a warning is logged.
     time_step
-        Δτ > 0 with ω_c(T0) Δτ <= 0.1 (ω_c = 2 n σ √(πT0/m)) and ω0 Δτ <= 0.1.
+        Δτ > 0 with ω_c(T0) Δτ <= 0.1 (ω_c = 2 n σ √(πT0/m)) and ω0 Δτ <= 0.1, and
+        ω_c(T) Δτ <= 0.11 at the largest temperature T the drag heats the gas to within
+        the run (``largest_temperature``: Eq. 12's balance; an elastic gas with drag heats
+        as e^(2ω0τ)).
     collision_rule
         "paper" (½ N_c ω_c(T_c) Δτ collisions per cell and step) or "majorant" (Bird's
         scheme with a rigorous majorant; exact mean collision rate at any M).
@@ -653,6 +708,7 @@ class _Run:
         self.p = p
         self.settings = settings
         # steps before the first sample's dissipation interval, and within it
+        check_heating(settings, equilibration + (n_samples - 1) * sample_interval)
         if steps_before >= stride:
             warm, first_steps = steps_before - stride, stride
         else:
