@@ -188,6 +188,28 @@ def test_bad_line_arguments_fail_before_sampling(kwargs, message):
         sample_line(method, **arguments)
 
 
+@pytest.mark.parametrize(
+    ("kwargs", "error", "message"),
+    [
+        ({"step": True}, TypeError, "step must be a real number, got True"),
+        ({"step": 0.0}, ValueError, r"step = 0.0 is outside the allowed range \(0, 10\]"),
+        ({"step": 10.5}, ValueError, "step = 10.5 is outside"),
+        ({"sigma": True}, TypeError, "sigma must be a real number, got True"),
+        ({"length": "20"}, TypeError, "length must be a real number"),
+        ({"n_pins": 1}, ValueError, "n_pins >= 2"),
+    ],
+)
+def test_bad_ring_arguments_fail_before_sampling(monkeypatch, kwargs, error, message):
+    def no_work(*args, **kwargs):
+        raise AssertionError("the chain started before the arguments were validated")
+
+    monkeypatch.setattr(kernels, "ring_markov", no_work)
+    arguments = {"n_pins": 15, "length": 20.0, "sigma": 0.5, "step": 1.0, "sweeps": 2}
+    arguments |= {"burn_in": 0, "realizations": 2, "bins": 4, "seed": 0}
+    with pytest.raises(error, match=message):
+        sample_ring(**arguments | kwargs)
+
+
 def test_fronts_compile_one_signature_per_kernel():
     """Integers from a YAML config (length: 20) and floats reach the kernels as the same
     types, so the kernels warmed once before parallel jobs are the ones the jobs run

@@ -40,6 +40,7 @@ SMALL = {
         ({"n_realizations": 1, "n_blocks": 1}, "n_blocks >= 2"),
         ({"lam": 8.0, "transient": 100.0}, "transient=100 is too short at lam=8"),
         ({"backend": "cuda", "n_realizations": 65_536}, "at most 65535 realizations"),
+        ({"control_interval": 0.5}, "control_interval = 0.5 is for backend 'cuda' only"),
     ],
 )
 def test_bad_input_is_refused_before_work(change, message):

@@ -157,6 +157,12 @@ def validate_parameters(
             f"(a shared-memory histogram per thread block), got {histogram_bins}"
         )
     if control_interval is not None:
+        if backend != "cuda":
+            raise ValueError(
+                f"control_interval = {control_interval!r} is for backend 'cuda' only: the "
+                "CPU engine's continuous-time algorithm selects at every collision and has "
+                "no control interval (leave it None)"
+            )
         control_interval = _check_real("control_interval", control_interval, strictly_positive=True)
     kept = transient * math.exp(-lam) * _slowest_rate(kernel)
     # (a transient chosen as exactly MIN_KEPT_COLLISIONS e^λ/r_min gives kept within

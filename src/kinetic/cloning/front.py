@@ -122,8 +122,8 @@ def simulate(
         ``kinetic.cloning.gpu``, one GPU thread per member, all realizations in one launch;
         refused before any work where there is no GPU.
     control_interval : float, optional
-        ``cuda`` only: longest interval between two selections (default
-        ``default_control_interval(lam)``); each block is cut into whole intervals.
+        ``cuda`` only (refused with ``cpu``): longest interval between two selections
+        (default ``default_control_interval(lam)``); each block is cut into whole intervals.
     label : str, optional
         Prefix of the progress lines.
 

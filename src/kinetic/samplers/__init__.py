@@ -36,6 +36,7 @@ from kinetic.theory.krauth2025 import (
     check_pins,
     naive_acceptance,
 )
+from kinetic.validate import real
 
 __all__ = [
     "disk_configuration",
@@ -201,9 +202,8 @@ def sample_ring(
     check_pins(n_pins, length, sigma)
     if n_pins < 2:
         raise ValueError("a pair density needs n_pins >= 2")
-    if not (math.isfinite(step) and 0 < step <= length / 2):
-        raise ValueError(f"step must be in (0, length/2], got {step!r}")
-    n_pins, length, sigma, step = int(n_pins), float(length), float(sigma), float(step)
+    n_pins, length, sigma = int(n_pins), float(length), float(sigma)
+    step = real("step", step, 0.0, length / 2, low_open=True)  # at most half the ring
     sweeps = _positive_int("sweeps", sweeps)
     burn_in = _positive_int("burn_in", burn_in, 0)
     realizations = _positive_int("realizations", realizations, 2)

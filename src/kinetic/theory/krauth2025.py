@@ -79,6 +79,9 @@ def check_pins(n_pins: int, length: float, sigma: float) -> None:
     (L > 2Nσ: the legal configurations then have a positive volume)."""
     if isinstance(n_pins, bool) or not isinstance(n_pins, int | np.integer) or n_pins < 1:
         raise ValueError(f"n_pins must be an integer >= 1, got {n_pins!r}")
+    for name, value in (("sigma", sigma), ("length", length)):
+        if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+            raise TypeError(f"{name} must be a real number, got {value!r}")
     if not (np.isfinite(sigma) and sigma > 0):
         raise ValueError(f"sigma (half the pin width) must be finite and > 0, got {sigma!r}")
     if not (np.isfinite(length) and length > 2 * n_pins * sigma):
