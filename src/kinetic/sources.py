@@ -64,7 +64,16 @@ ENGINES = ("cloning", "dsmc", "edmd", "event_disks", "samplers")
 SHARED = ("rng", "seeds", "jit", "validate", "gas")
 """Top-level modules every engine depends on (``rng`` and ``jit`` hold compiled code)."""
 
-BOOKKEEPING = ("__init__", "config", "io", "lazy", "progress", "sources", "workflow_support")
+BOOKKEEPING = (
+    "__init__",
+    "config",
+    "io",
+    "lazy",
+    "progress",
+    "simulation_job",
+    "sources",
+    "workflow_support",
+)
 """Top-level modules that validate, name, write and log results but compute no simulated
 number: an edit of them reruns no simulation."""
 

@@ -6,17 +6,13 @@ Every script in ``workflow/scripts`` starts with::
     from kinetic.workflow_support import start
     log = start(snakemake)
 
-or, for a simulation job (``workflow/scripts/simulate.py``, whose rule passes a
-``kinetic.studies.Job``'s front, arguments and provenance as ``params``)::
-
-    from kinetic.workflow_support import run_job
-    run_job(snakemake)
-
 which sends the ``kinetic`` logger (progress lines with ETA) and uncaught exceptions to
 ``snakemake.log[0]`` as well as to standard error, and limits numba to the job's threads.
-A simulation job also makes sure numba's cache holds the compiled kernels it runs before
-it runs them (``kinetic.jit.warm``, :func:`warm_engines`): the first job after an edit
-compiles them under a lock, parallel jobs wait and load.
+The simulation jobs' script runs ``kinetic.simulation_job.run_job`` instead, which starts
+the same way. This module imports nothing of the package at its top and only ``io`` in
+its functions, so that the rules that join, analyse and plot, whose code inputs are the
+package files their script imports (``kinetic.sources.script_sources``), do not rerun when
+the studies, the cost model or the engines' argument checks change.
 """
 
 from __future__ import annotations
@@ -27,7 +23,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-__all__ = ["run_job", "start", "warm_engines", "write_caption", "write_output"]
+__all__ = ["start", "write_caption", "write_output"]
 
 
 def start(snakemake: Any) -> logging.Logger:
@@ -59,28 +55,6 @@ def start(snakemake: Any) -> logging.Logger:
         numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
     logger.info("rule %s: output %s", snakemake.rule, list(snakemake.output))
     return logger
-
-
-def warm_engines(log: logging.Logger, front: Any = None) -> None:
-    """Fill numba's cache (``kinetic.jit.warm``), before the job calls any kernel, with the
-    kernels of the engine whose function the job's ``front`` is or runs (a study's front
-    that imports its engine only when called names that function in its
-    ``engine_front``, ``module:function``): those of that function alone where the engine
-    lists them (its ``WARMUPS``). Every other engine package the script has imported is
-    warmed whole."""
-    from kinetic import jit
-    from kinetic.sources import ENGINES
-
-    own, name = None, None
-    if front is not None:
-        target = getattr(front, "engine_front", f"{front.__module__}:{front.__name__}")
-        module, _, name = target.partition(":")
-        own = module.split(".")[1] if module.count(".") else None
-    for engine in ENGINES:
-        if engine == own or f"kinetic.{engine}" in sys.modules:
-            seconds = jit.warm(engine, name if engine == own else None)
-            if seconds > 0.0:
-                log.info("kinetic.%s kernels in numba's cache after %.1f s", engine, seconds)
 
 
 def write_output(
@@ -115,35 +89,6 @@ def write_output(
     else:
         path = getattr(snakemake.output, output)
     io.write_dataset(dataset, path)
-
-
-def run_job(snakemake: Any) -> tuple[logging.Logger, Any]:
-    """One simulation job: the front named by ``params.front`` (``module:function``, a
-    ``kinetic.studies.Job``'s) called with ``params.job``, written to the rule's output with
-    the job's seed and ``params.parameters`` stamped beside the front's own parameters,
-    and a log line with its CPU time. Numba's cache is filled for the engines the front
-    imports before it runs (:func:`warm_engines`). Returns the logger and the dataset."""
-    from kinetic import io, studies
-
-    log = start(snakemake)
-    front = studies.front(snakemake.params.front)
-    warm_engines(log, front)
-    job = dict(snakemake.params.job)
-    result = front(**job)
-    # a job of several points (``points``): a dataset each, written in the rule's order
-    datasets = result if isinstance(result, list) else [result]
-    seeds = [point["seed"] for point in job.get("points", [job])]
-    extra = dict(snakemake.params.parameters)
-    for index, (dataset, seed) in enumerate(zip(datasets, seeds, strict=True)):
-        parameters = {**io.parameters_of(dataset), **extra} if extra else None
-        write_output(snakemake, dataset, seed, output=index, parameters=parameters)
-        path = snakemake.output[index]
-        if "cpu_seconds" in dataset:
-            cpu = float(dataset["cpu_seconds"].sum())
-            log.info("wrote %s (%s, %.1f CPU s)", path, snakemake.params.front, cpu)
-        else:
-            log.info("wrote %s (%s)", path, snakemake.params.front)
-    return log, result
 
 
 def write_caption(template: str | os.PathLike, path: str | os.PathLike, **values) -> str:

@@ -1,4 +1,4 @@
-"""``kinetic.workflow_support.run_job``, the one simulation script: a job of several points
+"""``kinetic.simulation_job.run_job``, the one simulation script: a job of several points
 (``kinetic.cloning.simulate_points`` on the GPU) writes each point's dataset to its own rule
 output, stamped with that point's seed."""
 
@@ -10,7 +10,7 @@ from types import SimpleNamespace
 import pytest
 import xarray as xr
 
-from kinetic import io, studies, workflow_support
+from kinetic import io, simulation_job, studies
 
 
 @pytest.fixture(autouse=True)
@@ -42,7 +42,7 @@ def test_a_job_of_several_points_writes_each_to_its_output(tmp_path, monkeypatch
         ]
 
     monkeypatch.setattr(studies, "front", lambda name: front)
-    monkeypatch.setattr(workflow_support, "warm_engines", lambda log, front=None: None)
+    monkeypatch.setattr(simulation_job, "warm_engines", lambda log, front=None: None)
     monkeypatch.setattr(sys, "excepthook", sys.excepthook)  # run_job installs its own
     outputs = [str(tmp_path / f"lam{k}" / "batch0000.nc") for k in range(3)]
     points = [{"lam": lam, "seed": seed} for lam, seed in ((-1.0, 11), (0.5, 12), (2.0, 13))]
@@ -58,7 +58,7 @@ def test_a_job_of_several_points_writes_each_to_its_output(tmp_path, monkeypatch
             parameters={},
         ),
     )
-    workflow_support.run_job(snakemake)
+    simulation_job.run_job(snakemake)
     for path, point in zip(outputs, points, strict=True):
         written = io.read_dataset(path)
         assert float(written.mu) == point["lam"]
@@ -91,7 +91,7 @@ def test_a_job_warms_the_kernels_of_the_engine_function_its_front_runs(monkeypat
     assert "kinetic.studies.montanero2007:simulate_batch" in fronts
     for name, engines in fronts.items():
         calls.clear()
-        workflow_support.warm_engines(log, studies.front(name))
+        simulation_job.warm_engines(log, studies.front(name))
         warmed = dict(calls)
         assert set(engines) <= set(warmed), (name, calls)  # the event-disks start: samplers
         own = engines[0]

@@ -36,6 +36,20 @@ def test_imports_are_followed_through_the_package(tmp_path):
     assert all(path.is_file() for path in script_sources(script))
 
 
+def test_the_scripts_glue_brings_in_no_study_cost_model_or_engine(tmp_path):
+    """Every reading script starts with ``kinetic.workflow_support``: its code inputs are
+    the writing and logging modules only, so that an edit of the studies, the cost model,
+    numba's cache or an engine's argument checks reruns no figure that does not import
+    them (the simulation jobs' glue, which imports the studies, is
+    ``kinetic.simulation_job``)."""
+    script = tmp_path / "script.py"
+    script.write_text("from kinetic.workflow_support import start, write_caption, write_output\n")
+    files = {path.relative_to(PACKAGE).as_posix() for path in script_sources(script)}
+    assert files == {"__init__.py", "batches.py", "config.py", "io.py", "workflow_support.py"}
+    simulate = script_sources(SCRIPTS / "simulate.py")
+    assert PACKAGE / "studies" / "__init__.py" in simulate
+
+
 def test_a_script_without_package_imports_runs_no_package_file(tmp_path):
     script = tmp_path / "script.py"
     script.write_text("import numpy as np\nprint(np.pi)\n")

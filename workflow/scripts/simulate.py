@@ -2,6 +2,6 @@
 (params.front, from kinetic.studies) called with its arguments (params.job) and written
 with its provenance (params.parameters beside the front's own) and the job's seed."""
 
-from kinetic.workflow_support import run_job
+from kinetic.simulation_job import run_job
 
 run_job(snakemake)

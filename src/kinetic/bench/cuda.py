@@ -1114,7 +1114,7 @@ _DOCUMENT_JOB = """
 import pickle, sys, time
 START = time.perf_counter()
 from types import SimpleNamespace
-from kinetic.workflow_support import run_job
+from kinetic.simulation_job import run_job
 job = pickle.load(open(sys.argv[1], "rb"))
 params = SimpleNamespace(front=job["front"], job=job["arguments"], parameters=job["parameters"])
 snakemake = SimpleNamespace(rule=job["rule"], params=params, config=job["config"], threads=1,

@@ -328,7 +328,7 @@ def simulate_batch(run: Mapping[str, Any], **batch: Any):
 
 simulate_batch.engine_front = "kinetic.dsmc:simulate_homogeneous"
 """The engine function a job of this front runs: its jobs compile only that function's
-kernels (``kinetic.workflow_support.warm_engines``)."""
+kernels (``kinetic.simulation_job.warm_engines``)."""
 
 
 def simulate_batches(points: Sequence[Mapping[str, Any]], *, label: str | None = None):
