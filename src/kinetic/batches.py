@@ -94,9 +94,13 @@ def combine(datasets: Sequence[xr.Dataset], *, names: Sequence[str] | None = Non
     same seed, and no realization may appear twice; the error names the batches (by
     ``names``, e.g. their file paths, or by position). Variables without the realization
     dimension are taken from the first batch. The result's attributes are the first
-    batch's, with ``n_realizations`` and ``first_realization`` of the whole run.
+    batch's, with ``n_realizations`` and ``first_realization`` of the whole run and
+    ``source_git_revisions``, every revision that simulated a batch
+    (``kinetic.io.source_revisions``).
     """
     import xarray as xr
+
+    from kinetic.io import source_revisions
 
     if not datasets:
         raise ValueError("combine needs at least one batch")
@@ -128,6 +132,9 @@ def combine(datasets: Sequence[xr.Dataset], *, names: Sequence[str] | None = Non
     attrs = dict(datasets[0].attrs)
     whole_run = {"first_realization": int(realizations.min()), "n_realizations": len(realizations)}
     attrs.update(whole_run)
+    revisions = source_revisions(datasets)
+    if revisions:  # the code that simulated the batches, not the first batch's alone
+        attrs["source_git_revisions"] = revisions
     if "parameters_json" in attrs:
         parameters = json.loads(attrs["parameters_json"])
         parameters.update(whole_run)

@@ -6,7 +6,11 @@ Conventions every dataset of the project follows (checked by ``check_conventions
 - every dimension has a coordinate;
 - the global attributes hold the run's ``parameters`` (one attribute each, plus the
   whole set as JSON in ``parameters_json``), its ``seed``, the ``config`` (JSON), the
-  package ``kinetic_version`` and the ``git_revision`` of the source tree;
+  package ``kinetic_version`` and the ``git_revision`` of the source tree that wrote the
+  file; a file made from simulated files (an aggregate of a run's batches, a run read
+  and written again) also names, in ``source_git_revisions``, the revisions that
+  simulated its numbers (space-separated, sorted; several where batches of one run were
+  simulated by different revisions);
 - netCDF attributes hold only strings, numbers and numeric arrays: booleans become
   ints, ``None`` becomes an empty string, anything else nested becomes JSON.
 
@@ -147,9 +151,23 @@ def stamp(
     attrs["parameters_json"] = json.dumps(dict(parameters), sort_keys=True, default=str)
     attrs["seed"] = -1 if seed is None else int(seed)
     attrs["config"] = json.dumps(dict(config or {}), sort_keys=True, default=str)
+    simulated_by = attrs.get("source_git_revisions") or attrs.get("git_revision")
+    if simulated_by:  # written before: keep the revisions that made its numbers
+        attrs["source_git_revisions"] = simulated_by
     attrs["kinetic_version"] = __version__
     attrs["git_revision"] = git_revision()
     return dataset.assign_attrs(attrs)
+
+
+def source_revisions(datasets) -> str:
+    """The sorted, space-separated revisions that simulated ``datasets`` (each one's
+    ``source_git_revisions``, or its ``git_revision`` where it was written by a simulation
+    job); "" where none records one."""
+    found = set()
+    for dataset in datasets:
+        value = dataset.attrs.get("source_git_revisions") or dataset.attrs.get("git_revision")
+        found.update(str(value).split() if value else ())
+    return " ".join(sorted(found))
 
 
 def _replace_atomically(path: Path, write) -> Path:

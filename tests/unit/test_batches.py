@@ -47,6 +47,23 @@ def test_combine_orders_realizations_and_updates_the_range():
     assert io.parameters_of(run)["first_realization"] == 0
 
 
+def test_a_run_names_the_revisions_that_simulated_its_batches():
+    """A joined run records the code of its numbers (``source_git_revisions``), not only
+    the join's (``git_revision``), also where its batches were simulated by two revisions;
+    writing the run again keeps them."""
+    first, second = batch(0, 2), batch(2, 2)
+    assert "source_git_revisions" not in first.attrs  # a simulation's first write
+    first.attrs["git_revision"] = "bbb2222"
+    second.attrs["git_revision"] = "aaa1111"
+    run = batches.combine([first, second])
+    assert run.attrs["source_git_revisions"] == "aaa1111 bbb2222"
+    again = io.stamp(run, parameters=io.parameters_of(run), seed=5)
+    assert again.attrs["source_git_revisions"] == "aaa1111 bbb2222"
+    assert again.attrs["git_revision"] == io.git_revision()
+    alone = io.stamp(first, parameters=io.parameters_of(first), seed=5)
+    assert alone.attrs["source_git_revisions"] == "bbb2222"
+
+
 def test_combine_names_overlapping_batches():
     with pytest.raises(ValueError, match=r"realization 1 appears in both a\.nc and b\.nc"):
         batches.combine([batch(0, 2), batch(1, 2)], names=["a.nc", "b.nc"])
