@@ -252,21 +252,25 @@ def _merge(base: dict[str, Any], update: Mapping[str, Any]) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python -m kinetic.config FILE...``: check config files before a build (syntax
-    with file and line, then the schema); prints one line per file, exits 1 on a bad one."""
+    """``python -m kinetic.config FILE...``: check a config before a build (syntax with file
+    and line, then the schema). Several files are merged in order, as Snakemake's
+    ``--configfile A B`` merges them, so that a layer such as ``paper-gpu.yaml`` is checked
+    over its base; prints one line, exits 1 on a bad config."""
     import sys
 
     paths = sys.argv[1:] if argv is None else argv
-    status = 0
-    for path in paths:
-        try:
-            validate_config(load_config_file(path))
-        except ConfigError as error:
-            print(f"{path}: {error}" if not str(error).startswith(str(path)) else str(error))
-            status = 1
-        else:
-            print(f"{path}: valid")
-    return status
+    if not paths:
+        print("usage: python -m kinetic.config FILE [FILE ...] (merged in order)")
+        return 2
+    name = " + ".join(str(path) for path in paths)
+    try:
+        load_configs(paths)
+    except ConfigError as error:
+        text = str(error)
+        print(text if any(text.startswith(str(path)) for path in paths) else f"{name}: {text}")
+        return 1
+    print(f"{name}: valid")
+    return 0
 
 
 if __name__ == "__main__":

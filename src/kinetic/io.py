@@ -271,15 +271,17 @@ def write_table(
     markdown_path: str | os.PathLike | None = None,
     *,
     float_format: str = ".6g",
+    markdown_note: str = "",
 ) -> None:
     """Write a table as CSV (empty cells for missing values) and optionally a Markdown
-    twin, each atomically (temporary file, fsync, rename)."""
+    twin (followed by ``markdown_note``, e.g. the table's caption), each atomically
+    (temporary file, fsync, rename)."""
     _replace_atomically(
         Path(csv_path),
         lambda temporary: frame.to_csv(temporary, index=False, float_format="%.10g", na_rep=""),
     )
     if markdown_path is not None:
-        text = _markdown(frame, float_format)
+        text = _markdown(frame, float_format) + (f"\n{markdown_note}" if markdown_note else "")
         _replace_atomically(Path(markdown_path), lambda temporary: temporary.write_text(text))
 
 

@@ -58,6 +58,7 @@ def _table1(k2_at_t10):
         | {"paper_row_density": 0},
         {"source": "Gaussian", "k2": 1.125, "k3": 1.1289, "kind": "theory"},
         {"source": "Sonine", "k2": 1.13778, "k3": 1.1073, "kind": "theory"},
+        {"source": "Eq. (28)", "k2": 1.14090, "k3": 1.09947, "kind": "theory"},
     ]
     return pd.DataFrame(rows)
 
@@ -85,7 +86,11 @@ REFERENCE = xr.Dataset(
 
 def test_visco2008_checks_pass_the_documents_numbers_and_fail_a_shifted_one():
     good = visco2008.checks(_table1(1.1228), _cloning(math.expm1(-1.0)), REFERENCE)
-    assert {check.passed for check in good} == {True}
+    assert {check.passed for check in good} == {True, None}
+    # the Boltzmann equation's own k2 is reported beside Sonine's, without a verdict
+    (exact,) = [check for check in good if check.passed is None]
+    assert "Eq. (28) solved" in exact.claim and exact.expected == 1.14090
+    assert exact.z == pytest.approx((1.1374 - 1.14090) / 0.0007)
     claims = " ".join(check.claim for check in good)
     for words in ("printed 1.1228", "first-Sonine", "Gaussian", "Maxwell", "Eq. (28)"):
         assert words in claims
@@ -174,6 +179,7 @@ def test_table1_scores_our_rows_against_the_printed_ones_and_finds_their_density
             "cumulant_poisson": ("order", [1.0, 1.0, 1.0]),
             "cumulant_gaussian": ("order", [1.0, 1.125, 1.1289]),
             "cumulant_sonine": ("order", [1.0, 1.1378, 1.1073]),
+            "cumulant_exact": ("order", [1.0, 1.1409, 1.0995]),
         }
     )
     # the document's t = 10 row is k2 = 1.1228: the 1e-3 run is 0.5 sigma off, 1e-2 10 sigma
@@ -185,6 +191,8 @@ def test_table1_scores_our_rows_against_the_printed_ones_and_finds_their_density
     assert md.loc[(0.001, 10.0), "z_gaussian_k2"] == pytest.approx((1.1233 - 1.125) / 0.001)
     assert set(table.loc[table["paper_row_density"] == 1, "rho"]) == {0.001}
     assert list(table.columns[:9]) == visco2008.TABLE1_COLUMNS
+    exact = table[table["source"] == "Eq. (28)"].iloc[0]  # a theory row the document lacks
+    assert exact["kind"] == "theory" and exact["k2"] == 1.1409 and np.isnan(exact["paper_k2"])
     numbers = visco2008.table1_caption_numbers(table, [10, 50])
     assert numbers["rho_doc"] == 0.001 and numbers["dk2_10"] == pytest.approx(-0.0105)
     # the line through (0.001, 1.1233) and (0.01, 1.1128) at rho = 0: 1.1233 + 0.0105/9,

@@ -104,3 +104,20 @@ def test_references_inside_a_section_file_survive_inlining(tmp_path):
     assert config == {"section": {"n": 7}}
     with pytest.raises(ConfigError, match=r"section\.n"):
         validate_config({"section": {"n": 0}}, tmp_path / "root.schema.yaml")
+
+
+def test_the_command_checks_a_layer_over_its_base(capsys, tmp_path):
+    """``python -m kinetic.config`` merges its files as ``--configfile`` does: the GPU layer
+    alone lacks the base's keys, over paper.yaml it is valid; a syntax error names its
+    file and line."""
+    from kinetic.config import main
+
+    layer, base = REPOSITORY / "config" / "paper-gpu.yaml", REPOSITORY / "config" / "paper.yaml"
+    assert main([str(layer)]) == 1
+    assert "'seed' is a required property" in capsys.readouterr().out
+    assert main([str(base), str(layer)]) == 0
+    assert capsys.readouterr().out.strip().endswith("paper-gpu.yaml: valid")
+    broken = tmp_path / "broken.yaml"
+    broken.write_text("seed: 1\nvisco2008: [\n")
+    assert main([str(base), str(broken)]) == 1
+    assert str(broken) in capsys.readouterr().out

@@ -9,6 +9,7 @@ from kinetic.analysis.statistics import (
     cpu_for_error,
     error_against_cpu,
     mean_and_sem,
+    ratio_and_sem,
 )
 
 
@@ -87,3 +88,19 @@ def test_chi2_per_dof_counts_only_entries_with_an_error_and_an_expectation():
     rng = np.random.default_rng(1)
     noise = rng.normal(size=100_000)
     assert chi2_per_dof(noise, np.ones_like(noise), 0.0)[0] == pytest.approx(1.0, abs=0.02)
+
+
+def test_ratio_and_sem_is_the_spread_of_the_pooled_ratio():
+    """The delta-method error of Σa/Σb over 8 realizations of binomial counts with
+    unequal totals is the spread of that ratio over 4000 repetitions (rms 3.7 % low: the
+    residuals about the estimated ratio, O(1/n) at 8 samples; 4000 repetitions resolve
+    1 %), within 10 %; a constant ratio has 0."""
+    rng = np.random.default_rng(12)
+    totals = rng.integers(500, 5000, size=(4000, 8))
+    hits = rng.binomial(totals, 0.03)
+    pooled = hits.sum(axis=1) / totals.sum(axis=1)
+    errors = np.array([ratio_and_sem(a, b)[1] for a, b in zip(hits, totals, strict=True)])
+    assert np.sqrt(np.mean(errors**2)) == pytest.approx(pooled.std(ddof=1), rel=0.1)
+    assert ratio_and_sem(hits[0], totals[0])[0] == pytest.approx(pooled[0])
+    assert ratio_and_sem([2.0, 4.0, 6.0], [1.0, 2.0, 3.0]) == (2.0, 0.0)
+    assert np.isnan(ratio_and_sem([1.0], [3.0])[1])

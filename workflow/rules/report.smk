@@ -14,6 +14,8 @@ localrules:
 
 
 rule workflow_config:
+    input:
+        code=script_code("workflow_config"),
     output:
         report(
             results_file("workflow/config.yaml"),
@@ -31,6 +33,7 @@ rule workflow_config:
 rule workflow_jobs:
     input:
         workflow_job_outputs,
+        code=script_code("workflow_jobs"),
     output:
         report(
             results_file("workflow/jobs.csv"),
@@ -39,6 +42,8 @@ rule workflow_jobs:
         ),
     log:
         log_file("workflow/jobs.log"),
+    params:
+        config=workflow_config,
     script:
         "../scripts/workflow_jobs.py"
 

@@ -1,14 +1,16 @@
 """costantini2010: error of nu* and nu_bar* against CPU time, DSMC and MD at one (N, alpha).
 
 Each point uses the first 1/k of every realization's blocks (k = 1, 2, ...): its CPU time is
-that fraction of the run's, its error the jackknife error over those blocks. The dashed
-lines are a/sqrt(t) through the full runs' points."""
+that fraction of the run's, its error the jackknife error over those blocks, with the
+error of that error, SE/√(2(n − 1)) for n blocks. The dashed lines are a/sqrt(t) through
+the full runs' points."""
 
 import numpy as np
 import pandas as pd
 
 from kinetic import io, plotting
 from kinetic.analysis.costantini2010 import method_of
+from kinetic.analysis.statistics import error_of_sem
 from kinetic.plotting.costantini2010 import METHOD_LABELS, METHOD_STYLE
 from kinetic.workflow_support import start
 
@@ -25,14 +27,18 @@ for path in snakemake.input.runs:
         (axes[1], "nu_bar_star", r"$\bar\nu^*$"),
     ):
         error = result[f"error_{name}"].values
-        ax.loglog(
+        blocks = np.rint(result.subset.values * float(result.blocks))  # jackknife samples
+        plotting.errorbar(
+            ax,
             cpu,
             error,
-            style["marker"],
+            error_of_sem(error, blocks),
+            marker=style["marker"],
             color=style["color"],
-            mfc="none",
             label=METHOD_LABELS[method],
         )
+        ax.set_xscale("log")
+        ax.set_yscale("log")
         line = np.geomspace(cpu.min() / 2, cpu.max() * 4, 20)
         ax.loglog(line, error[0] * np.sqrt(cpu[0] / line), "--", color=style["color"], lw=0.6)
         ax.set_xlabel("CPU time (s)")

@@ -1,5 +1,6 @@
 """costantini2010 Fig. 1: granular temperature against rescaled time for several cell sizes
-and Lambda, against MD and the expected T_s; right: the recollision diagnostic."""
+and Lambda (bands: the standard error over the realizations), against MD and the expected
+T_s; right: the recollision diagnostic with its standard error."""
 
 import numpy as np
 
@@ -17,6 +18,14 @@ for result in results:
     color = METHOD_STYLE[method]["color"] if method != "dsmc" else next(dsmc_colors)
     style = "-" if method == "md" else ("--" if method == "dsmc_homogeneous" else "-")
     ax.plot(result.time, result.temperature, style, color=color, lw=0.8, label=run_label(result))
+    ax.fill_between(  # the standard error over the realizations
+        result.time,
+        result.temperature - result.temperature_sem,
+        result.temperature + result.temperature_sem,
+        color=color,
+        alpha=0.25,
+        lw=0,
+    )
     log.info(
         "%s: T_s = %.4f +- %.4f, repeated collisions %.4f",
         run_label(result),
@@ -26,12 +35,13 @@ for result in results:
     )
     if method != "md":
         per_cell = float(result.attrs["n_particles"]) / float(result.attrs["cells_per_side"]) ** 2
-        chaos.plot(
+        plotting.errorbar(
+            chaos,
             per_cell,
             float(result.repeated_fraction),
-            METHOD_STYLE[method]["marker"],
+            float(result.repeated_fraction_err),
+            marker=METHOD_STYLE[method]["marker"],
             color=color,
-            mfc="none",
         )
 ax.axhline(1.0, color=METHOD_STYLE["theory"]["color"], lw=0.8, ls=":", label=r"expected $T_s$")
 ax.set_xlabel(r"$\tau\, v_s/\ell$")

@@ -15,7 +15,12 @@ from matplotlib import colormaps
 
 from kinetic import io, plotting
 from kinetic.analysis.krauth2025 import contact_pressure, wall_pressures
-from kinetic.analysis.statistics import cpu_for_error, error_against_cpu, mean_and_sem
+from kinetic.analysis.statistics import (
+    cpu_for_error,
+    error_against_cpu,
+    error_of_sem,
+    mean_and_sem,
+)
 from kinetic.workflow_support import start
 
 start(snakemake)
@@ -88,7 +93,12 @@ for index, (method, quantity, values, cpu) in enumerate(series):
     mean = values.mean()
     relative = errors / abs(mean)
     colour = colours[index % len(colours)]
-    ax.loglog(times, relative, "os^v"[index % 4], ms=2.5, mfc="none", color=colour, label=method)
+    spread = error_of_sem(relative, np.asarray(curve.part))  # n groups behind each error
+    plotting.errorbar(
+        ax, times, relative, spread, marker="os^v"[index % 4], ms=2.5, color=colour, label=method
+    )
+    ax.set_xscale("log")
+    ax.set_yscale("log")
     merit = relative[-1] * math.sqrt(times[-1])
     line = np.geomspace(times[0], times[-1] * 10, 20)
     ax.loglog(line, merit / np.sqrt(line), "-", lw=0.6, color=colour)

@@ -9,6 +9,6 @@ from kinetic.workflow_support import start
 
 log = start(snakemake)
 rows = [analysis.summary_row(ds) for ds in load_runs(snakemake.input.runs).values()]
-found = analysis.checks(rows, snakemake.params.section["checks"])
+found = analysis.checks(rows, snakemake.params.checks)
 log.info("checks:\n%s", check.table(found).to_string(index=False))
 check.write(found, snakemake.output.csv, snakemake.output.md, fail=snakemake.params.fail)

@@ -3,7 +3,8 @@
 Figure: top, kappa'/kappa0 against the time step for the paper's Lie splitting (Euler
 and exact force steps) and the Strang splitting, with the bias model; bottom, total
 relative error sqrt(I/C + (|b| + 2 db)^2) against CPU time C for each setting (curves:
-the model of analysis.error_budget; points: the runs themselves).
+the model of analysis.error_budget; points: the runs themselves, with the error of that
+error).
 Tables: error_vs_time.csv (one row per run), error_targets.csv (cheapest setting for
 each target error). The O(eps*^2) field bias is not part of this budget (extreme.csv).
 """
@@ -14,13 +15,12 @@ from matplotlib import colormaps
 
 from kinetic import io, plotting
 from kinetic.analysis import montanero2007 as analysis
+from kinetic.analysis.statistics import error_of_sem
 from kinetic.studies.montanero2007 import load_runs
 from kinetic.workflow_support import start
 
 log = start(snakemake)
-section = snakemake.params.section
-protocol = section["protocol"]
-n_reference = section["error_study"]["overrides"].get("n_particles", protocol["n_particles"])
+n_reference = snakemake.params.n_reference
 rows = [analysis.summary_row(ds) for ds in load_runs(snakemake.input.runs).values()]
 alphas = sorted({row["alpha"] for row in rows})
 MARKERS = {
@@ -46,7 +46,7 @@ all_settings, all_targets = [], []
 for column, alpha in enumerate(alphas):
     chosen = [row for row in rows if row["alpha"] == alpha]
     settings, targets, model = analysis.error_budget(
-        chosen, n_reference, section["error_study"]["target_errors"]
+        chosen, n_reference, snakemake.params.target_errors
     )
     log.info(
         "alpha = %g: kappa'/kappa0(dt -> 0, N -> inf) = %.4f; Lie slope %.4f per tau, "
@@ -139,11 +139,19 @@ for column, alpha in enumerate(alphas):
             lw=0.9 if s["force_step"] == "euler" else 0.6,
             label=describe(s),
         )
-        bottom.plot(
+        # the run's own total error, with its error: the statistical error's from the
+        # realizations (SE/√(2(n − 1))) and the bias's error, propagated through the sum
+        stat = s["relative_stat_err"]
+        total = np.hypot(stat, bias)
+        spread = np.hypot(
+            stat * error_of_sem(stat, s["realizations"]), bias * s["relative_bias_err"]
+        )
+        plotting.errorbar(
+            bottom,
             [s["cpu_seconds"]],
-            [np.hypot(s["relative_stat_err"], bias)],
-            MARKERS[(s["splitting"], s["force_step"])],
-            mfc="none",
+            [total],
+            [spread / total],
+            marker=MARKERS[(s["splitting"], s["force_step"])],
             color=color,
             ms=3,
         )

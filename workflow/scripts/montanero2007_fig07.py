@@ -63,18 +63,15 @@ for ds in load_runs(snakemake.input.runs).values():
         *(values[alpha][key] for key in ("limit", "limit_err", "sonine3", "slope")),
     )
 ax.plot(
-    np.linspace(0, 2 * snakemake.params.figures["phi_cx2_max"], 201),
-    [
-        theory.beta1_share(v)
-        for v in np.linspace(0, 2 * snakemake.params.figures["phi_cx2_max"], 201)
-    ],
+    np.linspace(0, 2 * snakemake.params.cx2_max, 201),
+    [theory.beta1_share(v) for v in np.linspace(0, 2 * snakemake.params.cx2_max, 201)],
     **plotting.METHOD_STYLE["theory_alt"],
     lw=0.8,
     label=r"first Sonine $\varphi_1$",
 )
 ax.axhline(1.0, color="0.6", lw=0.5)
 ax.axvline(CX2, color="0.6", lw=0.5, ls=":")
-ax.set_xlim(0.0, 2.0 * snakemake.params.figures["phi_cx2_max"])
+ax.set_xlim(0.0, 2.0 * snakemake.params.cx2_max)
 ax.set_xlabel(r"$c_x^2$")
 ax.set_ylabel(r"$\beta_1(c_x^2)/b'_1$")
 ax.legend(loc="lower right")

@@ -8,16 +8,16 @@ from kinetic.studies.montanero2007 import load_runs
 from kinetic.workflow_support import start
 
 log = start(snakemake)
-figures = snakemake.params.figures
+rebin, cx2_max = snakemake.params.rebin, snakemake.params.cx2_max
 runs = list(load_runs(snakemake.input.runs).values())
 fig, axes = plotting.figure(
     len(runs), 1, sharex=True, figsize=(3.4, 1.8 * len(runs) + 0.5), squeeze=False
 )
 for ax, ds in zip(axes[:, 0], runs, strict=True):
     summary = analysis.steady_summary_of(ds)
-    curves = analysis.distributions_of(ds, summary, rebin_factor=figures["phi_rebin"])
+    curves = analysis.distributions_of(ds, summary, rebin_factor=rebin)
     x = curves["phi_cx2"]
-    shown = x <= figures["phi_cx2_max"]
+    shown = x <= cx2_max
     plotting.method_errorbar(
         ax,
         "dsmc",
@@ -27,7 +27,7 @@ for ax, ds in zip(axes[:, 0], runs, strict=True):
         markersize=2.5,
         label=r"DSMC $\varphi$",
     )
-    dense = np.linspace(0.0, figures["phi_cx2_max"], 400)
+    dense = np.linspace(0.0, cx2_max, 400)
     for p, style in zip(range(1, 4), [":", "-.", "--"], strict=True):
         ax.plot(
             dense,
@@ -42,5 +42,5 @@ for ax, ds in zip(axes[:, 0], runs, strict=True):
     log.info("alpha = %g: b' = %s", alpha, np.array2string(summary["b_full"], precision=4))
 plotting.figure_legend(fig, ncols=3)
 axes[-1, 0].set_xlabel(r"$c_x^2$")
-axes[-1, 0].set_xlim(0.0, figures["phi_cx2_max"])
+axes[-1, 0].set_xlim(0.0, cx2_max)
 plotting.save(fig, snakemake.output.pdf)

@@ -1,10 +1,12 @@
 """Error of the cloning μ(λ) against CPU time: statistical error of both estimators
 for each population size (lines) and the finite-N_c bias against the deterministic
-solution of Eq. (28) (dotted levels)."""
+solution of Eq. (28) (dotted levels). Error bars: the standard error of each standard
+error, SE/√(2(n − 1)) for n realizations."""
 
 import numpy as np
 
 from kinetic import io, plotting
+from kinetic.analysis.statistics import error_of_sem
 from kinetic.workflow_support import start
 
 start(snakemake)
@@ -17,7 +19,12 @@ for ax, lam in zip(axes, lams, strict=True):
     for k in np.flatnonzero(ds["point_lambda"].values == lam):
         n_c = int(ds["point_population"].values[k])
         cpu = ds["cpu_seconds"].values[k]
-        (line,) = ax.loglog(cpu, ds["mu_rate_err"].values[k], "o-", ms=2, label=rf"$N_c={n_c}$")
+        error = ds["mu_rate_err"].values[k]
+        spread = error_of_sem(error, ds["point_realizations"].values[k])
+        (line,) = ax.loglog(cpu, error, "-", lw=0.8)
+        plotting.errorbar(
+            ax, cpu, error, spread, color=line.get_color(), ms=2, label=rf"$N_c={n_c}$"
+        )
         ax.loglog(cpu, ds["mu_err"].values[k], "-", lw=0.6, color=line.get_color())
         bias = abs(float(ds["mu_rate"].values[k] - ds["mu_exact"].values[k]))
         if bias > 2 * float(ds["mu_rate_final_err"].values[k]):  # resolved biases only

@@ -6,6 +6,7 @@ import pandas as pd
 
 from kinetic import io, plotting
 from kinetic.analysis import collision_statistics
+from kinetic.analysis.statistics import error_of_sem
 from kinetic.workflow_support import start
 
 log = start(snakemake)
@@ -25,8 +26,7 @@ for index, path in enumerate(snakemake.input.md):
         # statistical error ∝ 1/sqrt(CPU): the guide goes through the longest run
         guide = sem[-1] * np.sqrt(cpu[-1] / cpu)
         (line,) = ax.plot(cpu, guide, style, linewidth=0.6, color=f"C{index}")
-        # error bar of a standard error from n realizations: SE / sqrt(2 (n - 1))
-        spread = sem / np.sqrt(2.0 * (study["realizations"] - 1))
+        spread = error_of_sem(sem, study["realizations"])
         plotting.errorbar(
             ax,
             cpu,

@@ -12,9 +12,9 @@ windows = snakemake.params.extrapolation_windows
 runs = [io.read_dataset(path) for path in snakemake.input.md]
 cumulants = analysis.md_cumulants(runs, snakemake.params.table_windows, windows)
 table = analysis.table1(cumulants, io.read_dataset(snakemake.input.closures), windows)
-io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".5f")
 numbers = analysis.table1_caption_numbers(table, windows)
 caption = write_caption(snakemake.input.template, snakemake.output.caption, **numbers)
-with open(snakemake.output.md, "a", encoding="utf-8") as markdown:
-    markdown.write("\n" + caption)
+io.write_table(
+    table, snakemake.output.csv, snakemake.output.md, float_format=".5f", markdown_note=caption
+)
 log.info("Table I:\n%s", table.to_string(index=False))

@@ -2,9 +2,10 @@
 
 import yaml
 
+from kinetic import io
 from kinetic.workflow_support import start
 
 log = start(snakemake)
-with open(snakemake.output[0], "w") as handle:
-    yaml.safe_dump(dict(snakemake.params.config), handle, sort_keys=False)
+text = yaml.safe_dump(dict(snakemake.params.config), sort_keys=False)
+io.write_text(snakemake.output[0], text)
 log.info("wrote %s", snakemake.output[0])

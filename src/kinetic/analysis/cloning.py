@@ -417,6 +417,12 @@ def error_dataset(records, exact):
             "1",
             "population size N_c",
         ),
+        "point_realizations": (
+            "point",
+            np.array([r["blocks"].shape[0] for r in records]),
+            "1",
+            "independent realizations behind each standard error",
+        ),
         "mu_rate": (
             "point",
             np.array([r["mu_rate"] for r in records]),

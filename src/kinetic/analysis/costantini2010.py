@@ -37,7 +37,7 @@ import xarray as xr
 from kinetic import io
 from kinetic.analysis import checks as check
 from kinetic.analysis.checks import Check
-from kinetic.analysis.statistics import error_against_cpu
+from kinetic.analysis.statistics import error_against_cpu, ratio_and_sem
 from kinetic.studies.costantini2010 import MIN_LAGS
 from kinetic.theory import costantini2010 as theory
 
@@ -366,12 +366,20 @@ def analyse_run(
         "largest |total momentum| / (N_sim sqrt(T)) sampled",
     )
     if "repeated_collisions" in dataset:
-        fraction = float(dataset.repeated_collisions.sum()) / max(1, int(dataset.collisions.sum()))
+        fraction, fraction_err = ratio_and_sem(
+            dataset.repeated_collisions.values, dataset.collisions.values
+        )
         data_vars["repeated_fraction"] = (
             (),
-            fraction,
+            fraction if int(dataset.collisions.sum()) > 0 else 0.0,
             "1",
             "fraction of collisions repeating the partners' previous pair",
+        )
+        data_vars["repeated_fraction_err"] = (
+            (),
+            fraction_err,
+            "1",
+            "standard error of repeated_fraction (realizations, delta method)",
         )
     return io.make_dataset(
         data_vars,

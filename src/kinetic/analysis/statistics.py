@@ -54,6 +54,28 @@ def mean_and_sem(samples, axis: int = 0) -> tuple[np.ndarray, np.ndarray]:
     return mean, sem
 
 
+def error_of_sem(sem, samples):
+    """The standard error of a standard error estimated from ``samples`` independent
+    (Gaussian) samples, SE/√(2(n − 1)): the error bar of a point of an error-against-run-
+    time curve."""
+    samples = np.asarray(samples, dtype=float)
+    return np.asarray(sem, dtype=float) / np.sqrt(2.0 * np.maximum(samples - 1.0, 1.0))
+
+
+def ratio_and_sem(numerators, denominators) -> tuple[float, float]:
+    """The pooled ratio R = Σa/Σb of independent samples (a_i, b_i) and its standard error
+    by the delta method, √(Σ(a_i − R b_i)²/(n(n − 1)))/mean(b); the error is NaN for fewer
+    than two samples."""
+    a = np.asarray(numerators, dtype=float).ravel()
+    b = np.asarray(denominators, dtype=float).ravel()
+    ratio = float(a.sum() / b.sum()) if b.sum() > 0 else float("nan")
+    if a.size < 2 or not np.isfinite(ratio):
+        return ratio, float("nan")
+    residual = a - ratio * b
+    sem = float(np.sqrt(np.sum(residual**2) / (a.size * (a.size - 1))) / b.mean())
+    return ratio, sem
+
+
 def block_sem(series, n_blocks: int = 20) -> tuple[float, float]:
     """Mean and standard error of a correlated time series from ``n_blocks`` block means.
 

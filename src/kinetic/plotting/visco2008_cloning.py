@@ -359,12 +359,14 @@ def fig07(scan, closures, reference, pdf):
         label="Eq. (28), quadrature",
     )
     draw_series(ax, series)
-    lam_c, value_c, _ = collapsed_points(scan, "hard_disks", "T")
+    lam_c, value_c, error_c = collapsed_points(scan, "hard_disks", "T")
     if lam_c.size:
-        ax.plot(
+        plotting.errorbar(
+            ax,
             lam_c,
             value_c,
-            "x",
+            error_c,
+            marker="x",
             color="0.5",
             ms=3,
             label=rf"collapsed population, $N_c={series.single_population}$",

@@ -12,7 +12,11 @@ import numpy as np
 
 from kinetic.io import make_dataset
 from kinetic.theory import visco2008
-from kinetic.theory.visco2008_exact import RESOLVED_LAMBDA_MAX, reference_solution
+from kinetic.theory.visco2008_exact import (
+    RESOLVED_LAMBDA_MAX,
+    exact_cumulants,
+    reference_solution,
+)
 
 __all__ = [
     "visco2008_cloning_reference",
@@ -166,7 +170,8 @@ def visco2008_free_paths(*, path_max: float, points: int, d: int = 2):
 
 def visco2008_closures(*, lambda_min: float, lambda_max: float, points: int, d: int = 2):
     """μ(λ), T(λ), a2(λ) of the Gaussian (Eq. 43) and Sonine (47–49) closures, the
-    Poisson generating functions, and the cumulants of Table I's theory rows."""
+    Poisson generating functions, and the cumulants of Table I's theory rows (the
+    closures' and those of Eq. (28) solved, ``visco2008_exact.exact_cumulants``)."""
     lam = np.linspace(lambda_min, lambda_max, points)
     if not np.any(lam == 0):
         lam = np.sort(np.append(lam, 0.0))
@@ -224,6 +229,12 @@ def visco2008_closures(*, lambda_min: float, lambda_max: float, points: int, d: 
                 "1",
                 "<N^p>_c/(omega t), Sonine closure (Eq. 50)",
             ),
+            "cumulant_exact": (
+                "order",
+                exact_cumulants(d),
+                "1",
+                "<N^p>_c/(omega t), Eq. (28) solved (eigenvalue derivatives at lambda = 0)",
+            ),
             "cumulant_sonine_solved": (
                 "order",
                 visco2008.sonine_cumulants_numerical(d),
@@ -277,7 +288,7 @@ def visco2008_cloning_reference(*, lambdas, n_nodes: int = 300, d: int = 2):
     (``kinetic.theory.visco2008_exact.reference_solution``) on the grid ``lambdas``, drawn
     beside the cloning data; T and a2 are NaN above ``RESOLVED_LAMBDA_MAX`` (the
     eigenfunction's logarithmic spread towards v = 0 is not resolved there), μ is kept (it
-    equals -1/√2 to 1e-7 there)."""
+    lies 5.9e-4 above -1/√2 at λ = 2.5, 1e-5 at 3 and below 1e-7 from 3.3 on)."""
     lams = np.asarray(lambdas, dtype=float)
     mu, temperature, a2 = reference_solution(lams, d, n_nodes=n_nodes)
     unresolved = lams > RESOLVED_LAMBDA_MAX

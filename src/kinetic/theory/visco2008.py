@@ -635,7 +635,8 @@ def legendre_transform(
     (central differences when omitted). If μ' stays below -n on the whole bracket the
     infimum is reached as λ -> +∞: ``mu_at_infinity`` when given (n = 0 only), else NaN.
     An approximate μ need not be monotone: the Gaussian closure (43) has μ' > 0 beyond
-    λ ≈ 5 (its approach to -1/√2 from below, Eq. 44), so its π(0) = min μ < -1/√2.
+    λ ≈ 2.91, where its minimum μ = -0.76857 lies (its approach to -1/√2 from below,
+    Eq. 44), so its π(0) = min μ < -1/√2.
     """
     from scipy import optimize
 

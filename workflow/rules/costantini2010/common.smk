@@ -119,9 +119,14 @@ def costantini2010_convergence_inputs(wildcards):
     )
 
 
-def costantini2010_settings(wildcards):
-    """The validated config section (density, figure choices)."""
-    return config["costantini2010"]
+def costantini2010_settings(*keys):
+    """A params function: the config section's ``keys`` only, those the rule's script
+    reads, so that a change of any other setting does not rerun the rule."""
+
+    def settings(wildcards):
+        return {key: config["costantini2010"][key] for key in keys}
+
+    return settings
 
 
 def costantini2010_caption(name):

@@ -4,13 +4,14 @@
 
 
 # ======================================================================================
-# simulations (krauth2025_simulate_<what>) and their joins (krauth2025_aggregate_<what>)
+# simulations (krauth2025_simulate_<what>; one job a run, so no joins)
 # ======================================================================================
 # krauth2025 simulations: the random clothes-pins of section 4.4.1 (kinetic.samplers:
 # direct-pin and naive-pin on a washing line, Markov chains on a ring, snapshots) and the
 # hard disks in a box of sections 4.1-4.4 (kinetic.edmd event-disks, direct-disks and
 # markov-disks, the chaos run). Each job writes one netCDF file holding its histograms and
-# their standard errors; the exact curves beside them come from the theory rules.
+# their standard errors over all its realizations (the runs take minutes, so no batches);
+# the exact curves beside them come from the theory rules.
 
 
 rule krauth2025_simulate_line:

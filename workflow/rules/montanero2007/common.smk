@@ -76,14 +76,11 @@ def montanero2007_scan(alphas):
     return [montanero2007_run_file(alpha_key(alpha)) for alpha in alphas]
 
 
-def montanero2007_section(wildcards):
-    """The validated config section (tolerances, target errors)."""
-    return config["montanero2007"]
-
-
-def montanero2007_figures(wildcards):
-    """Display settings of Figs 5-7 (rebinning, c_x^2 range)."""
-    return config["montanero2007"]["figures"]
+def montanero2007_error_study_particles():
+    """N of the error study's runs (its overrides, else the protocol's)."""
+    section = config["montanero2007"]
+    overrides = section["error_study"]["overrides"]
+    return overrides.get("n_particles", section["protocol"]["n_particles"])
 
 
 def montanero2007_field_pair(wildcards):

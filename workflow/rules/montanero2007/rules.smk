@@ -210,7 +210,8 @@ rule montanero2007_fig05:
     log:
         log_file("montanero2007/fig05.log"),
     params:
-        figures=montanero2007_figures,
+        rebin=config["montanero2007"]["figures"]["phi_rebin"],
+        cx2_max=config["montanero2007"]["figures"]["phi_cx2_max"],
     script:
         "../../scripts/montanero2007_phi.py"
 
@@ -229,7 +230,8 @@ rule montanero2007_fig06:
     log:
         log_file("montanero2007/fig06.log"),
     params:
-        figures=montanero2007_figures,
+        rebin=config["montanero2007"]["figures"]["phi_rebin"],
+        cx2_max=config["montanero2007"]["figures"]["phi_cx2_max"],
     script:
         "../../scripts/montanero2007_phi.py"
 
@@ -251,7 +253,7 @@ rule montanero2007_fig07:
     log:
         log_file("montanero2007/fig07.log"),
     params:
-        figures=montanero2007_figures,
+        cx2_max=config["montanero2007"]["figures"]["phi_cx2_max"],
     script:
         "../../scripts/montanero2007_fig07.py"
 
@@ -288,7 +290,8 @@ rule montanero2007_error_vs_time:
     log:
         log_file("montanero2007/error_vs_time.log"),
     params:
-        section=montanero2007_section,
+        n_reference=montanero2007_error_study_particles(),
+        target_errors=config["montanero2007"]["error_study"]["target_errors"],
     script:
         "../../scripts/montanero2007_error_vs_time.py"
 
@@ -329,7 +332,7 @@ rule montanero2007_checks:
     log:
         log_file("montanero2007/checks.log"),
     params:
-        section=montanero2007_section,
+        checks=config["montanero2007"]["checks"],
         fail=fails_on_checks("montanero2007"),
     script:
         "../../scripts/montanero2007_checks.py"

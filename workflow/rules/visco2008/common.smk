@@ -198,7 +198,7 @@ def visco2008_cloning_error_batches(wildcards):
 
 # ---------------------------------------------------------------- for the analysis rules
 def visco2008_md_figure_data(wildcards):
-    """Aggregated MD observers of the run drawn in Figs 1, 2, 9 and 10."""
+    """Aggregated MD observers of the run drawn in Fig. 9 (config key md.figure_run)."""
     return visco2008_md_data(visco2008_md()["figure_run"])
 
 
