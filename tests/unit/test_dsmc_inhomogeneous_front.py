@@ -141,45 +141,26 @@ def test_largest_temperature_follows_a_heated_run():
     sampled as it heats. Eq. 12's ζ is a Sonine estimate (1 % between the a2 closures,
     so 2 % in T_s) and the start has a2 = 0 (ζ 0.4 % low at first): 3 % of T, plus 4
     errors of the mean over the realizations."""
-    density, alpha, interval = 0.05, 0.8, 10.0
-    drag = 1.3 * front_drag(alpha, density)
+    engine = {
+        "n_particles": 5000,
+        "density": 0.05,
+        "restitution": 0.8,
+        "drag_rate": 1.3 * front_drag(0.8, 0.05),
+        "fictive_factor": 1,
+        "cells_per_side": 1,
+        "time_step": 0.25,
+        "collision_rule": "majorant",
+    }
     run = simulate_cooling_modes(
-        n_particles=5000,
-        density=density,
-        restitution=alpha,
-        drag_rate=drag,
-        equilibration=0.0,
-        sample_interval=interval,
-        n_samples=13,
-        seed=71,
-        fictive_factor=1,
-        cells_per_side=1,
-        time_step=0.25,
-        collision_rule="majorant",
-        n_realizations=4,
+        **engine, equilibration=0.0, sample_interval=10.0, n_samples=13, seed=71, n_realizations=4
     )
-    temperature = run.temperature
-    mean = temperature.mean("realization").values
-    error = temperature.std("realization", ddof=1).values / math.sqrt(
-        temperature.sizes["realization"]
-    )
-    settings = CoolingModesSettings(
-        n_particles=5000,
-        density=density,
-        restitution=alpha,
-        drag_rate=drag,
-        fictive_factor=1,
-        cells_per_side=1,
-        time_step=0.25,
-        collision_rule="majorant",
-    )
+    mean = run.temperature.mean("realization").values
+    error = run.temperature.std("realization", ddof=1).values / 2.0  # 4 realizations
+    settings = CoolingModesSettings(**engine)
     predicted = np.array([front.largest_temperature(settings, t) for t in run.time.values])
     assert predicted[-1] > 1.5  # the run heats most of the way to T_s = 1.69
-    assert np.all(np.abs(mean - predicted) <= 0.03 * predicted + 4.0 * error + 1e-12), (
-        mean,
-        predicted,
-        error,
-    )
+    # measured on seed 71: 0.1-1.2 % below the prediction (the majorant rule's step)
+    assert np.all(np.abs(mean - predicted) <= 0.03 * predicted + 4.0 * error), (mean, predicted)
 
 
 def test_dataset_follows_the_contract():
