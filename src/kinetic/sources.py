@@ -67,6 +67,7 @@ SHARED = ("rng", "seeds", "jit", "validate", "gas")
 BOOKKEEPING = (
     "__init__",
     "config",
+    "cost",
     "io",
     "lazy",
     "progress",
@@ -74,8 +75,9 @@ BOOKKEEPING = (
     "sources",
     "workflow_support",
 )
-"""Top-level modules that validate, name, write and log results but compute no simulated
-number: an edit of them reruns no simulation."""
+"""Top-level modules that validate, name, estimate, write and log results but compute no
+simulated number: an edit of them reruns no simulation, nor does an edit of what only they
+import (the cost model's imports, say, which a study loads to plan its jobs)."""
 
 
 def engine_sources(engine: str) -> list[Path]:
@@ -224,7 +226,8 @@ def front_sources(front: str, engines) -> list[Path]:
         path = todo.pop()
         if path not in seen:
             seen.add(path)
-            todo += _imported_files(path)
+            if path not in bookkeeping:  # what only bookkeeping imports is not the job's
+                todo += _imported_files(path)
     files.update(path for path in seen if path not in bookkeeping)
     return sorted(files)
 

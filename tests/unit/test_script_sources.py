@@ -110,6 +110,20 @@ def test_a_simulation_rerun_follows_every_module_its_front_loads(front, engines)
     assert loaded and loaded <= inputs, sorted(map(str, loaded - inputs))
 
 
+def test_the_cost_model_reruns_no_simulation():
+    """The studies load ``kinetic.cost`` to plan their jobs, and the cost model imports the
+    cloning engine's argument checks: neither is an input of a simulation that does not
+    run them (montanero2007's DSMC had both, so that an edit of a cost constant reran its
+    1144 paper.yaml jobs)."""
+    cost = PACKAGE / "cost.py"
+    cloning = PACKAGE / "cloning"
+    for front, engines in FRONTS:
+        files = front_sources(front, engines)
+        assert cost not in files, front
+        if "cloning" not in engines:
+            assert not any(path.is_relative_to(cloning) for path in files), front
+
+
 def test_each_md_engine_reruns_only_its_own_jobs():
     """visco2008's and costantini2010's MD (kinetic.edmd) and krauth2025's four disks
     (kinetic.event_disks) share no source file but the shared modules: an edit of one

@@ -18,9 +18,10 @@ from __future__ import annotations
 import importlib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from kinetic.cost import Estimate
+if TYPE_CHECKING:  # the cost model is loaded where a study plans its jobs, not on import
+    from kinetic.cost import Estimate
 
 __all__ = [
     "DOCUMENTS",
