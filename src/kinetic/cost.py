@@ -145,13 +145,15 @@ def _mb(bytes_count: float) -> float:
 
 # ------------------------------------------------------------------ event-driven MD
 EDMD_COLLISIONS_PER_SECOND = {
-    0.01: {1e3: 5.9e5, 1e4: 4.2e5, 1e5: 2.6e5},  # README: 2D, rho sigma^2 = 1e-2
-    0.001: {1e3: 2.7e5, 1e4: 1.8e5, 1e5: 1.1e5},  # README: 2D, rho sigma^2 = 1e-3
+    0.01: {1e3: 7.6e5, 1e4: 5.8e5, 1e5: 3.3e5},  # bench edmd: 2D, rho sigma^2 = 1e-2
+    0.001: {1e3: 3.5e5, 1e4: 2.5e5, 1e5: 1.4e5},  # bench edmd: 2D, rho sigma^2 = 1e-3
 }
-"""Collisions per CPU-second of kinetic.edmd (2D) against N at two densities. Above
-N = 10⁵ the 10⁴ -> 10⁵ slope is extended (front, N = 10⁶, ρσ² = 10⁻²: 1.8 × 10⁵/s with
-the set-up, against 1.6 × 10⁵ extrapolated). Only 2D runs are planned (visco2008); 3D at
-packing 0.01 would be about as fast as 2D at ρσ² = 10⁻³ (README: 3.0 / 2.1 / 1.1 × 10⁵)."""
+"""Collisions per CPU-second of kinetic.edmd (2D) against N at two densities
+(``python -m kinetic.bench edmd``, AMD EPYC, fb817f1, 2026-11-27; the table before held
+the speeds from before a69f86e compiled the event loop without reference counting, 1.3
+times slower, and the default build's MD jobs took 0.53-0.61 of their estimates). Above
+N = 10⁵ the 10⁴ -> 10⁵ slope is extended. Only 2D runs are planned (visco2008); 3D at
+packing 0.01 is about as fast as 2D at ρσ² = 10⁻³ (3.9 / 2.8 / 1.3 × 10⁵)."""
 
 EDMD_OBSERVER_FACTOR = 1.2
 """visco2008's observers (windowed counts, flight and path histograms) on top of the
