@@ -349,12 +349,21 @@ def _benchmark_table(summary: dict[str, Any], engine: str | None = None) -> str:
 
 
 def _speed(summary: dict[str, Any], engine: str) -> str:
+    """The headline rates of one engine, each group of rows measured on one machine and
+    date followed by those (an engine's rows may come from benches of different days)."""
     rows = [row for row in summary["benchmarks"] if row["engine"] == engine and row["headline"]]
     if not rows:
         return "not measured yet\n"
+    groups: dict[tuple[str, str], list[str]] = {}
+    for row in rows:
+        rate = f"{_rate(row['rate'])} {row['unit']} ({row['case']})"
+        groups.setdefault((row["cpu"], row["date"]), []).append(rate)
     return (
-        "; ".join(f"{_rate(row['rate'])} {row['unit']} ({row['case']})" for row in rows)
-        + f" — one core of {rows[0]['cpu']}, {rows[0]['date']}\n"
+        "; ".join(
+            "; ".join(rates) + f" — one core of {cpu}, {date}"
+            for (cpu, date), rates in groups.items()
+        )
+        + "\n"
     )
 
 

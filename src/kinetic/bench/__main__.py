@@ -3,17 +3,28 @@
 from __future__ import annotations
 
 import argparse
+import ast
 import importlib
 import inspect
 import logging
 import pkgutil
+from pathlib import Path
 
 import kinetic.bench as bench
 
 
 def available_engines() -> list[str]:
+    """The bench modules that time something (those with a ``run``; ``summary`` reads
+    their reports)."""
+
+    def times_something(name: str) -> bool:  # a top-level ``def run``, read, not imported
+        tree = ast.parse((Path(bench.__path__[0]) / f"{name}.py").read_text())
+        return any(isinstance(node, ast.FunctionDef) and node.name == "run" for node in tree.body)
+
     return sorted(
-        m.name for m in pkgutil.iter_modules(bench.__path__) if not m.name.startswith("_")
+        m.name
+        for m in pkgutil.iter_modules(bench.__path__)
+        if not m.name.startswith("_") and times_something(m.name)
     )
 
 

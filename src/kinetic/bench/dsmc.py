@@ -283,12 +283,14 @@ def _protocol_step(repeats: int, time_step: float = 0.003, splitting: str = "lie
     steps = 50
     advance_gas(gas, steps)
     timings = []
+    accepted_before = gas.collisions
     for _ in range(repeats):
         start = time.process_time()
         advance_gas(gas, steps)
         timings.append((time.process_time() - start) / steps)
     per_step = float(np.median(timings))
-    collisions_per_step = 0.5 * n * settings.collision_frequency * settings.time_step
+    # the engine's own tally of accepted collisions over the timed steps
+    collisions_per_step = (gas.collisions - accepted_before) / (repeats * steps)
     return {
         "n_particles": n,
         "splitting": splitting,
@@ -382,6 +384,16 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
     # the sample of the modes, T and momentum (inhomogeneous_kernels.observe), which the
     # production runs take every few steps
     out = np.empty(inhomogeneous_kernels.N_OBSERVABLES)
+    # one untimed call: the observer's kernel loaded (or compiled) before the clock runs
+    inhomogeneous_kernels.observe(
+        gas.position,
+        gas.velocity,
+        gas.start,
+        gas.count,
+        settings.wavenumber,
+        gas.mode_terms,
+        out,
+    )
     observer_rates = []
     for _ in range(repeats):
         start = time.process_time()

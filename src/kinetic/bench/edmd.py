@@ -261,8 +261,9 @@ def _latency_curve(rng: np.random.Generator) -> dict[str, float]:
 
 
 def _compile_times() -> dict[str, float]:
-    """Wall time of ``kinetic.edmd.warmup()`` in a fresh process with an empty numba cache
-    (compilation) and again with that cache filled (loading)."""
+    """Wall time of importing ``kinetic.edmd`` (numba and numpy with it) and running its
+    ``warmup()`` in a fresh process with an empty numba cache (compilation) and again with
+    that cache filled (loading)."""
     code = (
         "import time; t = time.perf_counter(); import kinetic.edmd as e; e.warmup(); "
         "print(time.perf_counter() - t)"
