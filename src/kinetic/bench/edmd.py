@@ -172,19 +172,35 @@ def _queue_grid() -> np.ndarray:
     return grid
 
 
+MICRO_REPEATS = 3
+"""Timings of each micro-benchmark; the median is reported."""
+
+
+def _median_ns(call, count: int, repeats: int = MICRO_REPEATS) -> float:
+    """Median over ``repeats`` runs of ``call()`` of its process time per unit, in ns
+    (``count`` units a run; the caller has run it once untimed)."""
+    timings = []
+    for _ in range(repeats):
+        begin = time.process_time()
+        call()
+        timings.append((time.process_time() - begin) / count * 1e9)
+    return float(np.median(timings))
+
+
 def _micro(n_particles: int, rng: np.random.Generator) -> dict[str, float]:
     """ns per pair test (long loop, random partners), per event of the calendar queue
     alone (next event, then its new time: exponential, mean N), per dependent random
-    access in a working set of about 200 bytes per particle."""
+    access in a working set of about 200 bytes per particle; each the median of
+    MICRO_REPEATS timings."""
     phase = np.zeros((n_particles, 8))
     phase[:, :2] = rng.uniform(0, n_particles, (n_particles, 2))
     phase[:, 3:5] = rng.normal(size=(n_particles, 2))
     candidates = rng.permutation(n_particles).astype(np.int64)
     repeats = max(1, 4_000_000 // n_particles)
     _pair_test_loop(phase, candidates, 1)
-    begin = time.process_time()
-    _pair_test_loop(phase, candidates, repeats)
-    pair_test = (time.process_time() - begin) / (repeats * n_particles) * 1e9
+    pair_test = _median_ns(
+        lambda: _pair_test_loop(phase, candidates, repeats), repeats * n_particles
+    )
 
     queue_phase = np.zeros((n_particles, 8))
     queue_phase[:, 6] = rng.exponential(size=n_particles) * n_particles
@@ -210,9 +226,7 @@ def _micro(n_particles: int, rng: np.random.Generator) -> dict[str, float]:
     increments = rng.exponential(size=1 << 16) * n_particles
     _calendar_updates(*queue_arguments, increments, 10)
     updates = 2_000_000
-    begin = time.process_time()
-    _calendar_updates(*queue_arguments, increments, updates)
-    queue = (time.process_time() - begin) / updates * 1e9
+    queue = _median_ns(lambda: _calendar_updates(*queue_arguments, increments, updates), updates)
 
     size = max(1024, 200 * n_particles // 8)  # 8-byte words
     order = rng.permutation(size)
@@ -220,16 +234,12 @@ def _micro(n_particles: int, rng: np.random.Generator) -> dict[str, float]:
     successor[order] = np.roll(order, -1)
     _pointer_chase(successor, 10)
     steps = 2_000_000
-    begin = time.process_time()
-    _pointer_chase(successor, steps)
-    latency = (time.process_time() - begin) / steps * 1e9
+    latency = _median_ns(lambda: _pointer_chase(successor, steps), steps)
 
     rows = np.ones((size // 8, 8))
     lines = rng.integers(0, rows.shape[0], 2_000_000)
     _prefetched_lines(rows, lines[:100], 32)
-    begin = time.process_time()
-    _prefetched_lines(rows, lines, 32)
-    line = (time.process_time() - begin) / lines.size * 1e9
+    line = _median_ns(lambda: _prefetched_lines(rows, lines, 32), lines.size)
     return {
         "pair_test_ns": pair_test,
         "queue_event_ns": queue,
@@ -253,10 +263,7 @@ def _latency_curve(rng: np.random.Generator) -> dict[str, float]:
         successor = np.zeros(lines * 8, dtype=np.int64)
         successor[order] = np.roll(order, -1)
         _pointer_chase(successor, 10)
-        steps = 1_000_000
-        begin = time.process_time()
-        _pointer_chase(successor, steps)
-        curve[f"{mib:g}"] = (time.process_time() - begin) / steps * 1e9
+        curve[f"{mib:g}"] = _median_ns(lambda s=successor: _pointer_chase(s, 1_000_000), 1_000_000)
     return curve
 
 
