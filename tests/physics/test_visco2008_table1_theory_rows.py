@@ -51,3 +51,20 @@ def test_eq_28_cumulants_converge_and_differ_from_the_sonine_row():
     sonine = visco2008.sonine_cumulants(2)
     assert exact[1] - sonine[1] == pytest.approx(0.0031, abs=3e-4)
     assert exact[2] - sonine[2] == pytest.approx(-0.0079, abs=4e-4)
+
+
+def test_eq_28_at_a_window_joins_the_short_window_limit_and_the_long_one():
+    """Table I's Eq. (28) rows at the MD windows come from the generating function of the
+    counts in a window of length t. Two limits test it: in a short window the count is a
+    Poisson count of a rate that barely changes, so k2(t) - 1 = t Var(r)/⟨r⟩ = t (⟨r²⟩ - 1)
+    with (A6)'s ⟨r²⟩ = 1.063544 (to 0.5 % at t = 0.01); in a long one it reaches the
+    eigenvalue's k2 as 1/t (1.6e-4 short at t = 1000)."""
+    from kinetic.theory.visco2008_exact import exact_cumulants, window_cumulants
+
+    short, long = window_cumulants([0.01, 1000.0])
+    assert short[0] == long[0] == 1.0
+    slope = (short[1] - 1.0) / 0.01
+    assert slope == pytest.approx(visco2008.rate_moment(2, 2) - 1.0, rel=5e-3)
+    limit = exact_cumulants(2)
+    assert 0.0 < limit[1] - long[1] < 3e-4
+    assert abs(limit[2] - long[2]) < 5e-4

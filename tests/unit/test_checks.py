@@ -180,7 +180,9 @@ def test_table1_scores_our_rows_against_the_printed_ones_and_finds_their_density
             "cumulant_gaussian": ("order", [1.0, 1.125, 1.1289]),
             "cumulant_sonine": ("order", [1.0, 1.1378, 1.1073]),
             "cumulant_exact": ("order", [1.0, 1.1409, 1.0995]),
-        }
+            "cumulant_exact_window": (("window", "order"), [[1, 1.1248, 1.13], [1, 1.1377, 1.106]]),
+        },
+        coords={"window": [10.0, 50.0]},
     )
     # the document's t = 10 row is k2 = 1.1228: the 1e-3 run is 0.5 sigma off, 1e-2 10 sigma
     runs = [_md_run(0.001, 1.1228 + 0.0005), _md_run(0.01, 1.1228 - 0.01)]
@@ -193,6 +195,16 @@ def test_table1_scores_our_rows_against_the_printed_ones_and_finds_their_density
     assert list(table.columns[:9]) == visco2008.TABLE1_COLUMNS
     exact = table[table["source"] == "Eq. (28)"].iloc[0]  # a theory row the document lacks
     assert exact["kind"] == "theory" and exact["k2"] == 1.1409 and np.isnan(exact["paper_k2"])
+    at_ten = table[table["source"] == "Eq. (28), t = 10"].iloc[0]  # and at the MD windows
+    assert at_ten["kind"] == "theory" and at_ten["t"] == 10.0 and at_ten["k2"] == 1.1248
+    reported = [
+        c
+        for c in visco2008.checks(table, _cloning(math.expm1(-1.0)), REFERENCE)
+        if "at that window" in c.claim
+    ]
+    assert [c.passed for c in reported] == [None, None]  # MD's rows at 1e-3, t = 10 and 50
+    assert reported[0].expected == 1.1248
+    assert reported[0].value == pytest.approx(1.1233)
     numbers = visco2008.table1_caption_numbers(table, [10, 50])
     assert numbers["rho_doc"] == 0.001 and numbers["dk2_10"] == pytest.approx(-0.0105)
     # the line through (0.001, 1.1233) and (0.01, 1.1128) at rho = 0: 1.1233 + 0.0105/9,

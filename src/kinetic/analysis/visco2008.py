@@ -42,6 +42,12 @@ __all__ = ["TABLE1_COLUMNS", "checks", "md_cumulants", "table1", "table1_caption
 EXACT_SOURCE = "Eq. (28)"
 """Table I's theory row of the Boltzmann equation's own cumulants (Eq. (28) solved)."""
 
+
+def window_source(window: float) -> str:
+    """The source of Table I's row of Eq. (28) at a finite window t (beside the MD row)."""
+    return f"{EXACT_SOURCE}, t = {float(window):g}"
+
+
 TABLE1_COLUMNS = ["source", "rho", "t", "k1", "k2", "k3", "k1_err", "k2_err", "k3_err"]
 """The first columns of table1.csv (the original contract: keep the names and order)."""
 
@@ -89,7 +95,9 @@ def table1(md_runs, closures, extrapolation_windows):
     (mean free times) and standard errors; extrapolated rows (t = inf) the 1/t fit over
     several windows; dilute rows (rho = 0) the line in ρ through the MD rows of the two
     lowest densities at each t, at ρ = 0 (errors propagated from both; two densities
-    cannot test the line itself); theory rows leave rho, t and the errors empty.
+    cannot test the line itself); theory rows leave rho, t and the errors empty, but for
+    Eq. (28)'s at the MD windows (``closures``' ``cumulant_exact_window``, when present),
+    which carry their t.
 
     ``md_runs``: the MD cumulant datasets (``scaled_cumulant`` and its ``_sem`` over window
     and order, the ``density`` attribute, optionally ``extrapolated_cumulant``);
@@ -140,6 +148,21 @@ def table1(md_runs, closures, extrapolation_windows):
                 theory,
             )
         )
+    if "cumulant_exact_window" in closures:  # Eq. (28) at the MD rows' windows
+        for window in closures["window"].values:
+            values = closures["cumulant_exact_window"].sel(window=window).values
+            rows.append(
+                _row(
+                    window_source(window),
+                    np.nan,
+                    float(window),
+                    values,
+                    [np.nan] * 3,
+                    "theory",
+                    None,
+                    theory,
+                )
+            )
     table = pd.DataFrame(rows)
     # which density the document's MD rows come from: the smallest sum of squared z-scores
     md_rows = table[(table["kind"] == "md") & table["paper_k2"].notna()]
@@ -254,6 +277,18 @@ def checks(
                 )
             )
     closures = table1[table1["kind"] == "theory"].set_index("source")
+    for row in md.itertuples():  # MD against the Boltzmann equation at the same window
+        source = window_source(row.t)
+        if source in closures.index:
+            found.append(
+                check.reported(
+                    f"Table I, MD row t = {row.t:g}: k2 against the Boltzmann equation's "
+                    f"at that window, Eq. (28) (rho sigma^2 = {row.rho:g})",
+                    row.k2,
+                    row.k2_err,
+                    closures.loc[source, "k2"],
+                )
+            )
     extrapolated = table1[table1["kind"] == "extrapolated"]
     if len(extrapolated):
         row = extrapolated.loc[extrapolated["rho"].idxmin()]

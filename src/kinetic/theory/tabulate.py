@@ -16,6 +16,7 @@ from kinetic.theory.visco2008_exact import (
     RESOLVED_LAMBDA_MAX,
     exact_cumulants,
     reference_solution,
+    window_cumulants,
 )
 
 __all__ = [
@@ -168,16 +169,19 @@ def visco2008_free_paths(*, path_max: float, points: int, d: int = 2):
     )
 
 
-def visco2008_closures(*, lambda_min: float, lambda_max: float, points: int, d: int = 2):
+def visco2008_closures(
+    *, lambda_min: float, lambda_max: float, points: int, windows=(), d: int = 2
+):
     """μ(λ), T(λ), a2(λ) of the Gaussian (Eq. 43) and Sonine (47–49) closures, the
     Poisson generating functions, and the cumulants of Table I's theory rows (the
-    closures' and those of Eq. (28) solved, ``visco2008_exact.exact_cumulants``)."""
+    closures' and those of Eq. (28) solved, ``visco2008_exact.exact_cumulants``, also at
+    the MD rows' finite ``windows``, ``visco2008_exact.window_cumulants``)."""
     lam = np.linspace(lambda_min, lambda_max, points)
     if not np.any(lam == 0):
         lam = np.sort(np.append(lam, 0.0))
     mu_sonine, temperature_sonine, a2_sonine = visco2008.sonine_solution(lam, d)
     order = np.arange(1, 4)
-    return make_dataset(
+    closures = make_dataset(
         {
             "mu_gaussian": (
                 "lam",
@@ -248,6 +252,24 @@ def visco2008_closures(*, lambda_min: float, lambda_max: float, points: int, d: 
         },
         attrs={"dimension": d},
     )
+    if len(windows) == 0:
+        return closures
+    windows = np.asarray(windows, dtype=float)
+    at_windows = make_dataset(
+        {
+            "cumulant_exact_window": (
+                ("window", "order"),
+                window_cumulants(windows, d),
+                "1",
+                "<N^p>_c/<N> in a window of length t, Eq. (28) solved",
+            )
+        },
+        coords={
+            "window": ("window", windows, "1/omega", "counting window t (Table I's MD rows)"),
+            "order": ("order", order, "1", "cumulant order p"),
+        },
+    )
+    return closures.merge(at_windows, combine_attrs="override")
 
 
 def visco2008_finite_time(*, windows, rate_max: float, d: int = 2):

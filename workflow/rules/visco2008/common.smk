@@ -39,10 +39,12 @@ def visco2008_theory_grid(wildcards):
             "points": theory["time_points"],
         },
         "free_paths": {"path_max": theory["path_max"], "points": theory["path_points"]},
+        # Table I's theory rows, Eq. (28)'s at the MD rows' windows too
         "closures": {
             "lambda_min": theory["lambda_min"],
             "lambda_max": theory["lambda_max"],
             "points": theory["lambda_points"],
+            "windows": config["visco2008"]["md"]["table_windows"],
         },
         # π(n) at the MD's counting windows (Fig. 9): the windows are the MD's, by design
         "finite_time": {
