@@ -14,6 +14,7 @@ from kinetic.dsmc import (
     simulate_cooling_modes,
 )
 from kinetic.dsmc import inhomogeneous as front
+from kinetic.theory.costantini2010 import drag_rate
 
 SMALL = dict(
     n_particles=100,
@@ -118,21 +119,17 @@ def test_a_short_or_mild_heating_is_accepted():
     assert front.largest_temperature(settings, 4.0) == pytest.approx(math.exp(0.08))
     front.check_heating(settings, 4.0)
     engine = shared | {"restitution": 0.8}
-    engine["time_step"] = front.MAX_COLLISIONS_PER_STEP / (2.0 * 0.05 * math.sqrt(math.pi))
-    zeta0 = 2.0 * front_drag(0.8, 0.05)
-    warm = CoolingModesSettings(**engine, drag_rate=math.sqrt(1.2) * zeta0 / 2.0)
+    engine["time_step"] = (
+        front.MAX_COLLISIONS_PER_STEP
+        / CoolingModesSettings(**engine, drag_rate=0.0).collision_frequency
+    )
+    holding = drag_rate(0.8, 0.05)  # ζ(T0)/2: T_s = T0
+    warm = CoolingModesSettings(**engine, drag_rate=math.sqrt(1.2) * holding)
     assert front.largest_temperature(warm, 1e6) == pytest.approx(1.2, rel=1e-9)
     front.check_heating(warm, 1e6)
-    hot = CoolingModesSettings(**engine, drag_rate=math.sqrt(1.25) * zeta0 / 2.0)
+    hot = CoolingModesSettings(**engine, drag_rate=math.sqrt(1.25) * holding)
     with pytest.raises(ValueError, match="heats the gas"):
         front.check_heating(hot, 1e6)
-
-
-def front_drag(alpha, density):
-    """ω0 = ζ(T0)/2 of the workflow (``kinetic.theory.costantini2010.drag_rate``)."""
-    from kinetic.theory.costantini2010 import drag_rate
-
-    return drag_rate(alpha, density)
 
 
 def test_largest_temperature_follows_a_heated_run():
@@ -145,7 +142,7 @@ def test_largest_temperature_follows_a_heated_run():
         "n_particles": 5000,
         "density": 0.05,
         "restitution": 0.8,
-        "drag_rate": 1.3 * front_drag(0.8, 0.05),
+        "drag_rate": 1.3 * drag_rate(0.8, 0.05),
         "fictive_factor": 1,
         "cells_per_side": 1,
         "time_step": 0.25,

@@ -384,29 +384,14 @@ def _inhomogeneous_case(rule: str, repeats: int, steps: int) -> dict[str, Any]:
     # the sample of the modes, T and momentum (inhomogeneous_kernels.observe), which the
     # production runs take every few steps
     out = np.empty(inhomogeneous_kernels.N_OBSERVABLES)
+    observed = (gas.position, gas.velocity, gas.start, gas.count, settings.wavenumber)
     # one untimed call: the observer's kernel loaded (or compiled) before the clock runs
-    inhomogeneous_kernels.observe(
-        gas.position,
-        gas.velocity,
-        gas.start,
-        gas.count,
-        settings.wavenumber,
-        gas.mode_terms,
-        out,
-    )
+    inhomogeneous_kernels.observe(*observed, gas.mode_terms, out)
     observer_rates = []
     for _ in range(repeats):
         start = time.process_time()
         for _ in range(steps):
-            inhomogeneous_kernels.observe(
-                gas.position,
-                gas.velocity,
-                gas.start,
-                gas.count,
-                settings.wavenumber,
-                gas.mode_terms,
-                out,
-            )
+            inhomogeneous_kernels.observe(*observed, gas.mode_terms, out)
         observer_rates.append(steps * settings.n_simulated / (time.process_time() - start))
     total = tally[inhomogeneous_kernels.TALLY_COLLISIONS]
     candidates = tally[inhomogeneous_kernels.TALLY_CANDIDATES]

@@ -172,6 +172,8 @@ def window_cumulants(windows, dimension=2, *, n_nodes=300, v_max=9.0, step=0.02)
     1.13767 at 50, 1.14074 at 1000 (→ 1.14090); k3 = 1.13003, 1.10561, 1.09977."""
     from scipy.linalg import expm
 
+    from kinetic.theory.visco2008 import _derivatives_at_zero
+
     speeds, measure, gain, loss = _operator(dimension, n_nodes, v_max, 2.0, n_nodes)
     start = np.exp(-0.5 * speeds**2)  # the Maxwellian (T = 1), stationary at λ = 0
     norm = measure @ start
@@ -190,8 +192,6 @@ def window_cumulants(windows, dimension=2, *, n_nodes=300, v_max=9.0, step=0.02)
                     for lam in lams
                 ]
             )
-
-        from kinetic.theory.visco2008 import _derivatives_at_zero
 
         derivatives = _derivatives_at_zero(log_z, h) * np.array([-1.0, 1.0, -1.0])
         out.append(derivatives / derivatives[0])
