@@ -406,7 +406,7 @@ DSMC_SECONDS_PER_PARTICLE_STEP = 2.2e-9
 """Force, thermostat and moments per particle and time step (montanero2007's protocol):
 bench dsmc's paper step 1.55 ns at N = 2 × 10⁵ (exact force, collisions included; 3.4 ns
 before the thermostat was deferred into the next force update, 2026-11-27), the front
-2.0-2.6 ns with its snapshot every 50 steps. paper.yaml's job montanero2007/runs/alpha050
+2.0-2.6 ns with its snapshot every 50 steps. paper.yaml's job montanero2007/dsmc/alpha050
 batch0001 (2 × 10¹⁰ particle-steps) took 50.7 CPU-s on the Intel Xeon (2026-11-28), 2.1 ns
 a particle-step beside the model's other terms (8.6 s); this constant plans it at 52.7 s
 (3e-9, twice the bench, planned 68.7 s until then). Three other shapes, measured

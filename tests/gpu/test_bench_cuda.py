@@ -295,3 +295,16 @@ def test_visco2008_document_runs_a_cloning_job_through_the_workflows_job(monkeyp
     assert "error" not in row, row["error"]
     assert row["runs"] == row["files"] == 1 and report["complete"]
     assert row["process_seconds"] > row["engine_seconds"] > 0
+
+
+def test_the_command_refuses_the_simulator_and_writes_nothing(tmp_path, capsys):
+    """``python -m kinetic.bench cuda`` under ``NUMBA_ENABLE_CUDASIM=1`` (as in this file)
+    stops before any section, naming the simulator, and writes no report: the simulator's
+    rates are a Python interpreter's, not a GPU's."""
+    from kinetic.bench.__main__ import main
+
+    with pytest.raises(SystemExit) as stopped:
+        main(["cuda", "--out", str(tmp_path)])
+    assert stopped.value.code == 2
+    assert "NUMBA_ENABLE_CUDASIM=1" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []

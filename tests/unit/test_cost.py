@@ -122,7 +122,7 @@ def test_jobs_killed_for_time_or_memory_are_told_which_resource_to_raise():
         "\n"
         "Error in rule montanero2007_simulate_dsmc:\n"
         "    message: SLURM-job '18' failed, SLURM status is: 'OUT_OF_MEMORY'.\n"
-        "    output: results/montanero2007/runs/alpha030/batch0000.nc\n"
+        "    output: results/montanero2007/dsmc/alpha030/batch0000.nc\n"
         "\n"
         "Error in rule visco2008_fig01:\n"
         "    message: SLURM-job '19' failed, SLURM status is: 'FAILED'.\n"

@@ -209,7 +209,7 @@ def test_cuda_groups_a_familys_runs_with_their_own_arguments_seeds_and_stamps():
         assert job.gpus == 1
         assert list(job.files) == study.group_files(names)
         for name, point in zip(names, job.arguments["points"], strict=True):
-            alone = cpu[f"montanero2007/runs/{name}/batch0000.nc"]
+            alone = cpu[f"montanero2007/dsmc/{name}/batch0000.nc"]
             assert point["seed"] == alone.arguments["seed"] and point["backend"] == "cuda"
             assert point["run"] == alone.arguments["run"]
             assert point["first"] == 0 and point["count"] == point["run"]["realizations"]

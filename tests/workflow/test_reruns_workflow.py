@@ -26,8 +26,8 @@ ROOT = "results/ci"
 TARGETS = [f"{ROOT}/montanero2007/fig05.pdf", f"{ROOT}/krauth2025/fig04_13.pdf"]
 
 STAGES = {
-    "montanero2007 simulations": "montanero2007/runs/*/batch*.nc",
-    "montanero2007 joins": "montanero2007/runs/*.nc",
+    "montanero2007 simulations": "montanero2007/dsmc/*/batch*.nc",
+    "montanero2007 joins": "montanero2007/dsmc/*.nc",
     "montanero2007 figure": "montanero2007/fig05.*",
     "krauth2025 simulation": "krauth2025/pins/ring.nc",
     "krauth2025 theory": "krauth2025/theory/ring.nc",

@@ -24,7 +24,7 @@ def test_montanero2007_fig03_runs_simulation_then_join_then_figure(repository, f
     rules = [step.rule for step in result.steps]
     assert rules == [
         "montanero2007_simulate_dsmc",
-        "montanero2007_aggregate_run",
+        "montanero2007_aggregate_dsmc",
         "montanero2007_fig03",
     ]
     simulate, _, figure = result.steps
@@ -36,9 +36,9 @@ def test_montanero2007_fig03_runs_simulation_then_join_then_figure(repository, f
     assert "src/kinetic/theory/montanero2007.py" in figure.modules
     # the datasets between the stages: batches, the joined runs the figure reads, the figure
     aggregate = result.steps[1]
-    batch = r"results/ci/montanero2007/runs/\w+/batch\d{4}\.nc"
+    batch = r"results/ci/montanero2007/dsmc/\w+/batch\d{4}\.nc"
     assert all(re.fullmatch(batch, f) for f in simulate.outputs)
-    assert all(re.fullmatch(r"results/ci/montanero2007/runs/\w+\.nc", f) for f in aggregate.outputs)
+    assert all(re.fullmatch(r"results/ci/montanero2007/dsmc/\w+\.nc", f) for f in aggregate.outputs)
     assert len(simulate.outputs) >= len(aggregate.outputs) > 1
     assert figure.outputs[0] == "results/ci/montanero2007/fig03.pdf"
     assert not any("dsmc" in module for module in aggregate.modules)  # joins, runs no engine

@@ -36,6 +36,14 @@ def log_file(path):
     return f"{RESULTS}/logs/{path}"
 
 
+BATCH = r"batch[0-9]{4}"
+
+
+"""Wildcard constraint of {batch}, the stem of one job's file of a run
+(<results>/<document>/<engine>/<run>/batchNNNN.nc, kinetic.batches.batch_name), in every
+document."""
+
+
 def drop_default_submission_limit(scheduler):
     """Run without Snakemake's default cap of 100 job submissions a second.
 

@@ -40,6 +40,11 @@ def main(argv: list[str] | None = None) -> None:
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     module = importlib.import_module(f"kinetic.bench.{args.engine}")
+    if hasattr(module, "precondition"):  # cuda: a GPU, not the simulator
+        try:
+            module.precondition()
+        except RuntimeError as error:
+            parser.error(str(error))
     options = {}
     accepted = inspect.signature(module.run).parameters
     if "checkpoint" in accepted:  # long reports are rewritten after every section

@@ -1,7 +1,8 @@
 """Speed and physics of the ``cuda`` backends on one GPU: ``python -m kinetic.bench cuda``
 writes ``results/benchmarks/cuda.json``.
 
-It needs a GPU (``kinetic.backends.require('cuda')``); every section is timed through the
+It needs a GPU (``kinetic.backends.require('cuda')``; the command refuses numba's CUDA
+simulator, ``precondition``); every section is timed through the
 engines' fronts (``backend='cuda'``), so launches, seeding and copies count, and compile
 time is excluded by a first call of the same types. The report is rewritten after every
 section (a run stopped at a time limit keeps what it measured).
@@ -81,6 +82,19 @@ def _keep(**containers) -> None:
     _PARTIAL.update(containers)
 
 
+def precondition() -> None:
+    """Refuse the simulator before anything runs (``python -m kinetic.bench cuda`` calls this):
+    under ``NUMBA_ENABLE_CUDASIM=1`` the kernels run as Python on the CPU, and a report of
+    its rates would read as a GPU's. The tests call ``run`` directly, under the simulator."""
+    from kinetic.backends import BackendUnavailable, simulated
+
+    if simulated():
+        raise BackendUnavailable(
+            "bench cuda times a GPU, but NUMBA_ENABLE_CUDASIM=1 runs the kernels as Python on "
+            "the CPU; unset it and run on a machine with an NVIDIA GPU"
+        )
+
+
 def _device() -> dict[str, Any]:
     import logging
 
@@ -89,7 +103,11 @@ def _device() -> dict[str, Any]:
     logging.getLogger("numba").setLevel(logging.WARNING)  # numba-cuda's allocation log
     from kinetic import backends, gpu
 
-    info = {"device": backends.require("cuda"), "numba": numba.__version__}
+    info = {
+        "device": backends.require("cuda"),
+        "simulated": backends.simulated(),
+        "numba": numba.__version__,
+    }
     try:
         from importlib.metadata import version
 

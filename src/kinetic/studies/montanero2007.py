@@ -385,7 +385,7 @@ def group_files(names: Sequence[str]) -> list[str]:
     """The files of a group's runs, relative to the results root: each run's one batch."""
     from kinetic import batches
 
-    return [f"montanero2007/runs/{name}/{batches.batch_name(0)}.nc" for name in names]
+    return [f"montanero2007/dsmc/{name}/{batches.batch_name(0)}.nc" for name in names]
 
 
 def single_runs(section: Mapping[str, Any], backend: str) -> list[str]:
@@ -446,7 +446,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
         found += run_jobs(
             document="montanero2007",
             rule="montanero2007_simulate_dsmc",
-            run=f"montanero2007/runs/{name}",
+            run=f"montanero2007/dsmc/{name}",
             front="kinetic.studies.montanero2007:simulate_batch",
             engines=("dsmc",),
             cut=cut,

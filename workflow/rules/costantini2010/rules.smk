@@ -4,31 +4,36 @@
 
 
 # ======================================================================================
-# simulations (costantini2010_simulate_<what>) and their joins
-# (costantini2010_aggregate_<what>)
+# simulations (costantini2010_simulate_<engine>)
 # ======================================================================================
 # costantini2010: runs of the cooling gas in the stationary representation, by inhomogeneous
 # DSMC (kinetic.dsmc.simulate_cooling_modes) and MD (kinetic.edmd.simulate_cooling_modes).
-# Every run is cut into jobs of realizations (kinetic.batches); rule
-# costantini2010_correlations (the analysis rules) reads a run's jobs and computes C(tau),
-# the tail fit, nu*, nu_bar*, zeta* and T(tau) (kinetic.analysis.costantini2010). Run names
-# are the keys of kinetic.studies.costantini2010.runs(config): wildcards are looked up,
-# never parsed.
+#
+#   <results>/costantini2010/<engine>/<run>/batchNNNN.nc   one job: realizations of one run
+#   <results>/costantini2010/<engine>/<run>.nc             the run's correlations
+#
+# Every run is cut into jobs of realizations (kinetic.batches). No rule joins them alone:
+# the mode time series are the bulk of a job's file and nothing but the correlations reads
+# them, so costantini2010_correlations (the first analysis rule) reads a run's jobs and
+# writes C(tau), the tail fit, nu*, nu_bar*, zeta* and T(tau)
+# (kinetic.analysis.costantini2010) where the other documents keep the joined run. Run
+# names are the keys of kinetic.studies.costantini2010.runs(config): wildcards are looked
+# up, never parsed.
 
 
 rule costantini2010_simulate_dsmc:
     input:
         code=job_code("costantini2010_simulate_dsmc"),
     output:
-        results_file("costantini2010/{engine}/{run}/batch{batch}.nc"),
+        results_file("costantini2010/{engine}/{run}/{batch}.nc"),
     log:
-        log_file("costantini2010/{engine}/{run}/batch{batch}.log"),
+        log_file("costantini2010/{engine}/{run}/{batch}.log"),
     benchmark:
-        log_file("benchmarks/costantini2010/{engine}/{run}/batch{batch}.tsv")
+        log_file("benchmarks/costantini2010/{engine}/{run}/{batch}.tsv")
     wildcard_constraints:
         engine="dsmc",
         run=costantini2010_dsmc_single_runs(),
-        batch="[0-9]{4}",
+        batch=BATCH,
     threads: 1
     resources:
         runtime=planned_runtime,
@@ -80,15 +85,15 @@ rule costantini2010_simulate_md:
     input:
         code=job_code("costantini2010_simulate_md"),
     output:
-        results_file("costantini2010/{engine}/{run}/batch{batch}.nc"),
+        results_file("costantini2010/{engine}/{run}/{batch}.nc"),
     log:
-        log_file("costantini2010/{engine}/{run}/batch{batch}.log"),
+        log_file("costantini2010/{engine}/{run}/{batch}.log"),
     benchmark:
-        log_file("benchmarks/costantini2010/{engine}/{run}/batch{batch}.tsv")
+        log_file("benchmarks/costantini2010/{engine}/{run}/{batch}.tsv")
     wildcard_constraints:
         engine="md",
         run="[^/]+",
-        batch="[0-9]{4}",
+        batch=BATCH,
     threads: 1
     resources:
         runtime=planned_runtime,

@@ -27,14 +27,14 @@ def montanero2007_jobs(name):
 def montanero2007_batch_files(name):
     """The batch files of one run (all its realizations)."""
     return [
-        results_file(f"montanero2007/runs/{name}/{batches.batch_name(job.index)}.nc")
+        results_file(f"montanero2007/dsmc/{name}/{batches.batch_name(job.index)}.nc")
         for job in montanero2007_jobs(name)
     ]
 
 
 def montanero2007_run_file(name):
-    """One run, its batches joined (rule montanero2007_aggregate_run)."""
-    return results_file(f"montanero2007/runs/{name}.nc")
+    """One run, its batches joined (rule montanero2007_aggregate_dsmc)."""
+    return results_file(f"montanero2007/dsmc/{name}.nc")
 
 
 def montanero2007_run_batches(wildcards):

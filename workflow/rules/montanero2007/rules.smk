@@ -9,8 +9,8 @@
 # ======================================================================================
 # montanero2007 simulations: DSMC of the heat-flux-forced granular gas (kinetic.dsmc).
 #
-#   <results>/montanero2007/runs/<run>/batchNNNN.nc   one job: realizations of one run
-#   <results>/montanero2007/runs/<run>.nc              the run's batches joined (what figures read)
+#   <results>/montanero2007/dsmc/<run>/batchNNNN.nc   one job: realizations of one run
+#   <results>/montanero2007/dsmc/<run>.nc              its batches joined (what figures read)
 #
 # Run names come from kinetic.studies.montanero2007.run_plan(config["montanero2007"]).
 # With backend: cuda every run is one batch, and the runs of one family share a job
@@ -21,11 +21,11 @@ rule montanero2007_simulate_dsmc:
     input:
         code=job_code("montanero2007_simulate_dsmc"),
     output:
-        results_file("montanero2007/runs/{run}/{batch}.nc"),
+        results_file("montanero2007/dsmc/{run}/{batch}.nc"),
     log:
-        log_file("montanero2007/runs/{run}/{batch}.log"),
+        log_file("montanero2007/dsmc/{run}/{batch}.log"),
     benchmark:
-        log_file("benchmarks/montanero2007/runs/{run}/{batch}.tsv")
+        log_file("benchmarks/montanero2007/dsmc/{run}/{batch}.tsv")
     wildcard_constraints:
         run=montanero2007_single_run_names(),
         batch=r"batch[0-9]{4}",
@@ -72,18 +72,18 @@ for group, group_runs in montanero2007_dsmc_groups().items():
             "../../scripts/simulate.py"
 
 
-rule montanero2007_aggregate_run:
+rule montanero2007_aggregate_dsmc:
     input:
         batches=montanero2007_run_batches,
-        code=script_code("montanero2007_aggregate"),
+        code=script_code("aggregate"),
     output:
-        results_file("montanero2007/runs/{run}.nc"),
+        results_file("montanero2007/dsmc/{run}.nc"),
     log:
-        log_file("montanero2007/runs/{run}.log"),
+        log_file("montanero2007/dsmc/{run}.log"),
     wildcard_constraints:
         run=montanero2007_run_names(),
     script:
-        "../../scripts/montanero2007_aggregate.py"
+        "../../scripts/aggregate.py"
 
 
 # ======================================================================================

@@ -75,12 +75,6 @@ def visco2008_cloning_reference_parameters(wildcards):
 # ---------------------------------------------------------------- for the simulation rules
 
 
-BATCH = r"batch[0-9]{4}"
-
-
-"""Wildcard constraint of a batch file's stem (kinetic.batches.batch_name)."""
-
-
 # ---------------------------------------------------------------- molecular dynamics
 def visco2008_md():
     """The config section visco2008.md (validated and filled with defaults)."""

@@ -85,15 +85,15 @@ rule visco2008_simulate_md:
 rule visco2008_aggregate_md:
     input:
         batches=visco2008_md_batch_files,
-        code=script_code("visco2008_aggregate_md"),
+        code=script_code("aggregate"),
     output:
         results_file("visco2008/md/{run}.nc"),
     log:
-        log_file("visco2008/md/{run}_aggregate.log"),
+        log_file("visco2008/md/{run}.log"),
     wildcard_constraints:
         run=visco2008_md_runs(),
     script:
-        "../../scripts/visco2008_aggregate_md.py"
+        "../../scripts/aggregate.py"
 
 
 rule visco2008_simulate_dsmc:

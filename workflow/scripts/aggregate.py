@@ -1,4 +1,6 @@
-"""Join the batches of one montanero2007 run (rule montanero2007_aggregate_run)."""
+"""Join the batches of one run, computing nothing else (rules visco2008_aggregate_md and
+montanero2007_aggregate_dsmc): kinetic.io.read_run checks that they are one run's, each
+realization once."""
 
 from kinetic import io
 from kinetic.workflow_support import start, write_output
@@ -8,7 +10,7 @@ run = io.read_run(snakemake.input.batches)
 write_output(snakemake, run, int(run.attrs["seed"]))
 log.info(
     "%s: %d realizations from %d batches",
-    snakemake.wildcards.run,
+    snakemake.output[0],
     run.sizes["realization"],
     len(snakemake.input.batches),
 )
