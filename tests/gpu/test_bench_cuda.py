@@ -297,14 +297,43 @@ def test_visco2008_document_runs_a_cloning_job_through_the_workflows_job(monkeyp
     assert row["process_seconds"] > row["engine_seconds"] > 0
 
 
-def test_the_command_refuses_the_simulator_and_writes_nothing(tmp_path, capsys):
-    """``python -m kinetic.bench cuda`` under ``NUMBA_ENABLE_CUDASIM=1`` (as in this file)
-    stops before any section, naming the simulator, and writes no report: the simulator's
-    rates are a Python interpreter's, not a GPU's."""
+def test_the_command_refuses_the_simulator_and_writes_nothing(tmp_path, capsys, monkeypatch):
+    """``python -m kinetic.bench cuda`` under ``NUMBA_ENABLE_CUDASIM=1`` stops before any
+    section, naming the simulator, and writes no report: the simulator's rates are a Python
+    interpreter's, not a GPU's. The variable is set here, not only for the file: on a GPU
+    (tests/gpu/check-on-gpu.sh runs these tests with it 0) the command would start every
+    section."""
     from kinetic.bench.__main__ import main
+
+    monkeypatch.setenv("NUMBA_ENABLE_CUDASIM", "1")  # what ``backends.simulated`` reads
 
     with pytest.raises(SystemExit) as stopped:
         main(["cuda", "--out", str(tmp_path)])
     assert stopped.value.code == 2
     assert "NUMBA_ENABLE_CUDASIM=1" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_sigterm_keeps_the_running_sections_partial_and_skips_the_rest(monkeypatch):
+    """The device script's ``timeout`` sends SIGTERM: the section running then reports what
+    it had measured (``partial``), the report is checkpointed, and no later section
+    starts."""
+    import signal
+
+    def killed(quick):
+        cases = []
+        bench._keep(gpu=cases)
+        cases.append({"rate": 2.0})
+        os.kill(os.getpid(), signal.SIGTERM)
+        raise AssertionError("not reached: the signal raises first")
+
+    monkeypatch.setattr(bench, "SECTIONS", {"killed": killed, "later": lambda quick: {}})
+    monkeypatch.setattr(bench, "_device", lambda: {})
+    saved = []
+    report = bench.run(checkpoint=lambda report: saved.append(dict(report["sections"])))
+    killed_report = report["sections"]["killed"]
+    assert killed_report["partial"] == {"gpu": [{"rate": 2.0}]}
+    assert "SIGTERM" in killed_report["error"]
+    assert "terminated" in report["sections"]["later"]["skipped"]
+    assert saved and "killed" in saved[-1]
+    assert signal.getsignal(signal.SIGTERM) is signal.SIG_DFL

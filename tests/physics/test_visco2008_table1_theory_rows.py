@@ -48,9 +48,10 @@ def test_eq_28_cumulants_converge_and_differ_from_the_sonine_row():
     design = np.stack([(-1) ** p * lams**p / np.prod(np.arange(1, p + 1)) for p in range(1, 6)], 1)
     fitted = np.linalg.lstsq(design, mu, rcond=None)[0][:3]
     np.testing.assert_allclose(fitted / fitted[0], exact, atol=2e-5)
+    # the closure's error, resolved: ten grid errors at least (docs/reproduced.md quotes
+    # the differences)
     sonine = visco2008.sonine_cumulants(2)
-    assert exact[1] - sonine[1] == pytest.approx(0.0031, abs=3e-4)
-    assert exact[2] - sonine[2] == pytest.approx(-0.0079, abs=4e-4)
+    assert np.all(np.abs(exact[1:] - sonine[1:]) > 10 * 3e-4)
 
 
 def test_eq_28_at_a_window_joins_the_short_window_limit_and_the_long_one():

@@ -83,8 +83,8 @@ def test_values_the_engine_front_refuses_stop_the_parse():
         study.run_plan(section)
     section = copy.deepcopy(_section("ci.yaml"))
     section["protocol"].update(time_step=0.3, sample_stride=2)
-    section["extreme"]["reduced_fields"] = [0.5]
-    with pytest.raises(ValueError, match=r"run extreme_field500_alpha100: .*too large a force"):
+    section["extreme"]["reduced_fields"] = [0.2]
+    with pytest.raises(ValueError, match=r"run extreme_field200_alpha100: .*too large a force"):
         study.run_plan(section)
 
 

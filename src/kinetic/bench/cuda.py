@@ -1402,19 +1402,49 @@ def run(quick: bool = False, checkpoint=None, sections=None) -> dict[str, Any]:
     preflight()
     started = time.perf_counter()
     report: dict[str, Any] = {"gpu": _device(), "sections": {}}
-    for name in sections or SECTIONS:
-        section = known[name]
-        if time.perf_counter() - started > _BUDGET_SECONDS:
-            report["sections"][name] = {"skipped": "time budget spent"}
-            continue
-        begin = time.perf_counter()
-        _PARTIAL.clear()
-        try:
-            result = section(quick)
-        except Exception:
-            result = {"error": traceback.format_exc(), "partial": dict(_PARTIAL)}
-        result["section_seconds"] = time.perf_counter() - begin
-        report["sections"][name] = result
-        if checkpoint is not None:
-            checkpoint(report)
+    stopped = None
+    with _terminated_raises():
+        for name in sections or SECTIONS:
+            section = known[name]
+            if stopped or time.perf_counter() - started > _BUDGET_SECONDS:
+                report["sections"][name] = {"skipped": stopped or "time budget spent"}
+                continue
+            begin = time.perf_counter()
+            _PARTIAL.clear()
+            try:
+                result = section(quick)
+            except _Terminated:
+                stopped = "the bench was terminated (SIGTERM) during an earlier section"
+                result = {"error": "terminated (SIGTERM)", "partial": dict(_PARTIAL)}
+            except Exception:
+                result = {"error": traceback.format_exc(), "partial": dict(_PARTIAL)}
+            result["section_seconds"] = time.perf_counter() - begin
+            report["sections"][name] = result
+            if checkpoint is not None:
+                checkpoint(report)
     return report
+
+
+class _Terminated(BaseException):
+    """SIGTERM during a section (the device script's ``timeout``): not an ``Exception``, so
+    a section's own handlers let it through to ``run``."""
+
+
+@contextlib.contextmanager
+def _terminated_raises():
+    """While ``run`` runs, SIGTERM raises ``_Terminated`` (Python's default ends the process
+    at once, and the running section's ``partial`` was lost); restored after."""
+    import signal
+
+    def stop(signum, frame):
+        raise _Terminated
+
+    try:
+        previous = signal.signal(signal.SIGTERM, stop)
+    except ValueError:  # not the main thread: keep the default
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
