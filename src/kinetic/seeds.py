@@ -14,7 +14,7 @@ import zlib
 
 import numpy as np
 
-__all__ = ["checked_stream", "derive_seed", "stream_states"]
+__all__ = ["MAX_SEED", "checked_stream", "derive_seed", "stream_states"]
 
 
 def derive_seed(root_seed: int, key: str) -> int:
@@ -31,22 +31,32 @@ def derive_seed(root_seed: int, key: str) -> int:
     return int(sequence.generate_state(1, np.uint64)[0] >> np.uint64(1))
 
 
-def stream_states(seed: int, n_streams: int) -> np.ndarray:
-    """Independent xoshiro256+ states, one row per stream.
+MAX_SEED = 2**63 - 1
+"""Largest seed: what a netCDF attribute holds as a signed 64-bit integer (the config's
+root seed has the same bound, and ``derive_seed`` gives 63 bits)."""
 
-    Returns a C-contiguous ``uint64`` array of shape ``(n_streams, 4)``; row ``k`` is
-    spawned child ``k`` of ``SeedSequence(seed)``, so the first rows do not depend on
-    how many streams are asked for.
+
+def stream_states(seed: int, n_streams: int, first: int = 0) -> np.ndarray:
+    """Independent xoshiro256+ states, one row per stream: streams ``first`` to
+    ``first + n_streams - 1``.
+
+    Returns a C-contiguous ``uint64`` array of shape ``(n_streams, 4)``; stream ``k`` is
+    child ``k`` of ``SeedSequence(seed)`` (what ``spawn`` would give as its k-th child,
+    built alone: a job of the last realizations of a large run costs its own rows only),
+    so a row does not depend on how many streams are asked for, nor on ``first``.
     """
     if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
         raise TypeError(f"seed must be an integer >= 0, got {seed!r}")
-    if isinstance(n_streams, bool) or not isinstance(n_streams, int | np.integer):
-        raise TypeError(f"n_streams must be an integer, got {n_streams!r}")
-    if n_streams < 1:
-        raise ValueError(f"n_streams must be >= 1, got {n_streams}")
-    children = np.random.SeedSequence(int(seed)).spawn(int(n_streams))
+    if seed > MAX_SEED:
+        raise ValueError(f"seed = {seed} is too large: must be <= 2**63 - 1")
+    for name, value, low in (("n_streams", n_streams, 1), ("first", first, 0)):
+        if isinstance(value, bool) or not isinstance(value, int | np.integer):
+            raise TypeError(f"{name} must be an integer, got {value!r}")
+        if value < low:
+            raise ValueError(f"{name} must be >= {low}, got {value}")
     states = np.empty((n_streams, 4), dtype=np.uint64)
-    for k, child in enumerate(children):
+    for k in range(int(n_streams)):
+        child = np.random.SeedSequence(int(seed), spawn_key=(int(first) + k,))
         words = child.generate_state(4, np.uint64)
         if not words.any():  # the all-zero state is the one fixed point of xoshiro
             words[0] = 1

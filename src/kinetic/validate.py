@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["choice", "integer", "multiple", "real"]
+__all__ = ["choice", "integer", "multiple", "real", "seed"]
 
 
 def integer(name: str, value: Any, minimum: int, maximum: int | None = None) -> int:
@@ -20,6 +20,14 @@ def integer(name: str, value: Any, minimum: int, maximum: int | None = None) -> 
         allowed = f">= {minimum}" if maximum is None else f"in [{minimum}, {maximum}]"
         raise ValueError(f"{name} = {value} is not allowed: must be {allowed}")
     return int(value)
+
+
+def seed(value: Any) -> int:
+    """A random seed: an integer in [0, 2**63 - 1] (``kinetic.seeds.MAX_SEED``, what a
+    netCDF attribute holds; a larger one ran, then failed at the write)."""
+    from kinetic.seeds import MAX_SEED
+
+    return integer("seed", value, 0, MAX_SEED)
 
 
 def real(

@@ -99,7 +99,8 @@ def test_a_gas_that_stopped_colliding_exhausts_the_event_budget():
         ({"realizations": 0}, "realizations must be >= 1, got 0"),
         ({"equilibration": 0.5}, "equilibration must be >= 1"),
         ({"density": 1.2}, "cannot fit"),
-        ({"seed": -1}, "seed must be an integer >= 0"),
+        ({"seed": -1}, "seed = -1 is not allowed"),
+        ({"seed": 2**63}, "seed = 9223372036854775808 is not allowed"),
     ],
 )
 def test_simulate_refuses_bad_protocols(options, message):

@@ -46,3 +46,30 @@ def test_engine_samples_what_the_check_admits(sigma):
     positions = disk_configuration(4, sigma, (1.0, 1.0), state=stream_states(1, 1)[0])
     gaps = np.linalg.norm(positions[:, None] - positions[None], axis=-1)[np.triu_indices(4, 1)]
     assert np.all(gaps > 2 * sigma)
+
+
+@pytest.mark.parametrize(
+    ("interval", "message"),
+    [
+        (1e-300, "snapshots of a realization"),  # the clock never advanced: an endless loop
+        (1e-12, "snapshots of a realization"),  # 2 × 10¹² snapshots
+        (3.0, "exceeds the duration"),
+    ],
+)
+def test_the_engine_refuses_snapshot_intervals_before_any_run(interval, message, monkeypatch):
+    from kinetic import event_disks
+
+    def no_run(*args, **kwargs):
+        raise AssertionError("a run started")
+
+    monkeypatch.setattr(event_disks, "initial_state", no_run)
+    with pytest.raises(ValueError, match=message):
+        event_disks.simulate_box(
+            n_disks=4,
+            sigma=0.1,
+            duration=2.0,
+            snapshot_interval=interval,
+            bins=5,
+            realizations=2,
+            seed=0,
+        )

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import numbers
 
-from kinetic import backends
+from kinetic import backends, validate
 from kinetic.gas import HARD_SPHERES, MAXWELL
 
 __all__ = [
@@ -142,7 +142,7 @@ def validate_parameters(
     n_blocks = _check_integer("n_blocks", n_blocks, 1, 10**6)
     n_realizations = _check_integer("n_realizations", n_realizations, 1, 10**6)
     first_realization = _check_integer("first_realization", first_realization, 0)
-    seed = _check_integer("seed", seed, 0)
+    seed = validate.seed(seed)
     if n_realizations == 1 and n_blocks < 2:
         raise ValueError("a single realization needs n_blocks >= 2 for a block error bar, got 1")
     histogram_half_width = _check_real(

@@ -212,7 +212,7 @@ class _Plan:
             np.arange(total_blocks) < n_transient, transient_block, block_duration
         )
         first, count = p["first_realization"], p["n_realizations"]
-        self.states = stream_states(p["seed"], first + count)[first:]
+        self.states = stream_states(p["seed"], count, first)
         self.simulated_time = count * self.durations.sum()
         self.label = label or f"cloning {kernel_label(p['kernel'], d)} lam={p['lam']:g} N={n}"
 

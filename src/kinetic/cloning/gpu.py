@@ -169,7 +169,7 @@ def _advance_clone(velocity, states, r, i, code, interval, rate_a):
             rate = rate_a * speed + _RATE_B
             e, s0, s1, s2, s3 = _exponential(s0, s1, s2, s3)
             t += e / rate
-            if t > interval:
+            if not t <= interval:  # a NaN rate ends the interval, not the lease
                 break
             candidates += 1
             w, s0, s1, s2, s3 = _uniform(s0, s1, s2, s3)
@@ -194,7 +194,7 @@ def _advance_clone(velocity, states, r, i, code, interval, rate_a):
         while True:
             e, s0, s1, s2, s3 = _exponential(s0, s1, s2, s3)
             t += e
-            if t > interval:
+            if not t <= interval:  # a NaN rate ends the interval, not the lease
                 break
             candidates += 1
             collisions += 1
@@ -346,9 +346,7 @@ def _slots_below(cumulative, offsets, r, i, n, total, u):
         return 0
     if i == n - 1:
         return n
-    position = cumulative[r, i] + offsets[r, i // BLOCK]
-    g = math.ceil(n * (float(position) / total) - u)
-    return min(n, max(0, g))
+    return _slot(cumulative[r, i] + offsets[r, i // BLOCK], n, total, u)
 
 
 @kernel
@@ -481,8 +479,11 @@ the last bits (another summation tree)."""
 @cuda.jit(device=True, inline="always")
 def _slot(position, n, total, u):
     """g(E) = ceil(N_c E/Q - u), clamped to [0, N_c]: the first slot at or above the
-    cumulative fixed-point weight E (as ``_slots_below``)."""
-    g = math.ceil(n * (float(position) / total) - u)
+    cumulative fixed-point weight E (``_slots_below`` too). Neighbouring clones compute
+    their shared boundary each at its own call site, and the slots tile the population
+    only if both round alike: the product comes before the division, so no multiply
+    feeds the subtraction and NVVM cannot fuse one site into an FMA and not the other."""
+    g = math.ceil((n * float(position)) / total - u)
     return min(n, max(0, g))
 
 
@@ -662,7 +663,11 @@ def run_points(points, progress):
 
 
 def _compile_kernels() -> None:
-    """Both paths on 4 clones of one realization: every kernel, the production types."""
+    """Both paths on 4 clones of two realizations and two blocks: every kernel, with the
+    production types. With one realization and one block the views of ``blocks`` and
+    ``out`` were contiguous ('C' layout) where a production run's are strided ('A'): each
+    kernel then compiled a second time inside the run's timer and outside ``warm``'s lock
+    (numba issue 4807)."""
     tiny = {
         "population": 4,
         "dimension": 2,
@@ -672,11 +677,11 @@ def _compile_kernels() -> None:
         "histogram_half_width": 6.0,
         "control_interval": 1.0,
     }
-    rows = np.array([[1, 2, 3, 4]], dtype=np.uint64)
+    rows = np.array([[1, 2, 3, 4], [5, 6, 7, 8]], dtype=np.uint64)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", NumbaPerformanceWarning)  # grids of one block
         for resident in (True, False):
-            _run(tiny, np.array([1.0]), 0, rows, None, resident=resident)
+            _run(tiny, np.array([1.0, 1.0]), 0, rows, None, resident=resident)
 
 
 class _Clones:

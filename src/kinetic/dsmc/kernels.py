@@ -519,7 +519,7 @@ def _collide_loop(velocity, first, last, members, state, collisions, d):
             step = e * spacing
         else:
             step = spacing
-        if step > budget:
+        if not step <= budget:  # a NaN spacing ends the call instead of looping forever
             break
         budget -= step
         candidates += 1

@@ -279,10 +279,10 @@ def realization_streams(seed: int, first: int, count: int) -> np.ndarray:
     Row k of ``stream_states(seed, ·)`` belongs to realization k, so batching the
     realizations into jobs does not change any of them.
     """
-    validate.integer("seed", seed, 0)
+    validate.seed(seed)
     validate.integer("first_realization", first, 0)
     validate.integer("n_realizations", count, 1)
-    return stream_states(seed, first + count)[first:].copy()
+    return stream_states(seed, count, first)
 
 
 def maxwellian_starts(dimension: int, n_particles: int, streams: np.ndarray):

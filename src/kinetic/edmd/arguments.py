@@ -18,6 +18,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from kinetic import validate
 from kinetic.seeds import checked_stream, stream_states
 
 __all__ = [
@@ -301,8 +302,7 @@ def check_simulate(
     any work: raises ``TypeError``/``ValueError`` naming the argument; returns the windows
     and checkpoints as arrays. The workflow calls it when it reads the config, so a bad
     config is refused before any job."""
-    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
-        raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
+    validate.seed(seed)
     for name, value in (
         ("realizations", realizations),
         ("first_realization", first_realization),

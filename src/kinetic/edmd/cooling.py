@@ -36,7 +36,7 @@ from typing import Any
 
 import numpy as np
 
-from kinetic import io, rng
+from kinetic import io, rng, validate
 from kinetic.edmd.layout import X0, V
 from kinetic.edmd.system import HardSphereSystem
 from kinetic.fourier import mode_sums, mode_terms
@@ -164,7 +164,7 @@ def simulate_cooling_modes(
     equilibration = real("equilibration", equilibration, 0.0, 1e15)
     sample_interval = real("sample_interval", sample_interval, 0.0, 1e12, low_open=True)
     n_samples = integer("n_samples", n_samples, 1, 10**9)
-    seed = integer("seed", seed, 0)
+    seed = validate.seed(seed)
     n_realizations = integer("n_realizations", n_realizations, 1)
     first_realization = integer("first_realization", first_realization, 0)
     if cell_occupancy is not None:
@@ -175,7 +175,7 @@ def simulate_cooling_modes(
             "velocities would grow by more than e^0.5 within one segment; sample more often"
         )
     box_side = math.sqrt(n_particles / density)
-    states = rng.stream_states(seed, first_realization + n_realizations)[first_realization:]
+    states = rng.stream_states(seed, n_realizations, first_realization)
     sample_times = equilibration + sample_interval * np.arange(n_samples)
 
     temperature = np.empty((n_realizations, n_samples))

@@ -104,7 +104,7 @@ def simulate(
     flight_width = flight_time_max * tau_enskog / flight_time_bins
     path_width = free_path_max * path_enskog / free_path_bins
     count_bins = count_bins_for(windows[-1])
-    states = rng.stream_states(seed, first_realization + realizations)[first_realization:]
+    states = rng.stream_states(seed, realizations, first_realization)
     label = label or f"edmd N={n_particles} rho={density:g}"
     n_checkpoints = checkpoints.size
     n_windows = windows.size

@@ -29,7 +29,7 @@ from kinetic.event_disks import kernels
 from kinetic.progress import Progress
 from kinetic.rng import stream_states
 from kinetic.samplers import disk_configuration
-from kinetic.theory.krauth2025 import CLASSIC_START, check_classic_start
+from kinetic.theory.krauth2025 import CLASSIC_START, check_classic_start, check_snapshots
 
 __all__ = ["CLASSIC_START", "chaos", "initial_state", "simulate_box", "warmup"]
 
@@ -37,7 +37,7 @@ __all__ = ["CLASSIC_START", "chaos", "initial_state", "simulate_box", "warmup"]
 def initial_state(n_disks: int, sigma: float, box, seed: int, realization: int):
     """Positions (direct-disks, stream ``realization`` of ``seed``) and velocities
     (Gaussian from the same seed, scaled to Σ v² = 2N) of one realization."""
-    state = stream_states(seed, realization + 1)[realization]
+    state = stream_states(seed, 1, realization)[0]
     positions = disk_configuration(n_disks, sigma, box, state=state)
     rng = np.random.default_rng([int(seed), int(realization)])
     velocities = rng.standard_normal((n_disks, 2))
@@ -69,8 +69,7 @@ def simulate_box(
     docstring). Densities are disk centres per unit length of y on [σ, L_y − σ]."""
     duration = _positive("duration", duration)
     snapshot_interval = _positive("snapshot_interval", snapshot_interval)
-    if snapshot_interval > duration:
-        raise ValueError("snapshot_interval must not exceed duration")
+    check_snapshots(duration, snapshot_interval)
     bins = validate.integer("bins", bins, 1)
     velocity_bins = validate.integer("velocity_bins", velocity_bins, 2)
     realizations = validate.integer("realizations", realizations, 2)

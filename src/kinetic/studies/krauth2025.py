@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from kinetic.studies import Job, benchmark_file
-from kinetic.theory.krauth2025 import check_disk_box
+from kinetic.theory.krauth2025 import check_disk_box, check_snapshots
 
 __all__ = [
     "LINE_RUNS",
@@ -116,11 +116,10 @@ def check(config: Mapping[str, Any]) -> None:
     except ValueError as error:
         raise ValueError(f"config krauth2025.disks: {error}") from None
     disks = section["disks"]
-    if disks["snapshot_interval"] > disks["md_duration"]:
-        raise ValueError(
-            f"config krauth2025.disks: snapshot_interval = {disks['snapshot_interval']} "
-            f"exceeds md_duration = {disks['md_duration']}"
-        )
+    try:
+        check_snapshots(disks["md_duration"], disks["snapshot_interval"])
+    except ValueError as error:
+        raise ValueError(f"config krauth2025.disks (md_duration): {error}") from None
     if disks["start"] == "classic":
         try:
             check_classic_start(disks["n_disks"], disks["sigma"], disks["box"])

@@ -33,11 +33,13 @@ import numpy as np
 __all__ = [
     "CLASSIC_START",
     "MAX_NAIVE_STARTS",
+    "MAX_SNAPSHOTS",
     "bin_average",
     "check_classic_start",
     "check_disk_box",
     "check_naive_starts",
     "check_pins",
+    "check_snapshots",
     "line_dataset",
     "naive_acceptance",
     "pair_speed_averages",
@@ -88,6 +90,25 @@ def check_pins(n_pins: int, length: float, sigma: float) -> None:
         raise ValueError(
             f"a line of length {length!r} cannot hold {n_pins} pins of width 2 sigma = "
             f"{2 * sigma:g}: it needs length > {2 * n_pins * sigma:g}"
+        )
+
+
+MAX_SNAPSHOTS = 10**7
+"""Most stroboscopic snapshots of one event-disks realization (paper.yaml takes 10⁶). At
+each the kernel bins every disk; an interval of 10⁻¹² asked for 10¹⁵ (about 500 days),
+and one below the duration's rounding never advanced the clock."""
+
+
+def check_snapshots(duration: float, snapshot_interval: float) -> None:
+    """Raise ``ValueError`` unless ``snapshot_interval`` fits in ``duration`` at most
+    ``MAX_SNAPSHOTS`` times (and at least once)."""
+    if snapshot_interval > duration:
+        raise ValueError(f"snapshot_interval = {snapshot_interval} exceeds the duration {duration}")
+    if duration / snapshot_interval > MAX_SNAPSHOTS:
+        raise ValueError(
+            f"snapshot_interval = {snapshot_interval} gives {duration / snapshot_interval:.3g} "
+            f"snapshots of a realization of duration {duration}: at most {MAX_SNAPSHOTS:.0e} "
+            f"(snapshot_interval >= {duration / MAX_SNAPSHOTS:.3g})"
         )
 
 
