@@ -8,6 +8,10 @@ where the CUDA toolkit (NVVM, NVRTC) is installed. Where nvJitLink is installed 
 registers a thread printed (``-s``) and its spills held to none, e.g.::
 
     NUMBA_ENABLE_CUDASIM=0 python -m pytest -o addopts="" tests/gpu/test_kernels_compile.py
+
+environment-pip.txt pins those wheels, so every install has them, and the test suite, which
+runs under the simulator, runs this file in subprocesses outside it
+(test_kernels_compile_without_a_gpu.py).
 """
 
 import re
@@ -134,7 +138,17 @@ def compile_ptx():
     return cuda.compile_ptx
 
 
-@pytest.mark.parametrize(("engine", "name"), sorted(_signatures()))
+def _selected():
+    """Every kernel, or those of the engines in ``KINETIC_COMPILE_ENGINES`` (comma-separated
+    keys of ``MODULES``: test_kernels_compile_without_a_gpu.py runs one engine a process)."""
+    import os
+
+    chosen = os.environ.get("KINETIC_COMPILE_ENGINES")
+    keys = sorted(_signatures())
+    return [key for key in keys if not chosen or key[0] in chosen.split(",")]
+
+
+@pytest.mark.parametrize(("engine", "name"), _selected())
 def test_kernel_compiles_for_sm90(compile_ptx, engine, name, monkeypatch):
     import importlib
     from types import SimpleNamespace
