@@ -276,6 +276,27 @@ def test_sparse_majorant_bounds_the_stored_velocities_exactly(short_run_field_st
     assert not tally[:, kernels.TALLY_EXCEEDED].any()
 
 
+def test_accepted_collisions_are_summed_on_the_device_exactly():
+    """``_Batch.accepted_collisions``: each realization's accepted collisions over its
+    groups (more groups than the summing lanes, so every lane wraps), the integers numpy
+    sums, and only the accepted column."""
+    from types import SimpleNamespace
+
+    from kinetic.dsmc import gpu, kernels
+    from kinetic.gpu import device_zeros, to_device
+
+    count, groups = 3, 5 * gpu._ACCEPTED_LANES + 3
+    tally = np.random.default_rng(4).integers(0, 2**40, size=(count, groups, 4))
+    batch = SimpleNamespace(
+        tally=to_device(tally),
+        lanes=device_zeros((count, gpu._ACCEPTED_LANES), np.int64),
+        accepted=device_zeros(count, np.int64),
+        count=count,
+    )
+    summed = gpu._Batch.accepted_collisions(batch)
+    np.testing.assert_array_equal(summed, tally[:, :, kernels.TALLY_ACCEPTED].sum(axis=1))
+
+
 @pytest.mark.parametrize("blocks", [4, 12])
 def test_force_pass_closes_the_thermostat_in_its_last_block_whatever_the_blocks(
     monkeypatch, blocks

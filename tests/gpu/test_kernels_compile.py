@@ -92,6 +92,8 @@ def _dsmc_signatures():
         "_seed_groups": (u2, u3, u2),
         "_store_by_particle": (f3, f3),
         "_fold_moments": (f3, int64, f2, float64),
+        "_sum_accepted": (i3, i2),
+        "_fold_lanes": (i2, i1),
     } | {
         f"{name}[{storage}]": (f3, *rest)
         for name, rest in over_particles.items()

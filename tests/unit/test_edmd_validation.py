@@ -101,6 +101,9 @@ def test_a_gas_that_stopped_colliding_exhausts_the_event_budget():
         ({"density": 1.2}, "cannot fit"),
         ({"seed": -1}, "seed = -1 is not allowed"),
         ({"seed": 2**63}, "seed = 9223372036854775808 is not allowed"),
+        ({"duration": "50"}, "duration must be a real number"),
+        ({"equilibration": "5"}, "equilibration must be a real number"),
+        ({"windows": "abc"}, "windows must be a sequence of numbers"),
     ],
 )
 def test_simulate_refuses_bad_protocols(options, message):

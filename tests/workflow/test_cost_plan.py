@@ -68,7 +68,7 @@ def test_every_simulation_job_asks_for_its_planned_resources(tmp_path):
         ),
         (
             "montanero2007:\n  protocol:\n    n_particles: 100000000\n",
-            r"runs/alpha030/batch0000\.nc: would ask for [0-9.]+ GB of memory",
+            r"dsmc/alpha030/batch0000\.nc: would ask for [0-9.]+ GB of memory",
         ),
         (  # a configurable limit
             "limits:\n  max_total_cpu_hours: 0.01\n",

@@ -12,8 +12,8 @@ def test_fig05_plans_only_its_two_runs(tmp_path):
     assert result.returncode == 0, result.stderr
     plan = result.stdout + result.stderr
     assert "montanero2007_fig05" in plan
-    assert "runs/alpha100/batch0000.nc" in plan and "runs/alpha090/batch0000.nc" in plan
-    for unrelated in ("runs/alpha030/", "runs/hcs_", "runs/error_", "montanero2007_fig03"):
+    assert "dsmc/alpha100/batch0000.nc" in plan and "dsmc/alpha090/batch0000.nc" in plan
+    for unrelated in ("dsmc/alpha030/", "dsmc/hcs_", "dsmc/error_", "montanero2007_fig03"):
         assert unrelated not in plan
 
 

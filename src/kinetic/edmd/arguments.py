@@ -269,7 +269,10 @@ def check_system(
 
 
 def _sequence(name, values, *, minimum=0.0, strictly_increasing=False):
-    array = np.asarray(values, dtype=float).reshape(-1)
+    try:
+        array = np.asarray(values, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a sequence of numbers, got {values!r}") from None
     if array.size == 0:
         raise ValueError(f"{name} must not be empty")
     if not np.all(np.isfinite(array)) or np.any(array <= minimum):
@@ -320,6 +323,14 @@ def check_simulate(
     if dimension not in (2, 3):
         raise ValueError(f"dimension must be 2 or 3, got {dimension!r}")
     density = _finite_positive("density", density)
+    for name, value in (
+        ("equilibration", equilibration),
+        ("duration", duration),
+        ("flight_time_max", flight_time_max),
+        ("free_path_max", free_path_max),
+    ):  # a string reached math.isfinite, whose message named no argument
+        if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+            raise TypeError(f"{name} must be a real number, got {value!r}")
     if not (math.isfinite(equilibration) and equilibration >= 1.0):
         raise ValueError(f"equilibration must be >= 1 collision per particle, got {equilibration}")
     if not (math.isfinite(duration) and duration > 0):
