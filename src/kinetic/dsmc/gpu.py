@@ -757,9 +757,10 @@ class _Batch:
 
     def accepted_collisions(self) -> np.ndarray:
         """Each realization's accepted collisions so far, summed on the device: the host
-        gets R integers, not the (R, groups, 4) tally (20 MB at 2 × 10⁷ particles, copied
-        every window of the bench's 10 steps until 2026-11-30: about a tenth of the
-        engine time of the H200 run of 5a93630 at N = 2 × 10⁵ × 100)."""
+        gets R integers, not the (R, groups, 4) tally (5 MB at 2 × 10⁷ particles in groups
+        of 128, pageable, copied every window of the bench's 10 steps until 2026-11-30:
+        50 MB a case, a few ms of the 180 ms of engine time of the H200 run of 5a93630 at
+        N = 2 × 10⁵ × 100; not timed since)."""
         lanes = self.lanes.shape[1]
         _sum_accepted[(grid(lanes, _SMALL), self.count), _SMALL](self.tally, self.lanes)
         _fold_lanes[grid(self.count, _SMALL), _SMALL](self.lanes, self.accepted)
