@@ -53,7 +53,9 @@ def test_rare_bins_are_dropped_and_counted():
         coords={"window": [10.0], "checkpoint": [1.0e3]},
         attrs={"n_particles": 1000},
     )
-    estimate = collision_statistics.count_ldf_estimate(dataset, 10.0, min_count=10)
+    estimate = collision_statistics.count_ldf_estimate(
+        dataset, 10.0, min_count=10, errors="counting"
+    )
     assert np.all(histogram[estimate["count"]] >= 10)
     assert estimate["dropped"] == np.sum((histogram > 0) & (histogram < 10))
     # the kept bins follow the exact finite-t Poisson curve within their counting errors
@@ -73,7 +75,10 @@ def test_md_follows_the_gaussian_closure_not_poisson_at_t_10():
         windows=(10.0,),
         equilibration=5,
     )
-    estimate = collision_statistics.count_ldf_estimate(md, 10.0, min_count=10)
+    # two realizations give no spread to err by: the counting errors, which understate
+    # the bins' scatter (collision_statistics.ERRORS), are what the bounds below were
+    # measured with
+    estimate = collision_statistics.count_ldf_estimate(md, 10.0, min_count=10, errors="counting")
     counts = np.arange(estimate["count"].max() + 1, dtype=float)
     chi2 = {}
     for name, curve in (
@@ -88,3 +93,52 @@ def test_md_follows_the_gaussian_closure_not_poisson_at_t_10():
     # 1 ± √(2/dof) of independent bins), of Poisson 40-67, their ratio at least 15.
     assert chi2["gaussian"] < 4.0, chi2
     assert chi2["poisson"] > 8 * chi2["gaussian"], chi2
+
+
+def _histogram_dataset(histograms):
+    """A window_histogram dataset of one window (t = 10 mean free times) and checkpoint."""
+    realizations = histograms.shape[0]
+    return xr.Dataset(
+        {
+            "window_histogram": (
+                ("realization", "checkpoint", "window", "count"),
+                histograms[:, None, None, :],
+            ),
+            "collisions": (("realization", "checkpoint"), np.full((realizations, 1), 5.0e3)),
+            "production_time": (("realization", "checkpoint"), np.full((realizations, 1), 1.0e2)),
+            "window_time": (("realization", "window"), np.full((realizations, 1), 10.0)),
+        },
+        coords={"window": [10.0], "checkpoint": [1.0e2]},
+        attrs={"n_particles": 100},
+    )
+
+
+def test_realization_errors_are_the_scatter_of_the_estimate():
+    """300 independent experiments of 16 realizations, each realization 2000 Poisson
+    counts at a rate of its own (5 % lognormal scatter: a realization's particles share
+    its windows, so its counts share their fluctuations). The spread of π_t over the
+    experiments at k = 6, 10, 14 is what the realizations' errors say (0.90-1.14 of their
+    mean with seed 3), and 2.2-2.5 times the counting errors off the mode."""
+    rng = np.random.default_rng(3)
+    realizations, draws, experiments, counts = 16, 2000, 300, [6, 10, 14]
+    values = {name: [] for name in collision_statistics.ERRORS}
+    errors = {name: [] for name in collision_statistics.ERRORS}
+    for _ in range(experiments):
+        rates = 10.0 * np.exp(0.05 * rng.standard_normal(realizations) - 0.05**2 / 2)
+        histograms = np.stack(
+            [np.bincount(rng.poisson(rate, draws), minlength=40)[:40] for rate in rates]
+        )
+        dataset = _histogram_dataset(histograms)
+        for name in collision_statistics.ERRORS:
+            estimate = collision_statistics.count_ldf_estimate(dataset, 10.0, errors=name)
+            where = np.searchsorted(estimate["count"], counts)
+            assert np.array_equal(estimate["count"][where], counts)
+            values[name].append(estimate["ldf"][where])
+            errors[name].append(estimate["error"][where])
+    ratio = {
+        name: np.std(values[name], axis=0, ddof=1) / np.mean(errors[name], axis=0)
+        for name in values
+    }
+    # the spread's own relative error over 300 experiments is 4 %
+    assert np.all((ratio["realizations"] > 0.8) & (ratio["realizations"] < 1.25)), ratio
+    assert ratio["counting"][0] > 1.8 and ratio["counting"][2] > 1.8, ratio

@@ -89,8 +89,10 @@ for alpha in sorted(scan_alphas, reverse=True):
         c,
         c_err,
     )
-    for row in chosen:
-        deviation = row["kappa_ratio"] / k0 - 1.0
+    departures = analysis.departure_from_linear_response(fields, kappa, error, fit_max)
+    for row, deviation, deviation_err in zip(
+        chosen, departures["departure"], departures["departure_err"], strict=True
+    ):
         table.append(
             {
                 "case": "field",
@@ -99,8 +101,9 @@ for alpha in sorted(scan_alphas, reverse=True):
                 "kappa_ratio": row["kappa_ratio"],
                 "kappa_ratio_err": row["kappa_ratio_err"],
                 "linear_response_kappa_ratio": k0,
+                "linear_response_kappa_ratio_err": k0_err,
                 "relative_departure": deviation,
-                "relative_departure_err": row["kappa_ratio_err"] / k0,
+                "relative_departure_err": deviation_err,
                 **measured_and_theory(row, alpha),
             }
         )

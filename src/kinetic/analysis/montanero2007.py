@@ -33,6 +33,7 @@ __all__ = [
     "beta1_estimate",
     "beta1_ratio_estimate",
     "checks",
+    "departure_from_linear_response",
     "distributions_of",
     "error_budget",
     "field_extrapolation",
@@ -640,6 +641,30 @@ def linear_response_fit(fields, kappa, kappa_err, max_field: float):
     jacobian = np.array([slope / k0**2, -1.0 / k0])
     c_err = float(np.sqrt(jacobian @ covariance @ jacobian))
     return float(k0), float(np.sqrt(covariance[0, 0])), float(c), c_err
+
+
+def departure_from_linear_response(fields, kappa, kappa_err, max_field: float) -> dict:
+    """Each field's relative departure κ'/k0 - 1 from the linear-response fit
+    (``linear_response_fit`` to the fields <= ``max_field``), with its error: the field's
+    own, k0's, and, for a field inside the fit, their covariance (k0 is linear in the
+    fitted κ'_i, cov(κ'_i, k0) = Cov[0, 0] + Cov[0, 1] ε*_i²). Returns ``k0``, ``k0_err``
+    and the arrays ``departure``, ``departure_err``."""
+    fields, kappa, kappa_err = (np.asarray(a, dtype=float) for a in (fields, kappa, kappa_err))
+    mask = fields <= max_field
+    if mask.sum() < 2:
+        raise ValueError(f"need >= 2 fields <= {max_field} for the linear-response fit")
+    coefficients, covariance, _ = _weighted_polyfit(
+        fields[mask] ** 2, kappa[mask], kappa_err[mask], 1
+    )
+    k0, k0_var = float(coefficients[0]), float(covariance[0, 0])
+    shared = np.where(mask, covariance[0, 0] + covariance[0, 1] * fields**2, 0.0)
+    variance = kappa_err**2 / k0**2 + kappa**2 * k0_var / k0**4 - 2 * kappa * shared / k0**3
+    return {
+        "k0": k0,
+        "k0_err": float(np.sqrt(k0_var)),
+        "departure": kappa / k0 - 1.0,
+        "departure_err": np.sqrt(variance),
+    }
 
 
 # ------------------------------------------------------------------- checks

@@ -408,8 +408,9 @@ def fig09(md, finite, asymptotic, windows, min_count, pdf):
     to the exact Poisson(t) count, with the t -> ∞ curves for reference.
 
     Bins of P(N) seen fewer than ``min_count`` times are dropped (they sit at the histogram's
-    floor). The caption quotes χ²/dof of the data against each finite-t curve (pooled counting
-    errors), computed here from the MD and theory files.
+    floor). The caption quotes χ²/dof of the data against each finite-t curve (errors over the
+    realizations: ``collision_statistics.ERRORS``), computed here from the MD and theory
+    files.
 
     Drawn from ``md``, ``finite``, ``asymptotic``, ``windows``, ``min_count`` (the datasets
     the rule reads) and saved at ``pdf``; returns the numbers its caption quotes."""
@@ -470,6 +471,7 @@ def fig09(md, finite, asymptotic, windows, min_count, pdf):
                 theory_rate,
                 curves[name].values,
             )
+        numbers["realizations"] = estimate["realizations"]
         numbers[f"t_{tag}"] = window
         numbers[f"bins_{tag}"] = int(estimate["rate"].size)
         numbers[f"dropped_{tag}"] = estimate["dropped"]
