@@ -71,8 +71,7 @@ plotting.save(fig, snakemake.output.pdf)
 
 b2, b2_err = column("b2_full_extrapolated"), column("b2_full_extrapolated_err")
 b3, b3_err = column("b3_full_extrapolated"), column("b3_full_extrapolated_err")
-ratio = b3 / b2
-ratio_err = np.abs(ratio) * np.hypot(b3_err / b3, b2_err / b2)
+ratio, ratio_err = np.array([analysis.extrapolated_b3_over_b2(row) for row in rows]).T
 at = int(np.argmin(abs(alpha - 0.9)))
 strongest = int(np.argmin(alpha))
 write_caption(
