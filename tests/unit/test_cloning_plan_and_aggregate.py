@@ -125,3 +125,28 @@ def test_planned_event_rate_factor_is_the_kernels(lam):
     from kinetic.studies.visco2008_cloning import event_rate_factor
 
     assert event_rate_factor(lam) == pytest.approx(kernels.compensation_parameters(lam)[0])
+
+
+def test_deviation_from_the_extrapolation_has_the_fits_covariance():
+    """A point's deviation from the 1/N_c -> 0 intercept of a fit through it: its error
+    (with the covariance of the point and the intercept) is the scatter of 4000 synthetic
+    scans within 5 % at every population, where adding the two errors as independent
+    overstates it at the large populations and understates it at the smallest."""
+    from kinetic.analysis.cloning import deviation_from_extrapolation_err
+    from kinetic.cloning.estimators import extrapolate_population
+
+    sizes = np.array([25.0, 100.0, 400.0, 1600.0])
+    sigma = np.array([0.004, 0.002, 0.0012, 0.0008])
+    truth = -0.576 - 0.1 / sizes
+    rng = np.random.default_rng(9)
+    deviations, intercept_errors = [], []
+    for _ in range(4000):
+        values = truth + sigma * rng.standard_normal(sizes.size)
+        fit = extrapolate_population(sizes, values, sigma)
+        deviations.append(values - fit.intercept)
+        intercept_errors.append(fit.intercept_err / max(1.0, np.sqrt(fit.chi2 / fit.dof)))
+    scatter = np.std(deviations, axis=0, ddof=1)
+    predicted = [deviation_from_extrapolation_err(sizes, sigma, i) for i in range(sizes.size)]
+    np.testing.assert_allclose(predicted, scatter, rtol=0.05)
+    independent = np.hypot(sigma, np.median(intercept_errors))
+    assert independent[-1] > 1.3 * scatter[-1] and independent[0] < scatter[0]
