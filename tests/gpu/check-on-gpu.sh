@@ -10,7 +10,7 @@
 # (jsonschema and its own dependencies): `make gpu-wheels` downloads them into .whl/.
 #
 # First `python -m kinetic.bench cuda` (what only a GPU can measure; its sections in the
-# order given, none started after KINETIC_BENCH_BUDGET seconds, default a minute before
+# order given, none started after KINETIC_BENCH_BUDGET seconds, default 20 s before
 # BENCH_SECONDS, the bench's timeout), then the GPU
 # tests on the GPU (not the simulator; but the PTX compile checks, which need no GPU and
 # took the end of the time of the run of 5836ea7) with the time left of TOTAL_SECONDS
@@ -43,9 +43,10 @@ python -c "import numpy, numba; from numba import cuda; print('numpy', numpy.__v
 python -c "from kinetic.bench import cuda; cuda.preflight()" || exit 1
 nvidia-smi --query-gpu=name,memory.total,clocks.max.sm,clocks.max.mem,pcie.link.gen.max --format=csv 2>/dev/null
 bench_seconds=${BENCH_SECONDS:-$((total - 100))}
-# no section starts in the last minute of the bench's time; one still running at the
+# no section starts in the last 20 s of the bench's time; one still running at the
 # timeout gets SIGTERM, which the bench turns into a report of what it had measured
-export KINETIC_BENCH_BUDGET=${KINETIC_BENCH_BUDGET:-$((bench_seconds > 120 ? bench_seconds - 60 : bench_seconds / 2))}
+# (its "partial"), so a late start loses nothing
+export KINETIC_BENCH_BUDGET=${KINETIC_BENCH_BUDGET:-$((bench_seconds > 40 ? bench_seconds - 20 : bench_seconds / 2))}
 timeout -k 20 "$bench_seconds" python -m kinetic.bench cuda --out "$out" "$@" >"$out/bench.log" 2>&1
 bench_rc=$?
 echo "bench: exit $bench_rc after $((SECONDS - start)) s (tail of $out/bench.log below)"
