@@ -648,12 +648,9 @@ def extrapolated_b3_over_b2(row: dict) -> tuple[float, float]:
     return float(ratio), float(abs(ratio) * np.sqrt(max(relative, 0.0)))
 
 
-def linear_response_fit(fields, kappa, kappa_err, max_field: float):
-    """Fit kappa'(eps*) = k0 (1 - C eps*^2) to the fields <= ``max_field``.
-
-    q_x is odd in eps, so kappa' = -q_x/(T eps) is even: the first correction is O(eps*^2).
-    Returns (k0, k0_err, C, C_err).
-    """
+def _linear_response_polyfit(fields, kappa, kappa_err, max_field: float):
+    """The weighted fit kappa' = k0 + s eps*^2 to the fields <= ``max_field``: the arrays,
+    the mask of fitted fields, the coefficients (k0, s) and their covariance."""
     fields, kappa, kappa_err = (np.asarray(a, dtype=float) for a in (fields, kappa, kappa_err))
     mask = fields <= max_field
     if mask.sum() < 2:
@@ -661,6 +658,16 @@ def linear_response_fit(fields, kappa, kappa_err, max_field: float):
     coefficients, covariance, _ = _weighted_polyfit(
         fields[mask] ** 2, kappa[mask], kappa_err[mask], 1
     )
+    return fields, kappa, kappa_err, mask, coefficients, covariance
+
+
+def linear_response_fit(fields, kappa, kappa_err, max_field: float):
+    """Fit kappa'(eps*) = k0 (1 - C eps*^2) to the fields <= ``max_field``.
+
+    q_x is odd in eps, so kappa' = -q_x/(T eps) is even: the first correction is O(eps*^2).
+    Returns (k0, k0_err, C, C_err).
+    """
+    *_, coefficients, covariance = _linear_response_polyfit(fields, kappa, kappa_err, max_field)
     k0, slope = coefficients
     c = -slope / k0
     jacobian = np.array([slope / k0**2, -1.0 / k0])
@@ -674,12 +681,8 @@ def departure_from_linear_response(fields, kappa, kappa_err, max_field: float) -
     own, k0's, and, for a field inside the fit, their covariance (k0 is linear in the
     fitted κ'_i, cov(κ'_i, k0) = Cov[0, 0] + Cov[0, 1] ε*_i²). Returns ``k0``, ``k0_err``
     and the arrays ``departure``, ``departure_err``."""
-    fields, kappa, kappa_err = (np.asarray(a, dtype=float) for a in (fields, kappa, kappa_err))
-    mask = fields <= max_field
-    if mask.sum() < 2:
-        raise ValueError(f"need >= 2 fields <= {max_field} for the linear-response fit")
-    coefficients, covariance, _ = _weighted_polyfit(
-        fields[mask] ** 2, kappa[mask], kappa_err[mask], 1
+    fields, kappa, kappa_err, mask, coefficients, covariance = _linear_response_polyfit(
+        fields, kappa, kappa_err, max_field
     )
     k0, k0_var = float(coefficients[0]), float(covariance[0, 0])
     shared = np.where(mask, covariance[0, 0] + covariance[0, 1] * fields**2, 0.0)
