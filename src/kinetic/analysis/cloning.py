@@ -102,13 +102,18 @@ def combine_points(datasets, names=None) -> list[dict[str, Any]]:
 
 
 def _fit(sizes, values, errors):
+    """The 1/N_c -> 0 fit of one point's values (``extrapolate_population``), and
+    ``deviation_err``: each input value's error as a deviation from the intercept
+    (:func:`deviation_from_extrapolation_err`; NaN for the values left out)."""
     sizes, values, errors = map(np.asarray, (sizes, values, errors))
     usable = np.isfinite(values) & np.isfinite(errors)
+    deviation_err = np.full(usable.size, np.nan)
     sizes, values, errors = sizes[usable], values[usable], errors[usable]
     if np.unique(sizes).size < 2:
         return None
     if np.all(errors == 0):  # exact values (μ = 0 at λ = 0)
         if np.ptp(values) == 0:
+            deviation_err[usable] = 0.0
             return {
                 "value": float(values[0]),
                 "err": 0.0,
@@ -116,10 +121,16 @@ def _fit(sizes, values, errors):
                 "slope_err": 0.0,
                 "chi2": 0.0,
                 "dof": int(values.size - 2),
+                "deviation_err": deviation_err,
             }
         return None
     errors = np.where(errors > 0, errors, errors[errors > 0].min())
     fit = extrapolate_population(sizes, values, errors)
+    birge = max(1.0, fit.chi2 / fit.dof) if fit.dof > 0 else 1.0
+    deviation_err[usable] = [
+        np.sqrt(birge) * deviation_from_extrapolation_err(sizes, errors, i)
+        for i in range(sizes.size)
+    ]
     return {
         "value": fit.intercept,
         "err": fit.intercept_err,
@@ -127,6 +138,7 @@ def _fit(sizes, values, errors):
         "slope_err": fit.slope_err,
         "chi2": fit.chi2,
         "dof": fit.dof,
+        "deviation_err": deviation_err,
     }
 
 
@@ -373,37 +385,27 @@ def deviation_from_extrapolation_err(population_sizes, errors, index: int) -> fl
     return float(np.sqrt(max(variance, 0.0)))
 
 
-def _deviation_err(group, record, limit) -> float:
-    """``deviation_from_extrapolation_err`` of ``record`` among the points of its λ that
-    ``_fit`` used (finite values; zero errors as the smallest positive one)."""
-    usable = [m for m in group if np.isfinite(m["mu_rate"]) and np.isfinite(m["mu_rate_err"])]
-    if not np.isfinite(limit["value"]) or not any(m is record for m in usable):
-        return np.nan
-    errors = np.array([m["mu_rate_err"] for m in usable])
-    if np.all(errors == 0):
-        return 0.0
-    errors = np.where(errors > 0, errors, errors[errors > 0].min())
-    birge = max(1.0, limit["chi2"] / limit["dof"]) if limit["dof"] > 0 else 1.0
-    index = next(i for i, m in enumerate(usable) if m is record)
-    population = [m["population"] for m in usable]
-    return float(np.sqrt(birge) * deviation_from_extrapolation_err(population, errors, index))
-
-
 def error_table(records, exact: dict[float, float]) -> pd.DataFrame:
     """Per (λ, N_c): CPU time, statistical errors, finite-N_c bias of μ_rate against
     ``exact`` μ and against the extrapolation of these points, and the CPU time at which
     the statistical error of μ_rate (scaled as 1/√CPU) falls to the bias (empty where the
     bias is not resolved, |bias| < 2 standard errors)."""
-    extrapolated = {e["lam"]: e for e in extrapolate_points(records)}
-    members = defaultdict(list)
+    extrapolated = {(e["kernel"], e["lam"]): e for e in extrapolate_points(records)}
+    members = defaultdict(list)  # each (kernel, λ)'s records, in the order of its fit
     for record in records:
         members[(record["kernel"], record["lam"])].append(record)
     rows = []
     for record in records:
         cpu = float(record["cpu_seconds"].sum())
         lam = record["lam"]
-        limit = extrapolated[lam]["mu_rate"] or {"value": np.nan, "err": np.nan}
-        deviation_err = _deviation_err(members[(record["kernel"], lam)], record, limit)
+        key = (record["kernel"], lam)
+        limit = extrapolated[key]["mu_rate"] or {"value": np.nan, "err": np.nan}
+        deviation_err = np.nan
+        if "deviation_err" in limit:
+            group = members[key]
+            deviation_err = limit["deviation_err"][
+                next(i for i, m in enumerate(group) if m is record)
+            ]
         bias = record["mu_rate"] - exact[lam]
         resolved = abs(bias) > 2 * record["mu_rate_err"]
         crossover = cpu_for_error(cpu, record["mu_rate_err"], abs(bias)) if resolved else np.nan
