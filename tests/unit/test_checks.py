@@ -107,6 +107,21 @@ def test_visco2008_checks_pass_the_documents_numbers_and_fail_a_shifted_one():
     maxwell = [next(c for c in found if "Maxwell" in c.claim) for found in (normal, student)]
     assert [c.passed for c in maxwell] == [False, True]
     assert maxwell[1].rule == f"|z| <= {checks.tolerance_factor(3.0, 7):.3g}"
+    # the config's band (checks.sigmas = 4) with the default build's 16 realizations:
+    # 5 errors off passes within 5.48, and fails at 3 sigma (3.59)
+    off = _cloning(math.expm1(-1.0) + 0.005)
+    verdicts = [
+        next(
+            c
+            for c in visco2008.checks(
+                _table1(1.1228), off, REFERENCE, sigmas=sigmas, cloning_dof=15
+            )
+            if "Maxwell" in c.claim
+        )
+        for sigmas in (3.0, 4.0)
+    ]
+    assert [c.passed for c in verdicts] == [False, True]
+    assert verdicts[1].rule == "|z| <= 5.48"
 
 
 def test_krauth2025_checks_correct_the_extrapolation_bias_and_only_report_the_limit():

@@ -21,6 +21,19 @@ def test_shipped_configs_are_valid(name):
     validate_config(_load(name), SCHEMA)
 
 
+@pytest.mark.parametrize("name", ["config.yaml", "ci.yaml", "paper.yaml"])
+def test_checks_that_stop_a_build_are_at_four_sigma(name):
+    """A document in fail_on_checks stops a correct build when one of its checks fails by
+    chance: at 3 sigma (0.27 % a check) visco2008's 61 checks stop one build in 7, at 4
+    (6.3e-5) one in 260. Every document's config names its band."""
+    config = _load(name)
+    validate_config(config, SCHEMA)
+    for document in ("visco2008", "montanero2007", "krauth2025", "costantini2010"):
+        assert "sigmas" in _load(name)[document]["checks"], document
+    for document in config["fail_on_checks"]:
+        assert config[document]["checks"]["sigmas"] >= 4, document
+
+
 def test_defaults_are_filled_in():
     config = {"seed": 3}
     validate_config(config, SCHEMA)

@@ -9,7 +9,8 @@ from kinetic.workflow_support import start
 log = start(snakemake)
 results = [io.read_dataset(path) for path in snakemake.input.runs]
 extrapolated, fits = analysis.extrapolated_rows([analysis.summary_row(r) for r in results])
-found = analysis.checks(results, snakemake.params.study)
-found += analysis.elastic_checks(extrapolated, fits)
+sigmas = snakemake.params.checks["sigmas"]
+found = analysis.checks(results, snakemake.params.study, sigmas=sigmas)
+found += analysis.elastic_checks(extrapolated, fits, sigmas=sigmas)
 log.info("checks:\n%s", check.table(found).to_string(index=False))
 check.write(found, snakemake.output.csv, snakemake.output.md, fail=snakemake.params.fail)

@@ -7,7 +7,9 @@ from kinetic.workflow_support import start
 
 log = start(snakemake)
 found = analysis.checks(
-    io.read_table(snakemake.input.pins), io.read_table(snakemake.input.pressure)
+    io.read_table(snakemake.input.pins),
+    io.read_table(snakemake.input.pressure),
+    sigmas=snakemake.params.checks["sigmas"],
 )
 log.info("checks:\n%s", check.table(found).to_string(index=False))
 check.write(found, snakemake.output.csv, snakemake.output.md, fail=snakemake.params.fail)

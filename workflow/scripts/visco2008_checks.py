@@ -11,6 +11,7 @@ found = analysis.checks(
     io.read_table(snakemake.input.table),
     cloning,
     io.read_dataset(snakemake.input.reference),
+    sigmas=snakemake.params.checks["sigmas"],
     md_dof=snakemake.params.md_dof,
     cloning_dof=snakemake.params.cloning_dof,
 )

@@ -256,6 +256,7 @@ rule costantini2010_checks:
         log_file("costantini2010/checks.log"),
     params:
         study=costantini2010_settings("a2", "density", "dsmc", "figures"),
+        checks=config["costantini2010"]["checks"],
         fail=fails_on_checks("costantini2010"),
     script:
         "../../scripts/costantini2010_checks.py"

@@ -427,6 +427,7 @@ rule krauth2025_checks:
     log:
         log_file("krauth2025/checks.log"),
     params:
+        checks=config["krauth2025"]["checks"],
         fail=fails_on_checks("krauth2025"),
     script:
         "../../scripts/krauth2025_checks.py"

@@ -629,6 +629,7 @@ rule visco2008_checks:
     log:
         log_file("visco2008/checks.log"),
     params:
+        checks=config["visco2008"]["checks"],
         fail=fails_on_checks("visco2008"),
         # the errors' degrees of freedom: their realizations less one (Student's bands)
         md_dof=config["visco2008"]["md"]["realizations"] - 1,
