@@ -282,7 +282,7 @@ def test_visco2008_document_runs_a_cloning_job_through_the_workflows_job(monkeyp
         job = next(j for j in real(config) if j.gpus and "error_vs_time" in j.rule)
         point = job.arguments["points"][0]
         assert point["lam"] == 1.0
-        point = point | {"duration": 1.0, "n_blocks": 2, "transient": 4.0, "n_realizations": 1}
+        point = point | {"duration": 1.0, "n_blocks": 2, "transient": 4.0, "n_realizations": 2}
         arguments = {**job.arguments, "points": [point]}
         return [dataclasses.replace(job, arguments=arguments, outputs=job.files[:1])]
 

@@ -161,12 +161,12 @@ def test_points_sharing_launches_give_what_they_give_alone(maxwell, monkeypatch,
         common
         | {
             "lam": 2.0,
-            "duration": 6.0,
+            "duration": 20.0,  # one realization: blocks of >= 10 mean free times
             "transient": 9.0,
             "n_blocks": 2,
             "n_realizations": 1,
             "seed": 4,
-            "control_interval": 0.5,
+            "control_interval": 5.0,
         },
         {
             **common,
@@ -182,7 +182,6 @@ def test_points_sharing_launches_give_what_they_give_alone(maxwell, monkeypatch,
     if path == "launched":  # three launches an interval: two points under the simulator
         points = points[:2]  # 1 interval a block (point 0) against 2 (point 1)
         points[0] |= {"control_interval": 1.0}
-        points[1] |= {"control_interval": 1.5}
     together = simulate_points(points)
     alone = [simulate(**point) for point in points[:2]] + [maxwell][: len(points) - 2]
     for shared, single in zip(together, alone, strict=True):

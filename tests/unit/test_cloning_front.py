@@ -39,6 +39,7 @@ SMALL = {
         ({"seed": -1}, "seed = -1 is not allowed"),
         ({"seed": 2**64}, "seed = 18446744073709551616 is not allowed"),
         ({"n_realizations": 1, "n_blocks": 1}, "n_blocks >= 2"),
+        ({"n_realizations": 1, "n_blocks": 10, "duration": 1e-12}, "blocks of duration/n_blocks"),
         ({"lam": 8.0, "transient": 100.0}, "transient=100 is too short at lam=8"),
         ({"backend": "cuda", "n_realizations": 65_536}, "at most 65535 realizations"),
         ({"control_interval": 0.5}, "control_interval = 0.5 is for backend 'cuda' only"),
@@ -85,7 +86,7 @@ def test_dataset_follows_conventions_and_stores_parameters():
 
 
 def test_single_realization_uses_block_errors():
-    ds = simulate(**{**SMALL, "n_realizations": 1, "n_blocks": 10})
+    ds = simulate(**{**SMALL, "n_realizations": 1, "n_blocks": 4, "duration": 40.0})
     assert ds.attrs["error_method"] == "blocks"
     assert float(ds.mu_err) > 0
 

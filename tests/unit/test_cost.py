@@ -264,7 +264,7 @@ def test_cloning_blocks_are_cut_as_the_front_cuts_them():
             duration=duration,
             transient=transient,
             n_blocks=n_blocks,
-            n_realizations=1,
+            n_realizations=2,
             first_realization=0,
             seed=1,
             histogram_half_width=6.0,

@@ -273,7 +273,7 @@ def cloning_speed(quick: bool) -> dict[str, Any]:
     cases = []
     _keep(gpu=cases)
     sizes = [
-        (1000, 1, 20.0),
+        (1000, 1, 100.0),  # one realization: blocks of 10 (MIN_SINGLE_REALIZATION_BLOCK)
         (1000, 100, 100.0),
         (10_000, 32, 100.0),
         (100_000, 1, 100.0),
