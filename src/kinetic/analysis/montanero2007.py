@@ -465,26 +465,37 @@ def particle_number_bias(rows, n_reference: int):
     """Finite-N bias c_N/N from runs at one time step and force step: returns (c_N, error).
 
     For each run with N != ``n_reference``, the difference to the run with N_reference at
-    the same time step and force step estimates c_N (1/N - 1/N_ref); the weighted mean of
-    those estimates is returned ((0, inf) if there is none).
+    the same time step and force step estimates c_N (1/N - 1/N_ref); the generalised
+    least-squares mean of those estimates is returned ((0, inf) if there is none). Two
+    estimates against the same reference run share its error: with levers L_i, L_j and the
+    reference's error s_ref their covariance is s_ref²/(L_i L_j), which the mean weighs in
+    (as independent, two sizes against one reference had their error 3-6 % low).
     """
     reference = {
         (row["time_step"], row["force_step"], _splitting(row)): row
         for row in rows
         if row["n_particles"] == n_reference
     }
-    estimates, errors = [], []
+    estimates, own, bases = [], [], []
     for row in rows:
-        base = reference.get((row["time_step"], row["force_step"], _splitting(row)))
+        key = (row["time_step"], row["force_step"], _splitting(row))
+        base = reference.get(key)
         if base is None or row["n_particles"] == n_reference:
             continue
         lever = 1.0 / row["n_particles"] - 1.0 / n_reference
         estimates.append((row["kappa_ratio"] - base["kappa_ratio"]) / lever)
-        errors.append(np.hypot(row["kappa_ratio_err"], base["kappa_ratio_err"]) / abs(lever))
+        own.append(row["kappa_ratio_err"] / lever)
+        bases.append((key, base["kappa_ratio_err"] / lever))
     if not estimates:
         return 0.0, float("inf")
-    weights = 1.0 / np.square(errors)
-    return float(np.sum(weights * estimates) / np.sum(weights)), float(np.sqrt(1 / weights.sum()))
+    covariance = np.diag(np.square(own))
+    for i, (key_i, shared_i) in enumerate(bases):
+        for j, (key_j, shared_j) in enumerate(bases):
+            if key_i == key_j:
+                covariance[i, j] += shared_i * shared_j
+    weights = np.linalg.solve(covariance, np.ones(len(estimates)))
+    total = float(weights.sum())
+    return float(weights @ np.asarray(estimates) / total), float(np.sqrt(1.0 / total))
 
 
 def error_budget(rows, n_reference: int, target_errors):
