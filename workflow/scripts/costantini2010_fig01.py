@@ -12,11 +12,23 @@ from kinetic.workflow_support import start
 log = start(snakemake)
 results = [io.read_dataset(path) for path in snakemake.input.runs]
 fig, (ax, chaos) = plotting.figure(1, 2, figsize=(7.0, 2.8), width_ratios=[2, 1])
-dsmc_colors = iter(plotting.plt.cm.viridis(np.linspace(0.0, 0.9, len(results))))
+# the inhomogeneous DSMC runs in colours of their own (none of another method's), the
+# homogeneous ones in their method's colour, dashed, told apart by lightness and dashes
+dsmc_colors = iter(
+    ["tab:blue", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:olive"] * 4
+)
+homogeneous = sorted(
+    int(r.attrs["fictive_factor"]) for r in results if method_of(r) == "dsmc_homogeneous"
+)
 for result in results:
     method = method_of(result)
-    color = METHOD_STYLE[method]["color"] if method != "dsmc" else next(dsmc_colors)
-    style = "-" if method == "md" else ("--" if method == "dsmc_homogeneous" else "-")
+    color, style = METHOD_STYLE[method]["color"], "-"
+    if method == "dsmc":
+        color = next(dsmc_colors)
+    elif method == "dsmc_homogeneous":
+        rank = homogeneous.index(int(result.attrs["fictive_factor"]))
+        color = plotting.shade(color, rank, len(homogeneous))
+        style = ["--", "-.", ":"][rank % 3]
     ax.plot(result.time, result.temperature, style, color=color, lw=0.8, label=run_label(result))
     ax.fill_between(  # the standard error over the realizations
         result.time,

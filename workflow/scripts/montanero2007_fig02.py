@@ -34,15 +34,8 @@ for ax, ds in zip(axes[:, 0], runs, strict=True):
             steady["b_marginal_err"][k],
         )
     ax.set_ylabel(r"$b'_k(t)$")
-    ax.text(
-        0.97,
-        0.5,
-        rf"$\alpha = {steady['parameters']['restitution']:g}$",
-        transform=ax.transAxes,
-        ha="right",
-        va="center",
-        bbox={"facecolor": "white", "edgecolor": "none", "pad": 1},
-    )
+    # above the panel, not on it (inside, a label hid b'_1 and b'_3 at t/tau ~ 50)
+    ax.set_title(rf"$\alpha = {steady['parameters']['restitution']:g}$", fontsize=8, pad=2)
 handles = [Line2D([], [], color=colors[k], label=f"$b'_{k + 1}$") for k in range(3)]
 handles += [
     Line2D([], [], color="0.4", ls="-", label=r"from $\langle c_x L_k^{(3/2)}(c^2)\rangle$"),

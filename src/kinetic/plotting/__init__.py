@@ -36,6 +36,7 @@ __all__ = [
     "method_errorbar",
     "residual_panel",
     "save",
+    "shade",
     "theory_steps",
 ]
 
@@ -67,6 +68,19 @@ METHOD_LABELS = {
     "theory": "theory",
     "theory_alt": "theory",
 }
+
+
+def shade(color, index: int, count: int):
+    """Member ``index`` of ``count`` runs of one method told apart by lightness: the
+    method's ``color`` darkened for the first, lightened for the last (itself when alone)."""
+    from matplotlib.colors import to_rgb
+
+    base = np.asarray(to_rgb(color))
+    if count < 2:
+        return tuple(base)
+    where = index / (count - 1) - 0.5  # -0.5 (darkest) ... +0.5 (lightest)
+    target = np.ones(3) if where > 0 else np.zeros(3)
+    return tuple(base + 1.1 * abs(where) * (target - base))
 
 
 def figure(nrows: int = 1, ncols: int = 1, **kwargs):

@@ -11,6 +11,7 @@ from kinetic import plotting
 __all__ = [
     "METHOD_LABELS",
     "METHOD_STYLE",
+    "RESOLVED_ERRORS",
     "convergence_figure",
     "correlation_panel",
     "fig04",
@@ -30,6 +31,11 @@ METHOD_STYLE = plotting.METHOD_STYLE
 
 METHOD_LABELS = plotting.METHOD_LABELS | {"theory": "theory (first Sonine)"}
 """The project's legend text of each method; costantini2010's theory is first Sonine."""
+
+
+RESOLVED_ERRORS = 2.0
+"""C(τ) is drawn while it stands this many standard errors above zero
+(:func:`correlation_panel`)."""
 
 
 def run_label(result: xr.Dataset, per_cell: bool = True) -> str:
@@ -52,30 +58,38 @@ def real_per_cell(result: xr.Dataset) -> float:
 
 
 def correlation_panel(ax, results, density: float, log=None, per_cell: bool = True) -> None:
-    """C(τ) of several runs of one (N, α) on a log scale, each method in its style (DSMC
-    runs shaded by Λ), with the first-Sonine prediction A e^{-τ/τ_c} (Eq. 9). The DSMC
-    labels give the real particles per cell unless ``per_cell`` is false (a figure whose
-    panels differ only in that number says it in their titles, and lists DSMC once)."""
+    """C(τ) of several runs of one (N, α) on a log scale, each method in its style (the
+    runs of one method at several Λ told apart by lightness, darkest the smallest Λ), with
+    the first-Sonine prediction A e^{-τ/τ_c} (Eq. 9). Each run is drawn up to its first lag
+    where C(τ) is less than :data:`RESOLVED_ERRORS` standard errors above zero: beyond it
+    the points are noise about zero, which a log axis would show only where it happens to
+    be positive (a false plateau). The DSMC labels give the real particles per cell unless
+    ``per_cell`` is false (a figure whose panels differ only in that number says it in
+    their titles, and lists DSMC once)."""
     import numpy as np
 
     from kinetic.analysis.costantini2010 import method_of
     from kinetic.theory import costantini2010 as theory
 
-    factors = sorted({int(r.attrs.get("fictive_factor", 1)) for r in results})
+    factors: dict[str, list[int]] = {}
+    for result in results:
+        factor = int(result.attrs.get("fictive_factor", 1))
+        factors.setdefault(method_of(result), []).append(factor)
     for result in results:
         method = method_of(result)
         style = METHOD_STYLE[method]
-        color = style["color"]
-        if method == "dsmc" and len(factors) > 1:
-            shade = factors.index(int(result.attrs["fictive_factor"])) / (len(factors) - 1)
-            color = (0.1, 0.3 + 0.3 * shade, 0.9 - 0.5 * shade)
-        keep = np.flatnonzero(result.correlation.values > 0)
-        step = max(1, keep.size // 25)
-        keep = keep[::step]
+        own = sorted(set(factors[method]))
+        factor = int(result.attrs.get("fictive_factor", 1))
+        color = plotting.shade(style["color"], own.index(factor), len(own))
+        correlation = result.correlation.values
+        error = result.correlation_sem.values
+        unresolved = np.flatnonzero(~(correlation > RESOLVED_ERRORS * error))
+        end = unresolved[0] if unresolved.size else correlation.size
+        keep = np.arange(end)[:: max(1, end // 25)]
         ax.errorbar(
             result.lag.values[keep],
-            result.correlation.values[keep],
-            yerr=result.correlation_sem.values[keep],
+            correlation[keep],
+            yerr=error[keep],
             fmt=style["marker"],
             mfc="none",
             ms=3,
@@ -85,12 +99,16 @@ def correlation_panel(ax, results, density: float, log=None, per_cell: bool = Tr
         )
         if log is not None:
             log.info(
-                "%s: tau_c = %.4f +- %.4f l/v_s, A = %.4f +- %.4f",
+                "%s: tau_c = %.4f +- %.4f l/v_s, A = %.4f +- %.4f; C(tau) drawn to %.3g "
+                "l/v_s (%d of %d lags resolved)",
                 run_label(result),
                 float(result.tau_c),
                 float(result.tau_c_err),
                 float(result.amplitude),
                 float(result.amplitude_err),
+                float(result.lag.values[max(end - 1, 0)]),
+                end,
+                correlation.size,
             )
     first = results[0]
     alpha, n = float(first.attrs["restitution"]), int(first.attrs["n_particles"])
@@ -234,11 +252,11 @@ def transport_figure(table, study):
                     color=style["color"],
                     alpha=0.35 + 0.65 * (k + 1) / len(sizes),
                     ms=3,
-                    label=f"{METHOD_LABELS[method]}, N = {n}" if k in (0, len(sizes) - 1) else None,
+                    label=f"{METHOD_LABELS[method]}, N = {n}",
                 )
             rows = limit[limit.method == method]
             ax.errorbar(
-                rows.alpha,
+                rows.alpha + 0.004 * len(sizes) * (1 if method == "md" else -1),
                 rows[quantity],
                 rows[f"{quantity}_err"],
                 fmt=style["marker"],
@@ -262,8 +280,9 @@ def transport_figure(table, study):
 
 
 def ratio_figure(table, study):
-    """Fig 7: ν̄*/ν* against α for 1/N -> 0 and the largest N, with the white-noise and
-    the coloured-noise predictions."""
+    """Fig 7: ν̄*/ν* against α for 1/N -> 0 (filled) and the largest N (open), MD and
+    DSMC on either side of each α, with the white-noise and the coloured-noise
+    predictions."""
     import pandas as pd
 
     from kinetic.theory import costantini2010 as theory
@@ -284,21 +303,25 @@ def ratio_figure(table, study):
         )
     for method in ("dsmc", "md"):
         style = METHOD_STYLE[method]
-        for rows, label, size in (
-            (limit[limit.method == method], rf"{METHOD_LABELS[method]}, $1/N\to 0$", 4),
+        side = 1 if method == "md" else -1  # the methods apart at each α, and the two rows
+        for rows, label, size, fill, shift in (
+            (limit[limit.method == method], rf"{METHOD_LABELS[method]}, $1/N\to 0$", 4, True, 1),
             (
                 finite[(finite.method == method) & (finite.n_particles == sizes[-1])],
                 f"{METHOD_LABELS[method]}, N = {sizes[-1]}",
                 3,
+                False,
+                3,
             ),
         ):
-            plotting.errorbar(
+            plotting.errorbar(  # filled: extrapolated, as in Figs 4-6
                 ax,
-                rows.alpha,
+                rows.alpha + side * 0.004 * shift,
                 rows.ratio,
                 rows.ratio_err,
                 marker=style["marker"],
                 color=style["color"],
+                mfc=style["color"] if fill else "none",
                 ms=size,
                 label=label,
             )

@@ -349,8 +349,20 @@ def fig07(scan, closures, reference, pdf):
     lam = closures["lam"].values
 
     fig, ax = plotting.figure()
-    ax.plot(lam, closures["temperature_gaussian"], "-", label="Gaussian (Eq. 43)")
-    ax.plot(*finite(lam, closures["temperature_sonine"].values), "--", label="Sonine")
+    # the closures in the colours of Figs 5, 6 and 8 (the default cycle made Sonine red,
+    # the cloning points' colour)
+    ax.plot(
+        lam,
+        closures["temperature_gaussian"],
+        **plotting.METHOD_STYLE["theory"],
+        label="Gaussian (Eq. 43)",
+    )
+    ax.plot(
+        *finite(lam, closures["temperature_sonine"].values),
+        color="tab:green",
+        linestyle="--",
+        label="Sonine (Eqs. 47-49)",
+    )
     ax.plot(
         *finite(reference["lam"].values, reference["temperature"].values),
         "-",
