@@ -57,7 +57,9 @@ def real_per_cell(result: xr.Dataset) -> float:
     return int(result.attrs["n_particles"]) / int(result.attrs["cells_per_side"]) ** 2
 
 
-def correlation_panel(ax, results, density: float, log=None, per_cell: bool = True) -> None:
+def correlation_panel(
+    ax, results, density: float, log=None, per_cell: bool = True, limit: bool = True
+) -> float:
     """C(τ) of several runs of one (N, α) on a log scale, each method in its style (the
     runs of one method at several Λ told apart by lightness, darkest the smallest Λ), with
     the first-Sonine prediction A e^{-τ/τ_c} (Eq. 9). Each run is drawn up to its first lag
@@ -65,12 +67,15 @@ def correlation_panel(ax, results, density: float, log=None, per_cell: bool = Tr
     the points are noise about zero, which a log axis would show only where it happens to
     be positive (a false plateau). The DSMC labels give the real particles per cell unless
     ``per_cell`` is false (a figure whose panels differ only in that number says it in
-    their titles, and lists DSMC once)."""
+    their titles, and lists DSMC once). The y axis ends at half the lowest point drawn
+    (its error bar included), not where the theory line does, unless ``limit`` is false
+    (panels sharing their y axis: the caller sets it from the returned lowest point)."""
     import numpy as np
 
     from kinetic.analysis.costantini2010 import method_of
     from kinetic.theory import costantini2010 as theory
 
+    lowest = np.inf  # the y axis ends below the lowest point drawn, not the theory's
     factors: dict[str, list[int]] = {}
     for result in results:
         factor = int(result.attrs.get("fictive_factor", 1))
@@ -86,6 +91,8 @@ def correlation_panel(ax, results, density: float, log=None, per_cell: bool = Tr
         unresolved = np.flatnonzero(~(correlation > RESOLVED_ERRORS * error))
         end = unresolved[0] if unresolved.size else correlation.size
         keep = np.arange(end)[:: max(1, end // 25)]
+        if keep.size:
+            lowest = min(lowest, float(np.min(correlation[keep] - error[keep])))
         ax.errorbar(
             result.lag.values[keep],
             correlation[keep],
@@ -118,8 +125,11 @@ def correlation_panel(ax, results, density: float, log=None, per_cell: bool = Tr
     )
     ax.plot(lag, prediction, color=METHOD_STYLE["theory"]["color"], lw=1, label="Eq. 9")
     ax.set_yscale("log")
+    if limit and np.isfinite(lowest) and lowest > 0:
+        ax.set_ylim(bottom=0.5 * lowest)
     ax.set_xlabel(r"$\tau\, v_s/\ell$")
     ax.set_ylabel(r"$C(\tau)$")
+    return lowest
 
 
 def transport_rows(table, study):
