@@ -75,8 +75,8 @@ def test_grouped_cloning_case_counts_every_points_events(monkeypatch):
     """``cloning_speed``'s grouped-job case (``resident_threads``), at a tiny size under
     the simulator: every point's collisions, over the wall time of the one call."""
     monkeypatch.setattr(bench, "_paper_lambdas", lambda kernel: [1.0, -0.5])
-    case = bench._cloning_grouped(8, 2.0, realizations=1)
-    assert case["points"] == 2 and case["realizations"] == 2
+    case = bench._cloning_grouped(8, 2.0, realizations=2)  # one would need blocks of 10
+    assert case["points"] == 2 and case["realizations"] == 4
     assert case["events"] > 0
     assert case["events_per_second"] == case["events"] / case["wall_seconds"]
     assert case["path"] == "grouped" and case["planned_seconds"] > 0

@@ -310,7 +310,7 @@ def visco2008_cloning_reference(*, lambdas, n_nodes: int = 300, d: int = 2):
     (``kinetic.theory.visco2008_exact.reference_solution``) on the grid ``lambdas``, drawn
     beside the cloning data; T and a2 are NaN above ``RESOLVED_LAMBDA_MAX`` (the
     eigenfunction's logarithmic spread towards v = 0 is not resolved there), μ is kept (it
-    lies 5.9e-4 above -1/√2 at λ = 2.5, 1e-5 at 3 and below 1e-7 from 3.3 on)."""
+    lies 5.9e-4 above -1/√2 at λ = 2.5, 1.1e-5 at 3, 3e-7 at 3.3 and 1.5e-8 at 3.5)."""
     lams = np.asarray(lambdas, dtype=float)
     mu, temperature, a2 = reference_solution(lams, d, n_nodes=n_nodes)
     unresolved = lams > RESOLVED_LAMBDA_MAX

@@ -25,9 +25,11 @@ the discrete column sum of the gain kernel (number conservation), so λ = 0 give
 and the Maxwellian exactly, and ⟨r⟩ = ω = 1 to quadrature accuracy. The largest real
 eigenvalue is μ(λ); T and a2 follow from the eigenvector's moments.
 
-Accuracy (300 against 450 nodes): for -1.5 <= λ <= 2, μ to ~2e-5 and T, a2 to ~1e-4
-(d = 2) and about three times worse in d = 3; at λ = -3 the discretisation error of μ
-is ~2e-3 (it decreases as n_nodes^-2). For λ >~ 3 (d = 2) the eigenfunction spreads
+Accuracy (d = 2; the error decreases as n_nodes^-2, so 600 and 900 nodes extrapolate to
+the converged value): at 300 nodes μ is 4.3e-4, 1.9e-4, 5.9e-5 and -1.6e-5 off at
+λ = -1.5, -1, -0.5 and 1 (at 600 nodes a quarter of that), below 1e-5 from λ = 1.5 on;
+T and a2 to ~1e-4, about three times worse in d = 3; at λ = -3 the error of μ is ~2e-3.
+For λ >~ 3 (d = 2) the eigenfunction spreads
 logarithmically towards v = 0 (note below) and T, a2 are not resolved by any fixed
 grid, while μ approaches -1/√2 fast (μ + 1/√2 = 5.9e-4, 1.1e-5, 3e-7 and 1.5e-8 at
 λ = 2.5, 3, 3.3 and 3.5; 300 nodes); in d = 3 the eigenvalue reaches the edge -1/√2 between
