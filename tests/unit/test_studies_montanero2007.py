@@ -212,6 +212,22 @@ def test_cuda_groups_a_familys_runs_with_their_own_arguments_seeds_and_stamps():
             alone = cpu[f"montanero2007/dsmc/{name}/batch0000.nc"]
             assert point["seed"] == alone.arguments["seed"] and point["backend"] == "cuda"
             assert point["run"] == alone.arguments["run"]
-            assert point["first"] == 0 and point["count"] == point["run"]["realizations"]
+            assert point["first"] == 0 and point["count"] == plan[name]["realizations"]
             assert point["parameters"] == alone.parameters
             assert alone.parameters["family"] == group
+
+
+def test_more_realizations_leave_the_finished_batches_as_they_are():
+    """A job's arguments (its rule's params) hold only what its numbers depend on: doubling
+    the protocol's realizations adds batches and leaves every existing batch's arguments,
+    so Snakemake reruns none of them (the whole run dict, realizations included, reran
+    them all)."""
+    config = yaml.safe_load((REPOSITORY / "config" / "config.yaml").read_text())
+    validate_config(config, SCHEMA)
+    more = copy.deepcopy(config)
+    more["montanero2007"]["protocol"]["realizations"] *= 2
+    before = {job.output: job.arguments for job in study.jobs(config)}
+    after = {job.output: job.arguments for job in study.jobs(more)}
+    assert set(before) < set(after)
+    for output, arguments in before.items():
+        assert after[output] == arguments, output

@@ -315,6 +315,31 @@ def _engine_arguments(
     }
 
 
+ENGINE_KEYS = (
+    "n_particles",
+    "restitution",
+    "duration",
+    "time_step",
+    "sample_interval",
+    "reduced_field",
+    "force_step",
+    "selection",
+    "splitting",
+    "sample_stride",
+    "steady_from",
+    "cx_max",
+    "cx_bins",
+)
+"""The keys of a run that ``_engine_arguments`` reads: a job's ``run`` holds these only, so
+that adding realizations (or renaming a family) leaves the finished batches' parameters,
+and so the batches, as they are."""
+
+
+def engine_run(run: Mapping[str, Any]) -> dict[str, Any]:
+    """The part of ``run`` that a batch's numbers depend on (:data:`ENGINE_KEYS`)."""
+    return {key: run[key] for key in ENGINE_KEYS}
+
+
 def simulate_batch(run: Mapping[str, Any], **batch: Any):
     """Realizations ``first .. first+count-1`` of one run (an xarray.Dataset), on the
     ``backend`` of ``simulate_homogeneous``: ``batch`` is ``_engine_arguments``' keywords
@@ -427,14 +452,15 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
     grouped = {name for names in groups.values() for name in names}
     points: dict[str, dict[str, Any]] = {}  # run name -> its group job's point
     found = []
-    for name, run in run_plan(section).items():
+    plan = run_plan(section)
+    for name, run in plan.items():
         seed = derive_seed(config["seed"], f"montanero2007/{name}")
         parameters = {"run": name, "family": run["family"], "setting": run.get("setting", "")}
         cut = run_batches(run, backend)
         if name in grouped:
             (job,) = cut
             points[name] = {
-                "run": dict(run),
+                "run": engine_run(run),
                 "seed": seed,
                 "first": job.first_realization,
                 "count": job.n_realizations,
@@ -451,7 +477,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
             engines=("dsmc",),
             cut=cut,
             arguments=lambda job, batch, name=name, run=run, seed=seed: {
-                "run": dict(run),
+                "run": engine_run(run),
                 "seed": seed,
                 "first": job.first_realization,
                 "count": job.n_realizations,
@@ -475,7 +501,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
                 points=group_points,
                 label=f"montanero2007 dsmc {group} ({len(names)} runs)",
                 estimate=cost.dsmc_homogeneous_points(
-                    [{**point["run"], "realizations": point["count"]} for point in group_points],
+                    [{**plan[name], "realizations": points[name]["count"]} for name in names],
                     **backend_arguments(config),
                 ),
                 engines=("dsmc",),
