@@ -127,10 +127,34 @@ def _import_statements(tree: ast.Module):
             if isinstance(statement, ast.Import | ast.ImportFrom):
                 yield statement
                 continue
+            if _type_checking_only(statement):  # for annotations: never run
+                blocks.append(statement.orelse)
+                continue
             for field in ("body", "orelse", "finalbody", "handlers", "cases"):
                 children = getattr(statement, field, None)
                 if isinstance(children, list):
                     blocks.append(children)
+
+
+def _type_checking_only(statement: ast.stmt) -> bool:
+    """An ``if TYPE_CHECKING:`` (or ``typing.TYPE_CHECKING``) statement, whose body only a
+    type checker reads."""
+    if not isinstance(statement, ast.If):
+        return False
+    test = statement.test
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"
+    )
+
+
+_TYPE_CHECKING_BLOCK = re.compile(
+    r"^([ \t]*)if[ \t]+(?:typing\.)?TYPE_CHECKING[ \t]*:[^\n]*\n(?:(?:\1[ \t]+[^\n]*)?\n)*",
+    re.MULTILINE,
+)
+"""An ``if TYPE_CHECKING:`` line and the lines indented under it (blank ones included): the
+imports there are for annotations, and a module's code inputs leave them out (the
+studies' cost-model annotation made every reading script of two documents depend on
+the cost model and the cloning engine's argument checks)."""
 
 
 _PACKAGE_IMPORT = re.compile(
@@ -154,7 +178,7 @@ def _package_imports(path: Path) -> list[ast.Import | ast.ImportFrom]:
     try:
         return [
             node
-            for statement in _PACKAGE_IMPORT.findall(text)
+            for statement in _PACKAGE_IMPORT.findall(_TYPE_CHECKING_BLOCK.sub("", text))
             for node in ast.parse(statement).body
             if isinstance(node, ast.Import | ast.ImportFrom)
         ]

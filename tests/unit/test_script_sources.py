@@ -50,6 +50,29 @@ def test_the_scripts_glue_brings_in_no_study_cost_model_or_engine(tmp_path):
     assert PACKAGE / "studies" / "__init__.py" in simulate
 
 
+def test_no_analysis_reruns_on_an_edit_of_the_studies_or_the_cost_model(tmp_path):
+    """The reading scripts that analyse and plot depend on no study module and not on the
+    cost model (its GPU constants are edited after each device run): a study's
+    annotation-only import of the cost model and two helpers the analyses took from the
+    studies made 54 of them rerun on a one-line edit of kinetic/cost.py. Only the
+    job-listing report (workflow_jobs) plans the jobs. An ``if TYPE_CHECKING:`` import
+    is not a dependency."""
+    for script in READING_SCRIPTS:
+        if script.stem == "workflow_jobs":
+            continue
+        files = {path.relative_to(PACKAGE).as_posix() for path in script_sources(script)}
+        assert "cost.py" not in files, script.stem
+        assert not {name for name in files if name.startswith("studies/")}, script.stem
+    annotated = tmp_path / "annotated.py"
+    annotated.write_text(
+        "from typing import TYPE_CHECKING\n\nif TYPE_CHECKING:\n"
+        "    from kinetic.cost import Estimate\n"
+        "else:\n    from kinetic.io import read_dataset\n"
+    )
+    files = {path.relative_to(PACKAGE).as_posix() for path in script_sources(annotated)}
+    assert "cost.py" not in files and "io.py" in files
+
+
 def test_a_script_without_package_imports_runs_no_package_file(tmp_path):
     script = tmp_path / "script.py"
     script.write_text("import numpy as np\nprint(np.pi)\n")

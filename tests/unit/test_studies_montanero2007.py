@@ -10,6 +10,7 @@ import pytest
 import yaml
 
 from kinetic import batches, io
+from kinetic.analysis import montanero2007 as analysis
 from kinetic.config import validate_config
 from kinetic.studies import montanero2007 as study
 
@@ -127,10 +128,10 @@ def test_batching_does_not_change_the_data(tmp_path):
     assert io.parameters_of(combined)["n_realizations"] == 3
     # the joined run, written once, is what the figures read back, named by its run
     joined = io.write_dataset(combined, tmp_path / "x.nc")
-    assert list(study.load_runs([joined])) == ["x"]
-    np.testing.assert_array_equal(study.load_runs([joined])["x"]["moments"], whole["moments"])
+    assert list(analysis.load_runs([joined])) == ["x"]
+    np.testing.assert_array_equal(analysis.load_runs([joined])["x"]["moments"], whole["moments"])
     with pytest.raises(ValueError, match="read twice"):
-        study.load_runs([joined, joined])
+        analysis.load_runs([joined, joined])
 
 
 def test_schema_defaults_are_the_default_config():

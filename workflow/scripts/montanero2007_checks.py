@@ -4,7 +4,7 @@ when the config's fail_on_checks lists montanero2007."""
 
 from kinetic.analysis import checks as check
 from kinetic.analysis import montanero2007 as analysis
-from kinetic.studies.montanero2007 import load_runs
+from kinetic.analysis.montanero2007 import load_runs
 from kinetic.workflow_support import start
 
 log = start(snakemake)

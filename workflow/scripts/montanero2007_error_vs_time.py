@@ -15,8 +15,8 @@ from matplotlib import colormaps
 
 from kinetic import io, plotting
 from kinetic.analysis import montanero2007 as analysis
+from kinetic.analysis.montanero2007 import load_runs
 from kinetic.analysis.statistics import error_of_sem
-from kinetic.studies.montanero2007 import load_runs
 from kinetic.workflow_support import start
 
 log = start(snakemake)

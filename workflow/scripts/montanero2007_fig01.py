@@ -4,7 +4,7 @@ import numpy as np
 
 from kinetic import plotting
 from kinetic.analysis import montanero2007 as analysis
-from kinetic.studies.montanero2007 import load_runs
+from kinetic.analysis.montanero2007 import load_runs
 from kinetic.workflow_support import start
 
 log = start(snakemake)

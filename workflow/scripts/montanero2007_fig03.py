@@ -8,7 +8,7 @@ import numpy as np
 
 from kinetic import plotting
 from kinetic.analysis import montanero2007 as analysis
-from kinetic.studies.montanero2007 import load_runs
+from kinetic.analysis.montanero2007 import load_runs
 from kinetic.theory import montanero2007 as theory
 from kinetic.workflow_support import start, write_caption
 

@@ -38,8 +38,8 @@ from kinetic import io
 from kinetic.analysis import checks as check
 from kinetic.analysis.checks import Check
 from kinetic.analysis.statistics import error_against_cpu, ratio_and_sem
-from kinetic.studies.costantini2010 import MIN_LAGS
 from kinetic.theory import costantini2010 as theory
+from kinetic.theory.costantini2010 import MIN_LAGS
 
 __all__ = [
     "AMPLITUDE_COLUMNS",
@@ -735,7 +735,7 @@ def convergence_table(results: Sequence[xr.Dataset], density: float):
     Boltzmann equation's, would give."""
     import pandas as pd
 
-    from kinetic.studies.costantini2010 import mean_free_path, mean_free_time
+    from kinetic.theory.costantini2010 import mean_free_path, mean_free_time
 
     records = []
     for result in results:

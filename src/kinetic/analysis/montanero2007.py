@@ -16,6 +16,7 @@ Array-level functions take numpy arrays; ``*_of`` functions take a run's dataset
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -40,6 +41,7 @@ __all__ = [
     "field_extrapolation",
     "kappa_prime_estimate",
     "linear_response_fit",
+    "load_runs",
     "odd_marginal_estimate",
     "particle_number_bias",
     "phi_estimate",
@@ -885,3 +887,24 @@ def checks(rows, tolerances) -> list[Check]:
             )
         )
     return found
+
+
+def load_runs(paths: Sequence[Any]) -> dict[str, Any]:
+    """Read joined runs (one file a run, joined by ``kinetic.io.read_run``): ``{run name:
+    dataset}``.
+
+    The name of a run is the ``run`` parameter the workflow stamped into its batches; runs
+    keep the order of ``paths``.
+    """
+    from kinetic import io
+
+    runs: dict[str, Any] = {}
+    for path in paths:
+        dataset = io.read_dataset(path)
+        name = io.parameters_of(dataset).get("run")
+        if not name:
+            raise ValueError(f"{path} has no 'run' parameter: not written by the workflow")
+        if name in runs:
+            raise ValueError(f"run {name!r} is read twice (again from {path})")
+        runs[name] = dataset
+    return runs

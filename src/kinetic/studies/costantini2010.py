@@ -32,9 +32,10 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from kinetic import batches, gas
+from kinetic import batches
 from kinetic.studies import Job, backend_arguments, points_job, run_jobs
 from kinetic.theory import costantini2010 as theory
+from kinetic.theory.costantini2010 import MIN_LAGS, mean_free_path, mean_free_time
 
 __all__ = [
     "FRONTS",
@@ -62,20 +63,7 @@ __all__ = [
 
 METHODS = ("dsmc_homogeneous", "dsmc", "md")
 
-MIN_LAGS = 3
-"""Fewest lags of C a run's analysis takes (``kinetic.analysis.costantini2010``): a block
-of a realization needs twice as many samples."""
 """Method names of the table: homogeneous DSMC (one cell), inhomogeneous DSMC, MD."""
-
-
-def mean_free_time(density: float) -> float:
-    """1/ω_c of hard disks at T0 = 1 in engine time units σ√(m/T0): ω_c = 2nσ√(πT0/m)."""
-    return 1.0 / gas.equilibrium_collision_frequency("hard_spheres", 2, density)
-
-
-def mean_free_path(density: float) -> float:
-    """λ = 1/(2√2 nσ) of hard disks, in σ."""
-    return gas.mean_free_path(2, density)
 
 
 @dataclass(frozen=True)

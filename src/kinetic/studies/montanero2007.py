@@ -37,7 +37,6 @@ __all__ = [
     "alpha_key",
     "check",
     "jobs",
-    "load_runs",
     "run_batches",
     "run_plan",
     "simulate_batch",
@@ -508,24 +507,3 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
             )
         )
     return found
-
-
-def load_runs(paths: Sequence[Any]) -> dict[str, Any]:
-    """Read joined runs (one file a run, joined by ``kinetic.io.read_run``): ``{run name:
-    dataset}``.
-
-    The name of a run is the ``run`` parameter the workflow stamped into its batches; runs
-    keep the order of ``paths``.
-    """
-    from kinetic import io
-
-    runs: dict[str, Any] = {}
-    for path in paths:
-        dataset = io.read_dataset(path)
-        name = io.parameters_of(dataset).get("run")
-        if not name:
-            raise ValueError(f"{path} has no 'run' parameter: not written by the workflow")
-        if name in runs:
-            raise ValueError(f"run {name!r} is read twice (again from {path})")
-        runs[name] = dataset
-    return runs

@@ -20,7 +20,10 @@ import math
 
 import numpy as np
 
+from kinetic import gas
+
 __all__ = [
+    "MIN_LAGS",
     "a2_montanero",
     "a2_van_noije_ernst",
     "check_stable",
@@ -34,6 +37,8 @@ __all__ = [
     "fdr_ratio_white",
     "in_cell_flow",
     "max_n_density",
+    "mean_free_path",
+    "mean_free_time",
     "nu_bar_star_from_fit",
     "nu_bar_star_white",
     "nu_eta_dagger",
@@ -45,6 +50,21 @@ __all__ = [
     "zeta_dagger",
     "zeta_star",
 ]
+
+MIN_LAGS = 3
+"""Fewest lags of C a run's analysis takes (``kinetic.analysis.costantini2010``): a block
+of a realization needs twice as many samples."""
+
+
+def mean_free_time(density: float) -> float:
+    """1/ω_c of hard disks at T0 = 1 in engine time units σ√(m/T0): ω_c = 2nσ√(πT0/m)."""
+    return 1.0 / gas.equilibrium_collision_frequency("hard_spheres", 2, density)
+
+
+def mean_free_path(density: float) -> float:
+    """λ = 1/(2√2 nσ) of hard disks, in σ."""
+    return gas.mean_free_path(2, density)
+
 
 DIMENSION = 2
 RATE_UNIT = math.sqrt(2.0 * math.pi)
