@@ -519,7 +519,7 @@ def dsmc_homogeneous(
 
 def dsmc_homogeneous_points(runs, *, backend: str = "cpu", **_: object) -> Estimate:
     """One job of several montanero2007 runs one after the other in one process
-    (``kinetic.studies.montanero2007.simulate_batches``; ``runs``: ``dsmc_homogeneous``'s
+    (``kinetic.studies.montanero2007_front.simulate_batches``; ``runs``: ``dsmc_homogeneous``'s
     keyword arguments each): the runs' times with one process's startup, the largest
     run's memory."""
     estimates = [dsmc_homogeneous(**run, backend=backend) for run in runs]

@@ -204,7 +204,7 @@ def test_document_section_times_each_family_job_in_a_process_of_its_own(monkeypa
     report = bench.montanero2007_document(quick=False)
     (compiled,) = report["compile"]  # the one front's first run, shrunk further
     assert "error" not in compiled, compiled["error"]
-    assert compiled["front"] == "kinetic.studies.montanero2007:simulate_batches"
+    assert compiled["front"] == "kinetic.studies.montanero2007_front:simulate_batches"
     assert compiled["files"] == 1 and compiled["engine_seconds"] > 0
     assert report["rules"] == [
         job.rule for job in shrunk(bench._paper_config() | {"backend": "cuda"})

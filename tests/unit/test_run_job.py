@@ -88,7 +88,7 @@ def test_a_job_warms_the_kernels_of_the_engine_function_its_front_runs(monkeypat
         config["backend"] = backend
         validate_config(config)
         fronts |= {job.front: job.engines for job in studies.jobs(config)}
-    assert "kinetic.studies.montanero2007:simulate_batch" in fronts
+    assert "kinetic.studies.montanero2007_front:simulate_batch" in fronts
     for name, engines in fronts.items():
         calls.clear()
         simulation_job.warm_engines(log, studies.front(name))
@@ -99,6 +99,6 @@ def test_a_job_warms_the_kernels_of_the_engine_function_its_front_runs(monkeypat
         if listed:  # the engine lists its fronts: this one is among them
             assert warmed[own] in listed, (name, warmed)
         assert all(warmed[engine] is None for engine in engines[1:]), (name, warmed)
-    assert studies.front("kinetic.studies.montanero2007:simulate_batch").engine_front == (
+    assert studies.front("kinetic.studies.montanero2007_front:simulate_batch").engine_front == (
         "kinetic.dsmc:simulate_homogeneous"
     )

@@ -147,6 +147,15 @@ def test_the_cost_model_reruns_no_simulation():
             assert not any(path.is_relative_to(cloning) for path in files), front
 
 
+def test_a_planning_edit_reruns_no_simulation():
+    """A study's planning module (``kinetic.studies.<document>``: the run plan, the
+    batches, the groups) is no input of a simulation job: montanero2007's front lived
+    there, so that any edit of its planning reran all its simulations."""
+    planning = {PACKAGE / "studies" / f"{name}.py" for name in studies.DOCUMENTS}
+    for front, engines in FRONTS:
+        assert not planning & set(front_sources(front, engines)), front
+
+
 def test_each_md_engine_reruns_only_its_own_jobs():
     """visco2008's and costantini2010's MD (kinetic.edmd) and krauth2025's four disks
     (kinetic.event_disks) share no source file but the shared modules: an edit of one

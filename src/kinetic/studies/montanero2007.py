@@ -26,11 +26,16 @@ the data.
 from __future__ import annotations
 
 import copy
-import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 from kinetic.studies import Job, backend_arguments, points_job, run_jobs
+from kinetic.studies.montanero2007_front import (
+    engine_arguments,
+    engine_run,
+    simulate_batch,
+    simulate_batches,
+)
 
 __all__ = [
     "PROTOCOL_KEYS",
@@ -247,7 +252,7 @@ def _check_run(name: str, run: Mapping[str, Any]) -> None:
     # the engine front's own checks, on the arguments its jobs will get (numpy only)
     from kinetic.dsmc.arguments import check_settings, check_windows
 
-    arguments = _engine_arguments(run, seed=0, first=0, count=int(run["realizations"]), label=name)
+    arguments = engine_arguments(run, seed=0, first=0, count=int(run["realizations"]), label=name)
     try:
         check_settings(**{key: arguments[key] for key in _SETTINGS_KEYS}, kernel="hard_spheres")
         check_windows(**{key: arguments[key] for key in _WINDOW_KEYS})
@@ -274,110 +279,6 @@ _SETTINGS_KEYS = (
 
 _WINDOW_KEYS = ("duration", "sample_interval", "time_step", "sample_stride", "histogram_start")
 """``simulate_homogeneous``'s arguments that ``check_windows`` judges."""
-
-
-def _engine_arguments(
-    run: Mapping[str, Any],
-    *,
-    seed: int,
-    first: int,
-    count: int,
-    label: str,
-    backend: str = "cpu",
-) -> dict[str, Any]:
-    """``simulate_homogeneous``'s arguments for realizations ``first .. first+count-1`` of
-    one run: the histograms of c_x start at ``steady_from`` rounded up to a window
-    boundary, the same windows the steady-state time averages use."""
-    histogram_start = (
-        math.ceil(run["steady_from"] / run["sample_interval"] - 1e-9) * run["sample_interval"]
-    )
-    return {
-        "n_particles": int(run["n_particles"]),
-        "restitution": float(run["restitution"]),
-        "duration": float(run["duration"]),
-        "time_step": float(run["time_step"]),
-        "sample_interval": float(run["sample_interval"]),
-        "seed": int(seed),
-        "n_realizations": int(count),
-        "first_realization": int(first),
-        "dimension": 3,
-        "reduced_field": float(run["reduced_field"]),
-        "force_step": str(run["force_step"]),
-        "selection": str(run["selection"]),
-        "splitting": str(run["splitting"]),
-        "sample_stride": int(run["sample_stride"]),
-        "histogram_start": float(histogram_start),
-        "cx_max": float(run["cx_max"]),
-        "n_cx_bins": int(run["cx_bins"]),
-        "label": label,
-        **({"backend": backend} if backend != "cpu" else {}),
-    }
-
-
-ENGINE_KEYS = (
-    "n_particles",
-    "restitution",
-    "duration",
-    "time_step",
-    "sample_interval",
-    "reduced_field",
-    "force_step",
-    "selection",
-    "splitting",
-    "sample_stride",
-    "steady_from",
-    "cx_max",
-    "cx_bins",
-)
-"""The keys of a run that ``_engine_arguments`` reads: a job's ``run`` holds these only, so
-that adding realizations (or renaming a family) leaves the finished batches' parameters,
-and so the batches, as they are."""
-
-
-def engine_run(run: Mapping[str, Any]) -> dict[str, Any]:
-    """The part of ``run`` that a batch's numbers depend on (:data:`ENGINE_KEYS`)."""
-    return {key: run[key] for key in ENGINE_KEYS}
-
-
-def simulate_batch(run: Mapping[str, Any], **batch: Any):
-    """Realizations ``first .. first+count-1`` of one run (an xarray.Dataset), on the
-    ``backend`` of ``simulate_homogeneous``: ``batch`` is ``_engine_arguments``' keywords
-    (``seed``, ``first``, ``count``, ``label``, ``backend``)."""
-    from kinetic.dsmc import simulate_homogeneous
-
-    arguments = _engine_arguments(run, **batch)
-    dataset = simulate_homogeneous(**arguments)
-    return dataset.assign_attrs(steady_from_tau=arguments["histogram_start"])
-
-
-simulate_batch.engine_front = "kinetic.dsmc:simulate_homogeneous"
-"""The engine function a job of this front runs: its jobs compile only that function's
-kernels (``kinetic.simulation_job.warm_engines``)."""
-
-
-def simulate_batches(points: Sequence[Mapping[str, Any]], *, label: str | None = None):
-    """Several runs' batches in one job (``cuda``: one process, one CUDA context, the runs
-    one after the other, ``kinetic.dsmc.simulate_homogeneous_points``): each point is
-    ``simulate_batch``'s keyword arguments and ``parameters``, the run's name, family
-    and setting that its own job would stamp (``jobs``); every point is checked before
-    the first runs. Returns a dataset a point, the numbers of ``simulate_batch``."""
-    from kinetic import io
-    from kinetic.dsmc import simulate_homogeneous_points
-
-    points = [dict(point) for point in points]
-    stamps = [point.pop("parameters") for point in points]
-    arguments = [_engine_arguments(**point) for point in points]
-    datasets = simulate_homogeneous_points(arguments, label=label)
-    out = []
-    for dataset, engine, stamp in zip(datasets, arguments, stamps, strict=True):
-        dataset = io.stamp(
-            dataset, parameters={**io.parameters_of(dataset), **stamp}, seed=engine["seed"]
-        )
-        out.append(dataset.assign_attrs(steady_from_tau=engine["histogram_start"]))
-    return out
-
-
-simulate_batches.engine_front = "kinetic.dsmc:simulate_homogeneous"
 
 
 def dsmc_groups(section: Mapping[str, Any], backend: str) -> dict[str, list[str]]:
@@ -472,7 +373,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
             document="montanero2007",
             rule="montanero2007_simulate_dsmc",
             run=f"montanero2007/dsmc/{name}",
-            front="kinetic.studies.montanero2007:simulate_batch",
+            front="kinetic.studies.montanero2007_front:simulate_batch",
             engines=("dsmc",),
             cut=cut,
             arguments=lambda job, batch, name=name, run=run, seed=seed: {
@@ -496,7 +397,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
                 rule=group_rule(group),
                 group=group_name(group),
                 outputs=group_files(names),
-                front="kinetic.studies.montanero2007:simulate_batches",
+                front="kinetic.studies.montanero2007_front:simulate_batches",
                 points=group_points,
                 label=f"montanero2007 dsmc {group} ({len(names)} runs)",
                 estimate=cost.dsmc_homogeneous_points(
