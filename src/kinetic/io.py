@@ -190,15 +190,37 @@ TEMPORARY_SUFFIX = ".tmp"
 """Suffix of the hidden files written before the rename (``.<name>.<pid>.tmp``)."""
 
 
+def _writer_alive(temporary: Path) -> bool:
+    """Whether the process named in ``temporary`` (``.<name>.<pid>.tmp``) runs on this
+    machine: a second build of the same results root with other targets (Snakemake locks
+    files, not roots) writes there while the first starts. A writer on another machine of
+    a cluster is not seen: run one build per results root there."""
+    pid = temporary.name[: -len(TEMPORARY_SUFFIX)].rpartition(".")[2]
+    if not pid.isdigit() or int(pid) == os.getpid():
+        return False
+    try:
+        os.kill(int(pid), 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process
+        return True
+    except OSError:
+        return False
+    return True
+
+
 def remove_orphans(directory: str | os.PathLike) -> list[Path]:
     """Delete the temporary files that killed writers left under ``directory`` (call it
-    only when no writer runs there, e.g. at the start of a locked build); returns them.
+    at the start of a build); returns them. A file whose writer still runs on this machine
+    (:func:`_writer_alive`) is no orphan and stays.
     The results roots of other configs nested in it (``kinetic.config.ROOT_MARKER``) are
     left alone: another build may be writing there."""
     from kinetic.config import root_files
 
     orphans = [
-        path for path in root_files(directory, f".*{TEMPORARY_SUFFIX}") if path.name.count(".") >= 3
+        path
+        for path in root_files(directory, f".*{TEMPORARY_SUFFIX}")
+        if path.name.count(".") >= 3 and not _writer_alive(path)
     ]
     for path in orphans:
         path.unlink(missing_ok=True)

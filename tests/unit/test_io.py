@@ -1,6 +1,8 @@
 """kinetic.io: dataset conventions, provenance attributes, netCDF round trip, tables."""
 
 import json
+import subprocess
+import sys
 
 import numpy as np
 import pandas as pd
@@ -85,10 +87,23 @@ def test_tables_are_written_atomically_and_orphans_removed(tmp_path):
     assert io.read_table(tmp_path / "t.csv")["b"].tolist() == ["x", "y"]
     assert (tmp_path / "t.md").read_text().startswith("| a | b |")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.csv", "t.md"]  # no temporary
-    orphan = tmp_path / "sub" / ".t.csv.4242.tmp"  # what a killed writer leaves
+    dead = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout.strip()
+    orphan = tmp_path / "sub" / f".t.csv.{dead}.tmp"  # what a killed writer leaves
     orphan.parent.mkdir()
     orphan.write_text("half a tab")
-    assert io.remove_orphans(tmp_path) == [orphan]
+    with subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"]) as writer:
+        try:  # a writer of another build on this machine, still running: not an orphan
+            busy = tmp_path / "sub" / f".u.csv.{writer.pid}.tmp"
+            busy.write_text("being written")
+            assert io.remove_orphans(tmp_path) == [orphan]
+            assert busy.exists()
+        finally:
+            writer.kill()
     assert not orphan.exists()
     assert (tmp_path / "t.csv").exists()
 
