@@ -204,6 +204,11 @@ def _imported_files(path: Path) -> tuple[Path, ...]:
     return tuple(dict.fromkeys(found))
 
 
+DATA_FILES = {Path("plotting/__init__.py"): (Path("plotting/kinetic.mplstyle"),)}
+"""Files that a package module reads when imported, by its path in the package: they are
+code inputs wherever the module is (the style file's edit rerendered no figure)."""
+
+
 def script_sources(script: str | Path) -> list[Path]:
     """Every package file a script runs: what it imports, and what those files import in
     turn, sorted. Names that a package's ``__init__`` loads on first use
@@ -216,6 +221,8 @@ def script_sources(script: str | Path) -> list[Path]:
         if path not in seen:
             seen.add(path)
             todo += _imported_files(path)
+    for path in list(seen):
+        seen.update(PACKAGE / data for data in DATA_FILES.get(path.relative_to(PACKAGE), ()))
     return sorted(seen)
 
 

@@ -73,6 +73,14 @@ def test_no_analysis_reruns_on_an_edit_of_the_studies_or_the_cost_model(tmp_path
     assert "cost.py" not in files and "io.py" in files
 
 
+def test_a_figure_depends_on_the_style_file_its_plotting_module_reads():
+    """kinetic.plotting applies kinetic.mplstyle when imported: the style is a code input
+    of every script that draws (an edit of it rerendered no figure), of no other."""
+    style = PACKAGE / "plotting" / "kinetic.mplstyle"
+    assert style in script_sources(SCRIPTS / "visco2008_fig01.py")
+    assert style not in script_sources(SCRIPTS / "aggregate.py")
+
+
 def test_a_script_without_package_imports_runs_no_package_file(tmp_path):
     script = tmp_path / "script.py"
     script.write_text("import numpy as np\nprint(np.pi)\n")
