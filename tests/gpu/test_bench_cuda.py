@@ -337,3 +337,23 @@ def test_sigterm_keeps_the_running_sections_partial_and_skips_the_rest(monkeypat
     assert "terminated" in report["sections"]["later"]["skipped"]
     assert saved and "killed" in saved[-1]
     assert signal.getsignal(signal.SIGTERM) is signal.SIG_DFL
+
+
+def test_scaling_headline_cases_are_the_median_of_three_seeds(monkeypatch):
+    """``dsmc_scaling``'s Lie cases (the issue's headline rate) run three seeds and report
+    the median one with all three rates; the other cases run once (the runs stubbed: the
+    section's loop, not the engine, is under test)."""
+    runs = []
+
+    def stub(n, realizations, duration, backend, seed=13, **extra):
+        runs.append((extra.get("splitting", "strang"), seed))
+        return {"seed": seed, "engine_collisions_per_second": [3.0, 1.0, 2.0][(seed - 13) % 3]}
+
+    monkeypatch.setattr(bench, "_dsmc", stub)
+    cases = bench.dsmc_scaling(quick=True)["gpu"]
+    lie = [case for case in cases if len(case.get("engine_rates", [])) == 3]
+    assert len(lie) == 2  # alpha = 1 and 0.5, one shape (quick)
+    for case in lie:
+        assert case["engine_rates"] == [3.0, 1.0, 2.0] and case["seed"] == 15  # the median
+    assert [case.get("engine_rates") for case in cases].count([3.0]) == 2  # Strang: once
+    assert ("strang", 14) not in runs and runs.count(("lie", 14)) == 2
