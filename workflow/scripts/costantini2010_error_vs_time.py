@@ -17,6 +17,7 @@ from kinetic.workflow_support import start
 log = start(snakemake)
 records = []
 fig, axes = plotting.figure(1, 2, figsize=(6.0, 2.6), sharey=False)
+fig.subplots_adjust(wspace=0.35)  # the right panel's label clear of the left's ticks
 for path in snakemake.input.runs:
     result = io.read_dataset(path)
     method = method_of(result)

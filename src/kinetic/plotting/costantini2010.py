@@ -203,8 +203,8 @@ def inverse_n_figure(table, fits, amplitudes, study, quantity, symbol):
                 other = amplitudes[(amplitudes.method == method) & (amplitudes.alpha == alpha)]
                 if method == "dsmc":
                     other = other[other.fictive_factor == production]
-                ax.errorbar(
-                    1000.0 / other.n_particles,
+                ax.errorbar(  # a little right of the fitted-amplitude points they shadow
+                    1000.0 / other.n_particles + 0.03,
                     other.nu_bar_star_c0,
                     other.nu_bar_star_c0_err,
                     fmt=METHOD_STYLE[method]["marker"],
