@@ -177,6 +177,10 @@ def test_extrapolation_in_inverse_n_is_exact_on_a_line_and_reports_chi2():
     shifted = analysis.extrapolate_inverse_n(n, 0.2 + 50.0 / n + [0, 0.002, 0], [0.001] * 3)
     assert shifted["chi2"] > 1.0
     assert math.isnan(analysis.extrapolate_inverse_n([1000], [0.2], [0.01])["intercept"])
+    # elastic MD's zeta*: round-off of zero, with round-off errors, is an exact zero
+    elastic = analysis.extrapolate_inverse_n(n, [-6e-16, 2e-16, -1e-16], [2e-17] * 3)
+    assert (elastic["intercept"], elastic["intercept_err"]) == (0.0, 0.0)
+    assert math.isnan(elastic["chi2"])
 
 
 def test_convergence_table_removes_the_paper_rules_collision_excess():

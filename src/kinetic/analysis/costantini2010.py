@@ -146,12 +146,19 @@ def fit_tail(lags: np.ndarray, correlation: np.ndarray, error: np.ndarray) -> np
     return np.array([tau_c, math.exp(coefficients[0]), chi2])
 
 
+ROUND_OFF = 1e-12
+"""Values of a 1/N fit all within this of zero are exact zeros: ζ* of elastic MD, whose
+energy changes by round-off only (-6 × 10⁻¹⁶ ± 2 × 10⁻¹⁷ was fitted as data), as the
+DSMC's exact zeros are."""
+
+
 def extrapolate_inverse_n(
     n_particles: Sequence[float], values: Sequence[float], errors: Sequence[float]
 ) -> dict[str, float]:
     """Weighted straight line y = a + b/N: ``intercept`` (the 1/N -> 0 value), ``slope``,
     their standard errors, ``chi2`` and ``dof``. NaN where fewer than two N exist; with
-    two the line is exact (dof 0, chi2 NaN)."""
+    two the line is exact (dof 0, chi2 NaN); values all within :data:`ROUND_OFF` of zero
+    are exact zeros (0 ± 0, chi2 NaN)."""
     x = 1.0 / np.asarray(n_particles, dtype=float)
     y = np.asarray(values, dtype=float)
     sigma = np.asarray(errors, dtype=float)
@@ -160,6 +167,8 @@ def extrapolate_inverse_n(
         return nan | {"dof": 0}
     design = np.stack([np.ones_like(x), x], axis=1)
     dof = x.size - 2
+    if np.all(np.abs(y) <= ROUND_OFF):  # zero but for round-off (elastic MD's ζ*)
+        y, sigma = np.zeros_like(y), np.zeros_like(sigma)
     if not np.all(sigma > 0):  # exact values (ζ* = 0 at α = 1): a plain fit, no error
         coefficients = np.linalg.lstsq(design, y, rcond=None)[0]
         return {
