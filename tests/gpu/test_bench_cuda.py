@@ -166,7 +166,8 @@ def test_paper_job_is_the_first_montanero2007_run_on_either_backend():
     assert gpu["run"] == cpu["run"] and gpu["seed"] == cpu["seed"]
     assert gpu["run"]["n_particles"] == 200_000 and gpu["run"]["time_step"] == 0.003
     assert gpu["backend"] == "cuda" and "backend" not in cpu
-    assert gpu["first"] == 0 and gpu["count"] == gpu["run"]["realizations"] > cpu["count"]
+    first = next(iter(montanero2007.run_plan(bench._paper_config()["montanero2007"]).values()))
+    assert gpu["first"] == 0 and gpu["count"] == first["realizations"] > cpu["count"]
     assert "parameters" not in gpu  # simulate_batch's arguments only
     assert planned > cost.GPU_JOB_STARTUP_SECONDS
 

@@ -155,8 +155,11 @@ EDITS = [
     ("samplers/kernels.py", KRAUTH2025),
     # a helper every engine's kernels inline: every simulation
     ("rng.py", MONTANERO2007 | KRAUTH2025),
-    # the study module that turns the config into runs
-    ("studies/montanero2007.py", MONTANERO2007),
+    # the module of the study's job front (a run's settings -> the engine's arguments)
+    ("studies/montanero2007_front.py", MONTANERO2007),
+    # the study module that turns the config into runs: no job's numbers (the job list
+    # alone, which no tracked stage is)
+    ("studies/montanero2007.py", set()),
     # analysis that no simulation imports: the figure alone
     ("analysis/montanero2007.py", {"montanero2007 figure"}),
     # the plotting helpers every figure uses: the figures alone

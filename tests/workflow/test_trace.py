@@ -30,7 +30,7 @@ def test_montanero2007_fig03_runs_simulation_then_join_then_figure(repository, f
     simulate, _, figure = result.steps
     assert simulate.script == "workflow/scripts/simulate.py"  # the one simulate script
     # the jobs' front (the study's batch of a run), and the engine front behind it
-    assert simulate.modules[0] == "src/kinetic/studies/montanero2007.py"
+    assert simulate.modules[0] == "src/kinetic/studies/montanero2007_front.py"
     engine = inspect.getsourcefile(dsmc.simulate_homogeneous)
     assert str(repository / simulate.modules[-1]) == engine
     assert "src/kinetic/theory/montanero2007.py" in figure.modules
