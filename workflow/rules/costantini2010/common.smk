@@ -121,10 +121,18 @@ def costantini2010_convergence_inputs(wildcards):
 
 def costantini2010_settings(*keys):
     """A params function: the config section's ``keys`` only, those the rule's script
-    reads, so that a change of any other setting does not rerun the rule."""
+    reads, so that a change of any other setting does not rerun the rule; a dotted key
+    (``figures.particles``) takes one entry of a subsection, nested as in the config."""
 
     def settings(wildcards):
-        return {key: config["costantini2010"][key] for key in keys}
+        chosen = {}
+        for key in keys:
+            *path, leaf = key.split(".")
+            source, target = config["costantini2010"], chosen
+            for part in path:
+                source, target = source[part], target.setdefault(part, {})
+            target[leaf] = source[leaf]
+        return chosen
 
     return settings
 

@@ -255,7 +255,13 @@ rule costantini2010_checks:
     log:
         log_file("costantini2010/checks.log"),
     params:
-        study=costantini2010_settings("a2", "density", "dsmc", "figures"),
+        study=costantini2010_settings(
+            "a2",
+            "density",
+            "dsmc.fictive_factor",
+            "figures.particles",
+            "figures.restitution",
+        ),
         checks=config["costantini2010"]["checks"],
         fail=fails_on_checks("costantini2010"),
     script:
