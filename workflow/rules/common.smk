@@ -157,8 +157,11 @@ def script_code(name):
 
 def caption_template(name):
     """The caption template workflow/report/<name>.rst, an input of the figure rule that
-    renders it with numbers from the data (kinetic.workflow_support.write_caption)."""
-    return str(Path(workflow.basedir) / "workflow" / "report" / f"{name}.rst")
+    renders it with numbers from the data (kinetic.workflow_support.write_caption), named
+    relative to the working directory: Snakemake keeps the names of a job's inputs, and
+    an absolute one reran 14 figure rules in a checkout moved elsewhere."""
+    template = Path(workflow.basedir) / "workflow" / "report" / f"{name}.rst"
+    return os.path.relpath(template, os.getcwd())
 
 
 def rendered_caption(document, name):
