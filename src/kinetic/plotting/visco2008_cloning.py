@@ -20,6 +20,7 @@ from kinetic import io, plotting
 
 __all__ = [
     "Series",
+    "closure_lines",
     "collapsed_points",
     "data_limits",
     "draw_series",
@@ -216,18 +217,7 @@ def fig05(scan, closures, reference, pdf):
     bound = -1.0 / np.sqrt(2.0)
 
     def curves(axis):
-        axis.plot(
-            lam,
-            closures["mu_gaussian"],
-            **plotting.METHOD_STYLE["theory"],
-            label="Gaussian (Eq. 43)",
-        )
-        axis.plot(
-            *finite(lam, closures["mu_sonine"].values),
-            color="tab:green",
-            linestyle="--",
-            label="Sonine (Eqs. 47-49)",
-        )
+        closure_lines(axis, lam, closures["mu_gaussian"].values, closures["mu_sonine"].values)
         axis.plot(
             lam,
             closures["mu_poisson_slow"],
@@ -338,6 +328,13 @@ def fig06(scan, closures, reference, pdf):
     )
 
 
+def closure_lines(ax, lam, gaussian, sonine):
+    """The Gaussian (Eq. 43) and first-Sonine (Eqs. 47-49, up to its fold: ``finite``)
+    closures of one quantity against λ, in the same style in every cloning figure."""
+    ax.plot(lam, gaussian, **plotting.METHOD_STYLE["theory"], label="Gaussian (Eq. 43)")
+    ax.plot(*finite(lam, sonine), color="tab:green", linestyle="--", label="Sonine (Eqs. 47-49)")
+
+
 def fig07(scan, closures, reference, pdf):
     """visco2008 Fig. 7: T(λ), the variance per component of the hard-disk eigenfunction,
     cloning Monte Carlo against the Gaussian (Eq. 43b) and Sonine closures and the
@@ -349,19 +346,10 @@ def fig07(scan, closures, reference, pdf):
     lam = closures["lam"].values
 
     fig, ax = plotting.figure()
-    # the closures in the colours of Figs 5, 6 and 8 (the default cycle made Sonine red,
-    # the cloning points' colour)
-    ax.plot(
-        lam,
-        closures["temperature_gaussian"],
-        **plotting.METHOD_STYLE["theory"],
-        label="Gaussian (Eq. 43)",
-    )
-    ax.plot(
-        *finite(lam, closures["temperature_sonine"].values),
-        color="tab:green",
-        linestyle="--",
-        label="Sonine (Eqs. 47-49)",
+    # the closures as in Figs 5, 6 and 8 (the default cycle made Sonine red, the cloning
+    # points' colour)
+    closure_lines(
+        ax, lam, closures["temperature_gaussian"].values, closures["temperature_sonine"].values
     )
     ax.plot(
         *finite(reference["lam"].values, reference["temperature"].values),
