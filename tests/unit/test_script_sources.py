@@ -157,9 +157,10 @@ def test_the_cost_model_reruns_no_simulation():
 
 def test_a_planning_edit_reruns_no_simulation():
     """A study's planning module (``kinetic.studies.<document>``: the run plan, the
-    batches, the groups) is no input of a simulation job: montanero2007's front lived
-    there, so that any edit of its planning reran all its simulations."""
-    planning = {PACKAGE / "studies" / f"{name}.py" for name in studies.DOCUMENTS}
+    batches, the groups) and the studies' job glue (``kinetic.studies``) are no input of a
+    simulation job: montanero2007's front lived in its planning module, so that any edit
+    of its planning reran all its simulations."""
+    planning = {PACKAGE / "studies" / f"{name}.py" for name in (*studies.DOCUMENTS, "__init__")}
     for front, engines in FRONTS:
         assert not planning & set(front_sources(front, engines)), front
 
