@@ -232,3 +232,9 @@ def test_more_realizations_leave_the_finished_batches_as_they_are():
     assert set(before) < set(after)
     for output, arguments in before.items():
         assert after[output] == arguments, output
+    # what a job carries (ENGINE_KEYS) is all that the engine's arguments are made of
+    from kinetic.studies.montanero2007_front import engine_arguments, engine_run
+
+    for run in study.run_plan(config["montanero2007"]).values():
+        batch = {"seed": 1, "first": 0, "count": 2, "label": "x"}
+        assert engine_arguments(engine_run(run), **batch) == engine_arguments(run, **batch)

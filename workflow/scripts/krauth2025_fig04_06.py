@@ -5,8 +5,6 @@ against direct-disks (Alg. 4.4) and markov-disks (Alg. 4.5); standard errors acr
 independent realizations, each series shifted by a fifth of a bin; below, each against
 direct-disks. It is not flat: the walls attract the disks."""
 
-import numpy as np
-
 from kinetic import io, plotting
 from kinetic.analysis.statistics import mean_and_sem
 from kinetic.workflow_support import start
@@ -39,10 +37,17 @@ for rank, (name, data, label, (method, style)) in enumerate(series):
     y = data["y"].values + (rank - 1.5) * 0.2 * width
     plotting.method_errorbar(ax, method, y, values, error, ms=2.0, label=label, **style)
     if data is not reference:
-        ratio = values / ref_values - 1.0
-        spread = np.hypot(error / ref_values, values * ref_error / ref_values**2)
-        plotting.method_errorbar(rel, method, y, ratio, spread, ms=2.0, **style)
-rel.axhline(0.0, color="0.6", lw=0.6, zorder=0)
+        plotting.residual_panel(
+            rel,
+            y,
+            values,
+            error,
+            ref_values,
+            theory_error=ref_error,
+            method=method,
+            ms=2.0,
+            **style,
+        )
 rel.set_ylabel(r"$\eta/\eta_{\rm direct} - 1$")
 rel.set_xlabel("$y$")
 ax.set_ylabel(r"projected density $\eta(y)$")

@@ -41,10 +41,7 @@ handles += [
     Line2D([], [], color="0.4", ls="-", label=r"from $\langle c_x L_k^{(3/2)}(c^2)\rangle$"),
     Line2D([], [], color="0.4", ls="--", label=r"from $\langle c_x L_k^{(1/2)}(c_x^2)\rangle$"),
 ]
-# just above the titled top panel (kinetic.plotting.figure_legend's place), not at the
-# figure's edge, which left the top margin empty between legend and panels
-top = max(ax.get_position().y1 for ax in fig.axes)
-fig.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, top + 0.04), ncols=3)
+plotting.figure_legend(fig, handles=handles)  # just above the panels
 axes[-1, 0].set_xlabel(r"$t/\tau$")
 axes[-1, 0].set_xlim(0, float(t.max()))
 plotting.save(fig, snakemake.output.pdf)

@@ -128,14 +128,19 @@ def legend_outside(ax, *, ncols: int = 1, **kwargs):
     return ax.legend(ncols=ncols, **kwargs)
 
 
-def figure_legend(fig, *, ncols: int = 3, **kwargs):
-    """One legend for every axes of ``fig`` (each label once), above the panels."""
-    handles, labels = {}, []
-    for ax in fig.axes:
-        for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
-            if label not in handles:
-                handles[label] = handle
-                labels.append(label)
+def figure_legend(fig, *, ncols: int = 3, handles=None, **kwargs):
+    """One legend for every axes of ``fig`` (each label once), above the panels; or of
+    ``handles`` (artists made for the legend alone), in the same place."""
+    if handles is not None:
+        handles = {handle.get_label(): handle for handle in handles}
+        labels = list(handles)
+    else:
+        handles, labels = {}, []
+        for ax in fig.axes:
+            for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
+                if label not in handles:
+                    handles[label] = handle
+                    labels.append(label)
     # just above the highest panel (and its title), not at the figure's top edge, which
     # leaves the default top margin empty between legend and panels
     top = max(ax.get_position().y1 for ax in fig.axes)
@@ -173,11 +178,18 @@ def theory_steps(ax, edges, values, *, method: str = "theory", label=None, **kwa
     return ax.stairs(values, edges, label=label, baseline=None, **style)
 
 
-def residual_panel(ax, x, data, error, theory, *, method: str = "md", label=None, **kwargs):
+def residual_panel(
+    ax, x, data, error, theory, *, method: str = "md", label=None, theory_error=None, **kwargs
+):
     """Residuals data/theory - 1 with their errors, beside a zero line; points where the
-    theory vanishes are skipped."""
+    theory vanishes are skipped. ``theory_error``: the reference's own standard error
+    (another simulation's), propagated with the data's."""
     data, error, theory = (np.asarray(a, dtype=float) for a in (data, error, theory))
     ok = theory != 0
+    spread = error[ok] / np.abs(theory[ok])
+    if theory_error is not None:
+        reference = np.asarray(theory_error, dtype=float)[ok]
+        spread = np.hypot(spread, data[ok] * reference / theory[ok] ** 2)
     ax.axhline(0.0, color="0.6", linewidth=0.6, zorder=0)
     ax.set_ylabel("data/theory − 1")
     return method_errorbar(
@@ -185,7 +197,7 @@ def residual_panel(ax, x, data, error, theory, *, method: str = "md", label=None
         method,
         np.asarray(x)[ok],
         data[ok] / theory[ok] - 1.0,
-        error[ok] / np.abs(theory[ok]),
+        spread,
         label=label,
         **kwargs,
     )

@@ -317,13 +317,13 @@ def visco2008_cloning_reference(*, lambdas, n_nodes: int = 300, d: int = 2):
     (``kinetic.theory.visco2008_exact.reference_solution``) on the grid ``lambdas``, drawn
     beside the cloning data and checked against it: solved on ``n_nodes`` and
     :func:`coarse_nodes` nodes and extrapolated in n_nodes^-2 (Richardson). At 300 nodes
-    alone μ is 4.3e-4 off at λ = -1.5 (a tenth of the default build's cloning error bar
-    and 3 of paper.yaml's); from 300 and 200 within 1.1e-6 of the 600/900-node
+    alone μ is 4.3e-4 off at λ = -1.5 (0.4 of the default build's cloning error bar there,
+    about 3 of paper.yaml's); from 300 and 200 within 1.1e-6 of the 600/900-node
     extrapolation (5e-8 at λ = 1), T within 3.3e-7 (1.3e-4 at 300 alone) and a2 within
-    8.6e-7 (2.8e-4 at λ = 2.5 at 300 alone) for -1.5 <= λ <= 2.5. T and a2 are NaN
-    above ``RESOLVED_LAMBDA_MAX`` (the eigenfunction's logarithmic spread towards v = 0 is
-    not resolved there), μ is kept (it
-    lies 5.9e-4 above -1/√2 at λ = 2.5, 1.1e-5 at 3, 3e-7 at 3.3 and 1.5e-8 at 3.5)."""
+    8.6e-7 (2.8e-4 at λ = 2.5 at 300 alone) for -1.5 <= λ <= 2.5. T and a2 are NaN above
+    ``RESOLVED_LAMBDA_MAX`` (the eigenfunction's logarithmic spread towards v = 0 is not
+    resolved there), μ is kept (it lies 5.9e-4 above -1/√2 at λ = 2.5, 1.1e-5 at 3, 3e-7
+    at 3.3 and 1.5e-8 at 3.5)."""
     lams = np.asarray(lambdas, dtype=float)
     coarse = coarse_nodes(n_nodes)
     fine = np.array(reference_solution(lams, d, n_nodes=n_nodes))
@@ -346,7 +346,7 @@ def visco2008_cloning_reference(*, lambdas, n_nodes: int = 300, d: int = 2):
         attrs={
             "dimension": int(d),
             "n_nodes": int(n_nodes),
-            "coarse_nodes": coarse_nodes(n_nodes),
+            "coarse_nodes": coarse,
             "extrapolation": "Richardson in n_nodes^-2 from n_nodes and coarse_nodes",
             "resolved_lambda_max": RESOLVED_LAMBDA_MAX,
         },
