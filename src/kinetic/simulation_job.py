@@ -11,17 +11,31 @@ numba's cache holds the compiled kernels it runs before it runs them (``kinetic.
 wait and load), and writes through the one provenance writer
 (``kinetic.workflow_support.write_output``). It is a module of its own because it imports
 the studies: the reading scripts' code inputs do not include them.
+
+A job of several points that run one after the other (a front that takes ``finished``,
+montanero2007's ``simulate_batches`` on ``cuda``) keeps each point's dataset as it ends,
+in a hidden file beside its output (:func:`resume_file`), named by a key of the point,
+its stamps and the job's code (:func:`resume_key`). Snakemake deletes a stopped job's
+outputs, not these: the job's rerun loads the points an earlier run of the same job
+finished and runs the others. The files go when the outputs are written.
 """
 
 from __future__ import annotations
 
+import hashlib
+import inspect
+import json
 import logging
 import sys
+from pathlib import Path
 from typing import Any
 
 from kinetic.workflow_support import start, write_output
 
-__all__ = ["run_job", "warm_engines"]
+__all__ = ["resume_file", "resume_key", "run_job", "warm_engines"]
+
+RESUME_KEY = "resume_key"
+"""The attribute of a kept point's file that names the job that wrote it (:func:`resume_key`)."""
 
 
 def warm_engines(log: logging.Logger, front: Any = None) -> None:
@@ -58,7 +72,10 @@ def run_job(snakemake: Any) -> tuple[logging.Logger, Any]:
     front = studies.front(snakemake.params.front)
     warm_engines(log, front)
     job = dict(snakemake.params.job)
-    result = front(**job)
+    if "points" in job and "finished" in inspect.signature(front).parameters:
+        result = _run_resumably(snakemake, front, job, log)
+    else:
+        result = front(**job)
     # a job of several points (``points``): a dataset each, written in the rule's order
     datasets = result if isinstance(result, list) else [result]
     seeds = [point["seed"] for point in job.get("points", [job])]
@@ -72,4 +89,66 @@ def run_job(snakemake: Any) -> tuple[logging.Logger, Any]:
             log.info("wrote %s (%s, %.1f CPU s)", path, snakemake.params.front, cpu)
         else:
             log.info("wrote %s (%s)", path, snakemake.params.front)
+    for path in snakemake.output[: len(datasets)]:
+        resume_file(path).unlink(missing_ok=True)
     return log, result
+
+
+def resume_file(output: str | Path) -> Path:
+    """Where a job of several points keeps the point of ``output`` once it has finished,
+    until the job writes ``output`` (``.<name>.resume.nc`` beside it)."""
+    output = Path(output)
+    return output.with_name(f".{output.name}.resume.nc")
+
+
+def resume_key(snakemake: Any, point: dict[str, Any]) -> str:
+    """A digest of what a point's numbers depend on: the job's front, the point's
+    arguments, the job's stamps and the contents of the job's inputs (its code). A kept
+    point is loaded only by a rerun of the same job with the same code."""
+    digest = hashlib.sha256()
+    described = {
+        "front": snakemake.params.front,
+        "point": point,
+        "parameters": dict(snakemake.params.parameters),
+    }
+    digest.update(json.dumps(described, sort_keys=True, default=str).encode())
+    for path in sorted(str(path) for path in getattr(snakemake, "input", [])):
+        digest.update(path.encode())
+        digest.update(Path(path).read_bytes())
+    return digest.hexdigest()
+
+
+def _run_resumably(snakemake: Any, front: Any, job: dict[str, Any], log: logging.Logger):
+    """``front(**job)`` for a job of several points run one after the other: each point's
+    dataset is kept as it ends (:func:`resume_file`), and the points that an earlier,
+    stopped run of this job kept are loaded, not run again."""
+    from kinetic import io
+
+    points = list(job["points"])
+    keys = [resume_key(snakemake, point) for point in points]
+    files = [resume_file(path) for path in snakemake.output[: len(points)]]
+    done: dict[int, Any] = {}
+    for index, (file, key) in enumerate(zip(files, keys, strict=True)):
+        if not file.exists():
+            continue
+        try:
+            kept = io.read_dataset(file)
+        except io.CorruptFileError:
+            kept = None
+        if kept is not None and kept.attrs.pop(RESUME_KEY, None) == key:
+            done[index] = kept
+            log.info("kept %s: finished by a stopped run of this job", snakemake.output[index])
+        else:
+            file.unlink()
+    remaining = [index for index in range(len(points)) if index not in done]
+
+    def finished(k: int, dataset: Any) -> None:
+        index = remaining[k]
+        io.write_dataset(dataset.assign_attrs({RESUME_KEY: keys[index]}), files[index])
+
+    if remaining:
+        if done:
+            log.info("running %d of the job's %d points", len(remaining), len(points))
+        ran = front(**{**job, "points": [points[i] for i in remaining]}, finished=finished)
+        done.update(zip(remaining, ran, strict=True))
+    return [done[index] for index in range(len(points))]

@@ -30,6 +30,8 @@ def start(snakemake: Any) -> logging.Logger:
     """Configure logging for one Snakemake job and return the ``kinetic`` logger."""
     logger = logging.getLogger("kinetic")
     logger.setLevel(logging.INFO)
+    for handler in logger.handlers:
+        handler.close()
     logger.handlers.clear()
     formatter = logging.Formatter("%(asctime)s %(message)s", "%H:%M:%S")
     handlers: list[logging.Handler] = [logging.StreamHandler(sys.stderr)]

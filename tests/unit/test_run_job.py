@@ -102,3 +102,105 @@ def test_a_job_warms_the_kernels_of_the_engine_function_its_front_runs(monkeypat
     assert studies.front("kinetic.studies.montanero2007_front:simulate_batch").engine_front == (
         "kinetic.dsmc:simulate_homogeneous"
     )
+
+
+def _group_job(tmp_path, points):
+    """A fake Snakemake object for montanero2007's job of a family's runs."""
+    outputs = [str(tmp_path / f"run{k}" / "batch0000.nc") for k in range(len(points))]
+    code = tmp_path / "code.py"
+    code.parent.mkdir(parents=True, exist_ok=True)
+    if not code.exists():
+        code.write_text("# the job's code input\n")
+    return SimpleNamespace(
+        input=[str(code)],
+        output=outputs,
+        log=[str(tmp_path / "job.log")],
+        threads=1024,  # numba's pool as it is: the kernels run here launch its threads
+        rule="montanero2007_simulate_dsmc_scan",
+        config={"seed": 7},
+        params=SimpleNamespace(
+            front="kinetic.studies.montanero2007_front:simulate_batches",
+            job={"points": points, "label": "scan"},
+            parameters={},
+        ),
+    )
+
+
+def test_a_stopped_job_of_several_runs_keeps_the_runs_it_finished(tmp_path, monkeypatch):
+    """montanero2007's runs of one family share a job on ``cuda`` (here on the cpu, the same
+    front): a job stopped in its third run keeps the two it finished, and its rerun runs
+    the third only and writes the numbers of a job never stopped; a point's kept file is
+    not loaded by a job whose code or point differ."""
+    from kinetic.dsmc import homogeneous
+
+    monkeypatch.setattr(simulation_job, "warm_engines", lambda log, front=None: None)
+    monkeypatch.setattr(sys, "excepthook", sys.excepthook)
+    run = {
+        "n_particles": 100,
+        "time_step": 0.02,
+        "force_step": "euler",
+        "selection": "ntc",
+        "splitting": "lie",
+        "reduced_field": 0.05,
+        "duration": 0.8,
+        "steady_from": 0.4,
+        "sample_interval": 0.4,
+        "sample_stride": 5,
+        "cx_max": 4.0,
+        "cx_bins": 20,
+        "restitution": 0.8,
+    }
+    points = [
+        {
+            "run": run | {"restitution": alpha},
+            "seed": seed,
+            "first": 0,
+            "count": 2,
+            "label": f"alpha {alpha}",
+            "parameters": {"run": f"alpha{alpha}", "family": "scan", "setting": ""},
+        }
+        for alpha, seed in ((0.9, 3), (0.8, 4), (0.7, 5))
+    ]
+    engine = homogeneous.simulate_homogeneous
+    ran = []
+
+    def stopped_in_third(**arguments):
+        if not arguments.get("validate_only"):
+            ran.append(arguments["label"])
+            if len(ran) == 3:
+                raise KeyboardInterrupt
+        return engine(**arguments)
+
+    stopped = _group_job(tmp_path / "stopped", points)
+    monkeypatch.setattr(homogeneous, "simulate_homogeneous", stopped_in_third)
+    with pytest.raises(KeyboardInterrupt):
+        simulation_job.run_job(stopped)
+    kept = [simulation_job.resume_file(path) for path in stopped.output]
+    assert [file.exists() for file in kept] == [True, True, False]
+    assert not any(Path(path).exists() for path in stopped.output)
+
+    ran.clear()
+    monkeypatch.setattr(
+        homogeneous, "simulate_homogeneous", lambda **a: ran.append(1) or engine(**a)
+    )
+    simulation_job.run_job(stopped)
+    assert len(ran) == 2  # the third point's check and run: the first two were loaded
+    assert not any(file.exists() for file in kept)
+    whole = _group_job(tmp_path / "whole", points)
+    simulation_job.run_job(whole)
+    for resumed, fresh in zip(stopped.output, whole.output, strict=True):
+        a, b = io.read_dataset(resumed), io.read_dataset(fresh)
+        for name in set(a.data_vars) - {"cpu_seconds"}:
+            xr.testing.assert_equal(a[name], b[name])
+        assert io.parameters_of(a) == io.parameters_of(b)
+        assert (
+            a.attrs["seed"] == b.attrs["seed"]
+            and a.attrs["steady_from_tau"] == b.attrs["steady_from_tau"]
+        )
+
+    # a kept point of other code, or of another point, is run again
+    io.write_dataset(io.read_dataset(whole.output[0]).assign_attrs(resume_key="other"), kept[0])
+    ran.clear()
+    simulation_job.run_job(stopped)
+    assert len(ran) == 2 * 3  # every point checked and run
+    assert not kept[0].exists()

@@ -361,7 +361,7 @@ _FRONT_DEFAULTS = {
 """``simulate_homogeneous``'s keyword defaults (those a point leaves out)."""
 
 
-def simulate_homogeneous_points(points, *, label: str | None = None):
+def simulate_homogeneous_points(points, *, label: str | None = None, finished=None):
     """Several runs of ``simulate_homogeneous`` in one process, one after the other
     (``points``: its keyword arguments each): every point is checked before the first
     runs (``validate_only``), and the kernels are compiled or loaded once, so that a job
@@ -369,7 +369,9 @@ def simulate_homogeneous_points(points, *, label: str | None = None):
     run's Maxwellian starts built in a thread beside the run before it,
     ``gpu.prefetch_starts``). Returns the datasets ``simulate_homogeneous`` returns for
     the points one at a time, the same numbers; ``label`` (if given) prefixes each
-    point's progress label."""
+    point's progress label. ``finished(k, dataset)`` (if given) is called as point ``k``
+    ends, before the next one starts: a job keeps its finished runs when it is stopped
+    (``kinetic.simulation_job``)."""
     points = [dict(point) for point in points]
     if not points:
         raise ValueError("simulate_homogeneous_points needs at least one point")
@@ -382,6 +384,8 @@ def simulate_homogeneous_points(points, *, label: str | None = None):
         if label:
             point["label"] = f"{label} [{k + 1}/{len(points)}] {point.get('label') or ''}".strip()
         datasets.append(simulate_homogeneous(**point))
+        if finished is not None:
+            finished(k, datasets[-1])
     return datasets
 
 

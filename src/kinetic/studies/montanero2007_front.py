@@ -93,26 +93,37 @@ simulate_batch.engine_front = "kinetic.dsmc:simulate_homogeneous"
 kernels (``kinetic.simulation_job.warm_engines``)."""
 
 
-def simulate_batches(points: Sequence[Mapping[str, Any]], *, label: str | None = None):
+def simulate_batches(
+    points: Sequence[Mapping[str, Any]], *, label: str | None = None, finished=None
+):
     """Several runs' batches in one job (``cuda``: one process, one CUDA context, the runs
     one after the other, ``kinetic.dsmc.simulate_homogeneous_points``): each point is
     ``simulate_batch``'s keyword arguments and ``parameters``, the run's name, family
     and setting that its own job would stamp (``jobs``); every point is checked before
-    the first runs. Returns a dataset a point, the numbers of ``simulate_batch``."""
+    the first runs. Returns a dataset a point, the numbers of ``simulate_batch``;
+    ``finished(k, dataset)`` (if given) gets each as its run ends
+    (``kinetic.simulation_job`` keeps it, so that a stopped job resumes)."""
     from kinetic import io
     from kinetic.dsmc import simulate_homogeneous_points
 
     points = [dict(point) for point in points]
     stamps = [point.pop("parameters") for point in points]
     arguments = [engine_arguments(**point) for point in points]
-    datasets = simulate_homogeneous_points(arguments, label=label)
-    out = []
-    for dataset, engine, stamp in zip(datasets, arguments, stamps, strict=True):
+
+    def stamped(k: int, dataset):
+        engine = arguments[k]
         dataset = io.stamp(
-            dataset, parameters={**io.parameters_of(dataset), **stamp}, seed=engine["seed"]
+            dataset, parameters={**io.parameters_of(dataset), **stamps[k]}, seed=engine["seed"]
         )
-        out.append(dataset.assign_attrs(steady_from_tau=engine["histogram_start"]))
-    return out
+        return dataset.assign_attrs(steady_from_tau=engine["histogram_start"])
+
+    def report(k: int, dataset) -> None:
+        finished(k, stamped(k, dataset))
+
+    datasets = simulate_homogeneous_points(
+        arguments, label=label, finished=None if finished is None else report
+    )
+    return [stamped(k, dataset) for k, dataset in enumerate(datasets)]
 
 
 simulate_batches.engine_front = "kinetic.dsmc:simulate_homogeneous"
