@@ -807,7 +807,12 @@ RING_SWEEPS_PER_SECOND = 8e5
 
 DIRECT_DISKS_PER_SECOND = 8e5
 """Front: direct-disks 1.6 × 10⁶ configurations of 4 disks (σ = 0.15, unit box) per
-second, halved; the acceptance falls fast with density, which this does not model."""
+second, halved, at :data:`DIRECT_DISKS_ACCEPTANCE`; a configuration costs about the
+inverse of its acceptance."""
+
+DIRECT_DISKS_ACCEPTANCE = 0.0365
+"""The legal fraction of direct-disks starts at 4 disks, σ = 0.15, unit box
+(``theory.krauth2025.direct_disks_acceptance``)."""
 
 MARKOV_DISKS_SWEEPS_PER_SECOND = 3e6
 """Front: markov-disks 1.3 × 10⁷ sweeps of 4 disks per second, divided by 4."""
@@ -851,15 +856,18 @@ def sampler_disks(
     samples: int,
     realizations: int,
     burn_in: int = 0,
+    acceptance: float = DIRECT_DISKS_ACCEPTANCE,
     **_: object,
 ) -> Estimate:
-    """kinetic.samplers.sample_disks: direct-disks configurations or markov-disks sweeps."""
+    """kinetic.samplers.sample_disks: direct-disks configurations (each about
+    1/``acceptance`` starts) or markov-disks sweeps."""
     if method == "markov":
         total = realizations * (samples + burn_in)
         seconds = total / MARKOV_DISKS_SWEEPS_PER_SECOND * n_disks / 4.0
         return Estimate(seconds, 10.0, f"{total:.2e} sweeps")
     total = realizations * samples
     seconds = total / DIRECT_DISKS_PER_SECOND * (n_disks / 4.0) ** 2
+    seconds *= DIRECT_DISKS_ACCEPTANCE / max(acceptance, 1e-300)
     return Estimate(seconds, 10.0, f"{total:.2e} configurations")
 
 

@@ -206,6 +206,38 @@ def test_pressure_table_rows_agree_with_their_references(md, direct):
     )
 
 
+def test_a_box_not_square_compares_only_p_y_with_the_contact_density():
+    """The contact density is measured at the y walls: it is βP_y, and P_x differs in a
+    box not square (4 disks of radius 0.12 in 1 x 0.6: βP_x ≈ 17.8, βP_y ≈ 22.2). The
+    table keeps the P_x rows without a reference, and P_y's agree with it."""
+    box = (1.0, 0.6)
+    md = simulate_box(
+        n_disks=N,
+        sigma=0.12,
+        box=box,
+        duration=1500.0,
+        snapshot_interval=0.5,
+        bins=20,
+        realizations=REALIZATIONS,
+        seed=8,
+    )
+    direct = sample_disks(
+        "direct", n_disks=N, sigma=0.12, box=box, samples=20_000, realizations=8, bins=20, seed=9
+    )
+    table = pressure_table(md, direct).set_index("quantity")
+    p_x = table[table.index.str.startswith("beta P_x")]
+    p_y = table[table.index.str.startswith("beta P_y")]
+    assert len(p_x) == len(p_y) == 4
+    assert p_x["reference"].isna().all()
+    claims = p_y[~p_y.index.str.contains("N -> inf")]
+    bands = [tolerance_factor(4.5, int(dof)) for dof in claims["dof"]]
+    assert (claims["z"].abs() < bands).all(), claims[["z", "dof"]]
+    rift_x = p_x.loc["beta P_x, wall rift"]
+    rift_y = p_y.loc["beta P_y, wall rift"]
+    gap = (rift_y["value"] - rift_x["value"]) / math.hypot(rift_x["sem"], rift_y["sem"])
+    assert gap > BAND  # the two pressures differ: a shared reference would fail one
+
+
 def test_chaos_precisions_part_and_float64_is_deterministic():
     a = chaos(n_disks=N, sigma=SIGMA, events=120, seed=4)
     b = chaos(n_disks=N, sigma=SIGMA, events=120, seed=4)

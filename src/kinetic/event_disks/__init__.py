@@ -29,7 +29,12 @@ from kinetic.event_disks import kernels
 from kinetic.progress import Progress
 from kinetic.rng import stream_states
 from kinetic.samplers import disk_configuration
-from kinetic.theory.krauth2025 import CLASSIC_START, check_classic_start, check_snapshots
+from kinetic.theory.krauth2025 import (
+    CLASSIC_START,
+    check_classic_start,
+    check_snapshots,
+    snapshot_count,
+)
 
 __all__ = ["CLASSIC_START", "chaos", "initial_state", "simulate_box", "warmup"]
 
@@ -113,7 +118,7 @@ def simulate_box(
         cpu[r] = time.process_time() - begin
         progress.update(1)
     width = (upper - lower) / bins
-    n_snapshots = math.floor(duration / snapshot_interval - 0.5) + 1
+    n_snapshots = snapshot_count(duration, snapshot_interval)
     edges = np.linspace(lower, upper, bins + 1)
     data = {
         "density_trajectory": (
@@ -224,6 +229,10 @@ def _parting_runs(x, v, sigma, box, events: int):
     return list(runs), x, v, times, pairs, positions
 
 
+MAX_CHAOS_EVENTS = 10**6
+"""Most events of a ``chaos`` run (its arrays grow with them; 10¹⁰ asked for 224 GiB)."""
+
+
 def chaos(
     *,
     n_disks: int,
@@ -239,7 +248,9 @@ def chaos(
     (:data:`CLASSIC_START`) or "random" (realization 0 of ``seed``). ``extra_starts``
     random starts (realizations 1, 2, ... of ``seed``) add their event sequences
     (``start_event_pair``) for the statistics of where the precisions part."""
-    events = validate.integer("events", events, 1)
+    # the run keeps every event's positions in each precision (10^6 events: about 22 MiB);
+    # the precisions part after about 60 pair collisions
+    events = validate.integer("events", events, 1, MAX_CHAOS_EVENTS)
     extra_starts = validate.integer("extra_starts", extra_starts, 0)
     if start == "classic":
         x, v = _classic_start(n_disks, sigma, box)

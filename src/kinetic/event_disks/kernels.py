@@ -157,7 +157,8 @@ def _flight_occupancy(y, vy, dt, histogram, lower, scale):
 class Observers(NamedTuple):
     """What ``observe`` feeds (arrays float64): ``occupancy`` (bins on [lower, upper)), the
     time spent by the disks in each bin of y (Eq. 4.3 times T); ``snapshots``, counts of
-    the disks' y every ``snapshot_interval`` (from time interval/2); ``wall_statistics``
+    the disks' y at (j + 1/2) × ``snapshot_interval`` < T, j = 0, 1, ...
+    (``theory.krauth2025.snapshot_count`` of them); ``wall_statistics``
     (4, 3), per face hits, Σ|v⊥|, Σ 1/|v⊥|; ``pair_statistics`` (3,), collisions, Σ|Δv⊥|,
     Σ 1/|Δv⊥|; ``velocity_time`` (bins on [-1, 1)), the time spent by every velocity
     component v_i,a/``radius`` in each bin (both components of every disk, as velocities
@@ -191,6 +192,7 @@ def observe(x, v, sigma, box, duration, observers):
     velocity_bins = velocity_time.shape[0]
     scale = occupancy.shape[0] / (upper - lower)
     t = 0.0
+    taken = 0
     next_snapshot = 0.5 * snapshot_interval
     done = 0
     while True:
@@ -198,14 +200,17 @@ def observe(x, v, sigma, box, duration, observers):
         if t + dt > duration:
             dt = duration - t
             k = -1
-        # stroboscopic snapshots inside the flight
-        while next_snapshot <= t + dt and next_snapshot < duration:
+        # stroboscopic snapshots inside the flight, at (j + 1/2) x interval < duration (the
+        # last flight takes them all: t + dt may round below the duration)
+        end = duration if k < 0 else t + dt
+        while next_snapshot <= end and next_snapshot < duration:
             for m in range(n):
                 y = x[m, 1] + v[m, 1] * (next_snapshot - t)
                 position = (y - lower) * scale
                 if 0.0 <= position < snapshots.shape[0]:
                     snapshots[int(position)] += 1.0
-            next_snapshot += snapshot_interval
+            taken += 1
+            next_snapshot = (taken + 0.5) * snapshot_interval
         for m in range(n):
             _flight_occupancy(x[m, 1], v[m, 1], dt, occupancy, lower, scale)
             for a in range(2):

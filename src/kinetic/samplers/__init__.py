@@ -19,7 +19,6 @@ Lengths are in units of the pin width 2σ if σ = 1/2 (the configs' choice).
 
 from __future__ import annotations
 
-import math
 import time
 
 import numpy as np
@@ -31,6 +30,7 @@ from kinetic.progress import Progress
 from kinetic.rng import stream_states
 from kinetic.samplers import kernels
 from kinetic.theory.krauth2025 import (
+    check_direct_disks_starts,
     check_disk_box,
     check_naive_starts,
     check_pins,
@@ -322,13 +322,16 @@ def sample_disks(
     if method not in ("direct", "markov"):
         raise ValueError(f"method must be 'direct' or 'markov', got {method!r}")
     box_x, box_y = check_disk_box(n_disks, sigma, box)
-    n_disks, sigma, step = int(n_disks), float(sigma), float(step)
+    n_disks, sigma = int(n_disks), float(sigma)
     samples = _positive_int("samples", samples)
     realizations = _positive_int("realizations", realizations, 2)
     bins = _positive_int("bins", bins)
     burn_in = _positive_int("burn_in", burn_in, 0)
-    if method == "markov" and not (math.isfinite(step) and 0 < step <= min(box_x, box_y)):
-        raise ValueError(f"step must be in (0, box side], got {step!r}")
+    step = real("step", step, 0.0, min(box_x, box_y), low_open=True)
+    # every realization starts from a direct-disks configuration, and direct-disks draws
+    # all its samples so: refuse a box whose legal configurations are too rare for that
+    starts = samples * realizations if method == "direct" else realizations
+    check_direct_disks_starts(n_disks, sigma, (box_x, box_y), starts)
     lower, upper = sigma, box_y - sigma
     states = stream_states(seed, realizations)
     counts = np.zeros((realizations, bins), dtype=np.int64)
@@ -361,6 +364,12 @@ def sample_disks(
         begin = time.process_time()
         started[r] = run(samples, burn_in, states[r], positions, counts[r])
         cpu[r] = time.process_time() - begin
+        if started[r] < 0:
+            raise RuntimeError(
+                f"direct-disks needed more than {kernels.MAX_CONFIGURATION_STARTS:.0e} starts "
+                f"for one configuration of {n_disks} disks of radius {sigma} in the box "
+                f"({box_x}, {box_y}): too dense for tabula-rasa sampling"
+            )
         progress.update(1)
     parameters = {
         "method": method,

@@ -24,6 +24,9 @@ import numpy as np
 from kinetic.jit import inline, kernel
 from kinetic.rng import load_state, store_state, uniform, xoshiro_uniform
 
+MAX_CONFIGURATION_STARTS = 10**9
+"""Starts after which ``direct_disks`` gives up on one configuration (and returns −1)."""
+
 __all__ = ["Box", "Chain", "direct_pin", "markov_disks", "naive_pin", "ring_markov"]
 
 
@@ -184,11 +187,14 @@ def direct_disks_configuration(n, sigma, box_x, box_y, state, positions, max_sta
 @kernel
 def direct_disks(n, sigma, box_x, box_y, samples, state, positions, histogram, lower, upper):
     """Add the y of every disk of ``samples`` direct-disks configurations to
-    ``histogram``. Returns the configurations started (−1: one needed more than 10^9)."""
+    ``histogram``. Returns the configurations started (−1: one needed more than
+    :data:`MAX_CONFIGURATION_STARTS`)."""
     scale = histogram.shape[0] / (upper - lower)
     started = 0
     for _ in range(samples):
-        tries = direct_disks_configuration(n, sigma, box_x, box_y, state, positions, 10**9)
+        tries = direct_disks_configuration(
+            n, sigma, box_x, box_y, state, positions, MAX_CONFIGURATION_STARTS
+        )
         if tries < 0:
             return -1
         started += tries

@@ -2,12 +2,11 @@
 can be sampled at all.
 
 The direct-disks sampler (Alg. 4.4) draws every disk uniformly and starts again on any
-overlap; when legal configurations are too rare it never returns. ``check_disks`` proves
-that the box of the config is samplable before any job starts: after the geometric checks
-the sampler's front makes too (``theory.krauth2025.check_disk_box``), it draws candidate
-configurations in vectorized chunks, disk by disk, and keeps those still free of
-overlaps, with numpy alone (the workflow calls it while parsing the Snakefile, where
-loading numba would cost a second).
+overlap; when legal configurations are rare it runs for hours. ``check_disks`` estimates
+the fraction of legal starts (``theory.krauth2025.direct_disks_acceptance``, numpy alone:
+the workflow calls it while parsing the Snakefile, where loading numba would cost a
+second) and stops before any job when the configured samples would take more than
+``MAX_DIRECT_DISKS_STARTS`` starts, as the sampler's front does.
 """
 
 from __future__ import annotations
@@ -15,10 +14,12 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-import numpy as np
-
 from kinetic.studies import Job, benchmark_file
-from kinetic.theory.krauth2025 import check_disk_box, check_snapshots
+from kinetic.theory.krauth2025 import (
+    check_direct_disks_starts,
+    check_snapshots,
+    direct_disks_acceptance,
+)
 
 __all__ = [
     "LINE_RUNS",
@@ -32,34 +33,12 @@ __all__ = [
 ]
 
 
-def _legal_configuration(n_disks, sigma, box, tries, rng, chunk=20_000) -> bool:
-    """True if one of ``tries`` tabula-rasa draws of ``n_disks`` disks is free of overlaps."""
-    low = np.array([sigma, sigma])
-    high = np.array(box, dtype=float) - sigma
-    for start in range(0, tries, chunk):
-        alive = np.empty((min(chunk, tries - start), 0, 2))
-        for _ in range(n_disks):
-            new = rng.uniform(low, high, size=(alive.shape[0], 1, 2))
-            gap = np.sum((alive - new) ** 2, axis=-1)
-            free = np.all(gap > (2.0 * sigma) ** 2, axis=1)
-            alive = np.concatenate([alive[free], new[free]], axis=1)
-            if alive.shape[0] == 0:
-                break
-        if alive.shape[0] > 0:
-            return True
-    return False
-
-
-def check_disks(disks: Mapping[str, Any], tries: int = 10**6, seed: int = 0) -> None:
-    """Raise ``ValueError`` unless direct-disks can sample ``disks`` (config
-    ``krauth2025.disks``: ``n_disks``, ``sigma``, ``box``) within ``tries`` draws."""
-    n_disks, sigma = disks["n_disks"], float(disks["sigma"])
-    box = check_disk_box(n_disks, sigma, disks["box"])
-    if not _legal_configuration(n_disks, sigma, box, tries, np.random.default_rng(seed)):
-        raise ValueError(
-            f"direct-disks found no legal configuration of {n_disks} disks of radius "
-            f"{sigma} in {tries} tries: too dense for tabula-rasa sampling"
-        )
+def check_disks(disks: Mapping[str, Any]) -> float:
+    """Raise ``ValueError`` unless direct-disks can draw the configurations of ``disks``
+    (config ``krauth2025.disks``: ``n_disks``, ``sigma``, ``box``, ``direct_samples``,
+    ``sampler_realizations``) in reasonable time; returns its acceptance."""
+    configurations = disks["direct_samples"] * disks["sampler_realizations"]
+    return check_direct_disks_starts(disks["n_disks"], disks["sigma"], disks["box"], configurations)
 
 
 LINE_RUNS = (("direct", "length"), ("naive", "naive_length"), ("direct", "naive_length"))
@@ -236,6 +215,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
             ("event_disks", "samplers"),
         )
     )
+    acceptance = direct_disks_acceptance(disks["n_disks"], disks["sigma"], disks["box"])
     for method, samples in (("direct", "direct_samples"), ("markov", "markov_sweeps")):
         found.append(
             job(
@@ -259,6 +239,7 @@ def jobs(config: Mapping[str, Any]) -> list[Job]:
                     samples=disks[samples],
                     realizations=disks["sampler_realizations"],
                     burn_in=disks["burn_in"] if method == "markov" else 0,
+                    acceptance=acceptance,
                 ),
                 ("samplers",),
             )

@@ -30,16 +30,21 @@ import math
 
 import numpy as np
 
+from kinetic import validate
+
 __all__ = [
     "CLASSIC_START",
+    "MAX_DIRECT_DISKS_STARTS",
     "MAX_NAIVE_STARTS",
     "MAX_SNAPSHOTS",
     "bin_average",
     "check_classic_start",
+    "check_direct_disks_starts",
     "check_disk_box",
     "check_naive_starts",
     "check_pins",
     "check_snapshots",
+    "direct_disks_acceptance",
     "line_dataset",
     "naive_acceptance",
     "pair_speed_averages",
@@ -47,6 +52,7 @@ __all__ = [
     "pin_density",
     "ring_dataset",
     "ring_pair_density",
+    "snapshot_count",
     "wall_speed_averages",
     "wall_value",
 ]
@@ -99,6 +105,18 @@ each the kernel bins every disk; an interval of 10⁻¹² asked for 10¹⁵ (abo
 and one below the duration's rounding never advanced the clock."""
 
 
+def snapshot_count(duration: float, snapshot_interval: float) -> int:
+    """The stroboscopic snapshots of an event-disks run: those at (j + 1/2) ×
+    ``snapshot_interval`` < ``duration``, j = 0, 1, ..., with the float arithmetic of the
+    kernel's clock (``kinetic.event_disks.kernels.observe``)."""
+    count = max(0, math.ceil(duration / snapshot_interval - 0.5))
+    while count > 0 and (count - 1 + 0.5) * snapshot_interval >= duration:
+        count -= 1
+    while (count + 0.5) * snapshot_interval < duration:
+        count += 1
+    return count
+
+
 def check_snapshots(duration: float, snapshot_interval: float) -> None:
     """Raise ``ValueError`` unless ``snapshot_interval`` fits in ``duration`` at most
     ``MAX_SNAPSHOTS`` times (and at least once)."""
@@ -115,19 +133,92 @@ def check_snapshots(duration: float, snapshot_interval: float) -> None:
 def check_disk_box(n_disks: int, sigma: float, box) -> tuple[float, float]:
     """Raise ``ValueError`` unless N ≥ 1 disks of radius σ > 0 can stand in the box with
     walls ``box`` = (L_x, L_y) (each side above 2σ, the disks covering at most 90 % of the
-    area); returns the sides as floats."""
-    if isinstance(n_disks, bool) or not isinstance(n_disks, int | np.integer) or n_disks < 1:
-        raise ValueError(f"n_disks must be an integer >= 1, got {n_disks!r}")
-    if not (math.isfinite(sigma) and sigma > 0):
-        raise ValueError(f"sigma (disk radius) must be finite and > 0, got {sigma!r}")
-    box_x, box_y = (float(side) for side in box)
-    if not (math.isfinite(box_x) and math.isfinite(box_y) and min(box_x, box_y) > 2 * sigma):
+    area); returns the sides as floats. Whether direct-disks finds the legal
+    configurations in reasonable time is :func:`check_direct_disks_starts`'s question."""
+    validate.integer("n_disks", n_disks, 1)
+    sigma = validate.real("sigma (disk radius)", sigma, 0.0, math.inf, low_open=True)
+    sides = tuple(box) if isinstance(box, list | tuple | np.ndarray) else (box,)
+    if len(sides) != 2:
+        raise ValueError(f"box must be the two sides (L_x, L_y), got {box!r}")
+    box_x, box_y = (validate.real("box side", side, 0.0, math.inf) for side in sides)
+    if min(box_x, box_y) <= 2 * sigma:
         raise ValueError(f"box {box!r} cannot hold a disk of radius {sigma}")
     if n_disks * math.pi * sigma**2 > 0.9 * box_x * box_y:
         raise ValueError(
             f"{n_disks} disks of radius {sigma} cover more than 90 % of the box {box!r}"
         )
     return box_x, box_y
+
+
+MAX_DIRECT_DISKS_STARTS = 1e10
+"""Most configurations direct-disks may be expected to start in one call (minutes at four
+disks, about 10⁸ starts per CPU-s, most of them refused at the second disk; the
+configs take 5 × 10⁷ and, paper.yaml, 2 × 10⁹)."""
+
+
+def direct_disks_acceptance(
+    n_disks: int,
+    sigma: float,
+    box,
+    *,
+    population: int = 4096,
+    max_rounds: int = 256,
+    seed: int = 0,
+) -> float:
+    """An estimate of the probability that a direct-disks start (N disks uniform in
+    [σ, L_x − σ] × [σ, L_y − σ], started again on any overlap) is legal, Z_N/A^N, without
+    drawing 1/Z_N starts. A population of legal k-disk configurations gets a uniform
+    (k+1)-th disk each, round after round until a quarter of a population is left legal
+    (or ``max_rounds``); the fraction left legal estimates the conditional acceptance
+    p_k, and the next population is drawn from the legal ones (sequential Monte Carlo:
+    the product of the fractions estimates Π p_k without bias, to a few per cent at four
+    disks). 0.0 when a stage leaves nothing legal, p_k below about
+    1/(``population`` × ``max_rounds``): legal configurations are too rare to be found."""
+    box_x, box_y = check_disk_box(n_disks, sigma, box)
+    rng = np.random.default_rng(seed)
+    low, high = np.array([sigma, sigma]), np.array([box_x - sigma, box_y - sigma])
+    alive = np.empty((population, 0, 2))
+    acceptance = 1.0
+    for _ in range(int(n_disks)):
+        legal, drawn, found = [], 0, 0
+        while found < population // 4 and drawn < population * max_rounds:
+            new = rng.uniform(low, high, size=(population, 1, 2))
+            free = np.all(np.sum((alive - new) ** 2, axis=-1) > (2.0 * sigma) ** 2, axis=1)
+            legal.append(np.concatenate([alive, new], axis=1)[free])
+            drawn += population
+            found += int(np.count_nonzero(free))
+        if found == 0:
+            return 0.0
+        acceptance *= found / drawn
+        legal = np.concatenate(legal)
+        alive = legal[rng.integers(found, size=population)]
+    return acceptance
+
+
+def check_direct_disks_starts(
+    n_disks: int, sigma: float, box, configurations: int, *, acceptance: float | None = None
+) -> float:
+    """Raise ``ValueError`` if direct-disks would be expected to start more than
+    :data:`MAX_DIRECT_DISKS_STARTS` configurations to draw ``configurations`` legal ones
+    (``acceptance``: :func:`direct_disks_acceptance`'s, estimated here if not given), or
+    if no legal configuration turns up; returns the acceptance."""
+    if acceptance is None:
+        acceptance = direct_disks_acceptance(n_disks, sigma, box)
+    if acceptance <= 0.0:
+        raise ValueError(
+            f"direct-disks found no legal configuration of {n_disks} disks of radius {sigma} "
+            f"in the box {tuple(box)}: too dense for tabula-rasa sampling"
+        )
+    expected = configurations / acceptance
+    if expected > MAX_DIRECT_DISKS_STARTS:
+        raise ValueError(
+            f"direct-disks would start about {expected:.2g} configurations for "
+            f"{configurations} legal ones of {n_disks} disks of radius {sigma} in the box "
+            f"{tuple(box)} (acceptance {acceptance:.2g}), more than "
+            f"{MAX_DIRECT_DISKS_STARTS:.0e}: use fewer samples, markov-disks, a larger box "
+            "or smaller disks"
+        )
+    return acceptance
 
 
 def naive_acceptance(n_pins: int, length: float, sigma: float) -> float:
