@@ -18,15 +18,26 @@ import math
 
 import pytest
 
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.cloning import simulate
 
 EDGE = -1.0 / math.sqrt(2.0)
 BIAS = {4.0: 0.004, 8.0: 0.008}  # stated accuracy (finite N_c and time), see docstring
+REALIZATIONS = 16
+BAND = tolerance_factor(4, REALIZATIONS - 1)
+"""The two-sided probability of 4 Gaussian sigmas for errors from 16 realizations
+(Student's t, 15 degrees of freedom): 6.0 errors (with the 4 realizations this test ran
+before, 32.6; it asserted 4)."""
 
 
 @pytest.fixture(scope="module")
 def large():
-    common = {"kernel": "hard_spheres", "dimension": 2, "n_blocks": 5, "n_realizations": 4}
+    common = {
+        "kernel": "hard_spheres",
+        "dimension": 2,
+        "n_blocks": 5,
+        "n_realizations": REALIZATIONS,
+    }
     return {
         1.0: simulate(lam=1.0, population=1000, duration=200.0, transient=20.0, seed=31, **common),
         2.0: simulate(lam=2.0, population=1000, duration=200.0, transient=50.0, seed=32, **common),
@@ -43,29 +54,29 @@ def large():
 def test_mu_reaches_minus_one_over_root_two(large, lam):
     ds = large[lam]
     mu, error = float(ds.mu), float(ds.mu_err)
-    assert EDGE - BIAS[lam] - 4 * error < mu < EDGE + 4 * error
+    assert EDGE - BIAS[lam] - BAND * error < mu < EDGE + BAND * error
 
 
 def test_first_order_of_eq38_is_not_the_eigenvalue(large):
     ds = large[4.0]
     eq38 = (math.exp(-4.0) - 1.0) / math.sqrt(2.0)
     # Eq. (38) lies 0.013 above the edge; the data sit at the edge
-    assert float(ds.mu) < eq38 - 4 * float(ds.mu_err) - BIAS[4.0]
+    assert float(ds.mu) < eq38 - BAND * float(ds.mu_err) - BIAS[4.0]
 
 
 def test_mu_decreases_and_temperature_vanishes(large):
     lams = sorted(large)
     for low, high in itertools.pairwise(lams):
         a, b = large[low], large[high]
-        assert float(b.mu) < float(a.mu) + 4 * float(a.mu_err + b.mu_err)
+        assert float(b.mu) < float(a.mu) + BAND * float(a.mu_err + b.mu_err)
         if high < 8.0:  # T(λ) falls, resolved: 0.68, 0.33, 0.045 at λ = 1, 2, 4
-            assert float(b.temperature) < float(a.temperature) - 4 * float(
+            assert float(b.temperature) < float(a.temperature) - BAND * float(
                 a.temperature_err + b.temperature_err
             )
     # at λ = 8 the population is the clones of one member (flagged below): its T is
     # one clone's, 0.02-0.05 ± 0.012-0.016 with other seeds, at most T(4) within errors
     a, b = large[4.0], large[8.0]
-    assert float(b.temperature) < float(a.temperature) + 4 * float(
+    assert float(b.temperature) < float(a.temperature) + BAND * float(
         a.temperature_err + b.temperature_err
     )
 
