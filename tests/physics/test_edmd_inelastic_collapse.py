@@ -3,6 +3,7 @@
 
 import numpy as np
 import pytest
+from _edmd_checks import all_pairs_min_distance
 
 from kinetic.edmd import HardSphereSystem, InelasticCollapseError
 
@@ -42,17 +43,14 @@ def test_tc_model_avoids_the_collapse():
     assert system.min_distance() >= 1 - 1e-9
 
 
-def test_strongly_inelastic_gas_holds_or_stops_with_the_report():
-    # arrange: α = 0.3 in a 2D gas; one outcome or the other, within the collisions asked for
+def test_strongly_inelastic_gas_in_two_dimensions_holds():
+    """α = 0.3 in a 2D gas: the clusters of a freely cooling gas do not collapse within 20
+    collisions a particle (seeds 1, 2, 3 and 9 all held; the column above collapses), it
+    cools by 5 to 6 decades, keeps its momentum and never overlaps (all pairs checked)."""
     system = HardSphereSystem(n_particles=500, density=0.05, restitution=0.3, seed=9)
-    # act
-    try:
-        system.run(collisions=20 * 500)
-        outcome = "held"
-    except InelasticCollapseError as report:
-        outcome = "collapse"
-        assert report.time > 0
-    # assert
-    assert system.min_distance() >= 1 - 1e-9
-    if outcome == "held":
-        assert system.kinetic_temperature() < 0.1  # α = 0.3 cools fast
+    momentum = system.velocities().sum(axis=0)
+    system.run(collisions=20 * 500)
+    assert system.collisions == 20 * 500
+    assert 1e-8 < system.kinetic_temperature() < 1e-4
+    np.testing.assert_allclose(system.velocities().sum(axis=0), momentum, atol=1e-9)
+    assert all_pairs_min_distance(system) >= 1 - 1e-9

@@ -50,6 +50,31 @@ def test_a_drag_too_strong_for_one_segment_is_refused():
         simulate_cooling_modes(**(BASE | {"drag_rate": 1.0}))
 
 
+def test_a_drag_that_heats_the_gas_away_is_refused_before_any_work(monkeypatch):
+    """An elastic gas with drag heats as e^(2 ω0 τ) (T = 9e6 T0 after 400 time units at
+    ω0 = 0.02, and a run of 800 did not end); an inelastic one to Eq. 12's T_s. Both
+    engines' fronts judge the drag by ``heated_temperature``: the MD's refuses beyond 4 T0,
+    and holds a drag of ζ(T0)/2, or a slight one in an elastic gas."""
+    from kinetic.edmd import cooling
+    from kinetic.theory.costantini2010 import drag_rate, heated_temperature
+
+    def built(*args, **kwargs):
+        raise AssertionError("a system was built before the drag was judged")
+
+    monkeypatch.setattr(cooling, "HardSphereSystem", built)
+    elastic = BASE | {"restitution": 1.0, "drag_rate": 0.02, "equilibration": 400.0}
+    with pytest.raises(ValueError, match=r"restitution = 1\.0 to T = 5\.405e\+07 T0") as error:
+        simulate_cooling_modes(**elastic)
+    assert "drag_rate = 0.02" in str(error.value)
+    hot = BASE | {"drag_rate": 3 * drag_rate(0.9, DENSITY), "equilibration": 1e5}
+    assert heated_temperature(0.9, DENSITY, hot["drag_rate"], 1e5) == pytest.approx(9.0, rel=1e-3)
+    with pytest.raises(ValueError, match=r"heats the gas at restitution = 0\.9"):
+        simulate_cooling_modes(**hot)
+    steady = drag_rate(0.9, DENSITY)
+    assert heated_temperature(0.9, DENSITY, steady, 1e9) == 1.0
+    assert heated_temperature(1.0, DENSITY, 1e-4, 100.0) == pytest.approx(math.exp(0.02))
+
+
 def test_elastic_run_without_drag_is_the_plain_engine_run():
     arguments = BASE | {"restitution": 1.0, "drag_rate": 0.0, "n_samples": 4}
     dataset = simulate_cooling_modes(**arguments)

@@ -21,7 +21,8 @@ from kinetic.edmd import HardSphereSystem, simulate
         ({"n_particles": 1}, "n_particles must be >= 2, got 1"),
         ({"dimension": 4}, "dimension must be 2 or 3, got 4"),
         ({"diameter": math.nan}, "diameter must be finite and > 0"),
-        ({"temperature": 0.0}, "temperature must be finite and > 0"),
+        ({"temperature": 0.0}, "temperature = 0.0 is outside the allowed range"),
+        ({"temperature": 1e308}, r"temperature = 1e\+308 is outside the allowed range"),
         ({"contact_time": -1.0}, "contact_time must be finite and >= 0"),
         ({"density": None, "box": [2.5, 100.0]}, "a periodic axis needs at least 3"),
         ({"prefetch": 3}, "prefetch must be 0, 1 or 2, got 3"),
@@ -71,8 +72,14 @@ def test_run_arguments_are_checked():
     system = HardSphereSystem(n_particles=50, density=0.01, seed=1)
     with pytest.raises(ValueError, match="give until"):
         system.run()
-    with pytest.raises(ValueError, match="collisions must be >= 1, got 0"):
+    with pytest.raises(ValueError, match="collisions = 0 is not allowed"):
         system.run(collisions=0)
+    with pytest.raises(TypeError, match="collisions must be an integer"):
+        system.run(collisions=1.7)  # ran one collision
+    with pytest.raises(TypeError, match="collisions must be an integer"):
+        system.run(collisions="3")
+    with pytest.raises(ValueError, match="max_events = 0 is not allowed"):
+        system.run(collisions=1, max_events=0)  # said the particles stopped colliding
     system.run(until=5.0)
     with pytest.raises(ValueError, match="until must be finite and >= the current time"):
         system.run(until=1.0)
@@ -87,6 +94,16 @@ def test_a_gas_that_stopped_colliding_exhausts_the_event_budget():
     )
     with pytest.raises(RuntimeError, match="stopped colliding"):
         system.run(collisions=1)
+
+
+def test_a_very_dilute_gas_is_not_taken_for_one_that_stopped_colliding():
+    """At ρσ² = 1e-7 a collision takes thousands of cell crossings, more than the event
+    budget of a count-limited call allows (1000 a collision): it stopped after 111
+    collisions of a normal gas, saying the particles had stopped colliding."""
+    system = HardSphereSystem(n_particles=200, density=1e-7, seed=2)
+    system.run(collisions=400)
+    assert system.collisions == 400
+    assert system.counters()["crossings"] > 1000 * 400
 
 
 @pytest.mark.parametrize(
@@ -118,3 +135,22 @@ def test_simulate_refuses_bad_protocols(options, message):
     }
     with pytest.raises((ValueError, TypeError), match=message):
         simulate(**arguments)
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        # a NaN sample time blocked every later sample; -1 bins gave numpy's own error and
+        # 0 count bins became 1 without a word
+        ({"sample_times": [math.nan, 1e6]}, "sample_times must be finite"),
+        ({"flight_bins": -1}, "flight_bins = -1 is not allowed"),
+        ({"count_bins": 0}, "count_bins = 0 is not allowed"),
+        ({"path_bins": 2.5}, "path_bins must be an integer"),
+        ({"flight_bin_width": 0.0}, "flight_bin_width = 0.0 is outside"),
+    ],
+)
+def test_bad_observers_are_refused(options, message):
+    from kinetic.edmd import Observers
+
+    with pytest.raises((TypeError, ValueError), match=message):
+        Observers.create(10, **options)

@@ -260,25 +260,12 @@ class CoolingModesSettings:
 
 
 def largest_temperature(settings: CoolingModesSettings, duration: float) -> float:
-    """The largest mean temperature (units of T0) of a run of this length, by the
-    homogeneous balance dT/dτ = (2ω0 − ζ(T)) T with ζ(T) = ζ(T0) √T from Eq. 12 (a2 of
-    van Noije and Ernst): x = √T is logistic, x(τ) = x_s/(1 + (x_s − 1) e^(−ω0 τ)) with
-    x_s = 2ω0/ζ(T0), so T rises monotonically to T(duration) when T_s = x_s² > 1 and never
-    exceeds T0 otherwise; an elastic gas with drag heats as e^(2ω0 τ)."""
-    from kinetic.theory.costantini2010 import zeta_star
+    """The largest mean temperature (units of T0) of a run of this length
+    (``kinetic.theory.costantini2010.heated_temperature``: Eq. 12's balance; an elastic gas
+    with drag heats as e^(2ω0 τ))."""
+    from kinetic.theory.costantini2010 import heated_temperature
 
-    omega0 = settings.drag_rate
-    if omega0 == 0.0:
-        return 1.0
-    # ζ(T0) = ζ* v/ℓ with v = √2 and ℓ = 1/n (engine units)
-    zeta0 = float(zeta_star(settings.restitution)) * math.sqrt(2.0) * settings.density
-    growth = min(omega0 * duration, 700.0)
-    if zeta0 == 0.0:
-        return math.exp(2.0 * growth)
-    steady = 2.0 * omega0 / zeta0
-    if steady <= 1.0:
-        return 1.0
-    return (steady / (1.0 + (steady - 1.0) * math.exp(-growth))) ** 2
+    return heated_temperature(settings.restitution, settings.density, settings.drag_rate, duration)
 
 
 def check_heating(settings: CoolingModesSettings, duration: float) -> None:

@@ -172,7 +172,8 @@ def check_system(
         raise ValueError(f"dimension must be 2 or 3, got {dimension!r}")
     dimension = int(dimension)
     diameter = _finite_positive("diameter", diameter)
-    temperature = _finite_positive("temperature", temperature)
+    # far from overflow: velocities of T = 1e308 squared to inf
+    temperature = validate.real("temperature", temperature, 1e-100, 1e100)
     if cell_occupancy is None and dimension in DEFAULT_CELL_OCCUPANCY:
         cell_occupancy = DEFAULT_CELL_OCCUPANCY[dimension]
     cell_occupancy = _finite_positive("cell_occupancy", cell_occupancy)

@@ -118,6 +118,13 @@ def _observe(phase, t, box_side, terms, row):
     row[8] = norm_x
 
 
+MAX_HEATING = 4.0
+"""Largest temperature (units of T0) a drag may heat the gas to within a run
+(``kinetic.theory.costantini2010.heated_temperature``): the stationary representation holds
+T at T0; a drag that heats an elastic gas ran away (T = 9 × 10⁶ T0 after 400 time units at
+ω0 = 0.02, and a run of 800 did not end)."""
+
+
 def _advance(system: HardSphereSystem, duration: float, drag_rate: float) -> float:
     """Advance τ by ``duration`` (one segment); return the energy dissipated per particle
     in w units (see the module docstring). The velocities are scaled by e^{ω0Δτ} in the
@@ -173,6 +180,18 @@ def simulate_cooling_modes(
         raise ValueError(
             f"drag_rate x sample_interval = {drag_rate * sample_interval:.3g} > 0.5: the "
             "velocities would grow by more than e^0.5 within one segment; sample more often"
+        )
+    from kinetic.theory.costantini2010 import heated_temperature
+
+    duration = equilibration + (n_samples - 1) * sample_interval
+    heated = heated_temperature(restitution, density, drag_rate, duration)
+    if heated > MAX_HEATING:
+        raise ValueError(
+            f"drag_rate = {drag_rate!r} heats the gas at restitution = {restitution!r} to "
+            f"T = {heated:.4g} T0 within the run ({duration!r} time units; Eq. 12's steady "
+            f"T_s = (2 drag_rate/zeta(T0))^2, an elastic gas without bound), more than "
+            f"{MAX_HEATING} T0, with the collisions of a run growing as sqrt(T). Use drag_rate "
+            "= zeta(T0)/2 (kinetic.theory.costantini2010.drag_rate) to hold T near T0"
         )
     box_side = math.sqrt(n_particles / density)
     states = rng.stream_states(seed, n_realizations, first_realization)

@@ -22,10 +22,12 @@ histogram sizes, the number of sample times and the capacity of the collision re
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from kinetic import validate
 from kinetic.edmd.layout import ObserverBuffers
 
 __all__ = ["Observers"]
@@ -82,10 +84,19 @@ class Observers:
         sample_times = np.asarray(sample_times, dtype=float).reshape(-1)
         if np.any(~np.isfinite(window_lengths)) or np.any(window_lengths <= 0):
             raise ValueError(f"window lengths must be finite and > 0, got {window_lengths}")
+        if not np.all(np.isfinite(sample_times)):  # a NaN blocked every later sample
+            raise ValueError(f"sample_times must be finite, got {sample_times}")
         if sample_times.size and np.any(np.diff(sample_times) < 0):
             raise ValueError("sample_times must be increasing")
-        if not (flight_bin_width > 0 and path_bin_width > 0):
-            raise ValueError("histogram bin widths must be > 0")
+        for name, value in (
+            ("flight_bin_width", flight_bin_width),
+            ("path_bin_width", path_bin_width),
+        ):
+            validate.real(name, value, 0.0, math.inf, low_open=True)
+        count_bins = validate.integer("count_bins", count_bins, 1)
+        flight_bins = validate.integer("flight_bins", flight_bins, 0)
+        path_bins = validate.integer("path_bins", path_bins, 0)
+        record_capacity = validate.integer("record_capacity", record_capacity, 0)
         n_windows = window_lengths.size
         return cls(
             window_length=window_lengths,

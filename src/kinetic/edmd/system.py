@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from kinetic import validate
 from kinetic.edmd import kernels as k
 from kinetic.edmd.arguments import (  # noqa: F401  (re-exported)
     CLOSE_PACKING,
@@ -342,8 +343,10 @@ class HardSphereSystem:
             raise ValueError(
                 f"until must be finite and >= the current time {self.time}, got {until}"
             )
-        if collisions is not None and int(collisions) < 1:
-            raise ValueError(f"collisions must be >= 1, got {collisions}")
+        if collisions is not None:
+            collisions = validate.integer("collisions", collisions, 1)
+        if max_events is not None:
+            max_events = validate.integer("max_events", max_events, 1)
         scale = float(scale)
         if not (math.isfinite(scale) and scale > 0.0):
             raise ValueError(f"scale must be finite and > 0, got {scale}")
@@ -352,12 +355,13 @@ class HardSphereSystem:
             raise ValueError("observers were created for a different number of particles")
         big = np.iinfo(np.int64).max
         remaining = big if collisions is None else int(collisions)
+        # a count-limited run must not spin on crossings in a gas that stopped colliding
+        # (e.g. after strong inelastic cooling): a kernel call gets a budget of events
+        # (about 60 crossings a collision at ρσ² = 1e-4, 600 at 1e-6), and the default one
+        # is renewed while the call before it collided at all
+        renew = max_events is None and collisions is not None
         if max_events is None:
-            # a count-limited run must not spin on crossings in a gas that stopped colliding
-            # (e.g. after strong inelastic cooling); crossings per collision stay < 1e3 even at
-            # ρσ² = 1e-4 (about 60)
             max_events = big if collisions is None else 1000 * remaining + 100 * self.n_particles
-        max_events = int(max_events)
         while True:
             chunk = remaining
             if self.sort_every > 0:
@@ -379,6 +383,8 @@ class HardSphereSystem:
             self._since_sort += done
             if remaining != big:
                 remaining -= done
+            if status == k.STATUS_EVENT_LIMIT and renew and done > 0:
+                status = k.STATUS_COLLISIONS  # a dilute gas, still colliding: go on
             self._check(status, max_events)
             if self.sort_every > 0 and self._since_sort >= self.sort_every:
                 self.sort_particles(observers)
@@ -394,17 +400,23 @@ class HardSphereSystem:
                 int(self.counters_array[k.COUNT_COLLAPSE_PARTNER]),
             )
             pair = tuple(int(self.label[s]) if s >= 0 else -1 for s in slots)
-            what = (
-                "inelastic collapse"
-                if status == k.STATUS_COLLAPSE
-                else "stalled clock (inelastic collapse or degenerate configuration)"
-            )
+            if status == k.STATUS_COLLAPSE:
+                what = (
+                    f"inelastic collapse at time {self.time:.10g} after {self.collisions} "
+                    f"collisions: particle {pair[0]} (last partner {pair[1]}) collided more "
+                    f"than {self.grid[k.I_STREAK]} times in a row less than "
+                    f"{self.geometry[k.G_COLLAPSE_TIME]:.3g} apart"
+                )
+            else:
+                what = (
+                    f"stalled clock at time {self.time:.10g} after {self.collisions} "
+                    f"collisions: more than {k.STALL_LIMIT} events at one time, the last of "
+                    f"particle {pair[0]} and {pair[1]} (inelastic collapse or a degenerate "
+                    "configuration)"
+                )
             raise InelasticCollapseError(
-                f"{what} at time {self.time:.10g} after {self.collisions} collisions: "
-                f"particle {pair[0]} (last partner {pair[1]}) collided more than "
-                f"{self.grid[k.I_STREAK]} times in a row less than "
-                f"{self.geometry[k.G_COLLAPSE_TIME]:.3g} apart (restitution "
-                f"{self.restitution}); contact_time > 0 (TC model) avoids it",
+                f"{what} (restitution {self.restitution}); contact_time > 0 (TC model) "
+                "avoids a collapse",
                 time=self.time,
                 collisions=self.collisions,
                 particles=pair,
@@ -413,7 +425,8 @@ class HardSphereSystem:
         if status == k.STATUS_EVENT_LIMIT:
             raise RuntimeError(
                 f"event budget of {max_events} events exhausted at time {self.time} after "
-                f"{self.collisions} collisions: the particles (almost) stopped colliding"
+                f"{self.collisions} collisions: the particles (almost) stopped colliding, "
+                "or max_events is too small for the crossings between collisions"
             )
 
     def _allocate_rows(self, capacity: int) -> None:

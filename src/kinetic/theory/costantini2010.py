@@ -35,6 +35,7 @@ __all__ = [
     "drag_rate",
     "fdr_ratio_coloured",
     "fdr_ratio_white",
+    "heated_temperature",
     "in_cell_flow",
     "max_n_density",
     "mean_free_path",
@@ -313,6 +314,26 @@ def drag_rate(alpha, density, a2=None, temperature: float = 1.0) -> float:
     rescaled temperature at ``temperature`` (Eq. 12 with the chosen a2;
     ζ = ζ* v/ℓ with v = √(2T), ℓ = 1/n)."""
     return float(zeta_star(alpha, a2)) * math.sqrt(2.0 * temperature) * density / 2.0
+
+
+def heated_temperature(alpha: float, density: float, drag_rate: float, duration: float) -> float:
+    """The largest mean temperature (units of T0) that a drag ``drag_rate`` = ω0 (engine
+    units) reaches within ``duration``, by the homogeneous balance dT/dτ = (2ω0 − ζ(T)) T
+    with ζ(T) = ζ(T0) √T from Eq. 12 (a2 of van Noije and Ernst): x = √T is logistic,
+    x(τ) = x_s/(1 + (x_s − 1) e^(−ω0 τ)) with x_s = 2ω0/ζ(T0), so T rises monotonically to
+    T(duration) when T_s = x_s² > 1 and never exceeds T0 otherwise; an elastic gas with
+    drag heats as e^(2ω0 τ). What the cooling fronts of both engines check a drag by."""
+    if drag_rate == 0.0:
+        return 1.0
+    # ζ(T0) = ζ* v/ℓ with v = √2 and ℓ = 1/n (engine units)
+    zeta0 = float(zeta_star(alpha)) * math.sqrt(2.0) * density
+    growth = min(drag_rate * duration, 700.0)
+    if zeta0 == 0.0:
+        return math.exp(2.0 * growth)
+    steady = 2.0 * drag_rate / zeta0
+    if steady <= 1.0:
+        return 1.0
+    return (steady / (1.0 + (steady - 1.0) * math.exp(-growth))) ** 2
 
 
 # ------------------------------------------------------- elastic viscosity beyond first Sonine
