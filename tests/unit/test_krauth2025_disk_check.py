@@ -14,7 +14,7 @@ from kinetic.studies.krauth2025 import check_disks
 from kinetic.theory.krauth2025 import direct_disks_acceptance, snapshot_count
 
 CONFIGURED = {"n_disks": 4, "sigma": 0.15, "box": [1.0, 1.0]}
-SAMPLES = {"direct_samples": 100_000, "sampler_realizations": 16}  # config.yaml's
+SAMPLES = {"direct_samples": 1_000_000, "sampler_realizations": 16}  # config.yaml's
 
 
 def test_the_configured_box_passes():
@@ -26,7 +26,7 @@ def test_the_configured_box_passes():
     [
         (0.26, "too dense"),  # four disks of radius > 1/4 do not fit in a unit square
         (0.245, "too dense"),  # they fit, but far too rarely for a start to be found
-        (0.23, "would start about"),  # 1.6e6 configurations at 3e-7: 5e12 starts, hours
+        (0.23, "would start about"),  # 1.6e7 configurations at 3e-7: 5e13 starts, days
         (0.6, "cannot hold a disk"),
     ],
 )
