@@ -75,7 +75,7 @@ def test_grouped_cloning_case_counts_every_points_events(monkeypatch):
     """``cloning_speed``'s grouped-job case (``resident_threads``), at a tiny size under
     the simulator: every point's collisions, over the wall time of the one call."""
     monkeypatch.setattr(bench, "_paper_lambdas", lambda kernel: [1.0, -0.5])
-    case = bench._cloning_grouped(8, 2.0, realizations=2)  # one would need blocks of 10
+    case = bench._cloning_grouped(8, 4.0, realizations=2)  # one would need blocks of 10
     assert case["points"] == 2 and case["realizations"] == 4
     assert case["events"] > 0
     assert case["events_per_second"] == case["events"] / case["wall_seconds"]
@@ -145,7 +145,7 @@ def test_cloning_case_rates_its_events_on_the_engines_clock():
     """``cloning_speed``'s cases report the event rate on the engine's clock (the launches
     and the GPU, without the host's initial populations and the final sort that counts
     the distinct clones) beside the wall-clock one."""
-    case = bench._cloning("hard_spheres", 1.0, 8, 2.0, 2)
+    case = bench._cloning("hard_spheres", 1.0, 8, 4.0, 2)
     assert 0 < case["engine_seconds"] <= case["wall_seconds"]
     assert case["events"] > 0
     assert case["engine_events_per_second"] == case["events"] / case["engine_seconds"]

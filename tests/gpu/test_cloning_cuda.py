@@ -160,8 +160,8 @@ def test_points_sharing_launches_give_what_they_give_alone(maxwell, monkeypatch,
         },
         common
         | {
-            "lam": 2.0,
-            "duration": 20.0,  # one realization: blocks of >= 10 mean free times
+            "lam": 1.0,  # one realization: lam <= 1, blocks of >= 10 mean free times
+            "duration": 20.0,
             "transient": 9.0,
             "n_blocks": 2,
             "n_realizations": 1,
@@ -197,7 +197,7 @@ def test_points_sharing_launches_give_what_they_give_alone(maxwell, monkeypatch,
 def test_points_of_more_realizations_than_a_grid_holds_are_refused_before_any_work():
     from kinetic.cloning import simulate_points
 
-    point = {"lam": 1.0, "population": 8, "duration": 1.0, "transient": 4.0, "seed": 1}
+    point = {"lam": 1.0, "population": 8, "duration": 8.0, "transient": 4.0, "seed": 1}
     point |= {"backend": "cuda", "n_realizations": 40_000}
     with pytest.raises(ValueError, match="at most 65535 realizations"):
         simulate_points([point, point | {"lam": 0.5}])
@@ -253,7 +253,7 @@ def test_the_cuda_backend_is_refused_before_any_work_without_a_gpu():
         "from kinetic.backends import BackendUnavailable\n"
         "from kinetic.cloning import simulate\n"
         "try:\n"
-        "    simulate(lam=1.0, population=8, duration=1.0, transient=4.0, seed=1,"
+        "    simulate(lam=1.0, population=8, duration=8.0, transient=4.0, seed=1,"
         " backend='cuda')\n"
         "except BackendUnavailable as error:\n"
         "    print(error)\n"

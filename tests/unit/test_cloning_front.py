@@ -13,7 +13,7 @@ SMALL = {
     "dimension": 2,
     "lam": 0.5,
     "population": 50,
-    "duration": 4.0,
+    "duration": 8.0,
     "transient": 4.0,
     "n_blocks": 4,
     "n_realizations": 2,
@@ -41,6 +41,9 @@ SMALL = {
         ({"n_realizations": 1, "n_blocks": 1}, "n_blocks >= 2"),
         ({"n_realizations": 1, "n_blocks": 10, "duration": 1e-12}, "blocks of duration/n_blocks"),
         ({"lam": 8.0, "transient": 100.0}, "transient=100 is too short at lam=8"),
+        # one candidate in 1e-6 mean free times returned mu = 0 +- 0 (exact 0.665)
+        ({"lam": -0.5, "duration": 1e-6}, "about 2.29e-05 compensation events"),
+        ({"n_realizations": 1, "lam": 2.0, "duration": 400.0}, "use n_realizations >= 2"),
         ({"backend": "cuda", "n_realizations": 65_536}, "at most 65535 realizations"),
         ({"control_interval": 0.5}, "control_interval = 0.5 is for backend 'cuda' only"),
     ],
@@ -100,3 +103,36 @@ def test_extrapolation_recovers_a_line_and_refuses_one_size():
     assert fit.intercept_err > 0 and fit.dof == 2
     with pytest.raises(ValueError, match="2 distinct population sizes"):
         extrapolate_population([100, 100], [1.0, 1.1], [0.1, 0.1])
+
+
+def test_a_single_realizations_values_use_every_measured_block():
+    """19 measured blocks in 10 error groups: the values come from all 19 blocks' sums
+    (10 of them were used, the remainder dropped), the error from groups of 1 or 2."""
+    from kinetic.cloning.estimators import observables_from_sums, summarize_realizations
+    from kinetic.cloning.kernels import BLOCK_FIELDS
+
+    rng = np.random.default_rng(4)
+    blocks = rng.uniform(0.5, 1.5, size=(1, 19, len(BLOCK_FIELDS)))
+    summary = summarize_realizations(blocks, np.ones(19, bool), 50, 2, 0.5)
+    whole = observables_from_sums(blocks[0].sum(axis=0), 50, 2, 0.5)
+    for name, value in zip(("mu", "temperature", "a2", "mu_rate"), whole, strict=True):
+        assert summary[name] == pytest.approx(float(value), rel=1e-12)
+        assert summary[f"{name}_err"] > 0
+    assert summary["error_method"] == "blocks"
+
+
+def test_the_velocity_histogram_of_a_small_population_has_the_bath_temperature():
+    """At λ = 0 the members are bath particles: the histogram's temperature is 1 at any
+    N_c. Its snapshots (one a block) were weighted by the step, which shrinks while a fast
+    member raises the bound: about -0.28/N_c (0.972 at N_c = 10, 0.934 at 2). Within
+    Student's band of its 64 realizations' error and the bins' w²/12."""
+    from kinetic.analysis.checks import tolerance_factor
+    from kinetic.analysis.statistics import mean_and_sem
+
+    small = {"lam": 0.0, "population": 10, "duration": 400.0, "n_blocks": 400}
+    ds = simulate(**{**SMALL, **small, "n_realizations": 64})
+    v = ds.velocity.values
+    width = float(v[1] - v[0])
+    temperature, error = mean_and_sem((ds.velocity_density.values * v**2).sum(axis=1) * width)
+    assert abs(temperature - 1.0) < tolerance_factor(4, 63) * error + width**2 / 12
+    assert ds.attrs["diversity_collapse"] == 0  # 10 members, none cloned: no collapse

@@ -56,7 +56,7 @@ def warmup() -> None:
                     dimension=dimension,
                     lam=lam,
                     population=64,
-                    duration=0.2,
+                    duration=1.0,
                     transient=3.0,
                     n_blocks=2,
                     n_realizations=2,

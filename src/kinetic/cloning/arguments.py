@@ -21,7 +21,9 @@ __all__ = [
     "LAMBDA_MIN",
     "MAX_CONTROL_INTERVAL",
     "MAX_CUDA_HISTOGRAM_BINS",
+    "MAX_SINGLE_REALIZATION_LAMBDA",
     "MAX_TRANSIENT_BLOCKS",
+    "MIN_COMPENSATIONS",
     "MIN_KEPT_COLLISIONS",
     "MIN_SINGLE_REALIZATION_BLOCK",
     "default_control_interval",
@@ -59,6 +61,21 @@ standard error of T from blocks of 1, 3, 10, 30 and 100 mean free times is 2.0, 
 on. Blocks of 10⁻¹³ gave μ = 0 ± 0 at λ = −0.5 (the exact value is 0.67). At large λ T
 correlates longer still (λ = 4: 1.7 × 10⁻³ at 10, 3.5 × 10⁻³ at 100): there several
 realizations are the error bar to trust."""
+
+MAX_SINGLE_REALIZATION_LAMBDA = 1.0
+"""Largest λ of a run of one realization. Its error bars come from its blocks, whose
+correlation grows with λ: against the spread of 48 independent realizations (hard disks,
+N_c = 200, 10 blocks of 10 mean free times) the block errors of μ, T and μ_rate were 0.98,
+0.93 and 0.89 of the true ones at λ = 1, 0.61, 0.45 and 0.42 at λ = 3, 0.62, 0.26 and 0.24
+at λ = 4. Above it, several realizations give the error bar."""
+
+MIN_COMPENSATIONS = 10.0
+"""Fewest compensation events (annihilations at λ > 0, duplications at λ < 0) a realization
+is expected to make in its measured time at the slowest rate, |e^{-λ} − 1| r_min N_c t:
+a run of 10⁻⁶ mean free times made one candidate and returned μ = 0 ± 0 (exact 0.665).
+With 10 or more, every realization making none has a chance below e^{-10} each, and the
+realizations' spread is an error bar (a wide one: the numbers are for tests, not
+production, whose runs make 10⁵ and more)."""
 
 CONTROL_WEIGHT_VARIANCE = 0.5
 """The ``cuda`` backend's control interval Δ keeps the relative variance of a clone's
@@ -164,6 +181,22 @@ def validate_parameters(
             f"MIN_SINGLE_REALIZATION_BLOCK): use n_realizations >= 2, n_blocks <= "
             f"{max(1, math.floor(duration / MIN_SINGLE_REALIZATION_BLOCK))} or duration >= "
             f"{MIN_SINGLE_REALIZATION_BLOCK * n_blocks:g}"
+        )
+    if n_realizations == 1 and lam > MAX_SINGLE_REALIZATION_LAMBDA:
+        raise ValueError(
+            f"a single realization's error bar comes from its blocks, which are correlated "
+            f"beyond their length at lam = {lam:g} (their errors came out 2-4 times too small "
+            f"at lam = 3-4; MAX_SINGLE_REALIZATION_LAMBDA = {MAX_SINGLE_REALIZATION_LAMBDA:g}): "
+            "use n_realizations >= 2"
+        )
+    expected = abs(math.expm1(-lam)) * _slowest_rate(kernel) * population * duration
+    if lam != 0.0 and expected < MIN_COMPENSATIONS:
+        raise ValueError(
+            f"duration = {duration:g} is too short at lam = {lam:g}: a realization of "
+            f"{population} members would make about {expected:.3g} compensation events in it "
+            f"(|e^-lam - 1| r_min N_c duration), fewer than {MIN_COMPENSATIONS:g}, and mu "
+            "would come from a handful of them (a run of 1e-6 gave mu = 0 +- 0); use "
+            f"duration >= {MIN_COMPENSATIONS / (expected / duration):.4g}"
         )
     histogram_half_width = _check_real(
         "histogram_half_width", histogram_half_width, strictly_positive=True

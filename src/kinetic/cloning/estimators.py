@@ -76,23 +76,28 @@ def summarize_realizations(blocks, measured, population, dimension, lam, n_error
     """
     blocks = np.asarray(blocks, dtype=float)
     measured = np.asarray(measured, dtype=bool)
+    names = ("mu", "temperature", "a2", "mu_rate")
+    summary = {}
     if blocks.shape[0] >= 2:
         values = realization_observables(blocks, measured, population, dimension, lam)
-        method = "realizations"
-    else:
-        series = blocks[0, measured, :]
-        groups = min(n_error_blocks, series.shape[0])
-        if groups < 2:
-            raise ValueError("need at least 2 realizations or 2 measured blocks for an error bar")
-        usable = series.shape[0] - series.shape[0] % groups
-        grouped = series[:usable].reshape(groups, -1, series.shape[1]).sum(axis=1)
-        values = observables_from_sums(grouped, population, dimension, lam)
-        method = "blocks"
-    summary = {"error_method": method}
-    for name, samples in zip(("mu", "temperature", "a2", "mu_rate"), values, strict=True):
-        mean, sem = mean_and_sem(samples)
-        summary[name] = float(mean)
-        summary[f"{name}_err"] = float(sem)
+        summary["error_method"] = "realizations"
+        for name, samples in zip(names, values, strict=True):
+            mean, sem = mean_and_sem(samples)
+            summary[name], summary[f"{name}_err"] = float(mean), float(sem)
+        return summary
+    series = blocks[0, measured, :]
+    groups = min(n_error_blocks, series.shape[0])
+    if groups < 2:
+        raise ValueError("need at least 2 realizations or 2 measured blocks for an error bar")
+    # every measured block counts: the values from their sums, the error from the spread of
+    # nearly equal groups of them (a remainder of blocks was dropped: 10 of 19 used)
+    grouped = np.stack([part.sum(axis=0) for part in np.array_split(series, groups)])
+    whole = observables_from_sums(series.sum(axis=0)[None, :], population, dimension, lam)
+    values = observables_from_sums(grouped, population, dimension, lam)
+    summary["error_method"] = "blocks"
+    for name, value, samples in zip(names, whole, values, strict=True):
+        summary[name] = float(value[0])
+        summary[f"{name}_err"] = float(mean_and_sem(samples)[1])
     return summary
 
 
