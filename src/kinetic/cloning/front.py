@@ -20,6 +20,7 @@ import time
 import numpy as np
 
 from kinetic import backends, io
+from kinetic.analysis.statistics import mean_and_sem
 from kinetic.batches import REALIZATION
 from kinetic.cloning import kernels
 from kinetic.cloning.arguments import (
@@ -68,6 +69,10 @@ def is_collapsed(distinct_velocities, population):
     # fixed threshold flagged every run, λ = 0 included, where nothing is cloned)
     return bool(distinct_velocities < min(threshold, 0.5 * population))
 
+
+DRIFT_SIGMAS = 4.0
+"""Standard errors between the first and second halves of a run's measured time beyond which
+it is reported as still relaxing (``drift_z_mu``, ``drift_z_temperature``)."""
 
 _CHUNK_EVENTS = 3.0e7  # events per kernel call, so progress lines come every few seconds
 
@@ -251,9 +256,43 @@ class _Plan:
             summary,
         )
         dataset.attrs["diversity_collapse"] = int(collapsed)
+        dataset.attrs.update(self._drift(blocks, measured))
         dataset.attrs["device"] = device
         label = kernel_label(p["kernel"], d)
         return io.stamp(dataset, parameters={**p, "kernel_label": label}, seed=p["seed"])
+
+    def _drift(self, blocks, measured) -> dict[str, float]:
+        """``drift_z_mu``, ``drift_z_temperature``: the first half of the measured blocks
+        against the second, the mean over realizations of their difference in its standard
+        errors (NaN for one realization or one measured block). A population still
+        relaxing when the measurement starts (a transient too short, at large λ) drifts:
+        a warning beyond ``DRIFT_SIGMAS``."""
+        p, n, d = self.p, self.p["population"], self.p["dimension"]
+        indices = np.flatnonzero(measured)
+        out = {"drift_z_mu": math.nan, "drift_z_temperature": math.nan}
+        if blocks.shape[0] < 2 or indices.size < 2:
+            return out
+        halves = []
+        for part in np.array_split(indices, 2):
+            mask = np.zeros(measured.size, dtype=bool)
+            mask[part] = True
+            halves.append(realization_observables(blocks, mask, n, d, p["lam"]))
+        for key, k in (("drift_z_mu", 0), ("drift_z_temperature", 1)):
+            difference, error = mean_and_sem(halves[0][k] - halves[1][k])
+            out[key] = float(difference / error) if error > 0 else 0.0
+        worst = max(abs(out["drift_z_mu"]), abs(out["drift_z_temperature"]))
+        if worst > DRIFT_SIGMAS:
+            logger.warning(
+                "[%s] the first half of the measured time differs from the second by %.1f "
+                "standard errors (mu %+.1f, T %+.1f): the population may still relax after "
+                "the transient of %g mean free times; a longer transient is safer",
+                self.label,
+                worst,
+                out["drift_z_mu"],
+                out["drift_z_temperature"],
+                p["transient"],
+            )
+        return out
 
 
 def _run_cpu(p, durations, n_transient, states, progress):
