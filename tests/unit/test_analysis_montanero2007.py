@@ -229,6 +229,8 @@ def _summary(alpha, family="scan", **changes):
         "a2_err": 0.001,
         "thermostat_rate": 0.0,
         "thermostat_rate_err": 0.0,
+        "cooling_rate": 0.0,
+        "cooling_rate_err": 0.0,
         "max_abs_cx": 1e-15,
         "max_abs_energy_error": 1e-15,
     }
