@@ -34,6 +34,22 @@ def test_pair_indices_are_distinct_and_uniform():
     assert chi2 < dof + 5 * np.sqrt(2 * dof)
 
 
+def test_the_second_index_does_not_depend_on_the_first_at_large_n():
+    """N = 2²²: whether j falls in the upper half is a fair coin whatever i's parity (one
+    draw for both shared 11 bits: j of an even i was never in the upper half, of an odd i
+    always). Binomial, 4 standard deviations."""
+    s = [np.uint64(w) for w in rng.stream_states(5, 1)[0]]
+    n, draws = 2**22, 20000
+    upper = np.zeros((2, 2), dtype=int)  # (i parity, j in the upper half)
+    for _ in range(draws):
+        i, j, *words = kernels._pair(n, *s)
+        s = [np.uint64(w) for w in words]
+        upper[i % 2, int(j >= n // 2)] += 1
+    for parity in (0, 1):
+        total = upper[parity].sum()
+        assert abs(upper[parity, 1] - total / 2) < 4 * np.sqrt(total / 4), upper
+
+
 def test_maxwellian_has_zero_momentum_and_exact_energy():
     velocity, _, _ = _gas(3, 1001)
     assert np.all(np.abs(velocity.sum(axis=1)) < 1e-12)
