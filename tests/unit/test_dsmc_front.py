@@ -248,3 +248,20 @@ def test_an_all_zero_stream_is_refused_by_both_dsmc_engines():
     )
     with pytest.raises(ValueError, match="all-zero xoshiro state"):
         new_cooling_gas(settings, zero)
+
+
+def test_windows_are_labelled_by_the_mean_time_of_their_snapshots():
+    """Snapshots come after the steps k = stride, 2 stride, ...: a window of 7 steps with a
+    stride of 5 holds the snapshots of step 5, then 10, then 15 and 20 (its centre was
+    the label, 0.05-0.075 τ early in the configs). The histograms' start is the window
+    boundary actually used: asked for 0.3 τ with windows of 0.35 τ, it is 0.35 τ."""
+    from kinetic.dsmc.homogeneous import snapshot_times
+
+    run = SMALL | {"duration": 1.05, "time_step": 0.05, "sample_interval": 0.35}
+    data = simulate_homogeneous(**run | {"sample_stride": 5, "histogram_start": 0.3})
+    np.testing.assert_allclose(data.time.values, [0.25, 0.5, 0.875])
+    np.testing.assert_array_equal(data.snapshots.values[0], [1, 1, 2])
+    assert data.attrs["histogram_start_tau"] == pytest.approx(0.35)
+    np.testing.assert_allclose(snapshot_times(2, 200, 50, 0.003), [0.375, 0.975])
+    every = simulate_homogeneous(**SMALL | {"sample_stride": 1})  # the window's centre + δt/2
+    np.testing.assert_allclose(every.time.values, [0.275, 0.775])

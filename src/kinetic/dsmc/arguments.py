@@ -131,8 +131,8 @@ def check_windows(*, duration, sample_interval, time_step, sample_stride, histog
     """The run's clock: ``duration`` and ``sample_interval`` whole multiples of the window
     and of ``time_step``, ``sample_stride`` within a window's steps, and the histograms'
     start (default: half the duration) a time in [0, duration) that leaves at least one
-    whole window to histogram (it is rounded up to a window boundary). Returns a
-    ``Windows``."""
+    whole window to histogram (it is rounded up to a window boundary, the ``Windows``'
+    ``histogram_start``). Returns a ``Windows``."""
     duration = validate.real("duration", duration, 0.0, 1e12, low_open=True, unit=" τ")
     sample_interval = validate.real(
         "sample_interval", sample_interval, 0.0, duration, low_open=True, unit=" τ"
@@ -158,6 +158,6 @@ def check_windows(*, duration, sample_interval, time_step, sample_stride, histog
         sample_interval,
         steps_per_window,
         n_windows,
-        histogram_start,
+        first_histogram_window * sample_interval,  # the start used, not the one asked for
         first_histogram_window,
     )
