@@ -265,3 +265,36 @@ def test_windows_are_labelled_by_the_mean_time_of_their_snapshots():
     np.testing.assert_allclose(snapshot_times(2, 200, 50, 0.003), [0.375, 0.975])
     every = simulate_homogeneous(**SMALL | {"sample_stride": 1})  # the window's centre + δt/2
     np.testing.assert_allclose(every.time.values, [0.275, 0.775])
+
+
+def test_runs_too_fine_for_their_memory_or_calls_are_refused_before_any_work():
+    """10⁴ cells a side of 100 particles passed and would have allocated about 25 GB; a
+    free-flight chunk of 1e-9 asked for 2e9 kernel calls (0.4 s at 1e-4)."""
+    from kinetic.dsmc import simulate_cooling_modes
+
+    with pytest.raises(ValueError, match=r"10000 cells a side|100000000 cells"):
+        simulate_cooling_modes(
+            n_particles=100,
+            density=0.05,
+            restitution=0.8,
+            drag_rate=0.0,
+            equilibration=0.0,
+            sample_interval=0.5,
+            n_samples=2,
+            seed=1,
+            fictive_factor=1,
+            cells_per_side=10_000,
+            time_step=0.5,
+            collision_rule="paper",
+        )
+    with pytest.raises(ValueError, match="kernel calls"):
+        simulate_free_flights(
+            n_particles=50,
+            duration=2.0,
+            seed=1,
+            n_time_bins=10,
+            n_path_bins=10,
+            max_flight_time=5.0,
+            max_free_path=5.0,
+            chunk=1e-9,
+        )

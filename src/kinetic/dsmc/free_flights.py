@@ -24,6 +24,9 @@ __all__ = ["simulate_free_flights"]
 _NO_CARRY = np.zeros(1)
 """``Collisions.carry`` of the Poisson clock, which carries nothing."""
 
+MAX_CHUNKS = 10**6
+"""Most chunks (kernel calls, each a few microseconds of Python) of one realization."""
+
 
 def simulate_free_flights(
     *,
@@ -99,6 +102,12 @@ def simulate_free_flights(
     # ended or is known to be longer than max_flight_time
     total_time = duration + max_flight_time
     n_chunks = max(1, math.ceil(total_time / chunk - 1e-9))
+    if n_chunks > MAX_CHUNKS:  # a kernel call each: chunk = 1e-9 asked for 2e9 of them
+        raise ValueError(
+            f"chunk = {chunk!r} cuts duration + max_flight_time = {total_time:g} into "
+            f"{n_chunks} kernel calls, more than {MAX_CHUNKS}: use chunk >= "
+            f"{total_time / MAX_CHUNKS:.3g}"
+        )
 
     time_counts = np.zeros((n_realizations, n_time_bins + 1), dtype=np.int64)
     path_counts = np.zeros((n_realizations, n_path_bins + 1), dtype=np.int64)

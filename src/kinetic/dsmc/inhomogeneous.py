@@ -98,6 +98,18 @@ four or more simulated particles a cell and 1 + 5/mean below, ``slack_per_cell``
 
 MAX_CELLS_PER_SIDE = 10_000
 
+MAX_LAYOUT_BYTES = 16 * 2**30
+"""Largest memory of one realization's arrays (``CELL_BYTES`` a cell, ``PARTICLE_BYTES`` a
+simulated particle): 10⁴ cells a side of 100 particles passed validation and would have
+allocated about 25 GB."""
+
+CELL_BYTES = 256
+"""A cell's memory: its start, count, carry and moments (64 bytes) and at least 4 free slots
+of 48 bytes (``slack_per_cell``)."""
+
+PARTICLE_BYTES = 232
+"""A simulated particle's memory: 88 bytes and up to 3 slots of 48."""
+
 CHUNK_PARTICLE_STEPS = 50_000_000
 """Particle steps per kernel call between two progress lines (about half a second)."""
 
@@ -160,6 +172,16 @@ class CoolingModesSettings:
                 f"n_particles x fictive_factor = {self.n_particles} x {self.fictive_factor} = "
                 f"{self.n_simulated} simulated particles is too many: must be <= "
                 f"{MAX_SIMULATED_PARTICLES}"
+            )
+        cells = self.cells_per_side**2
+        memory = CELL_BYTES * cells + PARTICLE_BYTES * self.n_simulated
+        if memory > MAX_LAYOUT_BYTES:
+            room = (MAX_LAYOUT_BYTES - PARTICLE_BYTES * self.n_simulated) // CELL_BYTES
+            raise ValueError(
+                f"cells_per_side = {self.cells_per_side} gives {cells} cells for "
+                f"{self.n_simulated} simulated particles: about {memory / 2**30:.3g} GiB a "
+                f"realization, more than {MAX_LAYOUT_BYTES / 2**30:g} GiB; use cells_per_side "
+                f"<= {math.isqrt(max(1, room))}"
             )
         collisions = self.collision_frequency * self.time_step
         if collisions > MAX_COLLISIONS_PER_STEP * _ROUNDING:
