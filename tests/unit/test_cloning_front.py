@@ -103,6 +103,8 @@ def test_extrapolation_recovers_a_line_and_refuses_one_size():
     assert fit.intercept_err > 0 and fit.dof == 2
     with pytest.raises(ValueError, match="2 distinct population sizes"):
         extrapolate_population([100, 100], [1.0, 1.1], [0.1, 0.1])
+    with pytest.raises(ValueError, match="errors finite and > 0"):
+        extrapolate_population([100, 200, 400], [1.0, 1.1, 1.2], [0.1, np.inf, 0.1])
 
 
 def test_a_single_realizations_values_use_every_measured_block():

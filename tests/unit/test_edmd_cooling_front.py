@@ -167,3 +167,36 @@ def test_first_dissipation_is_the_equilibrations_last_interval():
     partial = simulate_cooling_modes(**(BASE | {"equilibration": 0.5 * interval}))
     assert np.isnan(partial.dissipated_energy.values[0, 0])
     assert np.all(partial.dissipated_energy.values[0, 1:] > 0)
+
+
+def test_both_engines_warn_of_a_box_beyond_the_shear_instability(caplog, monkeypatch):
+    """N = 3000 at nσ² = 0.05 and α = 0.5 lies beyond L_c (the study refuses it; the
+    engines, which run it as physics, warn): the transverse modes grow."""
+    import logging
+
+    from kinetic.dsmc import inhomogeneous
+    from kinetic.edmd import cooling
+
+    def no_run(*args, **kwargs):
+        raise RuntimeError("stopped after the warnings")
+
+    monkeypatch.setattr(cooling, "HardSphereSystem", no_run)
+    monkeypatch.setattr(inhomogeneous, "new_cooling_gas", no_run)
+    monkeypatch.setattr(inhomogeneous, "_compile_outside_the_timers", lambda *a, **k: None)
+    unstable = {"n_particles": 3000, "density": 0.05, "restitution": 0.5, "drag_rate": 0.0}
+    run = {"equilibration": 0.0, "sample_interval": 1.0, "n_samples": 2, "seed": 1} | unstable
+    with caplog.at_level(logging.WARNING, logger="kinetic"):
+        with pytest.raises(RuntimeError, match="stopped after"):
+            simulate_cooling_modes(**run)
+        with pytest.raises(RuntimeError, match="stopped after"):
+            inhomogeneous.simulate_cooling_modes(
+                **run, fictive_factor=1, cells_per_side=10, time_step=0.5, collision_rule="paper"
+            )
+    assert caplog.text.count("shear-unstable") == 2
+    caplog.clear()
+    with (
+        caplog.at_level(logging.WARNING, logger="kinetic"),
+        pytest.raises(RuntimeError, match="stopped after"),
+    ):
+        simulate_cooling_modes(**run | {"n_particles": 300})
+    assert "shear-unstable" not in caplog.text

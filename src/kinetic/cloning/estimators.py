@@ -125,7 +125,8 @@ def extrapolate_population(population_sizes, values, errors) -> Extrapolation:
     """Extrapolate finite-population estimates to 1/N_c → 0 by a weighted linear fit.
 
     ``population_sizes``, ``values`` and ``errors`` are 1-D sequences of equal length
-    (at least 2 distinct sizes, errors > 0).
+    (at least 2 distinct sizes, errors finite and > 0: an infinite one gave a zero weight
+    and, with one size left, a singular fit).
     """
     n_c = np.asarray(population_sizes, dtype=float)
     y = np.asarray(values, dtype=float)
@@ -134,8 +135,8 @@ def extrapolate_population(population_sizes, values, errors) -> Extrapolation:
         raise ValueError("population_sizes, values and errors must be 1-D and of equal length")
     if np.unique(n_c).size < 2:
         raise ValueError(f"need at least 2 distinct population sizes, got {n_c.tolist()}")
-    if not np.all(np.isfinite(y)) or not np.all(sigma > 0):
-        raise ValueError("values must be finite and errors > 0 for a weighted fit")
+    if not np.all(np.isfinite(y)) or not np.all((sigma > 0) & np.isfinite(sigma)):
+        raise ValueError("values must be finite and errors finite and > 0 for a weighted fit")
     x = 1.0 / n_c
     w = 1.0 / sigma**2
     s, sx, sxx = w.sum(), (w * x).sum(), (w * x * x).sum()

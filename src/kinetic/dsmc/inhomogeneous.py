@@ -740,8 +740,12 @@ class _Run:
         )
 
     def warn(self) -> None:
-        """The warning of a run whose cells hold less than one real particle."""
+        """The warnings of a run whose cells hold less than one real particle, or whose box
+        is beyond the shear instability."""
+        from kinetic.theory.costantini2010 import warn_if_unstable
+
         settings = self.settings
+        warn_if_unstable(settings.n_particles, settings.density, settings.restitution)
         if settings.fictive_factor == 1 and settings.real_particles_per_cell < 1.0:
             logger.warning(
                 "inhomogeneous DSMC with fictive_factor = 1 and %.3g real particles per cell "

@@ -181,7 +181,7 @@ def simulate_cooling_modes(
             f"drag_rate x sample_interval = {drag_rate * sample_interval:.3g} > 0.5: the "
             "velocities would grow by more than e^0.5 within one segment; sample more often"
         )
-    from kinetic.theory.costantini2010 import heated_temperature
+    from kinetic.theory.costantini2010 import heated_temperature, warn_if_unstable
 
     duration = equilibration + (n_samples - 1) * sample_interval
     heated = heated_temperature(restitution, density, drag_rate, duration)
@@ -193,6 +193,7 @@ def simulate_cooling_modes(
             f"{MAX_HEATING} T0, with the collisions of a run growing as sqrt(T). Use drag_rate "
             "= zeta(T0)/2 (kinetic.theory.costantini2010.drag_rate) to hold T near T0"
         )
+    warn_if_unstable(n_particles, density, restitution)
     box_side = math.sqrt(n_particles / density)
     states = rng.stream_states(seed, n_realizations, first_realization)
     sample_times = equilibration + sample_interval * np.arange(n_samples)

@@ -48,6 +48,7 @@ __all__ = [
     "nu_star_from_fit",
     "reduced_wavenumber",
     "viscosity_sonine_ratio",
+    "warn_if_unstable",
     "zeta_dagger",
     "zeta_star",
 ]
@@ -306,6 +307,22 @@ def check_stable(n_particles, density, alpha, a2=None) -> None:
             "shear-unstable: "
             f"L = {length:.3g} l is not below the critical L_c = {limit:.3g} l (first Sonine); "
             f"N n sigma^2 must stay below {limit**2:.3g}"
+        )
+
+
+def warn_if_unstable(n_particles, density, alpha) -> None:
+    """Log a warning (the ``kinetic`` logger) if the box is at or beyond the shear
+    instability (``check_stable``): the cooling fronts of both engines run it, since it is
+    physics, but the transverse modes then grow instead of decaying (τ_c diverges)."""
+    try:
+        check_stable(n_particles, density, alpha)
+    except ValueError as error:
+        import logging
+
+        logging.getLogger("kinetic").warning(
+            "%s: the transverse modes grow instead of decaying, and their correlation "
+            "time is not the hydrodynamic one",
+            error,
         )
 
 
