@@ -15,7 +15,7 @@ the studies: the reading scripts' code inputs do not include them.
 A job of several points that run one after the other (a front that takes ``finished``,
 montanero2007's ``simulate_batches`` on ``cuda``) keeps each point's dataset as it ends,
 in a hidden file beside its output (:func:`resume_file`), named by a key of the point,
-its stamps and the job's code (:func:`resume_key`). Snakemake deletes a stopped job's
+its stamps and the job's code (:func:`resume_keys`). Snakemake deletes a stopped job's
 outputs, not these: the job's rerun loads the points an earlier run of the same job
 finished and runs the others. The files go when the outputs are written.
 """
@@ -32,10 +32,10 @@ from typing import Any
 
 from kinetic.workflow_support import start, write_output
 
-__all__ = ["resume_file", "resume_key", "run_job", "warm_engines"]
+__all__ = ["resume_file", "resume_keys", "run_job", "warm_engines"]
 
 RESUME_KEY = "resume_key"
-"""The attribute of a kept point's file that names the job that wrote it (:func:`resume_key`)."""
+"""The attribute of a kept point's file that names the job that wrote it (:func:`resume_keys`)."""
 
 
 def warm_engines(log: logging.Logger, front: Any = None) -> None:
@@ -101,21 +101,24 @@ def resume_file(output: str | Path) -> Path:
     return output.with_name(f".{output.name}.resume.nc")
 
 
-def resume_key(snakemake: Any, point: dict[str, Any]) -> str:
-    """A digest of what a point's numbers depend on: the job's front, the point's
-    arguments, the job's stamps and the contents of the job's inputs (its code). A kept
-    point is loaded only by a rerun of the same job with the same code."""
-    digest = hashlib.sha256()
-    described = {
-        "front": snakemake.params.front,
-        "point": point,
-        "parameters": dict(snakemake.params.parameters),
-    }
-    digest.update(json.dumps(described, sort_keys=True, default=str).encode())
+def resume_keys(snakemake: Any, points: list[dict[str, Any]]) -> list[str]:
+    """A digest a point of what its numbers depend on: the job's front, the point's
+    arguments, the job's stamps and the contents of the job's inputs (its code, read
+    once). A kept point is loaded only by a rerun of the same job with the same code."""
+    inputs = hashlib.sha256()
     for path in sorted(str(path) for path in getattr(snakemake, "input", [])):
-        digest.update(path.encode())
-        digest.update(Path(path).read_bytes())
-    return digest.hexdigest()
+        inputs.update(path.encode())
+        inputs.update(Path(path).read_bytes())
+    keys = []
+    for point in points:
+        described = {
+            "front": snakemake.params.front,
+            "point": point,
+            "parameters": dict(snakemake.params.parameters),
+            "inputs": inputs.hexdigest(),
+        }
+        keys.append(hashlib.sha256(json.dumps(described, sort_keys=True, default=str).encode()))
+    return [key.hexdigest() for key in keys]
 
 
 def _run_resumably(snakemake: Any, front: Any, job: dict[str, Any], log: logging.Logger):
@@ -125,7 +128,7 @@ def _run_resumably(snakemake: Any, front: Any, job: dict[str, Any], log: logging
     from kinetic import io
 
     points = list(job["points"])
-    keys = [resume_key(snakemake, point) for point in points]
+    keys = resume_keys(snakemake, points)
     files = [resume_file(path) for path in snakemake.output[: len(points)]]
     done: dict[int, Any] = {}
     for index, (file, key) in enumerate(zip(files, keys, strict=True)):

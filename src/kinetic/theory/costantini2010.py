@@ -16,6 +16,7 @@ v_s/ℓ: every rate† times √(2π) is the same rate in the document's units.
 from __future__ import annotations
 
 import functools
+import logging
 import math
 
 import numpy as np
@@ -317,8 +318,6 @@ def warn_if_unstable(n_particles, density, alpha) -> None:
     try:
         check_stable(n_particles, density, alpha)
     except ValueError as error:
-        import logging
-
         logging.getLogger("kinetic").warning(
             "%s: the transverse modes grow instead of decaying, and their correlation "
             "time is not the hydrodynamic one",

@@ -26,6 +26,7 @@ the thermodynamic pressure βP = contact density).
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -175,11 +176,18 @@ def direct_disks_acceptance(
     disks). 0.0 when a stage leaves nothing legal, p_k below about
     1/(``population`` × ``max_rounds``): legal configurations are too rare to be found."""
     box_x, box_y = check_disk_box(n_disks, sigma, box)
+    return _acceptance(int(n_disks), float(sigma), box_x, box_y, population, max_rounds, seed)
+
+
+@functools.cache
+def _acceptance(n_disks, sigma, box_x, box_y, population, max_rounds, seed) -> float:
+    """``direct_disks_acceptance`` of a checked box, once a box (the workflow's parse asks
+    for it twice: the check and the cost)."""
     rng = np.random.default_rng(seed)
     low, high = np.array([sigma, sigma]), np.array([box_x - sigma, box_y - sigma])
     alive = np.empty((population, 0, 2))
     acceptance = 1.0
-    for _ in range(int(n_disks)):
+    for _ in range(n_disks):
         legal, drawn, found = [], 0, 0
         while found < population // 4 and drawn < population * max_rounds:
             new = rng.uniform(low, high, size=(population, 1, 2))
@@ -195,15 +203,12 @@ def direct_disks_acceptance(
     return acceptance
 
 
-def check_direct_disks_starts(
-    n_disks: int, sigma: float, box, configurations: int, *, acceptance: float | None = None
-) -> float:
+def check_direct_disks_starts(n_disks: int, sigma: float, box, configurations: int) -> float:
     """Raise ``ValueError`` if direct-disks would be expected to start more than
     :data:`MAX_DIRECT_DISKS_STARTS` configurations to draw ``configurations`` legal ones
-    (``acceptance``: :func:`direct_disks_acceptance`'s, estimated here if not given), or
-    if no legal configuration turns up; returns the acceptance."""
-    if acceptance is None:
-        acceptance = direct_disks_acceptance(n_disks, sigma, box)
+    (at :func:`direct_disks_acceptance`), or if no legal configuration turns up; returns
+    the acceptance."""
+    acceptance = direct_disks_acceptance(n_disks, sigma, box)
     if acceptance <= 0.0:
         raise ValueError(
             f"direct-disks found no legal configuration of {n_disks} disks of radius {sigma} "
