@@ -19,16 +19,19 @@ from kinetic.theory import costantini2010 as theory
 
 ALPHA, N, FICTIVE, REALIZATIONS = 0.7, 500, 10, 6
 #: what Eq. 12 leaves out of DSMC's ζ*, at most: its first-Sonine a2 (the exact dilute ζ*
-#: is 0.06 % below it) and the Lie step's T_s shift 2ω0Δτ (1.3 % at Δτ = 0.05 here, 0.64 %
-#: in ζ*). Seeds 5-8 gave +0.9 to +1.2 % with the majorant rule (± 0.05-0.25 %)
-EQ_12_ALLOWANCE = 0.015
+#: is 0.06 % below it) and the finite gas's T_s (0.1-0.2 % in ζ*). Seeds 5-10 gave -0.01
+#: to +0.15 % (± 0.06 %) with the majorant rule; sampled after the step's collisions
+#: (before 2026-12-01) they gave +0.9 to +1.2 %, the Lie step's 3ω0Δτ/2 (ω0Δτ = 0.0063)
+EQ_12_ALLOWANCE = 0.002
 #: what Enskog's χ · Eq. 12 leaves out of MD's ζ* (MD collides χ = 1.0062 times faster than
 #: a dilute gas at nσ² = 0.005): the a2 above, and MD's T_s 0.2-0.4 % above its N → ∞
 #: limit (docs/reproduced.md, "MD's density and size"), 0.1-0.2 % in ζ*. Seeds 5-8 gave
 #: -0.4 to +0.3 % (± 0.05-0.25 %) against χ · Eq. 12, +0.2 to +0.9 % against Eq. 12
 ENSKOG_ALLOWANCE = 0.005
-#: the paper rule's excess beyond 1/N̄: its Maxwellian ω_c's a2 bias (3a2/16 = 0.04 % at
-#: α = 0.7) and what docs/reproduced.md leaves unexplained; seeds 5-8 gave +0.06 to +0.32 %
+#: the paper rule's excess beyond 1/N̄: its step's first-order T_s shift, e^{-ω0Δτ} at the
+#: reported point (+ω0Δτ/2 = 0.32 % in ζ*; test_costantini2010_time_step), its Maxwellian
+#: ω_c's a2 bias (3a2/16 = 0.04 % at α = 0.7) and what docs/reproduced.md leaves
+#: unexplained; seeds 5-10 gave +0.10 to +0.25 % (± 0.08 %)
 EXCESS_ALLOWANCE = 0.004
 
 
@@ -54,10 +57,12 @@ def test_measured_cooling_rate_is_eq_12_in_md_and_majorant_dsmc():
         assert float(result.zeta_star_err) < 0.005 * measured
         assert abs(measured / expected - 1.0) < _band(result) / expected + allowance
     for result in (_runs("majorant"), _runs("paper")):
-        # the steady state balances dissipation and drag, ζ(T_s) = 2ω0, to the Lie step's
-        # O(ω0Δτ) (0.6 % here)
+        # the steady state balances dissipation and drag, ζ(T_s) = 2ω0: at the reported
+        # point a step's loss over T is 2 sinh(ω0Δτ)/Δτ, (ω0Δτ)²/6 = 7e-6 above 2ω0, and T
+        # is sampled once an interval where the loss is summed over every step (seeds 5-10:
+        # -0.001 to +0.023 %; 0.6 % sampled after the collisions, 2ω0(1 + ω0Δτ))
         balance = float(result.zeta_star_balance)
-        assert abs(float(result.zeta_star) - balance) < _band(result) + 0.01 * balance
+        assert abs(float(result.zeta_star) - balance) < _band(result) + 0.001 * balance
 
 
 def test_paper_rule_collides_one_over_n_too_often():
