@@ -123,6 +123,39 @@ def test_a_single_realizations_values_use_every_measured_block():
     assert summary["error_method"] == "blocks"
 
 
+def test_a2_comes_from_the_pooled_moments_not_an_average_of_ratios():
+    """Realizations whose m2 and m4 scatter by 10 % about m2 = 2, m4 = 8 (1 + a2), a2 = 0.1:
+    the mean of the realizations' own m4/m2² is 3 x 0.01 x 1.1 = 0.033 high (6 of its errors
+    here), the ratio of the pooled moments is unbiased. μ and T, ratios over equal times,
+    are the realizations' mean and its standard error."""
+    from kinetic.analysis.checks import tolerance_factor
+    from kinetic.analysis.statistics import mean_and_sem
+    from kinetic.cloning.estimators import realization_observables, summarize_realizations
+    from kinetic.cloning.kernels import BLOCK_FIELDS
+
+    realizations, population, a2 = 2000, 10, 0.1
+    rng = np.random.default_rng(12)
+    blocks = np.zeros((realizations, 1, len(BLOCK_FIELDS)))
+
+    def put(name, values):
+        blocks[:, 0, BLOCK_FIELDS.index(name)] = values
+
+    put("elapsed_time", 5.0)
+    member_time = population * 5.0
+    put("net_compensations", member_time * rng.normal(-0.5, 0.05, realizations))
+    put("integral_v2", member_time * 2.0 * rng.normal(1.0, 0.1, realizations))
+    put("integral_v4", member_time * 8.0 * (1 + a2) * rng.normal(1.0, 0.1, realizations))
+    summary = summarize_realizations(blocks, np.ones(1, bool), population, 2, 0.0)
+    band = tolerance_factor(4.0, realizations - 1) * summary["a2_err"]
+    assert abs(summary["a2"] - a2) < band
+    averaged = realization_observables(blocks, np.ones(1, bool), population, 2, 0.0)
+    assert abs(np.mean(averaged[2]) - a2) > band  # the bias of an average of ratios
+    for name, values in (("mu", averaged[0]), ("temperature", averaged[1])):
+        mean, sem = mean_and_sem(values)
+        assert summary[name] == pytest.approx(mean, rel=1e-12)
+        assert summary[f"{name}_err"] == pytest.approx(sem, rel=1e-9)
+
+
 def test_the_velocity_histogram_of_a_small_population_has_the_bath_temperature():
     """At λ = 0 the members are bath particles: the histogram's temperature is 1 at any
     N_c. Its snapshots (one a block) were weighted by the step, which shrinks while a fast

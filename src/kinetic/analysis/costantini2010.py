@@ -37,7 +37,7 @@ import xarray as xr
 from kinetic import io
 from kinetic.analysis import checks as check
 from kinetic.analysis.checks import Check
-from kinetic.analysis.statistics import error_against_cpu, ratio_and_sem
+from kinetic.analysis.statistics import error_against_cpu, jackknife, ratio_and_sem
 from kinetic.theory import costantini2010 as theory
 from kinetic.theory.costantini2010 import MIN_LAGS
 
@@ -82,26 +82,6 @@ def block_correlations(
     products = np.fft.ifft(spectrum * np.conj(spectrum), axis=1)[:, :n_lags].real
     origins = (length - np.arange(n_lags))[None, :]
     return products.mean(axis=2) / origins / block_norms[:, None]
-
-
-def jackknife(values: np.ndarray, statistic) -> tuple[Any, Any]:
-    """``statistic`` of the mean over the first axis of ``values`` and its jackknife error.
-
-    ``statistic`` maps a mean (``values.shape[1:]``) to a float array; returns
-    (estimate, standard error) as arrays of the statistic's shape.
-    """
-    values = np.asarray(values, dtype=float)
-    count = values.shape[0]
-    if count < 2:
-        raise ValueError(f"a jackknife needs at least 2 blocks, got {count}")
-    estimate = np.asarray(statistic(values.mean(axis=0)), dtype=float)
-    total = values.sum(axis=0)
-    leave_one_out = np.array(
-        [statistic((total - values[i]) / (count - 1)) for i in range(count)], dtype=float
-    )
-    spread = leave_one_out - leave_one_out.mean(axis=0)
-    error = np.sqrt((count - 1) / count * np.sum(spread**2, axis=0))
-    return estimate, error
 
 
 def fit_window(correlation: np.ndarray, lags: np.ndarray, start: float, stop: float) -> slice:

@@ -22,6 +22,7 @@ __all__ = [
     "count_cumulants",
     "cpu_for_error",
     "error_against_cpu",
+    "jackknife",
     "mean_and_sem",
 ]
 
@@ -60,6 +61,26 @@ def error_of_sem(sem, samples):
     time curve."""
     samples = np.asarray(samples, dtype=float)
     return np.asarray(sem, dtype=float) / np.sqrt(2.0 * np.maximum(samples - 1.0, 1.0))
+
+
+def jackknife(values, statistic: Callable) -> tuple[np.ndarray, np.ndarray]:
+    """``statistic`` of the mean over the first axis of ``values`` and its jackknife error.
+
+    ``statistic`` maps a mean (``values.shape[1:]``) to a float array; returns
+    (estimate, standard error) as arrays of the statistic's shape.
+    """
+    values = np.asarray(values, dtype=float)
+    count = values.shape[0]
+    if count < 2:
+        raise ValueError(f"a jackknife needs at least 2 blocks, got {count}")
+    estimate = np.asarray(statistic(values.mean(axis=0)), dtype=float)
+    total = values.sum(axis=0)
+    leave_one_out = np.array(
+        [statistic((total - values[i]) / (count - 1)) for i in range(count)], dtype=float
+    )
+    spread = leave_one_out - leave_one_out.mean(axis=0)
+    error = np.sqrt((count - 1) / count * np.sum(spread**2, axis=0))
+    return estimate, error
 
 
 def ratio_and_sem(numerators, denominators) -> tuple[float, float]:

@@ -305,10 +305,14 @@ def fig06(scan, closures, reference, pdf):
     )
 
     def scaled(lam, value, error):
-        keep = lam >= lambda_min
-        return np.where(keep, value / poisson(lam), np.nan), np.where(
-            keep, np.abs(error / poisson(lam)), np.nan
-        )
+        # divided only where drawn: the generating function is 0 at λ = 0
+        keep, scale = lam >= lambda_min, poisson(lam)
+
+        def divided(numerator):
+            out = np.full(np.shape(numerator), np.nan)
+            return np.divide(numerator, scale, out=out, where=keep)
+
+        return divided(value), np.abs(divided(error))
 
     drawn = draw_series(ax, series, scale=scaled)
     ax.set_xlim(lambda_min - 0.1, lam.max() + 0.2)
