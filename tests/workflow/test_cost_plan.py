@@ -59,8 +59,8 @@ def test_every_simulation_job_asks_for_its_planned_resources(tmp_path):
     [
         (  # cloning's transient grows like e^λ
             "visco2008:\n  cloning:\n    kernels:\n      hard_disks:\n"
-            "        lambdas: [0.0, 30.0]\n        populations: [100]\n",
-            r"hard_disks/lam\+30\.000/N100/batch0000\.nc: estimated [0-9.e+]+ CPU-hours",
+            "        lambdas: [0.0, 20.0]\n        populations: [1000]\n",
+            r"hard_disks/lam\+20\.000/N1000/batch0000\.nc: estimated [0-9.e+]+ CPU-hours",
         ),
         (
             "visco2008:\n  md:\n    n_particles: 10000000\n",
