@@ -5,14 +5,17 @@ sequences of collisions part (vertical lines): against all events (walls include
 against pair collisions per disk, the lecture's count. chaos_table.csv gives, for the
 figure's start and for further random starts, the event and the pair collisions per disk
 at which each sequence parts from float64, with their mean and standard error over the
-random starts."""
+random starts (given only where every start parted within the events compared)."""
 
 import numpy as np
 import pandas as pd
 
 from kinetic import io, plotting
-from kinetic.analysis.krauth2025 import pair_collisions_per_disk, parting_table
-from kinetic.analysis.statistics import mean_and_sem
+from kinetic.analysis.krauth2025 import (
+    pair_collisions_per_disk,
+    parting_summary,
+    parting_table,
+)
 from kinetic.workflow_support import start, write_caption
 
 log = start(snakemake)
@@ -40,27 +43,33 @@ plotting.figure_legend(fig, ncols=2)
 plotting.save(fig, snakemake.output.pdf)
 
 table = pd.DataFrame(parting_table(data))
-summary = []
-for comparison, group in table[table["start_kind"] == "random"].groupby("comparison"):
-    row = {"start": -1, "start_kind": "random, mean", "comparison": comparison}
-    for key in ("parting_event", "pair_collisions_per_disk"):
-        values = group[key].dropna().values
-        mean, sem = mean_and_sem(values) if values.size > 1 else (np.nan, np.nan)
-        row[key], row[f"{key}_sem"] = mean, sem
-    row["events_compared"] = int(group["events_compared"].iloc[0])
-    row["starts_parted"] = int(group["parting_event"].notna().sum())
-    row["starts"] = len(group)
-    summary.append(row)
+summary = parting_summary(table)
+for row in summary:
+    if row["starts_parted"] < row["starts"]:
+        log.warning(
+            "%s: %d of %d random starts did not part within %d events; their mean is not "
+            "given (raise chaos_events)",
+            row["comparison"],
+            row["starts"] - row["starts_parted"],
+            row["starts"],
+            row["events_compared"],
+        )
 table = pd.concat([table, pd.DataFrame(summary)], ignore_index=True)
 io.write_table(table, snakemake.output.csv, snakemake.output.md, float_format=".4g")
 log.info("where the precisions part:\n%s", table.to_string(index=False))
 
 first = table[table["start"] == 0].set_index("comparison")
 means = table[table["start"] == -1].set_index("comparison")
-numbers = {"start": data.attrs["start"], "starts": int(data.attrs["extra_starts"])}
+numbers = {
+    "start": data.attrs["start"],
+    "starts": int(data.attrs["extra_starts"]),
+    "events": int(data.sizes["event"]),
+}
 for key, comparison in (("f32", "float32 against float64"), ("ulp", "float64_ulp against float64")):
     numbers[f"{key}_event"] = first.loc[comparison, "parting_event"]
     numbers[f"{key}_pairs"] = first.loc[comparison, "pair_collisions_per_disk"]
+    parted = means.loc[comparison, "starts_parted"] if comparison in means.index else 0
+    numbers[f"{key}_parted"] = int(parted)
     if comparison in means.index:
         for name in ("parting_event", "pair_collisions_per_disk"):
             numbers[f"{key}_{name}"] = means.loc[comparison, name]

@@ -33,6 +33,7 @@ __all__ = [
     "checks",
     "contact_pressure",
     "pair_collisions_per_disk",
+    "parting_summary",
     "parting_table",
     "pin_contact_density",
     "pins_table",
@@ -264,6 +265,29 @@ def parting_table(chaos: xr.Dataset) -> list[dict]:
                     "events_compared": int(reference.shape[0]),
                 }
             )
+    return rows
+
+
+def parting_summary(table: pd.DataFrame) -> list[dict]:
+    """One row per comparison of ``parting_table``'s random starts: the mean and standard
+    error of the parting event and of the pair collisions per disk before it, with the
+    number of starts and of those that parted. A start that did not part within the
+    events compared is censored (it would part later), so the mean of those that did is
+    biased low: the mean and its error are NaN unless every start parted."""
+    rows = []
+    random = table[table["start_kind"] == "random"]
+    for comparison, group in random.groupby("comparison"):
+        parted = int(group["parting_event"].notna().sum())
+        row = {"start": -1, "start_kind": "random, mean", "comparison": comparison}
+        for key in ("parting_event", "pair_collisions_per_disk"):
+            values = group[key].values
+            complete = parted == len(group) and values.size > 1
+            mean, sem = mean_and_sem(values) if complete else (math.nan, math.nan)
+            row[key], row[f"{key}_sem"] = float(mean), float(sem)
+        row["events_compared"] = int(group["events_compared"].iloc[0])
+        row["starts_parted"] = parted
+        row["starts"] = len(group)
+        rows.append(row)
     return rows
 
 
