@@ -129,6 +129,54 @@ def test_molecular_dynamics_samples_the_equal_probability_distribution(md, direc
     assert reference[0] > 2 * reference[reference.size // 2 - 3]  # the walls attract
 
 
+def test_markov_disks_from_a_lattice_start_samples_the_same_density(direct, monkeypatch):
+    """A chain started from ``lattice_configuration`` (forced here, where direct-disks
+    would start it) reaches the equal-probability density within its burn-in."""
+    import kinetic.samplers
+
+    monkeypatch.setattr(kinetic.samplers, "MIN_DIRECT_START_ACCEPTANCE", 1.0)
+    markov = _sampled("markov", 24)
+    assert markov.attrs["start"] == "lattice"
+    reference, reference_sem = direct["density"].values, direct["density_sem"].values
+    z = (markov["density"].values - reference) / np.hypot(
+        markov["density_sem"].values, reference_sem
+    )
+    assert np.abs(z).max() < largest_z_tolerance(z.size, REALIZATIONS - 1)
+
+
+def test_markov_disks_runs_in_a_box_too_dense_for_direct_disks():
+    """16 disks of radius 0.11 cover 61 % of the unit box: direct-disks finds no legal
+    start (its acceptance estimate is 0), markov-disks starts from rows and moves: its
+    density holds the 16 disks, is symmetric about the middle within errors and piles up
+    at the walls."""
+    from kinetic.samplers import lattice_configuration
+
+    n, sigma = 16, 0.11
+    assert theory.direct_disks_acceptance(n, sigma, (1.0, 1.0)) == 0.0
+    start = lattice_configuration(n, sigma, (1.0, 1.0))
+    gaps = np.linalg.norm(start[:, None] - start[None], axis=-1) + np.eye(n)
+    assert gaps.min() >= 2 * sigma
+    data = sample_disks(
+        "markov",
+        n_disks=n,
+        sigma=sigma,
+        samples=4000,
+        realizations=8,
+        bins=20,
+        seed=25,
+        step=0.02,
+        burn_in=2000,
+    )
+    assert data.attrs["start"] == "lattice"
+    density, sem = data["density"].values, data["density_sem"].values
+    width = (1.0 - 2 * sigma) / density.size
+    assert density.sum() * width == pytest.approx(n, rel=1e-9)
+    mirror = (density - density[::-1]) / np.hypot(sem, sem[::-1])
+    assert np.abs(mirror).max() < largest_z_tolerance(mirror.size // 2, 7)
+    assert density[0] > density[density.size // 2]
+    assert (data["work"].values > 0).all()  # moves were accepted
+
+
 def test_pressure_estimators_agree_with_the_contact_density(md, direct):
     """Wall rift (4.9a), kinematic (4.10a) and the contact density βP = η(σ)/L_x (from
     direct-disks, extrapolated to the wall) agree."""

@@ -12,7 +12,9 @@ whose densities carry the standard error of the realization means:
 - ``pin_snapshots``: a few direct-pin configurations (krauth2025 Fig. 4.10);
 - ``sample_disks``: projected density η(y) of N hard disks in a box with walls (§4.3),
   by direct-disks (Alg. 4.4) or markov-disks (Alg. 4.5);
-- ``disk_configuration``: one direct-disks configuration (the start of an MD run).
+- ``disk_configuration``: one direct-disks configuration (the start of an MD run);
+- ``lattice_configuration``: N disks on rows in the box, the start of markov-disks where
+  direct-disks' legal configurations are too rare (``MIN_DIRECT_START_ACCEPTANCE``).
 
 Lengths are in units of the pin width 2σ if σ = 1/2 (the configs' choice).
 """
@@ -34,12 +36,15 @@ from kinetic.theory.krauth2025 import (
     check_disk_box,
     check_naive_starts,
     check_pins,
+    direct_disks_acceptance,
     naive_acceptance,
 )
 from kinetic.validate import real
 
 __all__ = [
+    "MIN_DIRECT_START_ACCEPTANCE",
     "disk_configuration",
+    "lattice_configuration",
     "naive_acceptance",
     "pin_snapshots",
     "sample_disks",
@@ -47,6 +52,12 @@ __all__ = [
     "sample_ring",
     "warmup",
 ]
+
+
+MIN_DIRECT_START_ACCEPTANCE = 1e-6
+"""Below this legal fraction of direct-disks starts (10⁶ starts a configuration, about a
+hundredth of a CPU-s at four disks and growing with N), a markov-disks chain starts from
+``lattice_configuration`` instead, and its ``burn_in`` sweeps carry it to equilibrium."""
 
 
 def _positive_int(name: str, value, minimum: int = 1) -> int:
@@ -280,6 +291,47 @@ def pin_snapshots(*, n_pins: int, length: float, sigma: float, count: int, seed:
     return io.stamp(io.make_dataset(data, coords), parameters=parameters, seed=seed)
 
 
+def lattice_configuration(n_disks: int, sigma: float, box=(1.0, 1.0)) -> np.ndarray:
+    """(N, 2) centres of N disks of radius σ on rows in the box with walls, legal (no
+    overlap, centres in [σ, L − σ]): of the square and the staggered (every other row
+    shifted by half a spacing) layouts of every row count, the one whose closest pair is
+    farthest apart. ``ValueError`` if none holds N disks (the box is denser than rows
+    allow). Not an equilibrium sample: a Markov chain's burn-in starts from it."""
+    box_x, box_y = check_disk_box(n_disks, sigma, box)
+    n_disks, sigma = int(n_disks), float(sigma)
+    width, height = box_x - 2.0 * sigma, box_y - 2.0 * sigma
+    best, best_gap = None, -1.0
+    for rows in range(1, n_disks + 1):
+        columns = -(-n_disks // rows)
+        dy = height / (rows - 1) if rows > 1 else np.inf
+        for staggered in (False, True) if rows > 1 and columns > 1 else (False,):
+            if columns == 1:
+                dx = np.inf
+            elif staggered:  # the shifted rows need half a spacing of room
+                dx = width / (columns - 0.5)
+            else:
+                dx = width / (columns - 1)
+            # staggered: neighbours in the next row, and the row after it right above
+            gap = min(np.hypot(0.5 * dx, dy), 2.0 * dy) if staggered else dy
+            gap = min(dx, gap)
+            if gap > best_gap:
+                best_gap, best = gap, (rows, columns, dx, dy, staggered)
+    rows, columns, dx, dy, staggered = best
+    if best_gap < 2.0 * sigma * (1.0 - 1e-12):
+        raise ValueError(
+            f"{n_disks} disks of radius {sigma} do not fit on rows in the box "
+            f"({box_x}, {box_y}): the closest pair would be {best_gap:.4g} apart"
+        )
+    sites = []
+    for row in range(rows):
+        shift = 0.5 * dx if staggered and row % 2 else 0.0
+        for column in range(columns):
+            x = sigma + (column * dx if columns > 1 else 0.5 * width) + shift
+            y = sigma + (row * dy if rows > 1 else 0.5 * height)
+            sites.append((x, y))
+    return np.array(sites[:n_disks])
+
+
 def disk_configuration(
     n_disks: int, sigma: float, box=(1.0, 1.0), *, state: np.ndarray, max_starts: int = 10**8
 ) -> np.ndarray:
@@ -318,7 +370,9 @@ def sample_disks(
     disks of radius σ in a box with walls, on [σ, L_y − σ], from ``realizations``
     independent runs: ``samples`` direct-disks configurations (``method`` 'direct') or ``samples``
     recorded sweeps of one markov-disks chain (``method`` 'markov', moves uniform in
-    [−step, step]², after ``burn_in`` sweeps from a direct-disks start)."""
+    [−step, step]², after ``burn_in`` sweeps from a direct-disks start, or from
+    ``lattice_configuration`` where direct-disks' starts are legal less often than
+    ``MIN_DIRECT_START_ACCEPTANCE``: the dataset's ``start`` parameter says which)."""
     if method not in ("direct", "markov"):
         raise ValueError(f"method must be 'direct' or 'markov', got {method!r}")
     box_x, box_y = check_disk_box(n_disks, sigma, box)
@@ -328,10 +382,16 @@ def sample_disks(
     bins = _positive_int("bins", bins)
     burn_in = _positive_int("burn_in", burn_in, 0)
     step = real("step", step, 0.0, min(box_x, box_y), low_open=True)
-    # every realization starts from a direct-disks configuration, and direct-disks draws
-    # all its samples so: refuse a box whose legal configurations are too rare for that
-    starts = samples * realizations if method == "direct" else realizations
-    check_direct_disks_starts(n_disks, sigma, (box_x, box_y), starts)
+    # direct-disks draws all its samples by starting again on any overlap: refuse a box
+    # whose legal configurations are too rare for that; a chain starts from a lattice
+    # there (and so from a legal state whatever the density)
+    if method == "direct":
+        check_direct_disks_starts(n_disks, sigma, (box_x, box_y), samples * realizations)
+        lattice = False
+    else:
+        acceptance = direct_disks_acceptance(n_disks, sigma, (box_x, box_y))
+        lattice = acceptance < MIN_DIRECT_START_ACCEPTANCE
+        first = lattice_configuration(n_disks, sigma, (box_x, box_y)) if lattice else None
     lower, upper = sigma, box_y - sigma
     states = stream_states(seed, realizations)
     counts = np.zeros((realizations, bins), dtype=np.int64)
@@ -358,7 +418,10 @@ def sample_disks(
 
     for r in range(realizations):
         # the start and the loading of the compiled kernel stay out of the CPU time
-        positions = disk_configuration(n_disks, sigma, (box_x, box_y), state=states[r])
+        if lattice:
+            positions = first.copy()
+        else:
+            positions = disk_configuration(n_disks, sigma, (box_x, box_y), state=states[r])
         if r == 0:
             run(0, 0, states[0].copy(), positions.copy(), counts[0])
         begin = time.process_time()
@@ -382,6 +445,7 @@ def sample_disks(
         "bins": bins,
         "step": float(step),
         "burn_in": burn_in,
+        "start": "lattice" if method == "markov" and lattice else "direct",
     }
     extra = {
         "work": (
