@@ -24,7 +24,7 @@ import xarray as xr
 
 from kinetic.analysis import checks as check
 from kinetic.analysis.checks import Check
-from kinetic.analysis.statistics import mean_and_sem
+from kinetic.analysis.statistics import mean_and_sem, ratio_and_sem
 from kinetic.theory import krauth2025 as theory
 from kinetic.theory.krauth2025 import rate_pressure_factors, wall_value
 
@@ -391,7 +391,10 @@ def pins_table(lines: Sequence[xr.Dataset], theory_lines: Sequence[xr.Dataset]) 
         )
         exact = exact_by_length[length]["density_exact"].values
         naive = run.attrs["method"] == "naive"
-        acceptance, acceptance_sem = mean_and_sem(samples / run["started"].values)
+        # the pooled ratio: a mean of the realizations' samples/started keeps the ratio
+        # bias of one realization, (1 - p)/samples relative
+        started = run["started"].values
+        acceptance, acceptance_sem = ratio_and_sem(np.full(started.shape, samples), started)
         curve = exact_by_length[length]["density_curve"].values
         at_post = curve[0] / np.interp(
             0.5 * length, exact_by_length[length]["x_curve"].values, curve
