@@ -150,6 +150,27 @@ def test_error_budget_recovers_a_linear_time_step_bias():
     assert all(t["cpu_seconds_needed"] > 0 for t in targets)
 
 
+def test_error_budget_bias_includes_the_reference_size_once():
+    """kappa = 1 + 0.2 dt - 20/N exactly (Lie at N_ref = 2e4, and N = 500): every run's
+    model is its measured value and its bias is against k_inf = 1 (the reference size's
+    -20/N_ref was counted twice in the model and left out of the bias: 0.001 off)."""
+
+    def kappa(dt, n):
+        return 1.0 + 0.2 * dt - 20.0 / n
+
+    rows = [
+        _row(dt, "euler", 20000, kappa(dt, 20000), 0.001, f"l{dt}", 1e-6)
+        for dt in (0.005, 0.01, 0.02, 0.05)
+    ]
+    rows += [_row(0.005, "euler", n, kappa(0.005, n), 0.001, f"n{n}", 1e-6) for n in (500, 2000)]
+    settings, _, model = analysis.error_budget(rows, 20000, [0.01])
+    assert model["k_inf"] == pytest.approx(1.0, abs=1e-9)
+    for setting in settings:
+        dt, n = setting["time_step"], setting["n_particles"]
+        assert setting["model"] == pytest.approx(kappa(dt, n), abs=1e-9), setting["setting"]
+        assert setting["relative_bias"] == pytest.approx(kappa(dt, n) - 1.0, abs=1e-9)
+
+
 def test_particle_number_bias_error_is_the_scatter_of_its_estimate():
     """Two sizes against one reference run share its noise: the returned error is the
     scatter of the estimate over 4000 draws (1.1 % precision); taken as independent it

@@ -57,7 +57,7 @@ grid = np.linspace(alpha.min(), 1.0, 201)
 top.plot(
     grid,
     theory.sonine_b1_from_kappa_prime_ratio(theory.kappa_prime_ratio(grid)),
-    **plotting.METHOD_STYLE["theory"],
+    **(plotting.METHOD_STYLE["theory"] | {"color": "black", "linestyle": "--"}),
     lw=0.8,
     label="$b'_1$, first Sonine",
 )
