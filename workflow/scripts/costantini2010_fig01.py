@@ -56,7 +56,7 @@ for result in results:
             color=color,
         )
 ax.axhline(1.0, color=METHOD_STYLE["theory"]["color"], lw=0.8, ls=":", label=r"expected $T_s$")
-ax.set_xlabel(r"$\tau\, v_s/\ell$")
+ax.set_xlabel(r"$\tau\, v_0/\ell$")
 ax.set_ylabel(r"$T/T_0$")
 plotting.figure_legend(fig, ncols=3)
 chaos.set_xscale("log")
