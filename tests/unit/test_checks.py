@@ -205,7 +205,8 @@ def test_table1_scores_our_rows_against_the_printed_ones_and_finds_their_density
     md = table[table["kind"] == "md"].set_index(["rho", "t"])
     assert md.loc[(0.001, 10.0), "z_k2"] == pytest.approx(0.5)
     assert md.loc[(0.01, 10.0), "z_k2"] == pytest.approx(-10.0)
-    assert md.loc[(0.001, 10.0), "z_gaussian_k2"] == pytest.approx((1.1233 - 1.125) / 0.001)
+    # the closures are t -> ∞ values: a finite window's row is not scored against them
+    assert np.isnan(md.loc[(0.001, 10.0), "z_gaussian_k2"])
     assert set(table.loc[table["paper_row_density"] == 1, "rho"]) == {0.001}
     assert list(table.columns[:9]) == visco2008.TABLE1_COLUMNS
     exact = table[table["source"] == "Eq. (28)"].iloc[0]  # a theory row the document lacks

@@ -6,6 +6,7 @@ error, SE/√(2(n − 1)) for n realizations."""
 import numpy as np
 
 from kinetic import io, plotting
+from kinetic.analysis.cloning import BIAS_RESOLVED_SIGMAS
 from kinetic.analysis.statistics import error_of_sem
 from kinetic.workflow_support import start
 
@@ -27,7 +28,7 @@ for ax, lam in zip(axes, lams, strict=True):
         )
         ax.loglog(cpu, ds["mu_err"].values[k], "-", lw=0.6, color=line.get_color())
         bias = abs(float(ds["mu_rate"].values[k] - ds["mu_exact"].values[k]))
-        if bias > 2 * float(ds["mu_rate_final_err"].values[k]):  # resolved biases only
+        if bias > BIAS_RESOLVED_SIGMAS * float(ds["mu_rate_final_err"].values[k]):  # resolved
             ax.axhline(bias, ls=":", lw=0.8, color=line.get_color())
     ax.set_title(rf"$\lambda={lam:g}$")
     ax.set_xlabel("CPU time (s)")
