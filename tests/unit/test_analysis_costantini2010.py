@@ -283,3 +283,16 @@ def test_the_fluctuation_dissipation_ratio_is_reported_not_judged():
     }
     assert all(row.passed is None for row in ratio_rows)
     assert any(row.claim.startswith("C(0) = 1 at alpha = 1") for row in rows)
+
+
+def test_a_fit_window_cut_by_max_lag_is_flagged(caplog):
+    """τ_c = 5 with lags up to 2: C has fallen only to 0.67 C(0) at the last lag, above
+    fit_stop = 0.1, and the fit sees only the start of the tail (at α = 0.6, N = 3000
+    the measured τ_c was 8.7 against lags of 6); τ_c = 1 with lags up to 4 is not."""
+    import logging
+
+    with caplog.at_level(logging.WARNING, logger="kinetic"):
+        short = analyse(synthetic_run(7, tau_c=5.0, samples=6000), max_lag=2.0)
+    assert short.attrs["fit_window_truncated"] == 1
+    assert "raise max_lag" in caplog.text
+    assert analyse(synthetic_run(8)).attrs["fit_window_truncated"] == 0

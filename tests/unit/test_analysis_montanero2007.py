@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -188,6 +190,24 @@ def test_particle_number_bias_error_is_the_scatter_of_its_estimate():
         estimates.append(c_n)
     assert np.mean(estimates) == pytest.approx(5.0, abs=4 * error / np.sqrt(4000))
     assert np.std(estimates, ddof=1) == pytest.approx(error, rel=0.04)  # 3.6 x 1.1 %
+
+
+def test_particle_number_bias_pools_reference_runs_of_one_setting():
+    """Two runs of the reference size at one setting, 1.00 and 1.02 (± 0.01 each), are one
+    reference of 1.01 ± 0.0071; the last of them alone (1.02) was kept before."""
+    rows = [
+        {"time_step": 0.01, "force_step": "exact", "n_particles": 2000}
+        | {"kappa_ratio": value, "kappa_ratio_err": 0.01}
+        for value in (1.00, 1.02)
+    ]
+    rows.append(
+        {"time_step": 0.01, "force_step": "exact", "n_particles": 500}
+        | {"kappa_ratio": 1.03, "kappa_ratio_err": 0.02}
+    )
+    c_n, error = analysis.particle_number_bias(rows, 2000)
+    lever = 1.0 / 500 - 1.0 / 2000
+    assert c_n == pytest.approx((1.03 - 1.01) / lever)
+    assert error == pytest.approx(math.hypot(0.02, 0.01 / math.sqrt(2.0)) / lever)
 
 
 def test_linear_response_fit_recovers_the_eps_squared_law():
