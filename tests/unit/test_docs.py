@@ -84,6 +84,23 @@ def test_the_readme_quotes_a_timings_outcome_and_benchmarks_md_its_history():
     assert "`make figures` (" in short and "not measured yet" in short
 
 
+def test_earlier_runs_are_folded_into_benchmarks_md_and_kept_by_collect(tmp_path):
+    summary = json.loads((REPOSITORY / docs.SUMMARY).read_text())
+    record = summary["timings"]["test"] | {"earlier": "OLD RUNS"}
+    summary["timings"] = {"test": record}
+    made = docs.blocks(summary)
+    assert "OLD RUNS" not in made["timings"]
+    folded = made["timings-detail"].split("<details>", 1)[1]
+    assert "OLD RUNS" in folded and "</details>" in folded
+    # collect rewrites the records from results/timings and keeps the hand-written history
+    out = tmp_path / "summary.json"
+    out.write_text(json.dumps({"timings": {"test": {"earlier": "OLD RUNS"}}}))
+    timings = tmp_path / "timings"
+    docs.timed(timings / "test.json", [sys.executable, "-c", "pass"])
+    made = docs.collect(tmp_path / "results", tmp_path / "none", timings, out, gallery=None)
+    assert made["timings"]["test"]["earlier"] == "OLD RUNS"
+
+
 def test_timed_records_the_command_and_passes_its_exit_code_on(tmp_path):
     out = tmp_path / "timing.json"
     code = docs.timed(out, [sys.executable, "-c", "import sys; sys.exit(3)"])
