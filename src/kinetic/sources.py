@@ -45,10 +45,12 @@ __all__ = [
     "ENGINES",
     "PACKAGE",
     "SHARED",
+    "STAMPS",
     "code_fingerprint",
     "code_stamps",
     "engine_sources",
     "fingerprint_memo",
+    "forget_earlier_codes",
     "front_sources",
     "kernel_sources",
     "remembered_fingerprint",
@@ -352,28 +354,87 @@ def remembered_fingerprint(source: str | Path) -> str:
     return fingerprint
 
 
+STAMPS = Path(".snakemake/kinetic/code")
+"""Where the workflow keeps the stamps of its code inputs (:func:`code_stamps`), relative
+to its working directory."""
+
+EARLIER = "earlier"
+"""The tag of a stamp's lines after the first two: ``earlier <fingerprint> <time ns>``, a
+code the source held since the last build started and the stamp's time then."""
+
+
+def _earlier(stamp: Path) -> dict[str, int]:
+    """{fingerprint: the stamp's modification time in ns while it held it} of the codes
+    ``stamp``'s source held since the last build started (:func:`forget_earlier_codes`)."""
+    try:
+        lines = stamp.read_text().splitlines()[2:]
+    except OSError:
+        return {}
+    found = {}
+    for line in lines:
+        tag, fingerprint, time_ns = [*line.split(), "", "", ""][:3]
+        if tag == EARLIER and time_ns.isdigit():
+            found[fingerprint] = int(time_ns)
+    return found
+
+
+def _stamp_text(fingerprint: str, seen: str, earlier: dict[str, int]) -> str:
+    lines = [fingerprint, seen] + [f"{EARLIER} {key} {value}" for key, value in earlier.items()]
+    return "\n".join(lines) + "\n"
+
+
 def _refresh_stamp(source: Path, status: os.stat_result, seen: str, stamp: Path) -> None:
     """Bring ``stamp`` up to date with ``source`` (its ``status``, and ``seen``: its
     modification time and size). The stamp holds the source's fingerprint and ``seen``,
-    which spare the parse while the file is untouched. Its own modification time is the
-    source's when the stamp is new (a build from before the stamps reruns only what the
-    sources' times would rerun), is kept when the fingerprint is unchanged, and is now
-    when it changed (also for a source that an older version replaced with its own, older
-    time)."""
+    which spare the parse while the file is untouched. Its own modification time is
+
+    - the source's when the stamp is new (a build from before the stamps reruns only what
+      the sources' times would rerun);
+    - kept when the fingerprint is unchanged;
+    - when the fingerprint changed, the time it had when it last held the new code, if no
+      build has started since (the stamp remembers the codes it held since then,
+      :func:`forget_earlier_codes`): an edit looked at with a dry run, or a branch checked
+      out and back, then reverted reruns nothing, since no output was made from the edited
+      code;
+    - now otherwise (also for a source that an older version replaced with its own, older
+      time)."""
     fingerprint, recorded = _read_record(stamp)
     if recorded == seen:
         return
     new = remembered_fingerprint(source)
+    earlier = _earlier(stamp) if fingerprint is not None else {}
     if fingerprint is None:
         times = (status.st_atime_ns, status.st_mtime_ns)
     elif new == fingerprint:
         old = stamp.stat()
         times = (old.st_atime_ns, old.st_mtime_ns)
     else:
+        earlier[fingerprint] = stamp.stat().st_mtime_ns
+        back = earlier.pop(new, None)
         now = time.time_ns()
-        times = (now, now)
+        times = (now, now) if back is None else (now, back)
     # atomic: jobs that parse the workflow at once agree
-    _write_atomically(stamp, f"{new}\n{seen}\n", times)
+    _write_atomically(stamp, _stamp_text(new, seen, earlier), times)
+
+
+def forget_earlier_codes(directory: str | Path) -> int:
+    """Drop the earlier codes of every stamp under ``directory`` (keeping its time): a
+    build starts (Snakemake's ``onstart``), and what it makes may come from the codes the
+    sources hold now, so a later return to an earlier code must rerun them. Returns the
+    number of stamps changed."""
+    changed = 0
+    for stamp in sorted(Path(directory).rglob("*.stamp")):
+        if not _earlier(stamp):
+            continue
+        fingerprint, seen = _read_record(stamp)
+        if fingerprint is None:
+            continue
+        old = stamp.stat()
+        _write_atomically(
+            stamp, _stamp_text(fingerprint, seen, {}), (old.st_atime_ns, old.st_mtime_ns)
+        )
+        changed += 1
+    return changed
 
 
 _STAMPED: dict[Path, str] = {}

@@ -9,10 +9,10 @@ Every script in ``workflow/scripts`` starts with::
 which sends the ``kinetic`` logger (progress lines with ETA) and uncaught exceptions to
 ``snakemake.log[0]`` as well as to standard error, and limits numba to the job's threads.
 The simulation jobs' script runs ``kinetic.simulation_job.run_job`` instead, which starts
-the same way. This module imports nothing of the package at its top and only ``io`` in
-its functions, so that the rules that join, analyse and plot, whose code inputs are the
-package files their script imports (``kinetic.sources.script_sources``), do not rerun when
-the studies, the cost model or the engines' argument checks change.
+the same way. This module imports nothing of the package at its top and only ``io`` and
+``sources`` in its functions, so that the rules that join, analyse and plot, whose code
+inputs are the package files their script imports (``kinetic.sources.script_sources``), do
+not rerun when the studies, the cost model or the engines' argument checks change.
 """
 
 from __future__ import annotations
@@ -55,6 +55,12 @@ def start(snakemake: Any) -> logging.Logger:
         import numba
 
         numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+    # a job makes outputs from the code the sources hold now (as onstart says for the
+    # build; a build with --no-hooks runs no onstart): a return to an earlier code must
+    # rerun it
+    from kinetic.sources import STAMPS, forget_earlier_codes
+
+    forget_earlier_codes(STAMPS)
     logger.info("rule %s: output %s", snakemake.rule, list(snakemake.output))
     return logger
 

@@ -14,6 +14,7 @@ from kinetic.sources import (
     code_fingerprint,
     code_stamps,
     fingerprint_memo,
+    forget_earlier_codes,
     remembered_fingerprint,
 )
 
@@ -165,3 +166,31 @@ def test_an_unwritable_memo_only_costs_the_parse(tmp_path):
     (tmp_path / "__pycache__").write_text("")  # a file where the memo's directory should be
     assert remembered_fingerprint(source) == code_fingerprint(source)
     assert remembered_fingerprint(source) == code_fingerprint(source)
+
+
+def test_a_return_to_the_code_no_build_has_left_restores_the_stamps_time(tmp_path):
+    """An edit seen by a dry run (or a branch checked out and back), then reverted, reruns
+    nothing; once a build has started on the edited code, the return reruns what it made."""
+    root, stamps = tmp_path / "tree", tmp_path / "stamps"
+    source = root / "module.py"
+    source.parent.mkdir(parents=True)
+    source.write_text(MODULE)
+    _set_mtime(source, 1_000_000)
+    (stamp,) = map(Path, code_stamps([source], root, stamps))
+    built = 2_000_000  # outputs of the original code
+
+    def visit(text, seconds):
+        source.write_text(text)
+        _set_mtime(source, seconds)
+        code_stamps([source], root, stamps)
+        return stamp.stat().st_mtime
+
+    assert visit(OTHER_CODE["a constant"], 3_000_000) > built  # the dry run plans reruns
+    assert visit(OTHER_CODE["an operator"], 3_000_001) > built  # another edit, another look
+    assert visit(MODULE + "# back\n", 3_000_002) == 1_000_000 < built  # reverted: nothing
+
+    edited = visit(OTHER_CODE["a constant"], 3_000_003)
+    assert edited > built
+    assert forget_earlier_codes(stamps) == 1  # a build starts on the edited code
+    assert stamp.stat().st_mtime == edited  # its time is kept
+    assert visit(MODULE, 3_000_004) > edited  # the return reruns what it made

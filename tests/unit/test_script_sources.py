@@ -38,14 +38,16 @@ def test_imports_are_followed_through_the_package(tmp_path):
 
 def test_the_scripts_glue_brings_in_no_study_cost_model_or_engine(tmp_path):
     """Every reading script starts with ``kinetic.workflow_support``: its code inputs are
-    the writing and logging modules only, so that an edit of the studies, the cost model,
+    the writing and logging modules only (and ``sources``, whose stamps a job marks as
+    built on), so that an edit of the studies, the cost model,
     numba's cache or an engine's argument checks reruns no figure that does not import
     them (the simulation jobs' glue, which imports the studies, is
     ``kinetic.simulation_job``)."""
     script = tmp_path / "script.py"
     script.write_text("from kinetic.workflow_support import start, write_caption, write_output\n")
     files = {path.relative_to(PACKAGE).as_posix() for path in script_sources(script)}
-    assert files == {"__init__.py", "batches.py", "config.py", "io.py", "workflow_support.py"}
+    glue = {"__init__.py", "batches.py", "config.py", "io.py", "sources.py", "workflow_support.py"}
+    assert files == glue
     simulate = script_sources(SCRIPTS / "simulate.py")
     assert PACKAGE / "studies" / "__init__.py" in simulate
 

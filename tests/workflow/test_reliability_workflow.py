@@ -125,3 +125,43 @@ def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_
     io.read_dataset(second)
     io.read_dataset(tmp_path / f"{run}.nc")
     assert not list((tmp_path / "results").rglob("*.tmp"))
+
+
+def test_a_job_that_outlived_its_killed_build_is_rerun_by_a_plain_snakemake(tmp_path):
+    """kill -9 of Snakemake alone while a job runs: the job finishes and writes its file,
+    which Snakemake had marked incomplete. After --unlock, a plain ``snakemake`` (no
+    --rerun-incomplete) reruns that job instead of refusing to start."""
+    config = ci_config(
+        tmp_path,
+        lambda settings: settings["costantini2010"].update(
+            {"realizations": 2, "realizations_per_job": 1, "min_duration": 600}
+        ),
+    )
+    run = "results/ci/costantini2010/dsmc/n1000-alpha1-f10-cell0.5-step0.05"
+    target = [f"{run}/batch0000.nc", "--cores", "1", "--configfile", str(config)]
+    process = subprocess.Popen(
+        [*SNAKEMAKE, "--directory", str(tmp_path), *target],
+        cwd=REPOSITORY,
+        env={**os.environ, "MPLBACKEND": "Agg"},
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
+    batch = tmp_path / run / "batch0000.nc"
+    log = tmp_path / "results/ci/logs" / run.removeprefix("results/ci/") / "batch0000.log"
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and process.poll() is None and not log.exists():
+        time.sleep(0.05)
+    assert process.poll() is None and log.exists(), "the job did not start"
+    assert not batch.exists(), "the job finished before Snakemake could be killed"
+    process.kill()  # Snakemake only: its job runs on
+    process.wait()
+    while time.monotonic() < deadline and not batch.exists():
+        time.sleep(0.1)
+    written = batch.stat().st_mtime_ns
+    io.read_dataset(batch)
+    assert _snakemake(tmp_path, *target, "--unlock").returncode == 0
+    resumed = _snakemake(tmp_path, *target)
+    assert resumed.returncode == 0, resumed.stdout + resumed.stderr
+    assert batch.stat().st_mtime_ns != written  # rerun, not trusted
+    io.read_dataset(batch)

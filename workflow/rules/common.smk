@@ -7,7 +7,7 @@ from snakemake.exceptions import WorkflowError
 
 from kinetic.config import ROOT_MARKER, ConfigError, results_root, validate_config
 from kinetic.seeds import derive_seed
-from kinetic.sources import code_stamps, front_sources, script_sources
+from kinetic.sources import STAMPS, code_stamps, front_sources, script_sources
 
 from kinetic import studies
 
@@ -65,12 +65,16 @@ onstart:
     # renames); the marker tells builds of configs whose roots contain this one to keep out
     import sys
     from kinetic.io import remove_orphans
+    from kinetic.sources import forget_earlier_codes
 
     Path(RESULTS).mkdir(parents=True, exist_ok=True)
     Path(RESULTS, ROOT_MARKER).touch()
     for orphan in remove_orphans(RESULTS):
         print(f"removed {orphan}, left by a killed job", file=sys.stderr)
     drop_default_submission_limit(getattr(workflow, "scheduler", None))
+    # what this build makes may come from the code the sources hold now: a return to an
+    # earlier code reruns it (kinetic.sources._refresh_stamp; every job does it too)
+    forget_earlier_codes(STAMPS)
 
 
 # ---------------------------------------------------------------- target registry
@@ -134,16 +138,13 @@ def job_seed(key):
     return derive_seed(config["seed"], key)
 
 
-CODE_STAMPS = ".snakemake/kinetic/code"
-"""Where the stamps of the code inputs live (``kinetic.sources.code_stamps``), under the
-working directory: one file per source, whose modification time moves when the source's
-code changes but not for an edit of its comments or docstrings. Deleting them is safe:
-they come back with their sources' modification times."""
-
-
 def code_inputs(paths):
-    """The stamps of ``paths`` (source files), as rule inputs."""
-    return code_stamps(paths, workflow.basedir, CODE_STAMPS)
+    """The stamps of ``paths`` (source files), as rule inputs: under the working
+    directory's ``kinetic.sources.STAMPS``, one file per source, whose modification time
+    moves when the source's code changes but not for an edit of its comments or
+    docstrings. Deleting them is safe: they come back with their sources' modification
+    times."""
+    return code_stamps(paths, workflow.basedir, STAMPS)
 
 
 def script_code(name):
