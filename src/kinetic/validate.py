@@ -5,12 +5,52 @@ for a value out of range)."""
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
-__all__ = ["choice", "integer", "multiple", "real", "seed"]
+__all__ = [
+    "MAX_BINS",
+    "choice",
+    "fits_in_memory",
+    "integer",
+    "multiple",
+    "real",
+    "realizations",
+    "seed",
+]
+
+
+MAX_BINS = 10**6
+"""Most bins of a histogram an engine fills (a count of 10**12 passed the checks and then
+asked numpy for terabytes)."""
+
+
+MEMORY_FRACTION = 0.75
+"""Share of the machine's physical memory a run's counted arrays may take (the rest: the
+interpreter, numba, xarray, and what the count leaves out)."""
+
+
+def _physical_memory() -> int | None:
+    try:
+        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, ValueError, OSError):
+        return None
+
+
+def fits_in_memory(what: str, nbytes: float) -> None:
+    """Refuse, before any work, a run whose largest arrays (``nbytes``, the caller's count
+    of what it allocates) would not fit this machine's physical memory: numpy's
+    ``MemoryError`` came after the points run before it in the same call, and named no
+    argument. ``what`` names the arguments that set the size."""
+    total = _physical_memory()
+    if total is not None and nbytes > MEMORY_FRACTION * total:
+        raise ValueError(
+            f"{what} would need about {nbytes / 2**30:.3g} GiB of arrays, more than "
+            f"{MEMORY_FRACTION:.0%} of this machine's {total / 2**30:.3g} GiB of memory"
+        )
 
 
 def integer(name: str, value: Any, minimum: int, maximum: int | None = None) -> int:
@@ -28,6 +68,26 @@ def seed(value: Any) -> int:
     from kinetic.seeds import MAX_SEED
 
     return integer("seed", value, 0, MAX_SEED)
+
+
+def realizations(
+    first: Any, count: Any, *, first_name: str = "first_realization", count_name: str
+) -> tuple[int, int]:
+    """Realizations ``first .. first + count - 1`` of a run: ``count`` >= 1, ``first`` >= 0
+    and the last index at most ``kinetic.seeds.MAX_SEED``, since a dataset's
+    ``realization`` coordinate is int64 (an index of 2**64 ran the whole simulation, then
+    failed at the write). Returns ``(first, count)`` as Python integers."""
+    from kinetic.seeds import MAX_SEED
+
+    count = integer(count_name, count, 1)
+    first = integer(first_name, first, 0)
+    if first + count - 1 > MAX_SEED:
+        raise ValueError(
+            f"{first_name} = {first} with {count_name} = {count} is not allowed: the last "
+            f"realization's index, {first + count - 1}, must be <= {MAX_SEED} (2**63 - 1, "
+            "a dataset's int64 realization coordinate)"
+        )
+    return first, count
 
 
 def real(

@@ -46,6 +46,11 @@ SMALL = {
         ({"n_realizations": 1, "lam": 2.0, "duration": 400.0}, "use n_realizations >= 2"),
         ({"backend": "cuda", "n_realizations": 65_536}, "at most 65535 realizations"),
         ({"control_interval": 0.5}, "control_interval = 0.5 is for backend 'cuda' only"),
+        # Δ = 1 at λ = -2 and 32 clones gave μ = 4.49 ± 0.29 against e² - 1 = 6.39
+        (
+            {"backend": "cuda", "lam": -2.0, "population": 32, "control_interval": 1.0},
+            "control_interval = 1 is too long at lam = -2 for 32 clones",
+        ),
     ],
 )
 def test_bad_input_is_refused_before_work(change, message):
@@ -189,3 +194,25 @@ def test_a_population_still_relaxing_after_its_transient_is_reported(caplog):
     assert abs(long.attrs["drift_z_temperature"]) < 2 and abs(long.attrs["drift_z_mu"]) < 2
     assert "a longer transient is safer" in caplog.text
     assert caplog.text.count("a longer transient is safer") == 1
+
+
+@pytest.mark.parametrize(
+    ("distinct", "population", "collapsed"),
+    [
+        (1, 2, True),
+        (2, 2, False),
+        (1, 3, True),
+        (2, 4, False),
+        (4, 10, True),
+        (5, 10, False),
+        (29, 1000, True),
+        (30, 1000, False),
+        (1, 10**6, True),
+    ],
+)
+def test_one_velocity_left_is_a_collapse_at_any_size(distinct, population, collapsed):
+    """Fewer distinct velocities than the larger of 10 and 3 % of the members, and than
+    half of them, or a single one (two members with one velocity passed before)."""
+    from kinetic.cloning.front import is_collapsed
+
+    assert is_collapsed(distinct, population) is collapsed

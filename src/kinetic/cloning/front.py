@@ -53,12 +53,12 @@ logger = logging.getLogger("kinetic")
 
 MIN_DISTINCT_VELOCITIES = 10
 MIN_DISTINCT_FRACTION = 0.03
-"""A realization that ends with fewer distinct velocities than both 10 and 3% of its members
-(and than half of them) has collapsed onto a few clones (diversity collapse, large λ): T and
-a2 are flagged (``diversity_collapse`` attribute). Calibration, 8 realizations of 1000
-Maxwell molecules: with 10 distinct velocities (λ = 6) T came out 0.74 ± 0.08 instead of
-1; with 31 (λ = 5), 1.08 ± 0.11. Hard disks at N_c = 1000: 75 distinct at λ = 3, 25 at
-λ = 4."""
+"""A realization that ends with fewer distinct velocities than the larger of 10 and 3% of its
+members (and than half of them), or with one, has collapsed onto a few clones (diversity
+collapse, large λ): T and a2 are flagged (``diversity_collapse`` attribute). Calibration,
+8 realizations of 1000 Maxwell molecules: with 10 distinct velocities (λ = 6) T came out
+0.74 ± 0.08 instead of 1; with 31 (λ = 5), 1.08 ± 0.11. Hard disks at N_c = 1000: 75
+distinct at λ = 3, 25 at λ = 4."""
 
 
 def is_collapsed(distinct_velocities, population):
@@ -66,8 +66,10 @@ def is_collapsed(distinct_velocities, population):
     ``population`` members has collapsed onto a few clones."""
     threshold = max(MIN_DISTINCT_VELOCITIES, MIN_DISTINCT_FRACTION * population)
     # a population of fewer than 20 members is judged by half of it (below 10 members the
-    # fixed threshold flagged every run, λ = 0 included, where nothing is cloned)
-    return bool(distinct_velocities < min(threshold, 0.5 * population))
+    # fixed threshold flagged every run, λ = 0 included, where nothing is cloned); one
+    # velocity left is a collapse at any size (2 members: half of it is 1, and 1 < 1 let
+    # it through)
+    return bool(distinct_velocities <= 1 or distinct_velocities < min(threshold, 0.5 * population))
 
 
 DRIFT_SIGMAS = 4.0

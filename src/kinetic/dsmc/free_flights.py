@@ -87,9 +87,12 @@ def simulate_free_flights(
     chunk = validate.real("chunk", chunk, 0.0, 1e12, low_open=True, unit=" /omega")
     max_flight_time = validate.real("max_flight_time", max_flight_time, 0.0, 1e6, low_open=True)
     max_free_path = validate.real("max_free_path", max_free_path, 0.0, 1e6, low_open=True)
-    validate.integer("n_time_bins", n_time_bins, 1)
-    validate.integer("n_path_bins", n_path_bins, 1)
+    validate.integer("n_time_bins", n_time_bins, 1, validate.MAX_BINS)
+    validate.integer("n_path_bins", n_path_bins, 1, validate.MAX_BINS)
     streams = realization_streams(seed, first_realization, n_realizations)
+    validate.fits_in_memory(  # the gas and its flight records, ~100 B a particle
+        f"n_particles = {n_particles}", 100.0 * n_particles
+    )
 
     d = dimension
     density = 1.0 / units.equilibrium_collision_frequency(kernel, d, 1.0)  # ω = 1

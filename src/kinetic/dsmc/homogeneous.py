@@ -38,7 +38,7 @@ import inspect
 
 import numpy as np
 
-from kinetic import backends, io
+from kinetic import backends, io, validate
 from kinetic.dsmc import kernels
 from kinetic.dsmc.arguments import LINEAR_RESPONSE_FIELD, check_windows
 from kinetic.dsmc.state import (
@@ -160,6 +160,15 @@ def simulate_homogeneous(
     duration, sample_interval, steps_per_window, n_windows = windows[:4]
     histogram_start, first_histogram_window = windows[4:]
     streams = realization_streams(seed, first_realization, n_realizations)
+    # the gas (velocities and scratch, ~100 B a particle: kinetic.cost; every realization's
+    # at once on cuda) and the per-window results
+    gases = n_realizations if backend == "cuda" else 1
+    validate.fits_in_memory(
+        f"n_particles = {settings.n_particles}, n_realizations = {n_realizations} and "
+        f"{n_windows} windows (duration/sample_interval)",
+        100.0 * settings.n_particles * gases
+        + 8.0 * n_realizations * n_windows * (len(MOMENT_NAMES) + 5),
+    )
     samples = Samples(
         stride=sample_stride,
         cx_max=cx_max,

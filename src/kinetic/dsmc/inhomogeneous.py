@@ -63,7 +63,7 @@ from kinetic.dsmc.state import realization_streams
 from kinetic.gas import cell_changing_fraction
 from kinetic.progress import Progress, logger
 from kinetic.seeds import checked_stream
-from kinetic.validate import choice, integer, real
+from kinetic.validate import choice, fits_in_memory, integer, real
 
 __all__ = [
     "COLLISION_RULES",
@@ -747,6 +747,11 @@ class _Run:
         self.particle_steps = n_realizations * (steps_before + (n_samples - 1) * stride)
         """Realizations x steps: the progress lines' unit of work."""
         shape = (n_realizations, n_samples)
+        # the samples' arrays (the layout of the particles is bounded by MAX_LAYOUT_BYTES)
+        fits_in_memory(
+            f"n_realizations = {n_realizations} x n_samples = {n_samples}",
+            8.0 * n_realizations * n_samples * (kernels.N_OBSERVABLES + 4),
+        )
         self.observables = np.zeros((*shape, kernels.N_OBSERVABLES))
         self.dissipated = np.zeros(shape)
         self.totals = {

@@ -200,10 +200,14 @@ class Samples:
             or not isinstance(self.n_cx_bins, int | np.integer)
             or self.n_cx_bins < 2
             or self.n_cx_bins % 2
+            or self.n_cx_bins > validate.MAX_BINS
         ):
-            raise ValueError(f"n_cx_bins = {self.n_cx_bins!r} must be an even integer >= 2")
+            raise ValueError(
+                f"n_cx_bins = {self.n_cx_bins!r} must be an even integer in [2, "
+                f"{validate.MAX_BINS}]"
+            )
         validate.real("speed_max", self.speed_max, 0.0, 1e3, low_open=True)
-        validate.integer("n_speed_bins", self.n_speed_bins, 1)
+        validate.integer("n_speed_bins", self.n_speed_bins, 1, validate.MAX_BINS)
         self.moment_sums = np.zeros(1 + len(MOMENT_NAMES))
         self.cx_counts = np.zeros(self.n_cx_bins + 2, dtype=np.int64)
         self.cx_weights = np.zeros(self.n_cx_bins + 2)
@@ -280,8 +284,7 @@ def realization_streams(seed: int, first: int, count: int) -> np.ndarray:
     realizations into jobs does not change any of them.
     """
     validate.seed(seed)
-    validate.integer("first_realization", first, 0)
-    validate.integer("n_realizations", count, 1)
+    first, count = validate.realizations(first, count, count_name="n_realizations")
     return stream_states(seed, count, first)
 
 

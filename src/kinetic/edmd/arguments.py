@@ -167,6 +167,8 @@ def check_system(
         raise TypeError(f"n_particles must be an integer, got {n_particles!r}")
     if n_particles < 2:
         raise ValueError(f"n_particles must be >= 2, got {n_particles}")
+    # positions, velocities, event calendar and cells: about 450 B a particle (kinetic.cost)
+    validate.fits_in_memory(f"n_particles = {n_particles}", 450.0 * n_particles)
     integral = isinstance(dimension, int | np.integer) and not isinstance(dimension, bool)
     if not integral or dimension not in (2, 3):
         raise ValueError(f"dimension must be 2 or 3, got {dimension!r}")
@@ -183,6 +185,8 @@ def check_system(
         raise ValueError(f"sort_every must be >= 0 (0: never), got {sort_every}")
     if prefetch is None:
         prefetch = sum(n_particles >= size for size in PREFETCH_MIN_PARTICLES)
+    if isinstance(prefetch, bool) or not isinstance(prefetch, int | np.integer):
+        raise TypeError(f"prefetch must be an integer, got {prefetch!r}")
     if prefetch not in (0, 1, 2):
         raise ValueError(f"prefetch must be 0, 1 or 2, got {prefetch!r}")
     restitution = _number("restitution", restitution)
@@ -317,10 +321,9 @@ def check_simulate(
             raise TypeError(f"{name} must be an integer, got {value!r}")
     if realizations < 1:
         raise ValueError(f"realizations must be >= 1, got {realizations}")
-    if first_realization < 0:
-        raise ValueError(f"first_realization must be >= 0, got {first_realization}")
-    if flight_time_bins < 1 or free_path_bins < 1:
-        raise ValueError("histogram bin counts must be >= 1")
+    validate.realizations(first_realization, realizations, count_name="realizations")
+    validate.integer("flight_time_bins", flight_time_bins, 1, validate.MAX_BINS)
+    validate.integer("free_path_bins", free_path_bins, 1, validate.MAX_BINS)
     if dimension not in (2, 3):
         raise ValueError(f"dimension must be 2 or 3, got {dimension!r}")
     density = _finite_positive("density", density)

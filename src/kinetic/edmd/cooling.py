@@ -172,8 +172,9 @@ def simulate_cooling_modes(
     sample_interval = real("sample_interval", sample_interval, 0.0, 1e12, low_open=True)
     n_samples = integer("n_samples", n_samples, 1, 10**9)
     seed = validate.seed(seed)
-    n_realizations = integer("n_realizations", n_realizations, 1)
-    first_realization = integer("first_realization", first_realization, 0)
+    first_realization, n_realizations = validate.realizations(
+        first_realization, n_realizations, count_name="n_realizations"
+    )
     if cell_occupancy is not None:
         cell_occupancy = real("cell_occupancy", cell_occupancy, 0.0, 1e6, low_open=True)
     if drag_rate * sample_interval > 0.5:
@@ -193,6 +194,10 @@ def simulate_cooling_modes(
             f"{MAX_HEATING} T0, with the collisions of a run growing as sqrt(T). Use drag_rate "
             "= zeta(T0)/2 (kinetic.theory.costantini2010.drag_rate) to hold T near T0"
         )
+    validate.fits_in_memory(  # the samples' arrays, 80 B a sample and realization
+        f"n_realizations = {n_realizations} x n_samples = {n_samples}",
+        80.0 * n_realizations * n_samples,
+    )
     warn_if_unstable(n_particles, density, restitution)
     box_side = math.sqrt(n_particles / density)
     states = rng.stream_states(seed, n_realizations, first_realization)
