@@ -29,10 +29,15 @@ def run(workdir, *args, check=True):
 
 
 @pytest.mark.workflow
-def test_fig05_plans_only_the_scan(tmp_path):
+def test_fig05_plans_only_the_hard_disk_scan(tmp_path):
+    """The hard disks' points, their join and the reference; not the Maxwell points (Fig.
+    4's), nor the whole scan's table, nor the error study."""
     plan = run(tmp_path, "results/ci/visco2008/fig05.pdf", "--dry-run", "--configfile", CI_CONFIG)
-    assert "visco2008_simulate_cloning" in plan and "visco2008_cloning_table" in plan
+    assert "rule visco2008_simulate_cloning:" in plan
+    assert "rule visco2008_cloning_kernel_table:" in plan
     assert "visco2008_theory_cloning_reference" in plan
+    assert "cloning/scan/hard_disks/" in plan and "cloning/scan/maxwell" not in plan
+    assert "rule visco2008_cloning_table:" not in plan
     assert "error_vs_time" not in plan
     for unrelated in ("visco2008_fig04", "visco2008_fig07", "visco2008_fig03"):
         assert f"rule {unrelated}:" not in plan

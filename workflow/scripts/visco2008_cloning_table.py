@@ -1,4 +1,5 @@
-"""Pool the scan's batches (rule visco2008_cloning_table) -> cloning.csv|md|nc."""
+"""Pool the scan's batches (rule visco2008_cloning_table) -> cloning.csv|md|nc, or one
+kernel's (rule visco2008_cloning_kernel_table) -> cloning/scan/<kernel>.nc."""
 
 from kinetic import io
 from kinetic.analysis import cloning as analysis
@@ -8,7 +9,8 @@ log = start(snakemake)
 paths = list(snakemake.input.batches)
 records = analysis.combine_points([io.read_dataset(path) for path in paths], names=paths)
 limits = analysis.extrapolate_points(records)
-io.write_table(analysis.scan_table(records, limits), snakemake.output.csv, snakemake.output.md)
+if hasattr(snakemake.output, "csv"):  # the whole scan (not one kernel)
+    io.write_table(analysis.scan_table(records, limits), snakemake.output.csv, snakemake.output.md)
 write_output(
     snakemake,
     analysis.scan_dataset(records, limits),

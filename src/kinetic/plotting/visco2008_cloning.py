@@ -1,5 +1,6 @@
 """Figures of visco2008 Figs 4-8 and the cloning studies: read the aggregated scan
-(results/visco2008/cloning.nc), never simulate, and draw it in the cloning style. Figs 4-8
+(results/visco2008/cloning.nc, or one kernel's, cloning/scan/<kernel>.nc, for Figs 4-8),
+never simulate, and draw it in the cloning style. Figs 4-8
 are whole functions here (``fig04`` ... ``fig08``: the data in, the PDF written, the
 caption's numbers returned), so that a figure is read in one place; their scripts only
 read the files and write the caption.
@@ -51,7 +52,7 @@ class Series:
 
 
 def scan_series(path, kernel: str, observable: str) -> Series:
-    """Read results/visco2008/cloning.nc and return the series of ``observable``
+    """Read a scan file (cloning.nc or one kernel's) and return the series of ``observable``
     ('mu', 'mu_rate', 'T' or 'a2') of ``kernel`` ('hard_disks' or 'maxwell')."""
     ds = io.read_dataset(path)
     name = _POINT_NAMES[observable]

@@ -188,6 +188,21 @@ def visco2008_cloning_scan_batches(wildcards):
     return visco2008_cloning_batch_files("scan")
 
 
+def visco2008_cloning_kernel_batches(wildcards):
+    """The scan's batch files of one kernel (wildcards.kernel): a figure of one kernel
+    waits for its own points only (Fig. 4 for 4 of the ci config's 16 cloning jobs)."""
+    return [
+        path
+        for path in visco2008_cloning_batch_files("scan")
+        if path.startswith(results_file(f"visco2008/cloning/scan/{wildcards.kernel}/"))
+    ]
+
+
+def visco2008_cloning_kernel_scan(kernel):
+    """The scan of one kernel, joined and extrapolated like cloning.nc."""
+    return results_file(f"visco2008/cloning/scan/{kernel}.nc")
+
+
 def visco2008_cloning_error_batches(wildcards):
     return visco2008_cloning_batch_files("error_vs_time")
 

@@ -257,6 +257,22 @@ rule visco2008_cloning_table:
         "../../scripts/visco2008_cloning_table.py"
 
 
+rule visco2008_cloning_kernel_table:
+    # the scan of one kernel as cloning.nc holds it (the same points and extrapolations):
+    # what a figure of one kernel reads
+    input:
+        batches=visco2008_cloning_kernel_batches,
+        code=script_code("visco2008_cloning_table"),
+    output:
+        nc=visco2008_cloning_kernel_scan("{kernel}"),
+    log:
+        log_file("visco2008/cloning/scan/{kernel}.log"),
+    wildcard_constraints:
+        kernel="|".join(visco2008_cloning()["kernels"]),
+    script:
+        "../../scripts/visco2008_cloning_table.py"
+
+
 rule visco2008_cloning_error_table:
     input:
         batches=visco2008_cloning_error_batches,
@@ -388,7 +404,7 @@ rule visco2008_fig03:
 
 rule visco2008_fig04:
     input:
-        scan=results_file("visco2008/cloning.nc"),
+        scan=visco2008_cloning_kernel_scan("maxwell"),
         closures=visco2008_theory("closures"),
         code=script_code("visco2008_fig04"),
     output:
@@ -406,7 +422,7 @@ rule visco2008_fig04:
 
 rule visco2008_fig05:
     input:
-        scan=results_file("visco2008/cloning.nc"),
+        scan=visco2008_cloning_kernel_scan("hard_disks"),
         closures=visco2008_theory("closures"),
         reference=results_file("visco2008/cloning/reference.nc"),
         template=caption_template("visco2008_fig05"),
@@ -427,7 +443,7 @@ rule visco2008_fig05:
 
 rule visco2008_fig06:
     input:
-        scan=results_file("visco2008/cloning.nc"),
+        scan=visco2008_cloning_kernel_scan("hard_disks"),
         closures=visco2008_theory("closures"),
         reference=results_file("visco2008/cloning/reference.nc"),
         template=caption_template("visco2008_fig06"),
@@ -448,7 +464,7 @@ rule visco2008_fig06:
 
 rule visco2008_fig07:
     input:
-        scan=results_file("visco2008/cloning.nc"),
+        scan=visco2008_cloning_kernel_scan("hard_disks"),
         closures=visco2008_theory("closures"),
         reference=results_file("visco2008/cloning/reference.nc"),
         code=script_code("visco2008_fig07"),
@@ -467,7 +483,7 @@ rule visco2008_fig07:
 
 rule visco2008_fig08:
     input:
-        scan=results_file("visco2008/cloning.nc"),
+        scan=visco2008_cloning_kernel_scan("hard_disks"),
         closures=visco2008_theory("closures"),
         reference=results_file("visco2008/cloning/reference.nc"),
         template=caption_template("visco2008_fig08"),
