@@ -139,7 +139,7 @@ def job_seed(key):
 
 
 def code_inputs(paths):
-    """The stamps of ``paths`` (source files), as rule inputs: under the working
+    """The stamps of ``paths`` (source files), as inputs of rules, under the working
     directory's ``kinetic.sources.STAMPS``, one file per source, whose modification time
     moves when the source's code changes but not for an edit of its comments or
     docstrings. Deleting them is safe: they come back with their sources' modification
