@@ -83,6 +83,8 @@ def test_run_arguments_are_checked():
     system.run(until=5.0)
     with pytest.raises(ValueError, match="until must be finite and >= the current time"):
         system.run(until=1.0)
+    with pytest.raises(TypeError, match="until must be a real number"):
+        system.run(until="10")  # failed inside math.isfinite, naming no argument
 
 
 def test_a_gas_that_stopped_colliding_exhausts_the_event_budget():

@@ -339,6 +339,10 @@ class HardSphereSystem:
         """
         if until is None and collisions is None:
             raise ValueError("give until (a time) and/or collisions (a count)")
+        if until is not None and (
+            isinstance(until, bool) or not isinstance(until, int | float | np.integer | np.floating)
+        ):
+            raise TypeError(f"until must be a real number (a time), got {until!r}")
         if until is not None and not (math.isfinite(until) and until >= self.time):
             raise ValueError(
                 f"until must be finite and >= the current time {self.time}, got {until}"
