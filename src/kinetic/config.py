@@ -24,6 +24,7 @@ __all__ = [
     "ROOT_MARKER",
     "SCHEMA",
     "ConfigError",
+    "claim_root",
     "explain",
     "load_config_file",
     "load_configs",
@@ -194,8 +195,46 @@ without its round trip through a schema file (the parse of every dry run pays it
 
 ROOT_MARKER = ".kinetic-results"
 """File that marks a directory as one config's results root (written at the start of a
-build): tools that walk a root (``kinetic.io.remove_orphans``, ``kinetic.compare``) leave
-out the roots of other configs nested in it (``results/ci`` inside ``results``)."""
+build, holding the config: :func:`claim_root`): tools that walk a root
+(``kinetic.io.remove_orphans``, ``kinetic.compare``) leave out the roots of other configs
+nested in it (``results/ci`` inside ``results``)."""
+
+
+def _leaves(value: Any, prefix: str = "") -> dict[str, Any]:
+    """{dotted key: value} of every leaf of a nested mapping."""
+    if not isinstance(value, Mapping):
+        return {prefix: value}
+    found: dict[str, Any] = {}
+    for key, item in value.items():
+        found |= _leaves(item, f"{prefix}.{key}" if prefix else str(key))
+    return found
+
+
+def claim_root(root: str | os.PathLike, config: Mapping[str, Any]) -> list[str]:
+    """Mark ``root`` as this config's results root (:data:`ROOT_MARKER`, which holds the
+    config as JSON) and return the settings in which the config that built there last
+    differs from this one: ``key: its value -> this one``, ``targets`` left out (it
+    chooses what is built, not how). Empty for a new root, an old empty marker or the same
+    settings. A config of its own writes under a root of its own; the same root with other
+    settings rebuilds, there, the jobs those settings change, replacing their files."""
+    import json
+
+    marker = Path(root, ROOT_MARKER)
+    mine = {key: value for key, value in config.items() if key != "targets"}
+    text = json.dumps(mine, sort_keys=True, default=str)
+    try:
+        before = json.loads(marker.read_text() or "null")
+    except (OSError, ValueError):
+        before = None
+    changes = []
+    if isinstance(before, Mapping):
+        old, new = _leaves(before), _leaves(json.loads(text))
+        for key in sorted(set(old) | set(new)):
+            if old.get(key) != new.get(key):
+                changes.append(f"{key}: {old.get(key)!r} -> {new.get(key)!r}")
+    marker.parent.mkdir(parents=True, exist_ok=True)
+    marker.write_text(text + "\n")
+    return changes
 
 
 def results_root(config: Mapping[str, Any]) -> str:

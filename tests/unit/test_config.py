@@ -134,3 +134,20 @@ def test_the_command_checks_a_layer_over_its_base(capsys, tmp_path):
     broken.write_text("seed: 1\nvisco2008: [\n")
     assert main([str(base), str(broken)]) == 1
     assert str(broken) in capsys.readouterr().out
+
+
+def test_a_root_remembers_the_config_that_built_there_last(tmp_path):
+    """The marker holds the config; a build under the same root with other settings is
+    told which, so that a copied config that kept the root is noticed (targets aside)."""
+    from kinetic.config import ROOT_MARKER, claim_root
+
+    root = tmp_path / "results" / "ci"
+    first = {"seed": 1, "results": "results/ci", "targets": "all", "krauth2025": {"n": 3}}
+    assert claim_root(root, first) == []  # a new root
+    assert (root / ROOT_MARKER).is_file()
+    assert claim_root(root, first | {"targets": ["krauth2025/fig04_13"]}) == []
+    changed = first | {"krauth2025": {"n": 4}, "backend": "cuda"}
+    assert claim_root(root, changed) == ["backend: None -> 'cuda'", "krauth2025.n: 3 -> 4"]
+    assert claim_root(root, changed) == []  # the marker now holds the new settings
+    (root / ROOT_MARKER).write_text("")  # a marker of an older version: empty
+    assert claim_root(root, first) == []

@@ -5,7 +5,7 @@ from pathlib import Path
 
 from snakemake.exceptions import WorkflowError
 
-from kinetic.config import ROOT_MARKER, ConfigError, results_root, validate_config
+from kinetic.config import ConfigError, claim_root, results_root, validate_config
 from kinetic.seeds import derive_seed
 from kinetic.sources import STAMPS, code_stamps, front_sources, script_sources
 
@@ -67,8 +67,15 @@ onstart:
     from kinetic.io import remove_orphans
     from kinetic.sources import forget_earlier_codes
 
-    Path(RESULTS).mkdir(parents=True, exist_ok=True)
-    Path(RESULTS, ROOT_MARKER).touch()
+    changes = claim_root(RESULTS, config)
+    if changes:
+        shown = "\n  ".join(changes[:8]) + ("\n  ..." if len(changes) > 8 else "")
+        print(
+            f"note: {RESULTS} was last built by a config that differs in {len(changes)} "
+            f"setting(s):\n  {shown}\nthe jobs they change are rebuilt here, replacing "
+            "those files; a config of its own keeps both under a `results` root of its own",
+            file=sys.stderr,
+        )
     for orphan in remove_orphans(RESULTS):
         print(f"removed {orphan}, left by a killed job", file=sys.stderr)
     drop_default_submission_limit(getattr(workflow, "scheduler", None))
