@@ -233,7 +233,9 @@ def claim_root(root: str | os.PathLike, config: Mapping[str, Any]) -> list[str]:
             if old.get(key) != new.get(key):
                 changes.append(f"{key}: {old.get(key)!r} -> {new.get(key)!r}")
     marker.parent.mkdir(parents=True, exist_ok=True)
-    marker.write_text(text + "\n")
+    partial = marker.with_name(f"{ROOT_MARKER}.{os.getpid()}.tmp")
+    partial.write_text(text + "\n")
+    os.replace(partial, marker)  # a reader sees the old marker or the new one
     return changes
 
 

@@ -252,8 +252,19 @@ def collect(
             "logical_cpus": record["machine"]["logical_cpus"],
             "git_revision": record["machine"]["git_revision"],
         }
-        # the folded history of earlier runs is written by hand; a collect keeps it
-        earlier = previous.get("timings", {}).get(path.stem, {}).get("earlier")
+        # the folded history of earlier runs: kept, and a record of another revision that
+        # this one replaces goes to its head
+        before = previous.get("timings", {}).get(path.stem, {})
+        earlier = before.get("earlier", "")
+        revision = before.get("git_revision")
+        if revision and revision != summary["timings"][path.stem]["git_revision"]:
+            replaced = (
+                f"Earlier, {revision[:7]}'s record "
+                f"({float(before['wall_seconds']):.0f} s, {float(before['cpu_seconds']):.0f} "
+                f"CPU-s, {before.get('date')}; {before.get('summary', '')}): "
+                f"{before.get('note', '')}"
+            )
+            earlier = f"{replaced} {earlier}".strip()
         if earlier:
             summary["timings"][path.stem]["earlier"] = earlier
     summary["benchmarks"] = _benchmarks(Path(benchmarks))

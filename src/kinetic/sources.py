@@ -36,6 +36,7 @@ import contextlib
 import hashlib
 import os
 import re
+import socket
 import time
 from functools import cache
 from pathlib import Path
@@ -53,6 +54,7 @@ __all__ = [
     "forget_earlier_codes",
     "front_sources",
     "kernel_sources",
+    "refresh_stamps",
     "remembered_fingerprint",
     "script_sources",
 ]
@@ -308,7 +310,7 @@ def _write_atomically(path: Path, text: str, times: tuple[int, int] | None = Non
     access and modification ``times`` in ns, if given): a process reading it at the same
     time sees the old file or the new one, never a part."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    partial = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    partial = path.with_name(f".{path.name}.{socket.gethostname()}.{os.getpid()}.tmp")
     partial.write_text(text)
     if times is not None:
         os.utime(partial, ns=times)
@@ -417,6 +419,29 @@ def _refresh_stamp(source: Path, status: os.stat_result, seen: str, stamp: Path)
     _write_atomically(stamp, _stamp_text(new, seen, earlier), times)
 
 
+def refresh_stamps(stamps, root: str | Path) -> None:
+    """Bring the code stamps ``stamps`` (a job's inputs under :data:`STAMPS`, relative to
+    the working directory) up to date with their sources under ``root`` (the workflow's
+    directory; ``external/...`` stamps name their source by its absolute path). A job
+    calls it as it starts: a source edited since the build parsed the workflow is one the
+    job runs, so its stamp must say so before :func:`forget_earlier_codes`, or a later
+    return to the earlier code would restore a time older than the job's outputs."""
+    root = Path(root)
+    for stamp in map(Path, stamps):
+        try:
+            name = stamp.relative_to(STAMPS).as_posix()
+        except ValueError:
+            continue
+        if not name.endswith(".stamp"):
+            continue
+        name = name.removesuffix(".stamp")
+        external = name.startswith("external/")
+        source = Path(name.removeprefix("external")) if external else root / name
+        with contextlib.suppress(OSError):
+            status = source.stat()
+            _refresh_stamp(source, status, _seen(status), stamp)
+
+
 def forget_earlier_codes(directory: str | Path) -> int:
     """Drop the earlier codes of every stamp under ``directory`` (keeping its time): a
     build starts (Snakemake's ``onstart``), and what it makes may come from the codes the
@@ -429,11 +454,12 @@ def forget_earlier_codes(directory: str | Path) -> int:
         fingerprint, seen = _read_record(stamp)
         if fingerprint is None:
             continue
-        old = stamp.stat()
-        _write_atomically(
-            stamp, _stamp_text(fingerprint, seen, {}), (old.st_atime_ns, old.st_mtime_ns)
-        )
-        changed += 1
+        with contextlib.suppress(OSError):  # another process replaced it meanwhile
+            old = stamp.stat()
+            _write_atomically(
+                stamp, _stamp_text(fingerprint, seen, {}), (old.st_atime_ns, old.st_mtime_ns)
+            )
+            changed += 1
     return changed
 
 

@@ -17,6 +17,7 @@ not rerun when the studies, the cost model or the engines' argument checks chang
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
 import sys
@@ -55,12 +56,20 @@ def start(snakemake: Any) -> logging.Logger:
         import numba
 
         numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
-    # a job makes outputs from the code the sources hold now (as onstart says for the
-    # build; a build with --no-hooks runs no onstart): a return to an earlier code must
-    # rerun it
-    from kinetic.sources import STAMPS, forget_earlier_codes
+    # a job makes outputs from the code its sources hold now, which may have been edited
+    # since the build parsed the workflow: its stamps are brought up to date, then every
+    # stamp forgets its earlier codes (as onstart does for the build, which a build with
+    # --no-hooks skips), so that a return to an earlier code reruns what this job makes
+    from kinetic.sources import STAMPS, forget_earlier_codes, refresh_stamps
 
-    forget_earlier_codes(STAMPS)
+    scripts = getattr(snakemake, "scriptdir", None)
+    if scripts:  # workflow/scripts, two levels below the workflow's directory
+        inputs = [str(path) for path in getattr(snakemake, "input", [])]
+        refresh_stamps(
+            [path for path in inputs if path.endswith(".stamp")], Path(scripts).parents[1]
+        )
+    with contextlib.suppress(OSError):
+        forget_earlier_codes(STAMPS)
     logger.info("rule %s: output %s", snakemake.rule, list(snakemake.output))
     return logger
 

@@ -5,6 +5,7 @@ the code stamps of a new build) reads a file's fingerprint from its memo while t
 untouched."""
 
 import os
+import time
 from pathlib import Path
 
 import pytest
@@ -194,3 +195,32 @@ def test_a_return_to_the_code_no_build_has_left_restores_the_stamps_time(tmp_pat
     assert forget_earlier_codes(stamps) == 1  # a build starts on the edited code
     assert stamp.stat().st_mtime == edited  # its time is kept
     assert visit(MODULE, 3_000_004) > edited  # the return reruns what it made
+
+
+def test_a_job_on_code_edited_since_the_parse_marks_its_stamps(tmp_path, monkeypatch):
+    """A build parses on code A, the file is edited to B while it runs, a job starts on B
+    (its start refreshes its own stamps, then forgets), a dry run looks, the edit is
+    reverted: the return to A must rerun what the job made from B."""
+    from kinetic.sources import STAMPS, refresh_stamps
+
+    monkeypatch.chdir(tmp_path)
+    root = tmp_path / "tree"
+    source = root / "module.py"
+    source.parent.mkdir(parents=True)
+    source.write_text(MODULE)
+    _set_mtime(source, 1_000_000)
+    (stamp,) = code_stamps([source], root, STAMPS)  # the build's parse, on A
+    forget_earlier_codes(STAMPS)  # its onstart
+    source.write_text(OTHER_CODE["a constant"])  # B, during the build
+    _set_mtime(source, 3_000_000)
+    refresh_stamps([stamp], root)  # the job's start
+    forget_earlier_codes(STAMPS)
+    # (the job writes its output from B now)
+    code_stamps([source], root, STAMPS)  # a dry run
+    source.write_text(MODULE)  # reverted
+    _set_mtime(source, 3_000_002)
+    reverted = time.time_ns()
+    code_stamps([source], root, STAMPS)
+    # now, after the output: not the parse's time, 1_000_000, which the dry run had
+    # remembered for A when the job had not marked B
+    assert Path(stamp).stat().st_mtime_ns >= reverted

@@ -99,6 +99,13 @@ def test_earlier_runs_are_folded_into_benchmarks_md_and_kept_by_collect(tmp_path
     docs.timed(timings / "test.json", [sys.executable, "-c", "pass"])
     made = docs.collect(tmp_path / "results", tmp_path / "none", timings, out, gallery=None)
     assert made["timings"]["test"]["earlier"] == "OLD RUNS"
+    # a record of another revision that a new one replaces heads the history
+    record = made["timings"]["test"] | {"git_revision": "0123456789", "note": "THE RUN BEFORE"}
+    out.write_text(json.dumps({"timings": {"test": record}}))
+    made = docs.collect(tmp_path / "results", tmp_path / "none", timings, out, gallery=None)
+    earlier = made["timings"]["test"]["earlier"]
+    assert earlier.startswith("Earlier, 0123456's record") and "THE RUN BEFORE" in earlier
+    assert earlier.endswith("OLD RUNS")
 
 
 def test_timed_records_the_command_and_passes_its_exit_code_on(tmp_path):

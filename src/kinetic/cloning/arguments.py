@@ -221,13 +221,14 @@ def validate_parameters(
     histogram_bins = _check_integer("histogram_bins", histogram_bins, 1, 10**6)
     backends.check(backend)
     backends.check_realizations(backend, n_realizations)
-    # a population (~200 B a member with a cloning step's parents and offspring:
-    # kinetic.cost; on cuda every realization's at once) and the per-block results
-    populations = n_realizations if backend == "cuda" else 1
+    # the host's arrays: a population (~200 B a member with a cloning step's parents and
+    # offspring; on cuda the final velocities of every realization, 32 B a member, the
+    # populations living on the GPU: kinetic.cost) and the per-block results
+    members = 32.0 * n_realizations if backend == "cuda" else 200.0
     validate.fits_in_memory(
         f"population = {population}, n_realizations = {n_realizations}, n_blocks = "
         f"{n_blocks} and histogram_bins = {histogram_bins}",
-        200.0 * population * populations + 8.0 * n_realizations * (8 * n_blocks + histogram_bins),
+        members * population + 8.0 * n_realizations * (8 * n_blocks + histogram_bins),
     )
     if backend == "cuda" and histogram_bins > MAX_CUDA_HISTOGRAM_BINS:
         raise ValueError(
@@ -242,9 +243,9 @@ def validate_parameters(
                 "no control interval (leave it None)"
             )
         control_interval = _check_real("control_interval", control_interval, strictly_positive=True)
-        spread = math.expm1(-lam) ** 2
+        spread = math.expm1(-lam) ** 2  # 0 at λ = 0: every weight is 1, any interval holds
         largest = math.log1p(MAX_WEIGHT_VARIANCE_PER_CLONE * population) / max(spread, 1e-300)
-        if control_interval > largest:
+        if spread > 0.0 and control_interval > largest:
             raise ValueError(
                 f"control_interval = {control_interval:g} is too long at lam = {lam:g} for "
                 f"{population} clones: a clone's weight would vary by v = exp(interval "
