@@ -27,17 +27,13 @@ COOLING = dict(
     seed=3,
 )
 
+HOMOGENEOUS = dict(
+    n_particles=200, restitution=0.9, duration=1.0, time_step=0.05, sample_interval=0.5, seed=3
+)
+
 FRONTS = {
     "homogeneous DSMC": lambda first: simulate_homogeneous(
-        n_particles=200,
-        restitution=0.9,
-        duration=1.0,
-        time_step=0.05,
-        sample_interval=0.5,
-        seed=3,
-        sample_stride=2,
-        n_realizations=2,
-        first_realization=first,
+        **HOMOGENEOUS, sample_stride=2, n_realizations=2, first_realization=first
     ),
     "free flights": lambda first: simulate_free_flights(
         n_particles=100, duration=1.0, seed=3, n_realizations=2, first_realization=first
@@ -84,10 +80,6 @@ def test_the_last_realization_index_must_fit_an_int64(front):
 def test_the_largest_index_is_allowed():
     assert validate.realizations(MAX_SEED - 1, 2, count_name="n") == (MAX_SEED - 1, 2)
 
-
-HOMOGENEOUS = dict(
-    n_particles=200, restitution=0.9, duration=1.0, time_step=0.05, sample_interval=0.5, seed=3
-)
 
 TOO_LARGE = {
     "a second point of 1e11 particles": (

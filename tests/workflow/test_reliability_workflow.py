@@ -71,6 +71,31 @@ def test_yaml_syntax_errors_name_file_and_line(tmp_path):
     assert f"{bad}:4:1: not valid YAML" in result.stdout
 
 
+RUN = "results/ci/costantini2010/dsmc/n1000-alpha1-f10-cell0.5-step0.05"
+"""A costantini2010 DSMC run of two jobs of about 5 s each (``_start_build``'s config)."""
+
+
+def _start_build(workdir, output):
+    """Start Snakemake in the background, in a session of its own, on ``output`` of
+    ``RUN`` under a ci config of two such jobs; returns ``(process, target arguments)``."""
+    config = ci_config(
+        workdir,
+        lambda settings: settings["costantini2010"].update(
+            {"realizations": 2, "realizations_per_job": 1, "min_duration": 600}
+        ),
+    )
+    target = [output, "--cores", "1", "--configfile", str(config)]
+    process = subprocess.Popen(
+        [*SNAKEMAKE, "--directory", str(workdir), *target],
+        cwd=REPOSITORY,
+        env={**os.environ, "MPLBACKEND": "Agg"},
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
+    return process, target
+
+
 @pytest.mark.workflow
 @pytest.mark.slow
 def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_path):
@@ -78,22 +103,8 @@ def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_
     and not rebuilt, nothing half-written is under a final name, the lock is lifted with
     --unlock, and the rerun builds only what is missing (and removes the orphans)."""
     # two jobs of about 5 s each, so that the second is surely running when killed
-    config = ci_config(
-        tmp_path,
-        lambda settings: settings["costantini2010"].update(
-            {"realizations": 2, "realizations_per_job": 1, "min_duration": 600}
-        ),
-    )
-    run = "results/ci/costantini2010/dsmc/n1000-alpha1-f10-cell0.5-step0.05"
-    target = [f"{run}.nc", "--cores", "1", "--configfile", str(config)]
-    process = subprocess.Popen(
-        [*SNAKEMAKE, "--directory", str(tmp_path), *target],
-        cwd=REPOSITORY,
-        env={**os.environ, "MPLBACKEND": "Agg"},
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-        start_new_session=True,
-    )
+    run = RUN
+    process, target = _start_build(tmp_path, f"{run}.nc")
     batch_files = [tmp_path / run / f"batch{index:04d}.nc" for index in (0, 1)]
     logs = [
         tmp_path / "results/ci/logs" / run.removeprefix("results/ci/") / f"batch{i:04d}.log"
@@ -127,26 +138,14 @@ def test_killed_build_resumes_without_losing_or_trusting_half_written_files(tmp_
     assert not list((tmp_path / "results").rglob("*.tmp"))
 
 
+@pytest.mark.workflow
+@pytest.mark.slow
 def test_a_job_that_outlived_its_killed_build_is_rerun_by_a_plain_snakemake(tmp_path):
     """kill -9 of Snakemake alone while a job runs: the job finishes and writes its file,
     which Snakemake had marked incomplete. After --unlock, a plain ``snakemake`` (no
     --rerun-incomplete) reruns that job instead of refusing to start."""
-    config = ci_config(
-        tmp_path,
-        lambda settings: settings["costantini2010"].update(
-            {"realizations": 2, "realizations_per_job": 1, "min_duration": 600}
-        ),
-    )
-    run = "results/ci/costantini2010/dsmc/n1000-alpha1-f10-cell0.5-step0.05"
-    target = [f"{run}/batch0000.nc", "--cores", "1", "--configfile", str(config)]
-    process = subprocess.Popen(
-        [*SNAKEMAKE, "--directory", str(tmp_path), *target],
-        cwd=REPOSITORY,
-        env={**os.environ, "MPLBACKEND": "Agg"},
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-        start_new_session=True,
-    )
+    run = RUN
+    process, target = _start_build(tmp_path, f"{run}/batch0000.nc")
     batch = tmp_path / run / "batch0000.nc"
     log = tmp_path / "results/ci/logs" / run.removeprefix("results/ci/") / "batch0000.log"
     deadline = time.monotonic() + 300
