@@ -232,10 +232,9 @@ def claim_root(root: str | os.PathLike, config: Mapping[str, Any]) -> list[str]:
         for key in sorted(set(old) | set(new)):
             if old.get(key) != new.get(key):
                 changes.append(f"{key}: {old.get(key)!r} -> {new.get(key)!r}")
-    marker.parent.mkdir(parents=True, exist_ok=True)
-    partial = marker.with_name(f"{ROOT_MARKER}.{os.getpid()}.tmp")
-    partial.write_text(text + "\n")
-    os.replace(partial, marker)  # a reader sees the old marker or the new one
+    from kinetic import io  # at a build's start only: xarray is not loaded to parse
+
+    io.write_text(marker, text + "\n")  # atomic: a reader sees the old marker or the new
     return changes
 
 
