@@ -43,6 +43,8 @@ SMALL = dict(
         ({"restitution": "0.9"}, "restitution must be a real number, got '0.9'"),
         ({"density": 0.0}, "density = 0.0 is outside the allowed range (0, inf)"),
         ({"density": math.inf}, "density = inf is outside"),
+        ({"density": 5.0}, "density = 5.0 is at or beyond the close packing of disks"),
+        ({"density": 2 / math.sqrt(3)}, "must be < 2/sqrt(3) = 1.1547"),
         ({"drag_rate": -0.1}, "drag_rate = -0.1 is outside the allowed range [0, inf)"),
         ({"fictive_factor": 0}, "fictive_factor = 0 is not allowed: must be >= 1"),
         ({"cells_per_side": 2.5}, "cells_per_side must be an integer, got 2.5"),

@@ -91,6 +91,11 @@ MAX_COLLISIONS_PER_STEP = 0.1
 MAX_DRAG_PER_STEP = 0.1
 """Largest ω0 Δτ: the drag's relative velocity change over one step."""
 
+CLOSE_PACKING_DENSITY = 2.0 / math.sqrt(3.0)
+"""Largest n σ² of disks (hexagonal close packing, packing fraction π/(2√3)): the DSMC's
+particles are points, so it ran a gas of n σ² = 5 that no arrangement of disks can hold;
+the EDMD refuses the same densities (``kinetic.edmd.arguments.CLOSE_PACKING``)."""
+
 HEATING_HEADROOM = 1.1
 """How far above MAX_COLLISIONS_PER_STEP a run's step may go at the largest temperature
 its drag heats it to (``largest_temperature``): that temperature comes from Eq. 12, whose
@@ -160,7 +165,8 @@ def _whole_steps(name: str, value: float, time_step: float, minimum: int) -> int
 class CoolingModesSettings:
     """Validated engine parameters of one inhomogeneous DSMC run (module units).
 
-    n_particles: N >= 2 real particles. density: n σ² > 0. restitution: α in (0, 1].
+    n_particles: N >= 2 real particles. density: n σ² in (0, 2/√3) (below close packing).
+    restitution: α in (0, 1].
     drag_rate: ω0 >= 0. fictive_factor: Λ >= 1 (Λ N simulated particles).
     cells_per_side: M >= 1. time_step: Δτ > 0 with ω_c(T0) Δτ <= 0.1 and ω0 Δτ <= 0.1.
     collision_rule: "paper" or "majorant".
@@ -178,6 +184,12 @@ class CoolingModesSettings:
     def __post_init__(self) -> None:
         integer("n_particles", self.n_particles, 2)
         real("density", self.density, 0.0, math.inf, low_open=True, high_open=True)
+        if self.density >= CLOSE_PACKING_DENSITY:
+            raise ValueError(
+                f"density = {self.density!r} is at or beyond the close packing of disks: "
+                f"n sigma^2 must be < 2/sqrt(3) = {CLOSE_PACKING_DENSITY:.6g} (the Boltzmann "
+                "DSMC is meant for n sigma^2 << 1)"
+            )
         real("restitution", self.restitution, 0.0, 1.0, low_open=True)
         real("drag_rate", self.drag_rate, 0.0, math.inf, high_open=True)
         integer("fictive_factor", self.fictive_factor, 1)
