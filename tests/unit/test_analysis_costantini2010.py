@@ -14,6 +14,7 @@ import xarray as xr
 
 from kinetic import io
 from kinetic.analysis import costantini2010 as analysis
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.theory import costantini2010 as theory
 
 DENSITY = 0.005
@@ -282,7 +283,33 @@ def test_the_fluctuation_dissipation_ratio_is_reported_not_judged():
         "nu_bar*/nu* > 1 (C(0))",
     }
     assert all(row.passed is None for row in ratio_rows)
-    assert any(row.claim.startswith("C(0) = 1 at alpha = 1") for row in rows)
+    (control,) = [row for row in rows if row.claim.startswith("C(0) = 1 at alpha = 1")]
+    # 4 realizations of 8 blocks: the error has 31 degrees of freedom, Student's band
+    assert control.rule == f"|z| <= {tolerance_factor(4.0, 31):.3g}" == "|z| <= 4.62"
+
+
+def test_a_straight_1_over_n_line_fails_its_chi2_check_as_rarely_as_a_4_sigma_deviation():
+    """Each 1/N fit's χ² was checked against χ²'s 99 % point, with errors estimated from
+    32 blocks: 1 % of correct lines failed, so one of a default build's 22 fits did in
+    about a quarter of the builds, where every other check fails as often as a 4-sigma
+    deviation (6 × 10⁻⁵). 3000 straight lines through three N now pass but at most one;
+    a line bent by 15 of its errors at the middle N still fails."""
+    rng = np.random.default_rng(11)
+    n = np.array([1000.0, 2000.0, 3000.0])
+    error = np.array([0.010, 0.012, 0.015])
+    record = {"method": "md", "alpha": 0.8, "fictive_factor": None, "quantity": "tau_c"}
+    fits = []
+    for _ in range(3000):
+        values = 0.2 + 50.0 / n + rng.normal(size=3) * error
+        estimated = error * np.sqrt(rng.chisquare(31, size=3) / 31)
+        fit = analysis.extrapolate_inverse_n(n, values, estimated)
+        fits.append(record | fit | {"error_dof": 31})
+    rows = analysis.elastic_checks([], fits, sigmas=4.0)
+    assert len(rows) == 3000
+    assert sum(not row.passed for row in rows) <= 1
+    bent = analysis.extrapolate_inverse_n(n, 0.2 + 50.0 / n + [0.0, 0.15, 0.0], error)
+    (row,) = analysis.elastic_checks([], [record | bent | {"error_dof": 31}], sigmas=4.0)
+    assert not row.passed
 
 
 def test_a_fit_window_cut_by_max_lag_is_flagged(caplog):

@@ -29,6 +29,14 @@ def test_rules_pass_and_fail_where_they_say():
     assert checks.agrees("g", 1.03, 0.01, 1.0, 3).z == pytest.approx(3.0)
 
 
+@pytest.mark.parametrize("error", [math.nan, math.inf, -0.01])
+def test_an_error_no_verdict_can_rest_on_fails_the_check(error):
+    """A NaN error (a jackknife over an infinite τ_c) passed ``exceeds`` whenever the value
+    lay above the bound, and an infinite one passed ``agrees`` with z = 0."""
+    assert not checks.exceeds("b", 1.5, error, 1.0, 4).passed
+    assert not checks.agrees("a", 1.0, error, 1.0, 4).passed
+
+
 def test_write_keeps_the_table_and_stops_only_when_asked(tmp_path):
     found = [
         checks.agrees("holds", 1.0, 0.1, 1.0, 3),

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from kinetic.analysis import collision_statistics
+from kinetic.analysis.checks import tolerance_factor
 from kinetic.analysis.statistics import count_cumulants
 
 
@@ -39,7 +40,10 @@ def test_poisson_counts_have_unit_scaled_cumulants():
     )
     table = collision_statistics.cumulant_table(dataset)
     mean, sem = table["scaled_cumulant"][0], table["scaled_cumulant_sem"][0]
-    assert mean == pytest.approx([1, 1, 1], abs=4 * sem.max() + 1e-3)
+    # each order within its own error (6 realizations: Student's band): one band from the
+    # largest error, k3's, passed a mean-free-time conversion 5-7 % off in k1
+    z = (np.asarray(mean) - 1.0) / np.asarray(sem)
+    assert np.all(np.abs(z) <= tolerance_factor(4.0, 5)), z
 
 
 def _stationary_erlang2_counts(windows, realizations, samples, seed):

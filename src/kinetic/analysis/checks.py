@@ -264,6 +264,13 @@ def band_exceedance(
     return beyond / draws
 
 
+def _usable(error: float) -> bool:
+    """An error a verdict can rest on: finite and >= 0 (0: an exact value). A NaN error (a
+    jackknife over an infinite τ_c, say) passed ``exceeds`` whenever the value lay above
+    its bound, and an infinite one passed ``agrees`` with z = 0: both now fail."""
+    return math.isfinite(error) and error >= 0.0
+
+
 def _z(value: float, error: float, expected: float) -> float:
     difference = value - expected
     if error > 0:
@@ -275,7 +282,7 @@ def agrees(claim: str, value: float, error: float, expected: float, sigmas: floa
     """``value`` equals ``expected`` within ``sigmas`` standard errors."""
     value, error, expected = float(value), float(error), float(expected)
     z = _z(value, error, expected)
-    passed = abs(z) <= sigmas if error > 0 else value == expected
+    passed = _usable(error) and (abs(z) <= sigmas if error > 0 else value == expected)
     return Check(claim, value, error, expected, z, f"|z| <= {sigmas:.3g}", bool(passed))
 
 
@@ -283,7 +290,7 @@ def exceeds(claim: str, value: float, error: float, bound: float, sigmas: float)
     """``value`` is above ``bound`` by more than ``sigmas`` standard errors."""
     value, error, bound = float(value), float(error), float(bound)
     z = _z(value, error, bound)
-    passed = z > sigmas if error > 0 else value > bound
+    passed = _usable(error) and (z > sigmas if error > 0 else value > bound)
     return Check(claim, value, error, bound, z, f"z > {sigmas:.3g}", bool(passed))
 
 

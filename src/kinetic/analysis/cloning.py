@@ -395,7 +395,7 @@ def error_table(records, exact: dict[float, float]) -> pd.DataFrame:
     """Per (λ, N_c): CPU time, statistical errors, finite-N_c bias of μ_rate against
     ``exact`` μ and against the extrapolation of these points, and the CPU time at which
     the statistical error of μ_rate (scaled as 1/√CPU) falls to the bias (empty where the
-    bias is not resolved, |bias| < 2 standard errors)."""
+    bias is not resolved, |bias| < BIAS_RESOLVED_SIGMAS = 3 standard errors)."""
     extrapolated = {(e["kernel"], e["lam"]): e for e in extrapolate_points(records)}
     members = defaultdict(list)  # each (kernel, λ)'s records, in the order of its fit
     for record in records:

@@ -490,7 +490,13 @@ def summary_row(result: xr.Dataset) -> dict[str, Any]:
     for name in ("tau_c", "amplitude", "nu_star", "nu_bar_star", "ratio", "zeta_star"):
         row[name] = float(result[name])
         row[f"{name}_err"] = float(result[f"{name}_err"])
+    row["error_dof"] = error_dof(result)
     return row
+
+
+def error_dof(result: xr.Dataset) -> int:
+    """Degrees of freedom of a run aggregate's jackknife errors: its blocks less one."""
+    return int(result.blocks) - 1
 
 
 def theory_rows(alphas: Sequence[float], n_particles: Sequence[int], density: float) -> list:
@@ -532,6 +538,8 @@ def extrapolated_rows(rows: Sequence[dict[str, Any]]) -> tuple[list, list]:
         if len({member["n_particles"] for member in members}) < 2:
             continue
         row = {"method": method, "alpha": alpha, "n_particles": None, "fictive_factor": factor}
+        # the fewest of the members': the intercept's error is a combination of theirs
+        row["error_dof"] = min(member["error_dof"] for member in members)
         for name in EXTRAPOLATED:
             fit = extrapolate_inverse_n(
                 [m["n_particles"] for m in members],
@@ -542,7 +550,7 @@ def extrapolated_rows(rows: Sequence[dict[str, Any]]) -> tuple[list, list]:
             fits.append(
                 {"method": method, "alpha": alpha, "fictive_factor": factor, "quantity": name}
                 | fit
-                | {"n_values": len(members)}
+                | {"n_values": len(members), "error_dof": row["error_dof"]}
             )
         table.append(row)
     return table, fits
@@ -557,9 +565,17 @@ def checks(
     DSMC's computed errors removed: ``dsmc_viscosity_errors``), ζ* against Eq. 12 (within 5
     %: first Sonine), zero momentum, and the χ² of the 1/N fits; ν̄*/ν* for α <= 0.8 (tail
     amplitude and C(0)) is reported beside 1 without a verdict. Statistical checks pass
-    within ``sigmas`` standard errors (the config's ``checks.sigmas``), normal ones: the
-    errors are jackknifed over the realizations' blocks, 31 degrees of freedom in the
-    default build."""
+    as often as a ``sigmas`` Gaussian deviation (the config's ``checks.sigmas``): the errors
+    are jackknifed over the realizations' blocks (31 degrees of freedom in the default
+    build, 7 in ``ci``), so each band is Student's (:func:`kinetic.analysis.checks.
+    tolerance_factor`), for two runs with Welch's degrees of freedom."""
+
+    def tau_c_band(*results: xr.Dataset) -> float:
+        errors = [float(result.tau_c_err) for result in results]
+        dofs = [error_dof(result) for result in results]
+        dof = dofs[0] if len(results) == 1 else check.welch_dof(errors, dofs)
+        return check.tolerance_factor(sigmas, max(1, int(dof)))
+
     rows = []
     by_key = {}
     for result in results:
@@ -578,7 +594,7 @@ def checks(
                     float(result.correlation_zero),
                     float(result.correlation_zero_err),
                     1.0,
-                    sigmas,
+                    check.tolerance_factor(sigmas, error_dof(result)),
                 )
             )
         if alpha < 1.0:
@@ -622,7 +638,7 @@ def checks(
             return
         error = math.hypot(float(a.tau_c_err), float(b.tau_c_err))
         test = check.agrees if agree else check.exceeds
-        rows.append(test(claim, float(a.tau_c), error, float(b.tau_c), sigmas))
+        rows.append(test(claim, float(a.tau_c), error, float(b.tau_c), tau_c_band(a, b)))
 
     homogeneous = sorted(
         key[3] for key in by_key if key[:3] == ("dsmc_homogeneous", figure_alpha, figure_n)
@@ -662,14 +678,16 @@ def checks(
         # the paper statistics resolve both of DSMC's computed errors (2-3 % each at the
         # documents' cells): with them removed, the gas is MD's at this dilution
         corrected = dsmc_viscosity_errors(dsmc, study["density"])
+        errors = [corrected["nu_star_corrected_err"], float(md.nu_star_err)]
+        dof = check.welch_dof(errors, [error_dof(dsmc), error_dof(md)])
         rows.append(
             check.agrees(
                 f"inhomogeneous DSMC (Lambda = {production}) nu* with the rule's excess and "
                 "the cells' transfer removed equals MD's",
                 corrected["nu_star_corrected"],
-                math.hypot(corrected["nu_star_corrected_err"], float(md.nu_star_err)),
+                math.hypot(*errors),
                 float(md.nu_star),
-                sigmas,
+                check.tolerance_factor(sigmas, max(1, int(dof))),
             )
         )
     return rows
@@ -681,10 +699,14 @@ def elastic_checks(
     sigmas: float = check.SIGMAS,
 ) -> list[Check]:
     """ν* at α = 1 extrapolated to 1/N -> 0 against the converged elastic value, and the
-    χ²/dof of every 1/N fit (passes below the 99 % point of χ² with its dof); ``sigmas``
-    as in :func:`checks`."""
-    from scipy.stats import chi2 as chi2_distribution
+    χ² of every 1/N fit; ``sigmas`` as in :func:`checks`. A χ² passes below the bound that
+    a sum of its dof squared Student's t (the members' error degrees of freedom) exceeds
+    as often as a ``sigmas`` deviation (:func:`kinetic.analysis.checks.
+    sum_of_squares_tolerance`): the 99 % point of χ² that it replaces failed one of the
+    default build's 22 fits by chance in a quarter of the builds."""
+    from scipy.stats import norm
 
+    false_alarm = 2.0 * float(norm.sf(sigmas))
     rows = []
     for row in extrapolated:
         if row["alpha"] == 1.0 and row["method"] != "dsmc_homogeneous":
@@ -694,7 +716,7 @@ def elastic_checks(
                     row["nu_star"],
                     row["nu_star_err"],
                     theory.nu_star_elastic(),
-                    sigmas,
+                    check.tolerance_factor(sigmas, row["error_dof"]),
                 )
             )
             rows.append(
@@ -703,16 +725,16 @@ def elastic_checks(
                     row["ratio"],
                     row["ratio_err"],
                     1.0,
-                    sigmas,
+                    check.tolerance_factor(sigmas, row["error_dof"]),
                 )
             )
     for fit in fits:
         if fit["dof"] > 0 and math.isfinite(fit["chi2"]):
-            limit = float(chi2_distribution.ppf(0.99, fit["dof"]))
+            limit = check.sum_of_squares_tolerance(fit["dof"], fit["error_dof"], false_alarm)
             rows.append(
                 check.within(
                     f"1/N fit linear: {fit['method']} alpha={fit['alpha']:g} "
-                    f"{fit['quantity']} (chi2 against its dof {fit['dof']}, 99 % point)",
+                    f"{fit['quantity']} (chi2 against its dof {fit['dof']})",
                     fit["chi2"],
                     float(fit["dof"]),
                     limit - fit["dof"],
