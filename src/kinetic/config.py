@@ -295,13 +295,21 @@ def main(argv: list[str] | None = None) -> int:
     """``python -m kinetic.config FILE...``: check a config before a build (syntax with file
     and line, then the schema). Several files are merged in order, as Snakemake's
     ``--configfile A B`` merges them, so that a layer such as ``paper-gpu.yaml`` is checked
-    over its base; prints one line, exits 1 on a bad config."""
-    import sys
+    over its base; prints one line, exits 1 on a bad config (2 on bad usage)."""
+    import argparse
 
-    paths = sys.argv[1:] if argv is None else argv
-    if not paths:
-        print("usage: python -m kinetic.config FILE [FILE ...] (merged in order)")
-        return 2
+    parser = argparse.ArgumentParser(
+        prog="python -m kinetic.config",
+        description="Check a workflow config before a build: YAML syntax (file, line and "
+        "column), then the schema, with the key, value and allowed range.",
+    )
+    parser.add_argument(
+        "files",
+        nargs="+",
+        metavar="FILE",
+        help="config file(s), merged in order as snakemake's --configfile merges them",
+    )
+    paths = parser.parse_args(argv).files
     name = " + ".join(str(path) for path in paths)
     try:
         load_configs(paths)

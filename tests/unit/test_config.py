@@ -134,6 +134,10 @@ def test_the_command_checks_a_layer_over_its_base(capsys, tmp_path):
     broken.write_text("seed: 1\nvisco2008: [\n")
     assert main([str(base), str(broken)]) == 1
     assert str(broken) in capsys.readouterr().out
+    with pytest.raises(SystemExit) as usage:  # --help is help, not a missing file
+        main(["--help"])
+    assert usage.value.code == 0
+    assert "merged in order" in capsys.readouterr().out
 
 
 def test_a_root_remembers_the_config_that_built_there_last(tmp_path):

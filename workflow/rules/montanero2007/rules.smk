@@ -44,7 +44,7 @@ rule montanero2007_simulate_dsmc:
 
 # With backend: cuda, the runs of one family (scan, field, bias, hcs, error, extreme) share
 # one job, one process after the other on the GPU
-# (kinetic.studies.montanero2007.simulate_batches): one rule per family, the same files as
+# (kinetic.studies.montanero2007_front.simulate_batches): one rule per family, the same files as
 # the per-run rule writes.
 for group, group_runs in montanero2007_dsmc_groups().items():
 
