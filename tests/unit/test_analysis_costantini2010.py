@@ -90,8 +90,11 @@ def test_recovers_the_correlation_time_amplitude_and_viscosities():
     assert abs(float(result.amplitude) - 1.3) < 4 * float(result.amplitude_err)
     assert float(result.tau_c_err) < 0.1  # the data determine τ_c to a few per cent
     k_star = theory.reduced_wavenumber(N_PARTICLES, DENSITY)
-    # ζ* = 0: ν* = 1/(τ_c k*²), ν̄* = A/(τ_c k*²)
+    # ζ* = 0: ν* = 1/(τ_c k*²) = N nσ²/(4π² τ_c), ν̄* = A/(τ_c k*²)
     assert float(result.nu_star) == pytest.approx(1.0 / (float(result.tau_c) * k_star**2))
+    assert float(result.nu_star) == pytest.approx(
+        N_PARTICLES * DENSITY / (4 * math.pi**2 * float(result.tau_c))
+    )
     assert float(result.ratio) == pytest.approx(float(result.amplitude), rel=1e-12)
     np.testing.assert_allclose(
         result.correlation[0], 1.3, atol=5 * float(result.correlation_sem[0])

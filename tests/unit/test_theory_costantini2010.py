@@ -59,9 +59,27 @@ def test_extraction_formulas_invert_the_prediction():
         )
 
 
+def test_the_wavenumber_and_correlation_time_are_the_documents():
+    """Literals, not the module's own functions: k* = kℓ = 2π/√(N nσ²) with Brey's ℓ =
+    1/(nσ) (costantini2010.md, item 8), and Eq. 9's τ_c from the table's rounded ν* and ζ*
+    at α = 0.8, N = 2000, nσ² = 0.005 (their rounding: 3 × 10⁻⁴ of τ_c). Every ν* and ν̄*
+    the analysis extracts scales as 1/k*²."""
+    assert float(theory.reduced_wavenumber(1000, 0.005)) == pytest.approx(2 * math.pi / 5**0.5)
+    k2 = 4 * math.pi**2 / (2000 * 0.005)
+    assert float(theory.correlation_time(0.8, 2000, 0.005)) == pytest.approx(
+        1 / (0.2108 * k2 - 0.4493 / 2), rel=1e-3
+    )
+    assert float(theory.correlation_time(0.8, 2000, 0.005)) == pytest.approx(1.6459, abs=1e-3)
+
+
 def test_coloured_noise_raises_the_tail_amplitude():
     factor = theory.coloured_noise_amplitude(np.array([1.0, 0.8, 0.6]), 2000, 0.005)
     assert np.all(factor > 1.0)
+    # by hand from costantini2010.md at α = 0.8 (a2 = −0.0219): ν_η† = (3/8)(1.5333)(1.8)
+    # (1 + 0.0219/32) = 1.03571, ζ† = (1/2)(0.36)(1 − 3 × 0.0219/16) = 0.17926, in v_s/ℓ
+    # (× √(2π)) γ = ν_η* − ζ* = 2.5961 − 0.4493 = 2.1468 (the stress noise's rate, not
+    # ν_η* − ζ*/2) and λ = ν* k*² − ζ*/2 = 0.6076: γ²/(γ² − λ²) = 1.0871
+    assert float(factor[1]) == pytest.approx(1.0871, abs=2e-4)
     # a larger system decays more slowly, closer to white noise
     assert theory.coloured_noise_amplitude(0.8, 3000, 0.005) < theory.coloured_noise_amplitude(
         0.8, 1000, 0.005
