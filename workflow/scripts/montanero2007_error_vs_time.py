@@ -111,7 +111,16 @@ for column, alpha in enumerate(alphas):
             lw=0.8,
             label="bias model, Strang",
         )
-    top.axhline(model["k_inf"], ls=":", color="k", lw=0.6)
+    top.axhline(
+        model["k_inf"], ls=":", color="k", lw=0.6, label=r"$\delta t \to 0$, $N \to \infty$"
+    )
+    top.axhspan(
+        model["k_inf"] - model["k_inf_err"],
+        model["k_inf"] + model["k_inf_err"],
+        color="k",
+        alpha=0.1,
+        lw=0,
+    )
     top.set_xscale("log")
     top.set_xlabel(r"$\delta t/\tau$")
     top.set_ylabel(r"$\kappa'/\kappa_0$")

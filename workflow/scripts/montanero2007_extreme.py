@@ -58,7 +58,8 @@ for alpha in sorted(scan_alphas, reverse=True):
     color = container[0].get_color()
     grid = np.linspace(0.0, fields.max() ** 2 * 1.05, 50)
     left.plot(grid, k0 * (1 - c * grid), "--", color=color, lw=0.7)
-    left.plot([0.0], [k0], "*", color=color)
+    # the eps* -> 0 limit with the fit's standard error
+    left.errorbar([0.0], [k0], yerr=[k0_err], fmt="*", color=color, elinewidth=0.7)
     anisotropy = np.array([row["anisotropy"] for row in chosen])
     anisotropy_err = np.array([row["anisotropy_err"] for row in chosen])
     plotting.errorbar(

@@ -31,6 +31,7 @@ ax.axhline(
     label=rf"steady, $\varepsilon^*={runs[0].attrs['reduced_field']:g}$: "
     rf"{value:.3f} $\pm$ {error:.3f}",
 )
+ax.axhspan(value - error, value + error, color="k", alpha=0.12, lw=0)  # its standard error
 ax.axvspan(steady["parameters"]["steady_from_tau"], float(np.max(t)), color="0.92", zorder=0)
 alpha = analysis.run_parameters(runs[0])["restitution"]
 ax.set_title(

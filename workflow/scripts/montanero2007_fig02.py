@@ -23,7 +23,15 @@ for ax, ds in zip(axes[:, 0], runs, strict=True):
             error = series[f"b_{route}_err"][:, k]
             ax.plot(t, value, style, color=colors[k], lw=0.9)
             ax.fill_between(t, value - error, value + error, color=colors[k], alpha=0.15, lw=0)
-        ax.axhline(steady["b_full"][k], ls=":", color=colors[k], lw=0.8)
+        steady_value, steady_error = steady["b_full"][k], steady["b_full_err"][k]
+        ax.axhline(steady_value, ls=":", color=colors[k], lw=0.8)
+        ax.axhspan(
+            steady_value - steady_error,
+            steady_value + steady_error,
+            color=colors[k],
+            alpha=0.12,
+            lw=0,
+        )
         log.info(
             "alpha = %g: b'_%d = %.4f +- %.4f (full), %.4f +- %.4f (marginal)",
             steady["parameters"]["restitution"],

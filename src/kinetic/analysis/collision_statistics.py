@@ -216,13 +216,16 @@ def free_path_pdf(dataset) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 ERRORS = ("realizations", "counting")
 """How ``count_ldf_estimate`` errs π_t(n): the spread of the realizations' histograms, or
 the pooled counting error 1/(t √count), which treats every particle-window as
-independent. In the default build's MD (64 realizations of 1000 disks, revision 7d10f92)
-the two agree: their ratio is 0.8-1.2 over the bins at t = 10 and 50 and both densities
-(median 0.94-1.00), so the particles' shared windows and partners add no measurable
-scatter. Until then the realizations counted in windows of the mean free time each had
-measured while equilibrating, 1.4 % apart, and the spread of the window lengths made the
-realizations' histograms scatter 16-40 times more than Poisson (the ratio was 3-4 in the
-centre): the realizations' spread is the error that sees such a defect."""
+independent, and leaves out the normalisation by the mode. In the default build's MD (64
+realizations of 1000 disks, revision 7d10f92), with the realizations' error of ln P(k)
+alone (before 2026-12-01, also without the normalisation), the two agreed: their ratio was
+0.8-1.2 over the bins at t = 10 and 50 and both densities (median 0.94-1.00), so the
+particles' shared windows and partners add no measurable scatter; Fig. 9's caption now
+gives the ratio to the error with the normalisation. Until then the realizations counted
+in windows of the mean free time each had measured while equilibrating, 1.4 % apart, and
+the spread of the window lengths made the realizations' histograms scatter 16-40 times
+more than Poisson (the ratio was 3-4 in the centre): the realizations' spread is the error
+that sees such a defect."""
 
 
 def count_large_deviation(

@@ -611,8 +611,12 @@ def error_budget(rows, n_reference: int, target_errors):
                 ),
             }
         )
+    k_inf_variance = fit["covariance"][0, 0]
+    if np.isfinite(c_n_err):
+        k_inf_variance += (c_n_err / n_reference) ** 2
     model = {
         "k_inf": k_inf,
+        "k_inf_err": float(np.sqrt(k_inf_variance)),
         "k0": k0,
         "k1": k1,
         "k2": k2,

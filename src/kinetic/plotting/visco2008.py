@@ -425,8 +425,14 @@ def fig09(md, finite, asymptotic, windows, min_count, pdf):
     fig, axes = plotting.figure(1, len(windows), figsize=(3.4 * len(windows), 2.8), sharey=True)
     axes = np.atleast_1d(axes)
     numbers = {"min_count": min_count, "density": density}
+    ratios = []  # counting error over the realizations' error, every bin but the mode
     for axis, window, tag in zip(axes, windows, "ab", strict=False):
         estimate = collision_statistics.count_ldf_estimate(md, window, min_count=min_count)
+        counting = collision_statistics.count_ldf_estimate(
+            md, window, min_count=min_count, errors="counting"
+        )
+        spread = estimate["error"] > 0
+        ratios.append(counting["error"][spread] / estimate["error"][spread])
         curves = finite.sel(window=window)
         theory_rate = curves["rate"].values
         axis.plot(
@@ -492,6 +498,10 @@ def fig09(md, finite, asymptotic, windows, min_count, pdf):
         axis.set_xlabel(r"$n = \mathcal{N}/t$  ($\omega = 1$)")
         axis.set_title(f"({tag})  $t = {window:g}$")
         log.info("window %s: %s", window, {k: v for k, v in numbers.items() if k.endswith(tag)})
+    ratios = np.concatenate(ratios)
+    numbers["counting_low"], numbers["counting_median"], numbers["counting_high"] = (
+        np.percentile(ratios, [10, 50, 90]) if ratios.size else (np.nan, np.nan, np.nan)
+    )
     axes[0].set_ylabel(r"$\pi_t(n)$")
     handles, labels = axes[0].get_legend_handles_labels()
     labels = [label.replace(f"$t = {windows[0]:g}$", "finite $t$") for label in labels]
