@@ -65,6 +65,10 @@ def test_inconsistent_sections_are_refused_with_the_key():
     with pytest.raises(ValueError, match=r"figures\.fig05_alphas"):
         study.run_plan(section)
     section = copy.deepcopy(_section())
+    section["figures"]["fig07_alphas"] = [1.0, 0.5]  # the caption quotes 0.3 too
+    with pytest.raises(ValueError, match=r"figures\.fig07_alphas .* must hold \[0\.3\]"):
+        study.run_plan(section)
+    section = copy.deepcopy(_section())
     section["protocol"]["time_step"] = 0.007
     with pytest.raises(ValueError, match="sample_interval / time_step"):
         study.run_plan(section)

@@ -38,6 +38,7 @@ from kinetic.studies.montanero2007_front import (
 )
 
 __all__ = [
+    "FIG07_QUOTED_SHARES",
     "PROTOCOL_KEYS",
     "alpha_key",
     "check",
@@ -47,6 +48,10 @@ __all__ = [
     "simulate_batch",
     "simulate_batches",
 ]
+
+#: Fig. 7: the share of b'_1 below c_x^2 = 6 that the document quotes, by α; the caption
+#: sets the ε* -> 0 share beside each, so only these α need their larger-field partner run
+FIG07_QUOTED_SHARES = {1.0: 0.87, 0.3: 0.66}
 
 PROTOCOL_KEYS = (
     "n_particles",
@@ -213,6 +218,16 @@ def _check_references(section: Mapping[str, Any]) -> None:
                 f"config key montanero2007.{key} names restitution {missing}, which is not in "
                 f"montanero2007.alphas = {list(section['alphas'])} (that key reuses scan runs)"
             )
+    quoted = [
+        alpha
+        for alpha in FIG07_QUOTED_SHARES
+        if alpha_key(alpha) not in {alpha_key(a) for a in figures["fig07_alphas"]}
+    ]
+    if quoted:
+        raise ValueError(
+            f"config key montanero2007.figures.fig07_alphas = {list(figures['fig07_alphas'])} "
+            f"must hold {quoted}: Fig. 7's caption sets the document's shares there"
+        )
     if _bias_field(section) <= section["protocol"]["reduced_field"]:
         raise ValueError(
             f"config key montanero2007.field_bias.reduced_field = {_bias_field(section)} must "

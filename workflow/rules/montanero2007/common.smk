@@ -6,7 +6,7 @@ import re
 
 from kinetic import batches
 from kinetic.studies import montanero2007 as montanero2007_study
-from kinetic.studies.montanero2007 import alpha_key, field_partner
+from kinetic.studies.montanero2007 import FIG07_QUOTED_SHARES, alpha_key, field_partner
 from kinetic.studies.montanero2007 import run_batches, run_plan
 
 # ---------------------------------------------------------------- for the simulation rules
@@ -105,9 +105,8 @@ def montanero2007_scan_partners(wildcards):
 
 
 def montanero2007_fig07_partners(wildcards):
-    return montanero2007_field_partners(
-        config["montanero2007"]["figures"]["fig07_alphas"]
-    )
+    """The partners of the restitutions whose eps* -> 0 share Fig. 7's caption quotes."""
+    return montanero2007_field_partners(FIG07_QUOTED_SHARES)
 
 
 def montanero2007_error_inputs(wildcards):

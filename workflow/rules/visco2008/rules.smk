@@ -309,7 +309,7 @@ rule visco2008_cloning_error_vs_time:
 
 rule visco2008_cloning_extrapolation:
     input:
-        scan=results_file("visco2008/cloning.nc"),
+        scan=visco2008_cloning_kernel_scan("hard_disks"),
         reference=results_file("visco2008/cloning/reference.nc"),
         code=script_code("visco2008_cloning_extrapolation"),
     output:
@@ -328,7 +328,7 @@ rule visco2008_cloning_extrapolation:
 
 rule visco2008_cloning_velocity_density:
     input:
-        scan=results_file("visco2008/cloning.nc"),
+        scan=visco2008_cloning_kernel_scan("hard_disks"),
         code=script_code("visco2008_cloning_velocity_density"),
     output:
         pdf=results_file("visco2008/cloning_velocity_density.pdf"),
