@@ -1,6 +1,7 @@
 """costantini2010 Table 1: tau_c, amplitude, nu*, nu_bar*, their ratio and zeta* per
 (method, alpha, N, Lambda), the 1/N -> 0 rows and the first-Sonine theory; the 1/N fits;
-the tail amplitudes against C(0)."""
+the tail amplitudes against C(0). Rule costantini2010_table1 tabulates every run of Table 1;
+costantini2010_transport_table the grid runs only (transport/), what Figs 4-7 draw."""
 
 import pandas as pd
 

@@ -102,6 +102,13 @@ def costantini2010_table_inputs(wildcards):
     )
 
 
+def costantini2010_grid_inputs(wildcards):
+    """Figs 4-7: MD and the production DSMC at every (N, alpha) of the config."""
+    return costantini2010_files(
+        costantini2010_study.grid_runs(config["costantini2010"])
+    )
+
+
 def costantini2010_error_inputs(wildcards):
     """Error against CPU time: DSMC and MD at the figure's N and error_restitution."""
     study = config["costantini2010"]

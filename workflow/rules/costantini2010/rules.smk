@@ -238,6 +238,27 @@ rule costantini2010_table1:
         "../../scripts/costantini2010_table1.py"
 
 
+rule costantini2010_transport_table:
+    # Table 1 of the grid runs only: what Figs 4-7 draw (MD and the production cells at
+    # every N and alpha), without the other runs of Fig. 2 that table1.csv adds
+    input:
+        runs=costantini2010_grid_inputs,
+        code=script_code("costantini2010_table1"),
+    output:
+        csv=results_file("costantini2010/transport/table1.csv"),
+        md=results_file("costantini2010/transport/table1.md"),
+        fits=results_file("costantini2010/transport/extrapolation.csv"),
+        fits_md=results_file("costantini2010/transport/extrapolation.md"),
+        amplitudes=results_file("costantini2010/transport/amplitudes.csv"),
+        amplitudes_md=results_file("costantini2010/transport/amplitudes.md"),
+    log:
+        log_file("costantini2010/transport/table1.log"),
+    params:
+        study=costantini2010_settings("density", "particles", "restitutions"),
+    script:
+        "../../scripts/costantini2010_table1.py"
+
+
 rule costantini2010_checks:
     # Fails (after writing the table to its log) when a check fails and the config's
     # fail_on_checks lists costantini2010.
@@ -269,11 +290,11 @@ rule costantini2010_checks:
 
 
 rule costantini2010_fig04:
-    # drawn from Table 1 (itself computed from the runs' correlations) and the theory
+    # drawn from Table 1 of the grid runs (computed from their correlations) and the theory
     input:
-        table=results_file("costantini2010/table1.csv"),
-        fits=results_file("costantini2010/extrapolation.csv"),
-        amplitudes=results_file("costantini2010/amplitudes.csv"),
+        table=results_file("costantini2010/transport/table1.csv"),
+        fits=results_file("costantini2010/transport/extrapolation.csv"),
+        amplitudes=results_file("costantini2010/transport/amplitudes.csv"),
         code=script_code("costantini2010_fig04"),
     output:
         pdf=results_file("costantini2010/fig04.pdf"),
@@ -291,11 +312,11 @@ rule costantini2010_fig04:
 
 
 rule costantini2010_fig05:
-    # drawn from Table 1 (itself computed from the runs' correlations) and the theory
+    # drawn from Table 1 of the grid runs (computed from their correlations) and the theory
     input:
-        table=results_file("costantini2010/table1.csv"),
-        fits=results_file("costantini2010/extrapolation.csv"),
-        amplitudes=results_file("costantini2010/amplitudes.csv"),
+        table=results_file("costantini2010/transport/table1.csv"),
+        fits=results_file("costantini2010/transport/extrapolation.csv"),
+        amplitudes=results_file("costantini2010/transport/amplitudes.csv"),
         code=script_code("costantini2010_fig05"),
     output:
         pdf=results_file("costantini2010/fig05.pdf"),
@@ -313,9 +334,9 @@ rule costantini2010_fig05:
 
 
 rule costantini2010_fig06:
-    # drawn from Table 1 (itself computed from the runs' correlations) and the theory
+    # drawn from Table 1 of the grid runs (computed from their correlations) and the theory
     input:
-        table=results_file("costantini2010/table1.csv"),
+        table=results_file("costantini2010/transport/table1.csv"),
         code=script_code("costantini2010_fig06"),
     output:
         pdf=results_file("costantini2010/fig06.pdf"),
@@ -333,9 +354,9 @@ rule costantini2010_fig06:
 
 
 rule costantini2010_fig07:
-    # drawn from Table 1 (itself computed from the runs' correlations) and the theory
+    # drawn from Table 1 of the grid runs (computed from their correlations) and the theory
     input:
-        table=results_file("costantini2010/table1.csv"),
+        table=results_file("costantini2010/transport/table1.csv"),
         code=script_code("costantini2010_fig07"),
     output:
         pdf=results_file("costantini2010/fig07.pdf"),
