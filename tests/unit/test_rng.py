@@ -112,15 +112,19 @@ def _draw_moments(state, n):
 
 
 @njit(cache=False)
-def _mean_direction(state, n, d):
+def _direction_moments(state, n, d):
+    """Mean, second-moment tensor and fourth moment of each component of n draws, and the
+    largest departure of |n|^2 from 1."""
     direction = np.empty(d)
-    mean = np.zeros(d)
+    mean, second, fourth = np.zeros(d), np.zeros((d, d)), np.zeros(d)
     norm_error = 0.0
     for _ in range(n):
         random_unit_vector(state, direction)
         mean += direction
+        second += np.outer(direction, direction)
+        fourth += direction**4
         norm_error = max(norm_error, abs(np.sum(direction * direction) - 1.0))
-    return mean / n, norm_error
+    return mean / n, second / n, fourth / n, norm_error
 
 
 def test_generator_is_xoshiro256plus_in_both_state_layouts():
@@ -218,10 +222,18 @@ def test_streams_are_independent():
 
 @pytest.mark.parametrize("d", [2, 3, 5])
 def test_unit_vectors_are_isotropic(d):
+    """Uniform on the sphere S^(d-1): <n_i> = 0, <n_i n_j> = δ_ij/d and <n_i^4> = 3/(d(d+2))
+    (directions along the axes or the diagonals have the first two right and the fourth
+    wrong: 1/d and 1/d^2), each within 5 standard errors of its estimator."""
     n = 100_000
-    mean, norm_error = _mean_direction(stream_states(5, 1)[0], n, d)
+    mean, second, fourth, norm_error = _direction_moments(stream_states(5, 1)[0], n, d)
     assert norm_error < 1e-12
     assert np.all(np.abs(mean) < 5 * np.sqrt(1 / d / n))
+    m4, m8 = 3.0 / (d * (d + 2)), 105.0 / (d * (d + 2) * (d + 4) * (d + 6))
+    diagonal, off = np.diag(second), second[~np.eye(d, dtype=bool)]
+    assert np.all(np.abs(diagonal - 1.0 / d) < 5 * np.sqrt((m4 - 1.0 / d**2) / n))
+    assert np.all(np.abs(off) < 5 * np.sqrt(1.0 / (d * (d + 2)) / n))
+    assert np.all(np.abs(fourth - m4) < 5 * np.sqrt((m8 - m4**2) / n))
 
 
 def _splitmix64(z):
