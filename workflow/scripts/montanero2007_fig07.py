@@ -11,8 +11,8 @@ import numpy as np
 from kinetic import plotting
 from kinetic.analysis import montanero2007 as analysis
 from kinetic.analysis.montanero2007 import load_runs
-from kinetic.studies.montanero2007 import FIG07_QUOTED_SHARES as PAPER
 from kinetic.theory import montanero2007 as theory
+from kinetic.theory.montanero2007 import FIG07_QUOTED_SHARES as PAPER
 from kinetic.workflow_support import start, write_caption
 
 CX2 = 6.0

@@ -36,9 +36,9 @@ from kinetic.studies.montanero2007_front import (
     simulate_batch,
     simulate_batches,
 )
+from kinetic.theory.montanero2007 import FIG07_QUOTED_SHARES
 
 __all__ = [
-    "FIG07_QUOTED_SHARES",
     "PROTOCOL_KEYS",
     "alpha_key",
     "check",
@@ -48,10 +48,6 @@ __all__ = [
     "simulate_batch",
     "simulate_batches",
 ]
-
-#: Fig. 7: the share of b'_1 below c_x^2 = 6 that the document quotes, by α; the caption
-#: sets the ε* -> 0 share beside each, so only these α need their larger-field partner run
-FIG07_QUOTED_SHARES = {1.0: 0.87, 0.3: 0.66}
 
 PROTOCOL_KEYS = (
     "n_particles",

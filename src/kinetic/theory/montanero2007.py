@@ -72,6 +72,12 @@ KAPPA_ELASTIC_HIGHER_SONINE = 1.025218
 """kappa/kappa0 of elastic hard spheres (d = 3) with higher Sonine orders (paper's Ref. [37]);
 the arrow of Fig. 3.  For alpha = 1, kappa' = kappa."""
 
+FIG07_QUOTED_SHARES = {1.0: 0.87, 0.3: 0.66}
+"""Fig. 7: the share of b'_1 below c_x^2 = 6 that the document quotes, by alpha.  The
+caption sets the eps* -> 0 share beside each, so only these alpha need their larger-field
+partner run.  A document number, kept here (not in the study) so that the figure script
+does not depend on the study module and its cost model."""
+
 APPROXIMATIONS = ("standard", "modified")
 
 

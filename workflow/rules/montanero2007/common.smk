@@ -6,7 +6,8 @@ import re
 
 from kinetic import batches
 from kinetic.studies import montanero2007 as montanero2007_study
-from kinetic.studies.montanero2007 import FIG07_QUOTED_SHARES, alpha_key, field_partner
+from kinetic.studies.montanero2007 import alpha_key, field_partner
+from kinetic.theory.montanero2007 import FIG07_QUOTED_SHARES
 from kinetic.studies.montanero2007 import run_batches, run_plan
 
 # ---------------------------------------------------------------- for the simulation rules
