@@ -330,7 +330,29 @@ def fig06(scan, closures, reference, pdf):
         n_limit=int(drawn["limit"][0].size),
         lambdas_single=", ".join(f"{x:g}" for x in single_lam) or "none",
         n_above_bound=int(np.sum(single_ratio > 1.0 / -np.expm1(-single_lam))),
+        bound_at_top=_bound_at_top(series, reference, lambda_min),
     )
+
+
+def _bound_at_top(series, reference, lambda_min):
+    """The caption's sentence on how close the extrapolated μ at the largest drawn λ comes
+    to the bound −1/√2, with the solution of Eq. (28) there (where its quadrature gave a
+    value)."""
+    lam, mu, error = series.limit_lambda, series.limit_value, series.limit_error
+    usable = np.isfinite(mu) & np.isfinite(error) & (lam >= lambda_min)
+    if not usable.any():
+        return "No extrapolated point lies in the figure's range of λ."
+    k = np.flatnonzero(usable)[np.argmax(lam[usable])]
+    gap = mu[k] + 1.0 / np.sqrt(2.0)
+    text = (
+        f"At the largest λ of the extrapolated points, {lam[k]:g}, μ lies {gap:.2g} ± "
+        f"{error[k]:.2g} above the bound ({gap / error[k]:+.1f} errors)"
+    )
+    ref_lam, ref_mu = finite(reference["lam"].values, reference["mu"].values)
+    at = np.flatnonzero(np.isclose(ref_lam, lam[k]))
+    if at.size:
+        text += f", the solution of Eq. (28) {ref_mu[at[0]] + 1.0 / np.sqrt(2.0):.2g} above it"
+    return text + "."
 
 
 def closure_lines(ax, lam, gaussian, sonine):

@@ -199,14 +199,16 @@ rule montanero2007_fig04:
 rule montanero2007_fig05:
     input:
         runs=montanero2007_fig05_runs,
+        template=caption_template("montanero2007_fig05"),
         code=script_code("montanero2007_phi"),
     output:
         pdf=results_file("montanero2007/fig05.pdf"),
         png=report(
             results_file("montanero2007/fig05.png"),
-            caption="../../report/montanero2007_fig05.rst",
+            caption=rendered_caption("montanero2007", "fig05"),
             category="montanero2007",
         ),
+        caption=results_file("montanero2007/fig05.caption.rst"),
     log:
         log_file("montanero2007/fig05.log"),
     params:
@@ -219,14 +221,16 @@ rule montanero2007_fig05:
 rule montanero2007_fig06:
     input:
         runs=montanero2007_fig06_runs,
+        template=caption_template("montanero2007_fig06"),
         code=script_code("montanero2007_phi"),
     output:
         pdf=results_file("montanero2007/fig06.pdf"),
         png=report(
             results_file("montanero2007/fig06.png"),
-            caption="../../report/montanero2007_fig06.rst",
+            caption=rendered_caption("montanero2007", "fig06"),
             category="montanero2007",
         ),
+        caption=results_file("montanero2007/fig06.caption.rst"),
     log:
         log_file("montanero2007/fig06.log"),
     params:
