@@ -251,12 +251,13 @@ def fig05(scan, closures, reference, pdf):
     inner.set_ylim(-0.72, -0.33)
     plotting.save(fig, pdf)
 
-    single_lam, single_mu, _ = drawn["single"]
+    single_lam, single_mu, single_error = drawn["single"]
     below = single_mu < bound
     return dict(
         population=series.single_population,
         n_single=int(single_lam.size),
         n_below=int(below.sum()),
+        n_below_2se=int(np.sum(single_mu + 2.0 * single_error < bound)),
         lambdas_below=", ".join(f"{x:g}" for x in single_lam[below]) or "none",
         n_limit=int(drawn["limit"][0].size),
     )
@@ -323,13 +324,15 @@ def fig06(scan, closures, reference, pdf):
     ax.set_ylabel(r"$\mu(\lambda)\,/\,[(e^{-\lambda}-1)\,\omega/\sqrt{2}]$")
     fig.legend(loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=2)
     plotting.save(fig, pdf)
-    single_lam, single_ratio, _ = drawn["single"]
+    single_lam, single_ratio, single_error = drawn["single"]
+    edge = 1.0 / -np.expm1(-single_lam)
     return dict(
         population=series.single_population,
         n_single=int(single_lam.size),
         n_limit=int(drawn["limit"][0].size),
         lambdas_single=", ".join(f"{x:g}" for x in single_lam) or "none",
-        n_above_bound=int(np.sum(single_ratio > 1.0 / -np.expm1(-single_lam))),
+        n_above_bound=int(np.sum(single_ratio > edge)),
+        n_above_bound_2se=int(np.sum(single_ratio - 2.0 * single_error > edge)),
         bound_at_top=_bound_at_top(series, reference, lambda_min),
     )
 
