@@ -219,13 +219,15 @@ rule krauth2025_fig04_11:
         lines=krauth2025_line_files(),
         theory=krauth2025_line_theory_files(),
         code=script_code("krauth2025_fig04_11"),
+        template=caption_template("krauth2025_fig04_11"),
     output:
         pdf=results_file("krauth2025/fig04_11.pdf"),
         png=report(
             results_file("krauth2025/fig04_11.png"),
-            caption="../../report/krauth2025_fig04_11.rst",
+            caption=rendered_caption("krauth2025", "fig04_11"),
             category="krauth2025",
         ),
+        caption=results_file("krauth2025/fig04_11.caption.rst"),
     log:
         log_file("krauth2025/fig04_11.log"),
     script:
