@@ -247,8 +247,9 @@ def fig05(scan, closures, reference, pdf):
     inner = plotting.inset(ax, (0.47, 0.52, 0.5, 0.45))
     curves(inner)
     draw_series(inner, series, label="")
-    inner.set_xlim(0.4, 1.6)
-    inner.set_ylim(-0.72, -0.33)
+    zoom = (0.4, 1.6)  # where the closures separate
+    inner.set_xlim(*zoom)
+    inner.set_ylim(*_zoom_limits(zoom, closures, reference))
     plotting.save(fig, pdf)
 
     single_lam, single_mu, single_error = drawn["single"]
@@ -261,6 +262,22 @@ def fig05(scan, closures, reference, pdf):
         lambdas_below=", ".join(f"{x:g}" for x in single_lam[below]) or "none",
         n_limit=int(drawn["limit"][0].size),
     )
+
+
+def _zoom_limits(zoom, closures, reference, pad=0.05):
+    """y-limits of Fig. 5's inset: the range of the closures and of Eq. (28) over the
+    λ-window ``zoom``, padded by ``pad`` of it (the range was a fixed (-0.72, -0.33))."""
+    values = []
+    for lam, mu in (
+        (closures["lam"].values, closures["mu_gaussian"].values),
+        (closures["lam"].values, closures["mu_sonine"].values),
+        (reference["lam"].values, reference["mu"].values),
+    ):
+        lam, mu = finite(lam, mu)
+        values.append(mu[(lam >= zoom[0]) & (lam <= zoom[1])])
+    values = np.concatenate(values)
+    low, high = values.min(), values.max()
+    return low - pad * (high - low), high + pad * (high - low)
 
 
 def fig06(scan, closures, reference, pdf):
