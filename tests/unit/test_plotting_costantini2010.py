@@ -76,3 +76,28 @@ def test_run_labels_give_the_real_particles_per_cell_only_when_asked():
         r"DSMC, $\Lambda=10$, 6.2 real/cell",
         r"DSMC, $\Lambda=10$",
     }
+
+
+def test_the_fit_band_is_the_lines_standard_error():
+    """The shaded band of a 1/N fit is the standard error of a + b/N from the fit's
+    covariance: through two points the line is exact, so at each point the band is that
+    point's own error; at 1/N -> 0 it is the intercept's error (not the slope's, not a sum
+    that forgets the anticorrelation of a and b)."""
+    from kinetic.analysis import costantini2010 as analysis
+
+    n, errors = np.array([1000.0, 3000.0]), np.array([0.004, 0.001])
+    fit = pd.Series(analysis.extrapolate_inverse_n(n, 0.2 + 50.0 / n, errors))
+    np.testing.assert_allclose(figures.fit_band(fit, 1.0 / n), errors, rtol=1e-9)
+    np.testing.assert_allclose(figures.fit_band(fit, 0.0), fit.intercept_err, rtol=1e-12)
+    assert fit.covariance < 0  # the intercept and the slope of points at x > 0
+    assert figures.fit_band(fit.drop("covariance"), 0.0) is None  # an older table: no band
+
+
+def test_the_figure_shades_each_fit_with_its_band():
+    table, fits = _tables()
+    fits["covariance"] = -0.01
+    fig = figures.inverse_n_figure(
+        table, fits, None, {"dsmc": {"fictive_factor": 10}}, "nu_star", r"$\nu^*$"
+    )
+    kinds = [type(collection).__name__ for collection in fig.axes[0].collections]
+    assert sum(kind.endswith("PolyCollection") for kind in kinds) == len(FITS)

@@ -139,13 +139,15 @@ def extrapolate_inverse_n(
     n_particles: Sequence[float], values: Sequence[float], errors: Sequence[float]
 ) -> dict[str, float]:
     """Weighted straight line y = a + b/N: ``intercept`` (the 1/N -> 0 value), ``slope``,
-    their standard errors, ``chi2`` and ``dof``. NaN where fewer than two N exist; with
+    their standard errors and ``covariance`` (cov(a, b), for the figures' bands), ``chi2``
+    and ``dof``. NaN where fewer than two N exist; with
     two the line is exact (dof 0, chi2 NaN); values all within :data:`ROUND_OFF` of zero
     are exact zeros (0 ± 0, chi2 NaN)."""
     x = 1.0 / np.asarray(n_particles, dtype=float)
     y = np.asarray(values, dtype=float)
     sigma = np.asarray(errors, dtype=float)
-    nan = {key: math.nan for key in ("intercept", "intercept_err", "slope", "slope_err", "chi2")}
+    keys = ("intercept", "intercept_err", "slope", "slope_err", "covariance", "chi2")
+    nan = {key: math.nan for key in keys}
     if x.size < 2 or np.unique(x).size < 2:
         return nan | {"dof": 0}
     design = np.stack([np.ones_like(x), x], axis=1)
@@ -159,6 +161,7 @@ def extrapolate_inverse_n(
             "intercept_err": 0.0,
             "slope": float(coefficients[1]),
             "slope_err": 0.0,
+            "covariance": 0.0,
             "chi2": math.nan,
             "dof": dof,
         }
@@ -171,6 +174,7 @@ def extrapolate_inverse_n(
         "intercept_err": float(math.sqrt(covariance[0, 0])),
         "slope": float(coefficients[1]),
         "slope_err": float(math.sqrt(covariance[1, 1])),
+        "covariance": float(covariance[0, 1]),
         "chi2": chi2,
         "dof": dof,
     }

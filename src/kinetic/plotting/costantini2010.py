@@ -146,9 +146,24 @@ def transport_rows(table, study):
     return finite, limit, alphas, sizes
 
 
+def fit_band(fit, inverse_n):
+    """Standard error of a fitted line a + b/N at ``inverse_n`` (1/N) from the fit's
+    errors and ``covariance`` of a and b; None for a table without the covariance."""
+    import numpy as np
+
+    covariance = getattr(fit, "covariance", np.nan)
+    if not np.isfinite(covariance):
+        return None
+    variance = (
+        fit.intercept_err**2 + 2.0 * inverse_n * covariance + (inverse_n * fit.slope_err) ** 2
+    )
+    return np.sqrt(np.clip(variance, 0.0, None))
+
+
 def inverse_n_figure(table, fits, amplitudes, study, quantity, symbol):
     """Figs 4 (ν*) and 5 (ν̄*): ``quantity`` against 1/N, one panel per α, with the 1/N
-    fits of ``fits`` extrapolated to 1/N -> 0, the first-Sonine value, and for ν̄* also
+    fits of ``fits`` extrapolated to 1/N -> 0 (shaded: their standard error,
+    :func:`fit_band`), the first-Sonine value, and for ν̄* also
     the values from the measured C(0) (``amplitudes``)."""
     import numpy as np
 
@@ -184,6 +199,11 @@ def inverse_n_figure(table, fits, amplitudes, study, quantity, symbol):
                 # the fit is a + b/N: b/N = b x/1000 on this axis
                 fitted = fit.intercept + fit.slope * line / 1000.0
                 ax.plot(line, fitted, color=style["color"], lw=0.7)
+                band = fit_band(fit, line / 1000.0)
+                if band is not None:  # the line's standard error, from the fit's covariance
+                    ax.fill_between(
+                        line, fitted - band, fitted + band, color=style["color"], alpha=0.15, lw=0
+                    )
                 plotting.errorbar(
                     ax,
                     [0.0],
