@@ -38,13 +38,41 @@ def test_gaussian_ldf_at_zero_rate_is_the_minimum_of_mu():
     np.testing.assert_allclose(values, minimum, atol=1e-9)
 
 
-def test_uncorrelated_ldf_eq_23_is_close_to_the_gaussian_closure():
+def test_uncorrelated_ldf_eq_23_is_a_renewal_process_and_closer_to_gaussian_than_poisson():
+    """Eq. (23) is the rate function of a renewal process with the free-flight time density:
+    it vanishes at the mean rate and its curvature there is -<t>^3/var(t) (the count's
+    variance per unit time is var(t)/<t>^3), here from the density's moments integrated
+    directly, not through the Laplace transform Eq. (23) uses. Fig. 3's reading: the
+    uncorrelated and Gaussian-closure rate functions lie closer to each other than either
+    to Poisson(1), and both are wider than Poisson(1)."""
+    from scipy import integrate
+
+    def moment(k):
+        return integrate.quad(
+            lambda t: t**k * visco2008.free_flight_time_pdf(np.array([t]), 2)[0],
+            0,
+            np.inf,
+            limit=400,
+            epsabs=1e-13,
+            epsrel=1e-12,
+        )[0]
+
+    mean, second = moment(1), moment(2)
+    assert mean == pytest.approx(1.0, rel=1e-9)  # flights in mean free times
+    h = 1e-3
+    around = visco2008.uncorrelated_ldf(np.array([1 - h, 1, 1 + h]), 2)
+    assert around[1] == pytest.approx(0, abs=1e-9)
+    # the central difference is off by O(h^2) of the fourth derivative: about 1e-6
+    curvature = (around[0] + around[2] - 2 * around[1]) / h**2
+    assert curvature == pytest.approx(-(mean**3) / (second - mean**2), rel=1e-5)
     uncorrelated = visco2008.uncorrelated_ldf(RATES, 2)
     gaussian = visco2008.gaussian_ldf(RATES)
-    assert uncorrelated[3] == pytest.approx(0, abs=1e-9)
-    # Fig. 3: the two agree closely, and both are wider than Poisson(1)
-    np.testing.assert_allclose(uncorrelated, gaussian, atol=0.04)
-    assert np.all(uncorrelated[RATES != 1] > visco2008.poisson_ldf(RATES[RATES != 1], 1.0))
+    poisson = visco2008.poisson_ldf(RATES, 1.0)
+    away = RATES != 1
+    gap = np.abs(uncorrelated - gaussian)[away]
+    assert np.all(gap < np.abs(uncorrelated - poisson)[away])
+    assert np.all(gap < np.abs(gaussian - poisson)[away])
+    assert np.all(uncorrelated[away] > poisson[away])
 
 
 def test_legendre_at_the_edges_of_its_range():
