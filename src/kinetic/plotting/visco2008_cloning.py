@@ -34,6 +34,9 @@ __all__ = [
     "scan_series",
 ]
 
+MU_BOUND = -1.0 / np.sqrt(2.0)
+"""The exact lower bound of hard disks' μ(λ), -ω/√2 (ω = 1): Figs 5 and 6 and their captions."""
+
 _POINT_NAMES = {"mu": "mu", "T": "temperature", "a2": "a2", "mu_rate": "mu_rate"}
 
 
@@ -215,7 +218,7 @@ def fig05(scan, closures, reference, pdf):
     numbers its caption quotes."""
     series = scan_series(scan, "hard_disks", "mu")
     lam = closures["lam"].values
-    bound = -1.0 / np.sqrt(2.0)
+    bound = MU_BOUND
 
     def curves(axis):
         closure_lines(axis, lam, closures["mu_gaussian"].values, closures["mu_sonine"].values)
@@ -363,7 +366,7 @@ def _bound_at_top(series, reference, lambda_min):
     if not usable.any():
         return "No extrapolated point lies in the figure's range of λ."
     k = np.flatnonzero(usable)[np.argmax(lam[usable])]
-    gap = mu[k] + 1.0 / np.sqrt(2.0)
+    gap = mu[k] - MU_BOUND
     text = (
         f"At the largest λ of the extrapolated points, {lam[k]:g}, μ lies {gap:.2g} ± "
         f"{error[k]:.2g} above the bound ({gap / error[k]:+.1f} errors)"
@@ -371,7 +374,7 @@ def _bound_at_top(series, reference, lambda_min):
     ref_lam, ref_mu = finite(reference["lam"].values, reference["mu"].values)
     at = np.flatnonzero(np.isclose(ref_lam, lam[k]))
     if at.size:
-        text += f", the solution of Eq. (28) {ref_mu[at[0]] + 1.0 / np.sqrt(2.0):.2g} above it"
+        text += f", the solution of Eq. (28) {ref_mu[at[0]] - MU_BOUND:.2g} above it"
     return text + "."
 
 
