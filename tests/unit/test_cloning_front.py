@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+from kinetic.analysis.statistics import weighted_line
 from kinetic.cloning import LAMBDA_MAX, LAMBDA_MIN, extrapolate_population, simulate
 from kinetic.io import check_conventions, parameters_of
 
@@ -108,6 +109,16 @@ def test_extrapolation_recovers_a_line_and_refuses_one_size():
     assert fit.intercept_err > 0 and fit.dof == 2
     with pytest.raises(ValueError, match="2 distinct population sizes"):
         extrapolate_population([100, 100], [1.0, 1.1], [0.1, 0.1])
+    # points scattered 10x beyond their errors: every error, and the covariance of the
+    # line's band, grow by the Birge ratio sqrt(chi2/dof) (the covariance by its square)
+    scattered = values + 1e-2 * np.array([1.0, -1.0, 1.0, -1.0])
+    plain = weighted_line(1.0 / sizes, scattered, np.full(4, 1e-3))
+    fit = extrapolate_population(sizes, scattered, np.full(4, 1e-3))
+    birge = plain.chi2 / plain.dof
+    assert birge > 50
+    assert fit.intercept_err == pytest.approx(plain.intercept_err * np.sqrt(birge), rel=1e-12)
+    assert fit.slope_err == pytest.approx(plain.slope_err * np.sqrt(birge), rel=1e-12)
+    assert fit.covariance == pytest.approx(plain.covariance * birge, rel=1e-12)
     with pytest.raises(ValueError, match="errors finite and > 0"):
         extrapolate_population([100, 200, 400], [1.0, 1.1, 1.2], [0.1, np.inf, 0.1])
 

@@ -1,10 +1,12 @@
 """The 1/N_c -> 0 extrapolation of the hard-disk cloning estimates: μ, T and a2 against
-1/N_c at a few λ, with the weighted straight-line fits, their intercepts (open symbols
-at 1/N_c = 0) and the deterministic solution of Eq. (28) (stars)."""
+1/N_c at a few λ, with the weighted straight-line fits shaded by their standard error
+(from the fit's covariance of intercept and slope), their intercepts (open symbols at
+1/N_c = 0) and the deterministic solution of Eq. (28) (stars)."""
 
 import numpy as np
 
 from kinetic import io, plotting
+from kinetic.analysis.statistics import line_error
 from kinetic.workflow_support import start
 
 start(snakemake)
@@ -42,12 +44,21 @@ for column, k in enumerate(limits):
         plotting.errorbar(ax, inverse, values, errors, marker="o")
         intercept = float(ds[f"limit_{name}"].values[k])
         slope = float(ds[f"limit_{name}_slope"].values[k])
+        intercept_err = float(ds[f"limit_{name}_err"].values[k])
         if np.isfinite(intercept):
             grid = np.linspace(0.0, inverse.max() * 1.05, 20)
-            ax.plot(grid, intercept + slope * grid, "-", lw=0.8)
-            plotting.errorbar(
-                ax, [0.0], [intercept], [float(ds[f"limit_{name}_err"].values[k])], marker="s"
+            line = intercept + slope * grid
+            (drawn,) = ax.plot(grid, line, "-", lw=0.8)
+            band = line_error(
+                grid,
+                intercept_err,
+                float(ds[f"limit_{name}_slope_err"].values[k]),
+                float(ds[f"limit_{name}_covariance"].values[k]),
             )
+            ax.fill_between(
+                grid, line - band, line + band, color=drawn.get_color(), alpha=0.15, lw=0
+            )
+            plotting.errorbar(ax, [0.0], [intercept], [intercept_err], marker="s")
         exact = float(reference[reference_name].values[exact_row])
         if np.isfinite(exact):
             ax.plot([0.0], [exact], "*", color="0.3", ms=5)

@@ -21,7 +21,12 @@ import numpy as np
 import pandas as pd
 
 from kinetic import batches, io
-from kinetic.analysis.statistics import cpu_for_error, error_against_cpu, mean_and_sem
+from kinetic.analysis.statistics import (
+    cpu_for_error,
+    error_against_cpu,
+    mean_and_sem,
+    weighted_line,
+)
 from kinetic.batches import REALIZATION
 from kinetic.cloning.estimators import (
     extrapolate_population,
@@ -125,6 +130,7 @@ def _fit(sizes, values, errors):
                 "err": 0.0,
                 "slope": 0.0,
                 "slope_err": 0.0,
+                "covariance": 0.0,
                 "chi2": 0.0,
                 "dof": int(values.size - 2),
                 "deviation_err": deviation_err,
@@ -142,6 +148,7 @@ def _fit(sizes, values, errors):
         "err": fit.intercept_err,
         "slope": fit.slope,
         "slope_err": fit.slope_err,
+        "covariance": fit.covariance,
         "chi2": fit.chi2,
         "dof": fit.dof,
         "deviation_err": deviation_err,
@@ -319,6 +326,18 @@ def scan_dataset(records, extrapolations):
             units[name],
             "slope d/d(1/N_c) of the extrapolation",
         )
+        data[f"limit_{name}_slope_err"] = (
+            "limit",
+            fitted("slope_err"),
+            units[name],
+            "standard error of the slope",
+        )
+        data[f"limit_{name}_covariance"] = (
+            "limit",
+            fitted("covariance"),
+            f"{units[name]}^2" if units[name] != "1" else "1",
+            "covariance of the extrapolation's intercept and slope (its line's error band)",
+        )
         data[f"limit_{name}_chi2"] = ("limit", fitted("chi2"), "1", "chi-square of the fit")
     data["limit_kernel"] = (
         "limit",
@@ -382,12 +401,11 @@ def deviation_from_extrapolation_err(population_sizes, errors, index: int) -> fl
     Adding σ_i and the intercept's error as if independent overstated it up to twice at
     the large populations, whose points pull the intercept, and understated it at the
     smallest."""
-    n_c = np.asarray(population_sizes, dtype=float)
+    x = 1.0 / np.asarray(population_sizes, dtype=float)
     sigma = np.asarray(errors, dtype=float)
-    x, w = 1.0 / n_c, 1.0 / sigma**2
-    s, sx, sxx = w.sum(), (w * x).sum(), (w * x * x).sum()
-    det = s * sxx - sx * sx
-    variance = sigma[index] ** 2 + sxx / det - 2 * (sxx - sx * x[index]) / det
+    fit = weighted_line(x, np.zeros_like(x), sigma)  # the covariances need no values
+    with_point = fit.intercept_err**2 + x[index] * fit.covariance  # (S_xx - S_x x_i)/D
+    variance = sigma[index] ** 2 + fit.intercept_err**2 - 2 * with_point
     return float(np.sqrt(max(variance, 0.0)))
 
 

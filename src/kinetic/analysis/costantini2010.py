@@ -38,7 +38,12 @@ import xarray as xr
 from kinetic import io
 from kinetic.analysis import checks as check
 from kinetic.analysis.checks import Check
-from kinetic.analysis.statistics import error_against_cpu, jackknife, ratio_and_sem
+from kinetic.analysis.statistics import (
+    error_against_cpu,
+    jackknife,
+    ratio_and_sem,
+    weighted_line,
+)
 from kinetic.theory import costantini2010 as theory
 from kinetic.theory.costantini2010 import MIN_LAGS
 
@@ -165,19 +170,8 @@ def extrapolate_inverse_n(
             "chi2": math.nan,
             "dof": dof,
         }
-    weight = 1.0 / sigma**2
-    covariance = np.linalg.inv(design.T @ (design * weight[:, None]))
-    coefficients = covariance @ design.T @ (weight * y)
-    chi2 = float(np.sum(weight * (y - design @ coefficients) ** 2)) if dof > 0 else math.nan
-    return {
-        "intercept": float(coefficients[0]),
-        "intercept_err": float(math.sqrt(covariance[0, 0])),
-        "slope": float(coefficients[1]),
-        "slope_err": float(math.sqrt(covariance[1, 1])),
-        "covariance": float(covariance[0, 1]),
-        "chi2": chi2,
-        "dof": dof,
-    }
+    fit = weighted_line(x, y, sigma)._asdict()
+    return fit | {"chi2": fit["chi2"] if dof > 0 else math.nan}
 
 
 def _steady(dataset: xr.Dataset, transient: float) -> xr.Dataset:

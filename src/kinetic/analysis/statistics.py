@@ -17,13 +17,16 @@ import numpy as np
 
 __all__ = [
     "ErrorCurve",
+    "LineFit",
     "block_sem",
     "chi2_per_dof",
     "count_cumulants",
     "cpu_for_error",
     "error_against_cpu",
     "jackknife",
+    "line_error",
     "mean_and_sem",
+    "weighted_line",
 ]
 
 
@@ -39,6 +42,59 @@ def chi2_per_dof(values, errors, expected) -> tuple[float, int]:
         return float("nan"), 0
     z = (values[used] - expected[used]) / errors[used]
     return float(np.sum(z**2) / count), count
+
+
+class LineFit(NamedTuple):
+    """A weighted straight line y = intercept + slope x (:func:`weighted_line`)."""
+
+    intercept: float
+    intercept_err: float
+    slope: float
+    slope_err: float
+    covariance: float
+    """cov(intercept, slope): with the errors, the line's error at any x (:func:`line_error`)"""
+    chi2: float
+    dof: int
+
+
+def weighted_line(x, y, errors) -> LineFit:
+    """Least-squares line through ``y`` (standard ``errors``, finite and > 0) at ``x`` (at
+    least two distinct values), weighted by 1/error²: the coefficients, their errors and
+    covariance from the inverse normal matrix (no Birge factor: the callers choose),
+    χ² and dof = len(x) - 2. The one fit of every extrapolation in 1/N (costantini2010's
+    transport coefficients, the cloning populations of visco2008)."""
+    x, y, sigma = (np.asarray(a, dtype=float) for a in (x, y, errors))
+    if not (x.shape == y.shape == sigma.shape and x.ndim == 1):
+        raise ValueError("x, y and errors must be 1-D and of equal length")
+    if np.unique(x).size < 2:
+        raise ValueError(f"need at least 2 distinct x for a line, got {x.tolist()}")
+    if not (np.all(np.isfinite(y)) and np.all(np.isfinite(sigma) & (sigma > 0))):
+        raise ValueError("values must be finite and errors finite and > 0 for a weighted fit")
+    w = 1.0 / sigma**2
+    s, sx, sxx = w.sum(), (w * x).sum(), (w * x * x).sum()
+    sy, sxy = (w * y).sum(), (w * x * y).sum()
+    det = s * sxx - sx * sx
+    intercept = (sxx * sy - sx * sxy) / det
+    slope = (s * sxy - sx * sy) / det
+    return LineFit(
+        intercept=float(intercept),
+        intercept_err=float(np.sqrt(sxx / det)),
+        slope=float(slope),
+        slope_err=float(np.sqrt(s / det)),
+        covariance=float(-sx / det),
+        chi2=float((w * (y - intercept - slope * x) ** 2).sum()),
+        dof=int(x.size - 2),
+    )
+
+
+def line_error(x, intercept_err, slope_err, covariance):
+    """Standard error of a fitted line a + b x at ``x`` from the errors of a and b and
+    their ``covariance``: √(σ_a² + 2x cov + x² σ_b²) (clipped at 0 against round-off).
+    For points at x > 0 the covariance is negative, so the band is narrowest inside the
+    data and widens toward x = 0, where it is σ_a."""
+    x = np.asarray(x, dtype=float)
+    variance = intercept_err**2 + 2.0 * x * covariance + (x * slope_err) ** 2
+    return np.sqrt(np.clip(variance, 0.0, None))
 
 
 def mean_and_sem(samples, axis: int = 0) -> tuple[np.ndarray, np.ndarray]:

@@ -31,7 +31,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from kinetic.analysis.statistics import jackknife
+from kinetic.analysis.statistics import jackknife, weighted_line
 
 __all__ = [
     "Extrapolation",
@@ -109,15 +109,17 @@ def summarize_realizations(blocks, measured, population, dimension, lam, n_error
 class Extrapolation:
     """Weighted straight-line fit y = intercept + slope / N_c.
 
-    ``intercept_err`` and ``slope_err`` come from the fit covariance, multiplied by the
-    Birge ratio sqrt(chi2/dof) when that exceeds 1 (so an imperfect 1/N_c law widens the
-    error bar instead of hiding it).
+    ``intercept_err``, ``slope_err`` and ``covariance`` (cov(intercept, slope), for the
+    line's error band) come from the fit covariance, the errors multiplied by the Birge
+    ratio sqrt(chi2/dof) when that exceeds 1 (the covariance by its square), so an
+    imperfect 1/N_c law widens the error bar instead of hiding it.
     """
 
     intercept: float
     intercept_err: float
     slope: float
     slope_err: float
+    covariance: float
     chi2: float
     dof: int
 
@@ -133,29 +135,16 @@ def extrapolate_population(population_sizes, values, errors) -> Extrapolation:
     and, with one size left, a singular fit).
     """
     n_c = np.asarray(population_sizes, dtype=float)
-    y = np.asarray(values, dtype=float)
-    sigma = np.asarray(errors, dtype=float)
-    if not (n_c.shape == y.shape == sigma.shape and n_c.ndim == 1):
-        raise ValueError("population_sizes, values and errors must be 1-D and of equal length")
-    if np.unique(n_c).size < 2:
+    if n_c.ndim == 1 and np.unique(n_c).size < 2:
         raise ValueError(f"need at least 2 distinct population sizes, got {n_c.tolist()}")
-    if not np.all(np.isfinite(y)) or not np.all((sigma > 0) & np.isfinite(sigma)):
-        raise ValueError("values must be finite and errors finite and > 0 for a weighted fit")
-    x = 1.0 / n_c
-    w = 1.0 / sigma**2
-    s, sx, sxx = w.sum(), (w * x).sum(), (w * x * x).sum()
-    sy, sxy = (w * y).sum(), (w * x * y).sum()
-    det = s * sxx - sx * sx
-    intercept = (sxx * sy - sx * sxy) / det
-    slope = (s * sxy - sx * sy) / det
-    chi2 = float((w * (y - intercept - slope * x) ** 2).sum())
-    dof = int(x.size - 2)
-    scale = np.sqrt(chi2 / dof) if dof > 0 and chi2 > dof else 1.0
+    fit = weighted_line(1.0 / n_c, values, errors)
+    birge = fit.chi2 / fit.dof if fit.dof > 0 and fit.chi2 > fit.dof else 1.0
     return Extrapolation(
-        intercept=float(intercept),
-        intercept_err=float(np.sqrt(sxx / det) * scale),
-        slope=float(slope),
-        slope_err=float(np.sqrt(s / det) * scale),
-        chi2=chi2,
-        dof=dof,
+        intercept=fit.intercept,
+        intercept_err=float(fit.intercept_err * np.sqrt(birge)),
+        slope=fit.slope,
+        slope_err=float(fit.slope_err * np.sqrt(birge)),
+        covariance=float(fit.covariance * birge),
+        chi2=fit.chi2,
+        dof=fit.dof,
     )

@@ -148,16 +148,16 @@ def transport_rows(table, study):
 
 def fit_band(fit, inverse_n):
     """Standard error of a fitted line a + b/N at ``inverse_n`` (1/N) from the fit's
-    errors and ``covariance`` of a and b; None for a table without the covariance."""
+    errors and ``covariance`` of a and b (``statistics.line_error``); None for a table
+    without the covariance."""
     import numpy as np
+
+    from kinetic.analysis.statistics import line_error
 
     covariance = getattr(fit, "covariance", np.nan)
     if not np.isfinite(covariance):
         return None
-    variance = (
-        fit.intercept_err**2 + 2.0 * inverse_n * covariance + (inverse_n * fit.slope_err) ** 2
-    )
-    return np.sqrt(np.clip(variance, 0.0, None))
+    return line_error(inverse_n, fit.intercept_err, fit.slope_err, covariance)
 
 
 def inverse_n_figure(table, fits, amplitudes, study, quantity, symbol):
