@@ -33,6 +33,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+from kinetic import DOCUMENTS
+
 __all__ = [
     "BLOCK",
     "DOCUMENTS",
@@ -49,8 +51,6 @@ __all__ = [
 REPOSITORY = Path(__file__).resolve().parents[2]
 SUMMARY = Path("docs/data/summary.json")
 GALLERY_DIR = Path("docs/gallery")
-
-DOCUMENTS = ("visco2008", "montanero2007", "krauth2025", "costantini2010")
 
 TITLES = {
     "visco2008": "Visco, van Wijland, Trizac (2008), collisional statistics of the hard-sphere gas",

@@ -24,7 +24,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-__all__ = ["start", "write_caption", "write_output"]
+__all__ = ["output_config", "start", "write_caption", "write_output"]
 
 
 def start(snakemake: Any) -> logging.Logger:
@@ -89,23 +89,47 @@ def write_output(
     (the seed of the random streams behind the data: the job's seed for a simulation, the
     run's for an aggregate of one run, -1 for data without random numbers or combined from
     several runs), ``root_seed`` (the config's seed, from which every job seed derives),
-    the workflow ``config``, the package version and the git revision. ``output`` names
-    the rule output to write, or gives its index (default: the first).
+    the workflow ``config`` the file comes from (:func:`output_config`), the package
+    version and the git revision. ``output`` names the rule output to write, or gives its
+    index (default: the first).
     """
     from kinetic import io
 
-    dataset = io.stamp(
-        dataset,
-        parameters=io.parameters_of(dataset) if parameters is None else parameters,
-        seed=seed,
-        config=snakemake.config,
-    )
-    dataset = dataset.assign_attrs(root_seed=int(snakemake.config.get("seed", -1)))
     if output is None or isinstance(output, int):
         path = snakemake.output[output or 0]
     else:
         path = getattr(snakemake.output, output)
+    dataset = io.stamp(
+        dataset,
+        parameters=io.parameters_of(dataset) if parameters is None else parameters,
+        seed=seed,
+        config=output_config(snakemake.config, path),
+    )
+    dataset = dataset.assign_attrs(root_seed=int(snakemake.config.get("seed", -1)))
     io.write_dataset(dataset, path)
+
+
+def output_config(config: dict, path: str | os.PathLike) -> dict:
+    """The part of ``config`` that an output at ``path`` comes from: the keys every
+    document shares (seed, results, backend, ...) and the section of the document whose
+    directory under the results root holds it (``<results>/visco2008/...``: the
+    ``visco2008`` section). Another document's section is left out: it did not make the
+    file, and it may have changed since without a rerun, so the attribute would misstate
+    the file's provenance. A file outside every document's directory gets the whole
+    config."""
+    try:
+        relative = (
+            Path(path).resolve().relative_to(Path(config.get("results", "results")).resolve())
+        )
+    except ValueError:
+        return dict(config)
+    document = relative.parts[0] if len(relative.parts) > 1 else None
+    from kinetic import DOCUMENTS
+
+    if not isinstance(config.get(document), dict):
+        return dict(config)
+    documents = {key for key in DOCUMENTS if key in config}
+    return {key: value for key, value in config.items() if key not in documents - {document}}
 
 
 def write_caption(template: str | os.PathLike, path: str | os.PathLike, **values) -> str:

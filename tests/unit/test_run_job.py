@@ -2,6 +2,7 @@
 (``kinetic.cloning.simulate_points`` on the GPU) writes each point's dataset to its own rule
 output, stamped with that point's seed."""
 
+import json
 import os
 import sys
 from pathlib import Path
@@ -204,3 +205,28 @@ def test_a_stopped_job_of_several_runs_keeps_the_runs_it_finished(tmp_path, monk
     simulation_job.run_job(stopped)
     assert len(ran) == 2 * 3  # every point checked and run
     assert not kept[0].exists()
+
+
+def test_a_file_is_stamped_with_its_documents_config_only(tmp_path, monkeypatch):
+    """The ``config`` attribute of a file under <results>/<document>/ holds the shared keys
+    and that document's section: another document's section did not make it, and its
+    edits rerun nothing here, so stamping it would misstate the file's provenance."""
+    from kinetic.workflow_support import output_config, write_output
+
+    monkeypatch.chdir(tmp_path)
+    config = {
+        "seed": 7,
+        "results": "results/ci",
+        "visco2008": {"md": {"n_particles": 100}},
+        "montanero2007": {"alphas": [0.5]},
+        "limits": {"memory": 1},
+    }
+    path = "results/ci/visco2008/md/rho1e-2/batch0000.nc"
+    snakemake = SimpleNamespace(output=[path], config=config)
+    dataset = xr.Dataset({"k": ((), 1.0, {"units": "1", "long_name": "k"})})
+    write_output(snakemake, dataset, seed=3, parameters={})
+    stamped = json.loads(io.read_dataset(path).attrs["config"])
+    assert stamped == {key: config[key] for key in ("seed", "results", "visco2008", "limits")}
+    # outside every document's directory (or the results root): the whole config
+    assert output_config(config, "results/ci/workflow/jobs.nc") == config
+    assert output_config(config, str(tmp_path / "elsewhere.nc")) == config

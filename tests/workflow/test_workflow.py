@@ -15,7 +15,7 @@ import yaml
 from _browser import report_panels
 from _snakemake import CI_CONFIG, REPOSITORY, snakemake
 
-from kinetic import plan
+from kinetic import DOCUMENTS, plan
 from kinetic.config import validate_config
 
 
@@ -237,7 +237,11 @@ def test_ci_config_builds_every_target_with_provenance(tmp_path):
         with xr.open_dataset(path) as dataset:
             for name, variable in dataset.variables.items():
                 assert "units" in variable.attrs, f"{path}:{name}"
-            assert json.loads(dataset.attrs["config"])["seed"] == 7
+            stamped = json.loads(dataset.attrs["config"])
+            assert stamped["seed"] == 7
+            # the file's own document's section, no other (kinetic.workflow_support.output_config)
+            document = path.relative_to(results).parts[0]
+            assert set(stamped) & set(DOCUMENTS) == {document}, path
             assert dataset.attrs["git_revision"]
             # one provenance writer (kinetic.workflow_support.write_output) for every file
             provenance = {"seed", "root_seed", "config", "kinetic_version", "parameters_json"}

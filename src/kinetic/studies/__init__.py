@@ -20,6 +20,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from kinetic import DOCUMENTS
+
 if TYPE_CHECKING:  # the cost model is loaded where a study plans its jobs, not on import
     from kinetic.cost import Estimate
 
@@ -34,9 +36,6 @@ __all__ = [
     "points_job",
     "run_jobs",
 ]
-
-DOCUMENTS = ("visco2008", "montanero2007", "krauth2025", "costantini2010")
-"""The documents, each with a study module of its name."""
 
 
 @dataclass(frozen=True)
