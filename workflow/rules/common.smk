@@ -9,7 +9,7 @@ from kinetic.config import ConfigError, claim_root, results_root, validate_confi
 from kinetic.seeds import derive_seed
 from kinetic.sources import STAMPS, code_stamps, front_sources, script_sources
 
-from kinetic import studies
+from kinetic import DOCUMENTS, studies
 
 try:
     validate_config(
@@ -18,8 +18,6 @@ try:
     studies.check(config)  # what the schema cannot judge, study by study
 except (ConfigError, ValueError) as error:
     raise WorkflowError(str(error)) from None
-
-PAPERS = ["visco2008", "montanero2007", "krauth2025", "costantini2010"]
 
 RESULTS = results_root(config)
 """This config's results root (config key ``results``): every file the build writes lies
@@ -283,9 +281,9 @@ def workflow_agreement_tables(wildcards):
     """Input function: the checks.csv of every document (only those built, unless the
     config builds every target)."""
     files = [
-        results_file(f"{paper}/checks.csv")
-        for paper in PAPERS
-        if f"{paper}/checks" in TARGETS
+        results_file(f"{document}/checks.csv")
+        for document in DOCUMENTS
+        if f"{document}/checks" in TARGETS
     ]
     if config["targets"] == "all":
         return files
