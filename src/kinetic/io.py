@@ -7,9 +7,10 @@ Conventions every dataset of the project follows (checked by ``check_conventions
 - the global attributes hold the run's ``parameters`` (one attribute each, plus the
   whole set as JSON in ``parameters_json``), its ``seed``, the ``config`` it was made
   from (JSON: the shared keys and its document's section,
-  ``workflow_support.output_config``), the package ``kinetic_version`` and the ``git_revision`` of the source tree that wrote the
-  file; a file made from simulated files (an aggregate of a run's batches, a run read
-  and written again) also names, in ``source_git_revisions``, the revisions that
+  ``workflow_support.output_config``), the package ``kinetic_version`` and the
+  ``git_revision`` of the source tree that wrote the file; a file made from simulated
+  files (an aggregate of a run's batches, a run read and written again) also names, in
+  ``source_git_revisions``, the revisions that
   simulated its numbers (space-separated, sorted; several where batches of one run were
   simulated by different revisions);
 - netCDF attributes hold only strings, numbers and numeric arrays: booleans become

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import ast
 import contextlib
+import fcntl
 import hashlib
 import os
 import re
@@ -385,7 +386,35 @@ def _stamp_text(fingerprint: str, seen: str, earlier: dict[str, int]) -> str:
     return "\n".join(lines) + "\n"
 
 
+@contextlib.contextmanager
+def _locked(directory: Path):
+    """Hold an exclusive ``flock`` on ``directory`` (the folder of the stamps about to be
+    read and rewritten): a stamp's update is a read, a change and a write, and a build's
+    job forgetting the earlier codes (:func:`forget_earlier_codes`) between a dry run's
+    read and write of the same stamp was undone by that write, which put the forgotten
+    codes back (a later return to one of them then restored a time older than the job's
+    outputs, and they were not rerun). Where the folder cannot be locked (a file system
+    without locks), the update goes on unlocked, as before."""
+    directory.mkdir(parents=True, exist_ok=True)
+    try:
+        handle = os.open(directory, os.O_RDONLY)
+    except OSError:
+        yield
+        return
+    try:
+        with contextlib.suppress(OSError):
+            fcntl.flock(handle, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(handle)  # releases the lock
+
+
 def _refresh_stamp(source: Path, status: os.stat_result, seen: str, stamp: Path) -> None:
+    with _locked(stamp.parent):
+        _refresh_stamp_locked(source, status, seen, stamp)
+
+
+def _refresh_stamp_locked(source: Path, status: os.stat_result, seen: str, stamp: Path) -> None:
     """Bring ``stamp`` up to date with ``source`` (its ``status``, and ``seen``: its
     modification time and size). The stamp holds the source's fingerprint and ``seen``,
     which spare the parse while the file is untouched. Its own modification time is
@@ -449,17 +478,20 @@ def forget_earlier_codes(directory: str | Path) -> int:
     number of stamps changed."""
     changed = 0
     for stamp in sorted(Path(directory).rglob("*.stamp")):
-        if not _earlier(stamp):
+        if not _earlier(stamp):  # unlocked: most stamps have none, and they are not locked
             continue
-        fingerprint, seen = _read_record(stamp)
-        if fingerprint is None:
-            continue
-        with contextlib.suppress(OSError):  # another process replaced it meanwhile
-            old = stamp.stat()
-            _write_atomically(
-                stamp, _stamp_text(fingerprint, seen, {}), (old.st_atime_ns, old.st_mtime_ns)
-            )
-            changed += 1
+        with _locked(stamp.parent):  # read again under the lock: a refresh may have run
+            fingerprint, seen = _read_record(stamp)
+            if fingerprint is None or not _earlier(stamp):
+                continue
+            with contextlib.suppress(OSError):  # another process replaced it meanwhile
+                old = stamp.stat()
+                _write_atomically(
+                    stamp,
+                    _stamp_text(fingerprint, seen, {}),
+                    (old.st_atime_ns, old.st_mtime_ns),
+                )
+                changed += 1
     return changed
 
 

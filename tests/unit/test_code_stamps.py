@@ -224,3 +224,42 @@ def test_a_job_on_code_edited_since_the_parse_marks_its_stamps(tmp_path, monkeyp
     # now, after the output: not the parse's time, 1_000_000, which the dry run had
     # remembered for A when the job had not marked B
     assert Path(stamp).stat().st_mtime_ns >= reverted
+
+
+def test_a_build_forgetting_during_a_dry_runs_refresh_is_not_undone(tmp_path, monkeypatch):
+    """A dry run refreshes a stamp (read, change, write) while a job of a running build
+    forgets every stamp's earlier codes: the forget waits for the refresh, rather than
+    being overwritten by it. Before the lock, the dry run wrote back the code A that the
+    job had forgotten, and a return to A restored a time older than the job's outputs."""
+    import threading
+
+    from kinetic import sources
+
+    root, stamps = tmp_path / "tree", tmp_path / "stamps"
+    source = root / "module.py"
+    source.parent.mkdir(parents=True)
+    source.write_text(MODULE)
+    _set_mtime(source, 1_000_000)
+    (stamp,) = map(Path, code_stamps([source], root, stamps))  # code A
+    source.write_text(OTHER_CODE["a constant"])  # B: the stamp remembers A as earlier
+    _set_mtime(source, 3_000_000)
+    code_stamps([source], root, stamps)
+    assert sources._earlier(stamp)
+
+    forgetting = []
+    fingerprint = sources.remembered_fingerprint
+
+    def slow_fingerprint(path):  # the dry run's refresh, between its read and its write
+        job = threading.Thread(target=lambda: forgetting.append(forget_earlier_codes(stamps)))
+        job.start()
+        job.join(timeout=0.5)  # a forget that does not wait has finished by now
+        forgetting.append(job)
+        return fingerprint(path)
+
+    monkeypatch.setattr(sources, "remembered_fingerprint", slow_fingerprint)
+    source.write_text(OTHER_CODE["an operator"])  # C, seen by the dry run
+    _set_mtime(source, 3_000_001)
+    code_stamps([source], root, stamps)
+    job = next(item for item in forgetting if isinstance(item, threading.Thread))
+    job.join()
+    assert not sources._earlier(stamp), "the refresh wrote back the codes the job forgot"
