@@ -404,7 +404,7 @@ def cloning_physics(quick: bool) -> dict[str, Any]:
     reference = reference_solution([1.0], 2)
     out["hard_disks_mu_1"] = {
         "points": disks,
-        "extrapolation": fit.as_dict(),
+        "extrapolation": fit._asdict(),
         "reference_mu": float(reference[0][0]),
         "reference_temperature": float(reference[1][0]),
         "reference_a2": float(reference[2][0]),

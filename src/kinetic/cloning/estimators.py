@@ -27,11 +27,11 @@ error.
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+import math
 
 import numpy as np
 
-from kinetic.analysis.statistics import jackknife, weighted_line
+from kinetic.analysis.statistics import LineFit, jackknife, weighted_line
 
 __all__ = [
     "Extrapolation",
@@ -105,26 +105,13 @@ def summarize_realizations(blocks, measured, population, dimension, lam, n_error
     return summary
 
 
-@dataclass(frozen=True)
-class Extrapolation:
-    """Weighted straight-line fit y = intercept + slope / N_c.
-
-    ``intercept_err``, ``slope_err`` and ``covariance`` (cov(intercept, slope), for the
-    line's error band) come from the fit covariance, the errors multiplied by the Birge
-    ratio sqrt(chi2/dof) when that exceeds 1 (the covariance by its square), so an
-    imperfect 1/N_c law widens the error bar instead of hiding it.
-    """
-
-    intercept: float
-    intercept_err: float
-    slope: float
-    slope_err: float
-    covariance: float
-    chi2: float
-    dof: int
-
-    def as_dict(self):
-        return asdict(self)
+Extrapolation = LineFit
+"""An extrapolation to 1/N_c → 0 (:func:`extrapolate_population`): the weighted straight
+line y = intercept + slope / N_c of ``statistics.weighted_line``, whose
+``intercept_err``, ``slope_err`` and ``covariance`` (cov(intercept, slope), for the line's
+error band) are multiplied by the Birge ratio sqrt(chi2/dof) when that exceeds 1 (the
+covariance by its square), so an imperfect 1/N_c law widens the error bar instead of
+hiding it."""
 
 
 def extrapolate_population(population_sizes, values, errors) -> Extrapolation:
@@ -139,12 +126,8 @@ def extrapolate_population(population_sizes, values, errors) -> Extrapolation:
         raise ValueError(f"need at least 2 distinct population sizes, got {n_c.tolist()}")
     fit = weighted_line(1.0 / n_c, values, errors)
     birge = fit.chi2 / fit.dof if fit.dof > 0 and fit.chi2 > fit.dof else 1.0
-    return Extrapolation(
-        intercept=fit.intercept,
-        intercept_err=float(fit.intercept_err * np.sqrt(birge)),
-        slope=fit.slope,
-        slope_err=float(fit.slope_err * np.sqrt(birge)),
-        covariance=float(fit.covariance * birge),
-        chi2=fit.chi2,
-        dof=fit.dof,
+    return fit._replace(
+        intercept_err=fit.intercept_err * math.sqrt(birge),
+        slope_err=fit.slope_err * math.sqrt(birge),
+        covariance=fit.covariance * birge,
     )
