@@ -410,6 +410,7 @@ def _locked(directory: Path):
 
 
 def _refresh_stamp(source: Path, status: os.stat_result, seen: str, stamp: Path) -> None:
+    """:func:`_refresh_stamp_locked` under the lock of the stamp's folder (:func:`_locked`)."""
     with _locked(stamp.parent):
         _refresh_stamp_locked(source, status, seen, stamp)
 
