@@ -81,6 +81,7 @@ from kinetic.gpu import (
     block_reduce_sum,
     cuda,
     device_function,
+    device_inline,
     grid,
     kernel,
     kernel_within,
@@ -146,7 +147,7 @@ def _seed(states, velocity, rows):
     states[r, i, 3] = s3
 
 
-@cuda.jit(device=True, inline="always")
+@device_inline
 def _advance_clone(velocity, states, r, i, code, interval, rate_a):
     """One control interval of the untilted process for clone i of realization r: its
     velocity and stream advance in place; returns (collisions, candidates)."""
@@ -206,7 +207,7 @@ def _advance_clone(velocity, states, r, i, code, interval, rate_a):
     return collisions, candidates
 
 
-@cuda.jit(device=True, inline="always")
+@device_inline
 def _buffers(first, second, step):
     """(source, target) of interval ``step``: the population starts a block in ``first``
     and alternates between the two buffers."""
@@ -282,7 +283,7 @@ def _weigh(
     _close(shared, shared_q, block_sums, extremes, controls, partials, out, plan, r, step)
 
 
-@cuda.jit(device=True, inline="always")
+@device_inline
 def _fold(shared, partials, r, column):
     """Σ_b partials[r, b, column] in a fixed order (strided per thread, then a tree)."""
     total = 0.0
@@ -291,7 +292,7 @@ def _fold(shared, partials, r, column):
     return block_reduce_sum(shared, total)
 
 
-@cuda.jit(device=True, inline="always")
+@device_inline
 def _selection_uniform(controls, r):
     """The next selection uniform of realization r, from its control stream
     ``controls[r, :4]`` (a multiple of 2⁻⁵³: exact as float64 and as 2⁵³ u in uint64)."""
@@ -307,7 +308,7 @@ def _selection_uniform(controls, r):
     return float(np.uint64(u * 2.0**53)) * 2.0**-53
 
 
-@cuda.jit(device=True, inline="always")
+@device_inline
 def _close(shared, shared_q, block_sums, extremes, controls, partials, out, plan, r, step):
     """By every thread of one block, for realization r: the block offsets of the integer scan, the
     interval's collision and candidate counts, ln<w> into ``net_compensations``, the
@@ -338,7 +339,7 @@ def _close(shared, shared_q, block_sums, extremes, controls, partials, out, plan
     controls[r, 4] = np.uint64(_selection_uniform(controls, r) * 2.0**53)  # exactly
 
 
-@cuda.jit(device=True, inline="always")
+@device_inline
 def _slots_below(cumulative, offsets, r, i, n, total, u):
     """g(Q_i) = ceil(N_c Q_i/Q - u) in [0, N_c]: the slots whose target lies below the
     inclusive cumulative weight of clone i (0 for i = -1, N_c for the last clone)."""
@@ -414,7 +415,7 @@ def _select(
                 cuda.atomic.add(histogram, (r, b), counts[b])
 
 
-@cuda.jit(device=True, inline="always")
+@device_inline
 def _add_snapshot(shared, partials, out, r, interval):
     """The selection's snapshot sums of realization r, times Δ, into ``out[r]``."""
     v2 = _fold(shared, partials, r, _P_V2)
@@ -476,7 +477,7 @@ populations and counts do not depend on it (the scan is exact), μ and the sums 
 the last bits (another summation tree)."""
 
 
-@cuda.jit(device=True, inline="always")
+@device_inline
 def _slot(position, n, total, u):
     """g(E) = ceil(N_c E/Q - u), clamped to [0, N_c]: the first slot at or above the
     cumulative fixed-point weight E (``_slots_below`` too). Neighbouring clones compute

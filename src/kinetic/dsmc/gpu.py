@@ -115,6 +115,7 @@ from kinetic.gpu import (
     cuda,
     device_empty,
     device_function,
+    device_inline,
     device_zeros,
     grid,
     kernel,
@@ -261,7 +262,7 @@ def _block_sums(shared, values, out):
             out[f] = shared[0, f]
 
 
-_block_sums = cuda.jit(device=True, inline="always")(_block_sums)
+_block_sums = device_inline(_block_sums)
 
 
 def _block_max(shared, value, out):
@@ -282,7 +283,7 @@ def _block_max(shared, value, out):
         out[0] = shared[0, 0]
 
 
-_block_max = cuda.jit(device=True, inline="always")(_block_max)
+_block_max = device_inline(_block_max)
 
 
 @kernel
@@ -308,7 +309,7 @@ def _step_key(keys, r, step):
     keys[r, 4] = k0
 
 
-_step_key = cuda.jit(device=True, inline="always")(_step_key)
+_step_key = device_inline(_step_key)
 
 
 # ------------------------------------------------------------------------- collisions
@@ -403,7 +404,7 @@ def _forced(v0, v1, v2, field_step, exact):
     return code, v0 * f, v1 * f, v2 * f
 
 
-_forced = cuda.jit(device=True, inline="always")(_forced)
+_forced = device_inline(_forced)
 
 
 def _force(velocity, partials, status, field_step, exact, thermo, rescale, done, close):
@@ -511,7 +512,7 @@ def _close(folded, thermo, status, close, r):
         thermo[r, _LOG_SCALE] = log_scale
 
 
-_close = cuda.jit(device=True, inline="always")(_close)
+_close = device_inline(_close)
 
 
 def _thermostat(value, thermo, r, k):
@@ -519,7 +520,7 @@ def _thermostat(value, thermo, r, k):
     return thermo[r, _SCALE] * (value - thermo[r, k])
 
 
-_thermostat = cuda.jit(device=True, inline="always")(_thermostat)
+_thermostat = device_inline(_thermostat)
 
 
 # -------------------------------------------------------------------------- observers
@@ -664,7 +665,7 @@ def _fixed_point(weight):
     return np.int64(math.floor(weight * (1.0 / WEIGHT_UNIT) + 0.5))
 
 
-_fixed_point = cuda.jit(device=True, inline="always")(_fixed_point)
+_fixed_point = device_inline(_fixed_point)
 
 
 # ------------------------------------------------------------------------------ host

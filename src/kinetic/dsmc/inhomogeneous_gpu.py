@@ -88,6 +88,7 @@ from kinetic.gpu import (
     block_reduce_sum,
     cuda,
     device_function,
+    device_inline,
     device_zeros,
     first_pair,
     grid,
@@ -141,7 +142,7 @@ def _cell_barrier():
         cuda.syncwarp()
 
 
-_cell_barrier = cuda.jit(device=True, inline="always")(_cell_barrier)
+_cell_barrier = device_inline(_cell_barrier)
 
 _collide_cell = device_function(kernels._collide_cell)
 _accumulated = device_function(kernels._accumulated)
@@ -189,7 +190,7 @@ def _centre_row(moments, u, cell_start, inverse_n, shared, r):
         u[r, 1] = sum1 * inverse_n
 
 
-_centre_row = cuda.jit(device=True, inline="always")(_centre_row)
+_centre_row = device_inline(_centre_row)
 
 
 def _stream_particle(position, velocity, cell_of, cell_start, u, rows, arguments, r, i):
@@ -214,7 +215,7 @@ def _stream_particle(position, velocity, cell_of, cell_start, u, rows, arguments
     cuda.atomic.add(cell_start, (r, c), 1)
 
 
-_stream_particle = cuda.jit(device=True, inline="always")(_stream_particle)
+_stream_particle = device_inline(_stream_particle)
 
 
 def _scan_row(cell_start, fill, shared, r):
@@ -228,7 +229,7 @@ def _scan_row(cell_start, fill, shared, r):
         fill[r, c] = cell_start[r, c]
 
 
-_scan_row = cuda.jit(device=True, inline="always")(_scan_row)
+_scan_row = device_inline(_scan_row)
 
 
 def _scatter_particle(cell_of, fill, order, r, i):
@@ -238,7 +239,7 @@ def _scatter_particle(cell_of, fill, order, r, i):
     order[r, p] = i
 
 
-_scatter_particle = cuda.jit(device=True, inline="always")(_scatter_particle)
+_scatter_particle = device_inline(_scatter_particle)
 
 
 def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c, keys, sums):
@@ -353,7 +354,7 @@ def _collide_in_cell(source, target, order, cell_start, cells, rows, step, r, c,
     state[3] = s3
 
 
-_collide_in_cell = cuda.jit(device=True, inline="always")(_collide_in_cell)
+_collide_in_cell = device_inline(_collide_in_cell)
 
 
 def _particle(source, r, i):
@@ -370,7 +371,7 @@ def _particle(source, r, i):
     )
 
 
-_particle = cuda.jit(device=True, inline="always")(_particle)
+_particle = device_inline(_particle)
 
 
 def _copy_particle(target, r, p, x, y, wx, wy, ident, partner):
@@ -384,7 +385,7 @@ def _copy_particle(target, r, p, x, y, wx, wy, ident, partner):
     labels_to[r, 1, p] = partner
 
 
-_copy_particle = cuda.jit(device=True, inline="always")(_copy_particle)
+_copy_particle = device_inline(_copy_particle)
 
 
 # ------------------------------------------------------------ one launch per phase
@@ -490,7 +491,7 @@ def _step_together(source, target, work, cells, u, rows, stream, step, inverse_n
     grid_group.sync()
 
 
-_step_together = cuda.jit(device=True, inline="always")(_step_together)
+_step_together = device_inline(_step_together)
 
 
 @kernel
