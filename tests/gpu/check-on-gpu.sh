@@ -53,7 +53,7 @@ echo "bench: exit $bench_rc after $((SECONDS - start)) s (tail of $out/bench.log
 tail -n 5 "$out/bench.log"
 left=$((total - (SECONDS - start) - 10))
 if ((left > 30)); then
-    # the PTX compile checks (test_kernels_compile.py, 2 min of NVVM) run on any machine
+    # the PTX compile checks (test_kernels_compile.py, 21 s of NVVM) run on any machine
     # with the toolkit; here the kernels compile for the GPU itself as the tests run them
     timeout "$left" python -m pytest -v -o addopts="" -p no:cacheprovider --durations=15 \
         tests/gpu --ignore tests/gpu/test_kernels_compile.py \
