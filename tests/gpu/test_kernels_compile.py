@@ -5,7 +5,8 @@ argument types the engine launches it with. The simulator (``NUMBA_ENABLE_CUDASI
 runs the kernels as Python and checks none of the typing, so this runs only outside it,
 where the CUDA toolkit (NVVM, NVRTC) is installed. Where nvJitLink is installed too (the
 ``numba-cuda[cu13]`` wheels), each kernel's PTX is also linked to sm_90 machine code, its
-registers a thread printed (``-s``) and its spills held to none, e.g.::
+registers a thread printed (``-s``) and its spills held to none, and a kernel that
+syncs its grid is marked for a cooperative launch (``COOPERATIVE``), e.g.::
 
     NUMBA_ENABLE_CUDASIM=0 python -m pytest -o addopts="" tests/gpu/test_kernels_compile.py
 
@@ -126,6 +127,25 @@ def _inhomogeneous_signatures():
     }
 
 
+COOPERATIVE = {("dsmc_inhomogeneous", "_advance_together")}
+"""Kernels that synchronise their whole grid (``cuda.cg.this_grid().sync()``, inside a
+device function NVVM inlines): numba-cuda marks a kernel for a cooperative launch only
+where the compiled code says it syncs the grid, and a grid sync launched otherwise is
+undefined behaviour on the GPU, not an error here."""
+
+
+def _needs_cooperative_launch(kernel, signature) -> bool:
+    """Whether numba-cuda would launch ``kernel`` cooperatively (its code library's
+    ``use_cooperative``, which device functions pass on to the kernels that call them)."""
+    from numba.core import types
+    from numba.cuda.compiler import compile_cuda
+
+    compiled = compile_cuda(
+        kernel.py_func, types.void, signature, nvvm_options={"opt": 3}, cc=(9, 0)
+    )
+    return compiled.library.use_cooperative
+
+
 @pytest.fixture(scope="module")
 def compile_ptx():
     from numba import cuda, float64
@@ -169,6 +189,8 @@ def test_kernel_compiles_for_sm90(compile_ptx, engine, name, monkeypatch):
         kernel = kernel[name.split("[")[1].rstrip("]")]
     ptx, _ = compile_ptx(kernel.py_func, signature, cc=(9, 0))
     assert ".entry" in ptx
+    if (engine, name) in COOPERATIVE:
+        assert _needs_cooperative_launch(kernel, signature), f"{name} syncs its grid"
     resources = _machine_code_resources(ptx, name, kernel.targetoptions.get("max_registers"))
     if resources is None:
         return
