@@ -8,7 +8,10 @@ the cost per collision from below (one pair test in a long loop, one event of th
 queue, one dependent random memory access and one prefetched random cache line at the
 working-set size), so the report says how far the engine is from the arithmetic,
 memory-latency and memory-throughput bounds; and the latency of dependent random accesses
-against the working-set size (0.25-64 MiB), which shows the cache the process gets.
+against the working-set size (0.25-64 MiB), which shows the cache the process gets; and
+the engine's own cost split (``cost_model_2d_N1000_rho1e-2``): the fast-target case run
+with cells of 1 to 8 particles, its ns per collision fitted as a cost per event plus a
+cost per pair test, and the cost per event the fast target would need.
 Targets (``targets``, ``targets_met``): the rates of the first engine, the cost ratio of
 N = 1e5 to N = 1e3, and the fast-engine targets, 1e6 collisions/s in 2D at N = 1e3,
 ρσ² = 1e-2 and twice the rate of the public peer's Cell code in 3D at packing fraction
@@ -29,6 +32,7 @@ from typing import Any
 import numpy as np
 
 from kinetic.edmd import HardSphereSystem, kernels
+from kinetic.edmd.arguments import DEFAULT_CELL_OCCUPANCY
 from kinetic.jit import kernel
 
 __all__ = ["run"]
@@ -101,6 +105,76 @@ def _cases(specs: list[tuple[int, int, float]], repeats: int) -> list[dict[str, 
             }
         )
     return cases
+
+
+#: cell occupancies (mean particles a cell) of the cost model's runs
+COST_MODEL_OCCUPANCIES = (1.0, 2.0, 4.0, 8.0)
+
+
+def fit_event_cost(
+    ns_per_collision: list[float], events: list[float], pair_tests: list[float]
+) -> dict[str, Any]:
+    """The engine's cost split as ns per collision = a·events + b·pair tests (both per
+    collision, no constant), least squares over runs that differ in their cell size:
+    ``event_ns`` (a: the calendar, the cell lists, the crossing time and the collision
+    itself, everything but the tests), ``pair_test_ns`` (b, in the engine's own loop,
+    its cache misses included) and the runs' relative residuals."""
+    design = np.column_stack([events, pair_tests])
+    measured = np.asarray(ns_per_collision, dtype=float)
+    (event_ns, pair_test_ns), *_ = np.linalg.lstsq(design, measured, rcond=None)
+    residuals = (design @ [event_ns, pair_test_ns] - measured) / measured
+    return {
+        "event_ns": float(event_ns),
+        "pair_test_ns": float(pair_test_ns),
+        "relative_residuals": [float(r) for r in residuals],
+    }
+
+
+def _cost_model(repeats: int) -> dict[str, Any]:
+    """Where the time of the fast-target case (2D, N = 1e3, ρσ² = 1e-2) goes: the case run
+    at each of ``COST_MODEL_OCCUPANCIES`` (larger cells: fewer crossings, more pair tests),
+    in interleaved rounds, the median ns per collision of each fitted by
+    ``fit_event_cost``; and the cost an event would need, at the default occupancy's mix
+    and the fitted pair-test cost, for the fast target (1e6 collisions per second)."""
+    systems = []
+    for occupancy in COST_MODEL_OCCUPANCIES:
+        system = HardSphereSystem(
+            n_particles=1000, density=1e-2, dimension=2, seed=2025, cell_occupancy=occupancy
+        )
+        system.run(collisions=300_000)
+        systems.append((system, system.counters()))
+    timings = [[] for _ in systems]
+    for _ in range(repeats):
+        for index, (system, _) in enumerate(systems):
+            begin = time.process_time()
+            system.run(collisions=300_000)
+            timings[index].append((time.process_time() - begin) / 300_000 * 1e9)
+    runs = []
+    for occupancy, (system, before), ns in zip(
+        COST_MODEL_OCCUPANCIES, systems, timings, strict=True
+    ):
+        after = system.counters()
+        done = after["collisions"] - before["collisions"]
+        runs.append(
+            {
+                "cell_occupancy": occupancy,
+                "cells_per_side": int(system.cells_per_side[0]),
+                "ns_per_collision": statistics.median(ns),
+                "events_per_collision": (after["events"] - before["events"]) / done,
+                "pair_tests_per_collision": (after["pair_tests"] - before["pair_tests"]) / done,
+            }
+        )
+    fit = fit_event_cost(
+        [run["ns_per_collision"] for run in runs],
+        [run["events_per_collision"] for run in runs],
+        [run["pair_tests_per_collision"] for run in runs],
+    )
+    default = next(run for run in runs if run["cell_occupancy"] == DEFAULT_CELL_OCCUPANCY[2])
+    budget = 1e9 / TARGETS["collisions_per_second_2d_N1000_rho1e-2_fast"]
+    needed = (budget - fit["pair_test_ns"] * default["pair_tests_per_collision"]) / default[
+        "events_per_collision"
+    ]
+    return fit | {"runs": runs, "event_ns_for_fast_target": needed}
 
 
 # ------------------------------------------------------------------ micro-benchmarks
@@ -403,5 +477,6 @@ def run(quick: bool) -> dict[str, Any]:
         "compile": _compile_times(),
         "micro_benchmarks": {str(n): values for n, values in micro.items()},
         "latency_ns_by_working_set_mib": _latency_curve(rng),
+        "cost_model_2d_N1000_rho1e-2": _cost_model(repeats),
         "cases": cases,
     }
