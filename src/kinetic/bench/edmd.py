@@ -33,7 +33,7 @@ import numpy as np
 
 from kinetic.edmd import HardSphereSystem, kernels
 from kinetic.edmd.arguments import DEFAULT_CELL_OCCUPANCY
-from kinetic.jit import kernel
+from kinetic.jit import kernel, refcount_free
 
 __all__ = ["run"]
 
@@ -191,7 +191,7 @@ def _pair_test_loop(phase, candidates, repeats):
     return best
 
 
-@kernel
+@refcount_free
 def _calendar_updates(
     phase, ints, members, occupancy, last_collision, grid, calendar_arrays, increments, repeats
 ):
@@ -363,12 +363,10 @@ def _compile_times() -> dict[str, float]:
 def _bounds(case: dict[str, Any], micro: dict[str, float]) -> dict[str, float]:
     """Lower bounds of the cost per collision from the micro-benchmarks.
 
-    arithmetic: every pair test at its long-loop cost. The calendar micro-benchmark
-    (``queue_event_ns``, 150-210 ns per event on the development machine) is reported but
-    left out: compiled on its own, the calendar's inlined functions keep numba's reference
-    counting of their array arguments (63 increment calls in the compiled loop, 80 % of
-    its sampled time in them), where ``advance`` spends 97 % of its time in its own code
-    (counted in, this "bound" came out above the measured cost in three of nine cases);
+    arithmetic: every pair test at its long-loop cost and every event at the calendar's
+    (``queue_event_ns``: the next event and its rescheduling, compiled without reference
+    counting as ``advance`` is; with the counts, 300 ns an event instead of 32, that
+    "bound" came out above the measured cost);
     memory latency: about 3 cache lines that miss per event (the particle's two rows and
     its calendar entry) plus one per pair test, at the dependent-access latency of the
     working set (≈ the L1/L2 hit latency for small N, DRAM for N = 1e5). Prefetching
@@ -379,7 +377,10 @@ def _bounds(case: dict[str, Any], micro: dict[str, float]) -> dict[str, float]:
     candidate's row, per cell visited its row and occupancy. A crossing visits
     3^(d−1) + 2 cells, every other event and the partner of a collision 3^d.
     """
-    arithmetic = case["pair_tests_per_collision"] * micro["pair_test_ns"]
+    arithmetic = (
+        case["pair_tests_per_collision"] * micro["pair_test_ns"]
+        + case["events_per_collision"] * micro["queue_event_ns"]
+    )
     memory = (3 * case["events_per_collision"] + case["pair_tests_per_collision"]) * micro[
         "random_access_ns"
     ]
