@@ -39,3 +39,14 @@ def test_ratios_are_taken_round_by_round():
     assert ratios["min"] == pytest.approx(1.1) and ratios["max"] == pytest.approx(1.1)
     with pytest.raises(ValueError):
         round_ratios([1.0, 2.0], [1.0])
+
+
+def test_a_revision_git_cannot_read_is_refused_by_name(tmp_path, monkeypatch, capsys):
+    from kinetic.bench.sidebyside import main
+
+    monkeypatch.chdir(tmp_path)  # no repository here
+    with pytest.raises(SystemExit):
+        main(["HEAD", "--root", str(tmp_path / "copies"), "--out", str(tmp_path / "out")])
+    said = capsys.readouterr().err
+    assert "cannot read revision 'HEAD' with git" in said
+    assert not (tmp_path / "copies").exists() and not (tmp_path / "out").exists()

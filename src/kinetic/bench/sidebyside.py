@@ -149,7 +149,15 @@ def main(argv: list[str] | None = None) -> None:
     args = parser.parse_args(argv)
     if args.rounds < 3:
         parser.error("--rounds must be at least 3 (a median of fewer says little)")
-    report = compare(args.revision, args.case, args.rounds, Path(args.root))
+    try:
+        report = compare(args.revision, args.case, args.rounds, Path(args.root))
+    except subprocess.CalledProcessError as error:  # git: no repository here, no such revision
+        said = error.stderr or ""
+        said = said.decode(errors="replace") if isinstance(said, bytes) else said
+        parser.error(
+            f"cannot read revision {args.revision!r} with git (run from the repository's "
+            f"root): {said.strip()}"
+        )
     path = write_report(f"sidebyside-{args.case}", report, args.out)
     ratio = report["ratio_this_tree_over_reference"]
     print(
