@@ -55,16 +55,21 @@ PEER_CELL_CODE_3D = {864: 1.80e5, 4000: 1.68e5, 32000: 6.2e4, 108000: 5.1e4}
 PACKING_FRACTION_3D = 0.01
 
 
-def _cases(specs: list[tuple[int, int, float]], repeats: int) -> list[dict[str, Any]]:
-    """Time one system per (dimension, N, density) of ``specs``: each equilibrated for 2
+def _cases(specs: list[tuple], repeats: int) -> list[dict[str, Any]]:
+    """Time one system per (dimension, N, density[, cell occupancy]) of ``specs`` (the
+    engine's default occupancy where none is given): each equilibrated for 2
     collisions per particle and warmed up by one untimed repeat, then ``repeats`` rounds in
     which every system runs once (300 000 collisions, 400 000 from N > 1e4). Interleaved
     rounds put a slow spell of the shared machine on every case alike; the per-round rates
     (``repeat_rates``) give medians and the medians of per-round ratios."""
     systems = []
-    for dimension, n_particles, density in specs:
+    for dimension, n_particles, density, *occupancy in specs:
         system = HardSphereSystem(
-            n_particles=n_particles, density=density, dimension=dimension, seed=2025
+            n_particles=n_particles,
+            density=density,
+            dimension=dimension,
+            seed=2025,
+            cell_occupancy=occupancy[0] if occupancy else None,
         )
         system.run(collisions=2 * n_particles)
         amount = 300_000 if n_particles <= 10_000 else 400_000
@@ -79,7 +84,7 @@ def _cases(specs: list[tuple[int, int, float]], repeats: int) -> list[dict[str, 
             cpu_rates[index].append(amount / max(time.process_time() - cpu, 1e-9))
             wall_rates[index].append(amount / max(time.perf_counter() - wall, 1e-9))
     cases = []
-    for (dimension, n_particles, density), (system, _, before), cpu, wall in zip(
+    for (dimension, n_particles, density, *_), (system, _, before), cpu, wall in zip(
         specs, systems, cpu_rates, wall_rates, strict=True
     ):
         after = system.counters()
@@ -132,38 +137,26 @@ def fit_event_cost(
 
 def _cost_model(repeats: int) -> dict[str, Any]:
     """Where the time of the fast-target case (2D, N = 1e3, ρσ² = 1e-2) goes: the case run
-    at each of ``COST_MODEL_OCCUPANCIES`` (larger cells: fewer crossings, more pair tests),
-    in interleaved rounds, the median ns per collision of each fitted by
+    at each of ``COST_MODEL_OCCUPANCIES`` (larger cells: fewer crossings, more pair tests)
+    in interleaved rounds (``_cases``), the median ns per collision of each fitted by
     ``fit_event_cost``; and the cost an event would need, at the default occupancy's mix
     and the fitted pair-test cost, for the fast target (1e6 collisions per second)."""
-    systems = []
-    for occupancy in COST_MODEL_OCCUPANCIES:
-        system = HardSphereSystem(
-            n_particles=1000, density=1e-2, dimension=2, seed=2025, cell_occupancy=occupancy
-        )
-        system.run(collisions=300_000)
-        systems.append((system, system.counters()))
-    timings = [[] for _ in systems]
-    for _ in range(repeats):
-        for index, (system, _) in enumerate(systems):
-            begin = time.process_time()
-            system.run(collisions=300_000)
-            timings[index].append((time.process_time() - begin) / 300_000 * 1e9)
-    runs = []
-    for occupancy, (system, before), ns in zip(
-        COST_MODEL_OCCUPANCIES, systems, timings, strict=True
-    ):
-        after = system.counters()
-        done = after["collisions"] - before["collisions"]
-        runs.append(
-            {
-                "cell_occupancy": occupancy,
-                "cells_per_side": int(system.cells_per_side[0]),
-                "ns_per_collision": statistics.median(ns),
-                "events_per_collision": (after["events"] - before["events"]) / done,
-                "pair_tests_per_collision": (after["pair_tests"] - before["pair_tests"]) / done,
-            }
-        )
+    cases = _cases([(2, 1000, 1e-2, occupancy) for occupancy in COST_MODEL_OCCUPANCIES], repeats)
+    runs = [
+        {
+            "cell_occupancy": occupancy,
+            **{
+                key: case[key]
+                for key in (
+                    "cells_per_side",
+                    "ns_per_collision",
+                    "events_per_collision",
+                    "pair_tests_per_collision",
+                )
+            },
+        }
+        for occupancy, case in zip(COST_MODEL_OCCUPANCIES, cases, strict=True)
+    ]
     fit = fit_event_cost(
         [run["ns_per_collision"] for run in runs],
         [run["events_per_collision"] for run in runs],

@@ -31,6 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from kinetic.bench import write_report
+from kinetic.bench.edmd import PACKING_FRACTION_3D
 
 __all__ = ["CASES", "compare", "rename_package", "round_ratios"]
 
@@ -100,7 +101,7 @@ CASES = {
     # the fast target's case: 2D, N = 1e3, rho sigma^2 = 1e-2
     "edmd-2d": _edmd_case(2, 1e-2),
     # the peer's case: 3D, N = 1e3, packing fraction 0.01
-    "edmd-3d": _edmd_case(3, 6.0 * 0.01 / math.pi),
+    "edmd-3d": _edmd_case(3, 6.0 * PACKING_FRACTION_3D / math.pi),
 }
 """Each case: package name -> (a call doing some work and returning its amount, a call
 returning the counters that identify the sequence of events)."""
