@@ -4,6 +4,7 @@ Three commands (``make docs`` runs the first two after a build of the default co
 the benches)::
 
     python -m kinetic.docs collect   # results/ -> docs/data/summary.json, docs/gallery/*.png
+                                     # (--benchmarks-only: only the bench reports)
     python -m kinetic.docs render    # summary.json and the configs -> the generated blocks
     python -m kinetic.docs check     # exit 1 if a block differs from what render writes
 
@@ -209,14 +210,18 @@ def _thumbnail(source: Path, target: Path) -> None:
     plt.close(figure)
 
 
-def _benchmarks(directory: Path) -> list[dict[str, Any]]:
+def _benchmarks(directory: Path, kept: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The rows of the bench reports in ``directory``; an engine without a report there
+    keeps its rows of ``kept`` (the summary before), so timing one engine again replaces
+    only that engine's rows."""
     from kinetic.bench.summary import rows
 
     found = []
     for path in sorted(directory.glob("*.json")):
         report = json.loads(path.read_text())
         found += rows(report)
-    return found
+    timed_now = {row["engine"] for row in found}
+    return [row for row in kept if row["engine"] not in timed_now] + found
 
 
 def collect(
@@ -225,9 +230,19 @@ def collect(
     timings: str | os.PathLike = "results/timings",
     out: str | os.PathLike = SUMMARY,
     gallery: str | os.PathLike | None = GALLERY_DIR,
+    *,
+    benchmarks_only: bool = False,
 ) -> dict[str, Any]:
     """The summary of a finished build of the default config (see the module docstring),
-    written to ``out``; thumbnails of :data:`GALLERY` to ``gallery``."""
+    written to ``out``; thumbnails of :data:`GALLERY` to ``gallery``. The bench rows of an
+    engine with no report in ``benchmarks`` are kept from ``out``. With
+    ``benchmarks_only`` only the bench rows change: the documents and timings are kept
+    from ``out`` (after ``python -m kinetic.bench <engine>`` without a build)."""
+    previous = json.loads(Path(out).read_text()) if Path(out).is_file() else {}
+    kept = previous.get("benchmarks", [])
+    if benchmarks_only:
+        summary = previous | {"benchmarks": _benchmarks(Path(benchmarks), kept)}
+        return _write_summary(summary, out)
     root = Path(results)
     summary: dict[str, Any] = {"results": str(results), "documents": {}, "timings": {}}
     for document in DOCUMENTS:
@@ -240,7 +255,6 @@ def collect(
             source = root / document / f"{GALLERY[document]}.png"
             if source.is_file():
                 _thumbnail(source, Path(gallery) / f"{document}.png")
-    previous = json.loads(Path(out).read_text()) if Path(out).is_file() else {}
     for path in sorted(Path(timings).glob("*.json")):
         record = json.loads(path.read_text())
         summary["timings"][path.stem] = {
@@ -267,7 +281,11 @@ def collect(
             earlier = f"{replaced} {earlier}".strip()
         if earlier:
             summary["timings"][path.stem]["earlier"] = earlier
-    summary["benchmarks"] = _benchmarks(Path(benchmarks))
+    summary["benchmarks"] = _benchmarks(Path(benchmarks), kept)
+    return _write_summary(summary, out)
+
+
+def _write_summary(summary: dict[str, Any], out: str | os.PathLike) -> dict[str, Any]:
     path = Path(out)
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(summary, indent=2, sort_keys=True) + "\n")
@@ -468,6 +486,11 @@ def main(argv: list[str] | None = None) -> int:
     collecting.add_argument("--benchmarks", default="results/benchmarks")
     collecting.add_argument("--timings", default="results/timings")
     collecting.add_argument("--out", default=str(SUMMARY))
+    collecting.add_argument(
+        "--benchmarks-only",
+        action="store_true",
+        help="replace only the bench rows of the engines with a report (no build needed)",
+    )
     commands.add_parser("render", help="rewrite the generated blocks")
     commands.add_parser("check", help="exit 1 if a generated block is stale")
     timing = commands.add_parser("timed", help="run a command and record its duration")
@@ -475,7 +498,13 @@ def main(argv: list[str] | None = None) -> int:
     timing.add_argument("cmd", nargs=argparse.REMAINDER, help="-- command ...")
     arguments = parser.parse_args(argv)
     if arguments.command == "collect":
-        collect(arguments.results, arguments.benchmarks, arguments.timings, arguments.out)
+        collect(
+            arguments.results,
+            arguments.benchmarks,
+            arguments.timings,
+            arguments.out,
+            benchmarks_only=arguments.benchmarks_only,
+        )
         return 0
     if arguments.command == "timed":
         command = arguments.cmd[1:] if arguments.cmd[:1] == ["--"] else arguments.cmd

@@ -108,6 +108,46 @@ def test_earlier_runs_are_folded_into_benchmarks_md_and_kept_by_collect(tmp_path
     assert earlier.endswith("OLD RUNS")
 
 
+def test_collect_replaces_the_rows_of_the_engines_timed_again_and_keeps_the_rest(tmp_path):
+    """A bench report in results/benchmarks replaces its engine's rows of the summary; an
+    engine timed elsewhere (the GPU's report, kept in docs/data) keeps its rows; with
+    ``benchmarks_only`` the documents and timings of the summary stay as they were."""
+    summary = json.loads((REPOSITORY / docs.SUMMARY).read_text())
+    out = tmp_path / "summary.json"
+    out.write_text(json.dumps(summary))
+    engines = {row["engine"] for row in summary["benchmarks"]}
+    assert {"edmd", "cuda"} <= engines
+    old_edmd = [row for row in summary["benchmarks"] if row["engine"] == "edmd"]
+    report = {
+        "engine": "edmd",
+        "machine": old_edmd[0] | {"git_revision": "fedcba9", "load_average_1min": 0.1},
+        "cases": [
+            {
+                "dimension": 2,
+                "n_particles": 1000,
+                "density": 0.01,
+                "collisions_per_cpu_second": 1.5e6,
+            }
+        ],
+    }
+    benchmarks = tmp_path / "benchmarks"
+    benchmarks.mkdir()
+    (benchmarks / "edmd.json").write_text(json.dumps(report))
+    made = docs.collect(
+        tmp_path / "no-build", benchmarks, tmp_path / "none", out, None, benchmarks_only=True
+    )
+    edmd = [row for row in made["benchmarks"] if row["engine"] == "edmd"]
+    assert [(row["rate"], row["revision"]) for row in edmd] == [(1.5e6, "fedcba9")]
+    for engine in engines - {"edmd"}:
+        kept = [row for row in summary["benchmarks"] if row["engine"] == engine]
+        assert [row for row in made["benchmarks"] if row["engine"] == engine] == kept
+    assert made["documents"] == summary["documents"] and made["timings"] == summary["timings"]
+    assert json.loads(out.read_text()) == made
+    # a whole collect from an empty build keeps the rows of engines it has no report of too
+    made = docs.collect(tmp_path / "no-build", tmp_path / "none", tmp_path / "none", out, None)
+    assert {row["engine"] for row in made["benchmarks"]} == engines
+
+
 def test_timed_records_the_command_and_passes_its_exit_code_on(tmp_path):
     out = tmp_path / "timing.json"
     code = docs.timed(out, [sys.executable, "-c", "import sys; sys.exit(3)"])
