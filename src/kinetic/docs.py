@@ -62,7 +62,10 @@ TITLES = {
 
 HEADLINES = {
     "visco2008": (
-        ("Table I, MD row t = 10: k2", "Table I, MD k2 at t = 10 against the printed value"),
+        (
+            "Table I, MD row t = 10: k2 equals",
+            "Table I, MD k2 at t = 10 (ρ → 0) against the printed value",
+        ),
         (
             "hard disks, 1/N_c -> 0: mu equals Eq. (28) at lambda = 1",
             "cloning μ(1) of hard disks against Eq. (28)",
@@ -221,7 +224,8 @@ def _benchmarks(directory: Path, kept: list[dict[str, Any]]) -> list[dict[str, A
         report = json.loads(path.read_text())
         found += rows(report)
     timed_now = {row["engine"] for row in found}
-    return [row for row in kept if row["engine"] not in timed_now] + found
+    merged = [row for row in kept if row["engine"] not in timed_now] + found
+    return sorted(merged, key=lambda row: row["engine"])  # stable: each report's order
 
 
 def collect(

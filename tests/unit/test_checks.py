@@ -196,6 +196,25 @@ def _md_run(density, k2):
     )
 
 
+def test_visco2008_judges_printed_md_rows_at_the_dilute_line_and_reports_the_simulated_one():
+    """With a rho -> 0 row (the line through two densities), the printed MD rows are judged
+    there and the best-matching simulated density's rows are only reported: its k2 sits
+    4 errors below the printed one, the line's within one (the default build's numbers of
+    dd25787: 1.12177 +- 0.00024 and 1.12272 +- 0.00027 against 1.1228)."""
+    table = _table1(1.12177)
+    table.loc[0, "k2_err"] = 0.00024
+    dilute = table.loc[0].to_dict() | {"rho": 0.0, "kind": "dilute", "paper_row_density": 0}
+    lone = visco2008.checks(table, _cloning(math.expm1(-1.0)), REFERENCE, sigmas=4.0)
+    (judged,) = [c for c in lone if c.claim.startswith("Table I, MD row t = 10: k2")]
+    assert judged.passed is False and "rho sigma^2 = 0.001" in judged.claim
+    for k2, verdict in ((1.12272, True), (1.1228 - 0.0012, False)):
+        both = pd.concat([table, pd.DataFrame([dilute | {"k2": k2, "k2_err": 0.00027}])])
+        found = visco2008.checks(both, _cloning(math.expm1(-1.0)), REFERENCE, sigmas=4.0)
+        k2_rows = [c for c in found if c.claim.startswith("Table I, MD row t = 10: k2")]
+        assert [(c.passed, "-> 0" in c.claim) for c in k2_rows] == [(verdict, True), (None, False)]
+        assert k2_rows[1].z == pytest.approx((1.12177 - 1.1228) / 0.00024)
+
+
 def test_table1_scores_our_rows_against_the_printed_ones_and_finds_their_density():
     closures = xr.Dataset(
         {
@@ -240,10 +259,16 @@ def test_table1_scores_our_rows_against_the_printed_ones_and_finds_their_density
     error = 0.001 * math.hypot(10 / 9, 1 / 9)
     assert dilute.loc[10.0, "z_k2"] == pytest.approx((1.1233 + 0.0105 / 9 - 1.1228) / error)
     assert numbers["k2_dilute_10"] == pytest.approx(dilute.loc[10.0, "k2"])
-    # the dilute rows are neither a density of the caption nor a checked row
-    assert len(visco2008.checks(table, _cloning(math.expm1(-1.0)), REFERENCE)) == len(
-        visco2008.checks(table[table["kind"] != "dilute"], _cloning(math.expm1(-1.0)), REFERENCE)
+    # the dilute rows are not a density of the caption; they are where the printed rows
+    # are judged, and the stated density's rows are then reported beside them
+    with_line = visco2008.checks(table, _cloning(math.expm1(-1.0)), REFERENCE)
+    without = visco2008.checks(
+        table[table["kind"] != "dilute"], _cloning(math.expm1(-1.0)), REFERENCE
     )
+    judged = [c for c in with_line if "equals the printed" in c.claim]
+    assert len(judged) == 4 and all("-> 0" in c.claim for c in judged)
+    assert all("-> 0" not in c.claim for c in without if "equals the printed" in c.claim)
+    assert len(with_line) == len(without) + len(judged)
 
 
 def test_largest_z_tolerance_holds_its_family_wise_false_alarm_rate():
