@@ -119,6 +119,34 @@ def test_table_has_the_contract_columns_and_extrapolation_rows(section):
     assert np.isfinite(dataset["limit_mu_rate"].values[:2]).all()
 
 
+def _record(lam, population, collapsed, value):
+    record = {"kernel": "hard_disks", "lam": lam, "population": population}
+    for name in aggregate.OBSERVABLES:
+        record |= {name: value, f"{name}_err": 1e-3}
+    return record | {"collapsed": collapsed}
+
+
+def test_extrapolation_fits_the_populations_above_the_largest_collapsed_one():
+    """A collapse of the smallest population (as at lambda = 2.5 with N_c = 100 in a
+    default build of seed 31415) leaves the larger two to the 1/N_c fit instead of
+    dropping the point's extrapolation, and with it the checks at that lambda; the
+    collapsed value is left out (it would pull the line), and a collapse of the largest
+    leaves no fit."""
+    line = {n: 0.5 + 2.0 / n for n in (100, 300, 1000)}
+    records = [_record(2.5, n, n == 100, line[n] + (0.3 if n == 100 else 0.0)) for n in line]
+    records += [_record(4.0, n, n in (100, 1000), line[n]) for n in line]
+    by_lam = {entry["lam"]: entry for entry in aggregate.extrapolate_points(records)}
+    fit = by_lam[2.5]["temperature"]
+    assert fit["value"] == pytest.approx(0.5, abs=1e-9) and fit["dof"] == 0
+    assert by_lam[2.5]["fitted_populations"] == [300, 1000] and by_lam[2.5]["collapsed"]
+    assert np.isnan(fit["deviation_err"][0]) and np.isfinite(fit["deviation_err"][1:]).all()
+    assert all(by_lam[4.0][name] is None for name in aggregate.OBSERVABLES)
+    table = aggregate.scan_table(records, list(by_lam.values()))
+    limits = table[table["n_c"].isna()]
+    assert list(limits["lambda"]) == [2.5] and limits["T"].iloc[0] == pytest.approx(0.5)
+    assert table.loc[table["n_c"] == 100, "T"].isna().all()  # the collapsed points' T
+
+
 @pytest.mark.parametrize("lam", [-2.0, -0.3, 0.0, 0.7])
 def test_planned_event_rate_factor_is_the_kernels(lam):
     from kinetic.cloning import kernels

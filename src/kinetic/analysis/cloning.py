@@ -9,7 +9,8 @@
 
 T and a2 of a point whose population collapsed onto a few clones (large λ, flag
 ``diversity_collapse`` of the front) are not estimates of the eigenfunction: they are
-left empty in the table and excluded from the extrapolation; μ is kept.
+left empty in the table; μ is kept. The extrapolation of a (kernel, λ) fits only the
+populations larger than every collapsed one (collapse comes first to the smallest).
 """
 
 from __future__ import annotations
@@ -158,31 +159,30 @@ def _fit(sizes, values, errors):
 def extrapolate_points(records) -> list[dict[str, Any]]:
     """Per (kernel, λ): weighted linear fits in 1/N_c of μ, μ_rate, T and a2.
 
-    Missing fits are None: fewer than two population sizes, or a diversity collapse at
-    any size (large λ: the bias then comes from the few surviving clones, not a 1/N_c
-    law, and T, a2 are not estimates of the eigenfunction).
+    Only the populations larger than every one that collapsed onto a few clones enter
+    the fits (a collapsed population's bias comes from its few surviving clones, not a
+    1/N_c law, and its T and a2 are not estimates of the eigenfunction); the fit's
+    ``deviation_err`` is NaN for the others. Missing fits are None: fewer than two
+    population sizes left (e.g. the largest collapsed).
     """
     by_point = defaultdict(list)
     for record in records:
         by_point[(record["kernel"], record["lam"])].append(record)
     results = []
     for (label, lam), members in sorted(by_point.items()):
-        collapsed = any(m["collapsed"] for m in members)
+        floor = max((m["population"] for m in members if m["collapsed"]), default=0)
         entry = {
             "kernel": label,
             "lam": lam,
             "populations": [m["population"] for m in members],
-            "collapsed": collapsed,
+            "fitted_populations": [m["population"] for m in members if m["population"] > floor],
+            "collapsed": floor > 0,
         }
         for name in OBSERVABLES:
-            entry[name] = (
-                None
-                if collapsed
-                else _fit(
-                    [m["population"] for m in members],
-                    [m[name] for m in members],
-                    [m[f"{name}_err"] for m in members],
-                )
+            entry[name] = _fit(
+                [m["population"] for m in members],
+                [m[name] if m["population"] > floor else np.nan for m in members],
+                [m[f"{name}_err"] for m in members],
             )
         results.append(entry)
     return results
@@ -209,7 +209,7 @@ def scan_table(records, extrapolations) -> pd.DataFrame:
         )
     for entry in extrapolations:
         if all(entry[name] is None for name in OBSERVABLES):
-            continue  # one population size only, or a collapsed population
+            continue  # fewer than two population sizes to fit
 
         def pick(name, field, entry=entry):
             fit = entry[name]
@@ -350,6 +350,12 @@ def scan_dataset(records, extrapolations):
         np.array([e["lam"] for e in extrapolations]),
         "1",
         "counting field lambda",
+    )
+    data["limit_smallest_population"] = (
+        "limit",
+        np.array([min(e["fitted_populations"], default=0) for e in extrapolations]),
+        "1",
+        "smallest N_c in the fit (those at and below a collapsed population are left out; 0: none)",
     )
     coords = {
         "point": ("point", point, "1", "index of a (kernel, lambda, N_c) point"),
