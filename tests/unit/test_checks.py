@@ -215,6 +215,22 @@ def test_visco2008_judges_printed_md_rows_at_the_dilute_line_and_reports_the_sim
         assert k2_rows[1].z == pytest.approx((1.12177 - 1.1228) / 0.00024)
 
 
+def test_visco2008_says_which_hard_disk_checks_a_collapse_left_unjudged():
+    """A scanned λ whose populations give no 1/N_c -> 0 row (a collapse above all but one
+    size) yields reported rows that say so, one per observable Eq. (28) resolves there,
+    instead of fewer checks without a word."""
+    scan = _cloning(math.expm1(-1.0))
+    judged = visco2008.checks(_table1(1.1228), scan, REFERENCE)
+    point = scan.iloc[1].to_dict() | {"n_c": 1000.0, "T": np.nan, "a2": np.nan}
+    lost = pd.concat([scan.iloc[:1], pd.DataFrame([point])], ignore_index=True)
+    found = visco2008.checks(_table1(1.1228), lost, REFERENCE)
+    said = [c for c in found if "not judged" in c.claim]
+    assert [c.expected for c in said] == [-0.576653, 0.675245, 0.165591]
+    assert {c.passed for c in said} == {None} and all(math.isnan(c.value) for c in said)
+    assert not [c for c in judged if "not judged" in c.claim]
+    assert len(found) == len(judged)  # three checks became three rows that say why
+
+
 def test_table1_scores_our_rows_against_the_printed_ones_and_finds_their_density():
     closures = xr.Dataset(
         {

@@ -389,4 +389,22 @@ def checks(
                     cloning_band,
                 )
             )
+    # a scanned λ without a 1/N_c -> 0 row (fewer than two populations above a collapsed
+    # one) is said, not passed over: a seed that collapses one more population would
+    # otherwise lose checks without a word
+    points = cloning[(cloning["kernel"] == "hard_disks") & cloning["n_c"].notna()]
+    for lam in sorted(set(points["lam"]) - set(disks["lam"])):
+        (matches,) = np.nonzero(np.isclose(lams, lam, rtol=0.0, atol=1e-9))
+        for name, variable in (("mu", "mu"), ("T", "temperature"), ("a2", "a2")):
+            exact = float(reference[variable].values[matches[0]]) if matches.size else math.nan
+            if math.isfinite(exact):
+                found.append(
+                    check.reported(
+                        f"hard disks, 1/N_c -> 0: {name} at lambda = {lam:g} not judged (fewer "
+                        "than two populations above a collapsed one to extrapolate)",
+                        math.nan,
+                        math.nan,
+                        exact,
+                    )
+                )
     return found
